@@ -1,0 +1,73 @@
+#pragma once
+// The Vulkan instance, the chosen physical device, one logical device and queue.
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace tessera {
+
+struct ContextOptions {
+  /// "auto" (a discrete GPU if there is one, else lavapipe), "lavapipe", "gpu" (discrete, else
+  /// integrated or virtual), or a device index as listed by list_devices().
+  std::string device = "auto";
+  /// Enables the Khronos validation layer with synchronization validation; every warning and
+  /// error it reports is counted in Context::validation.
+  bool validation = false;
+  /// Instance extensions a window system needs (e.g. from glfwGetRequiredInstanceExtensions).
+  std::vector<std::string> instance_extensions;
+  /// Enables VK_KHR_swapchain on the device, for presenting the output image in a window.
+  bool swapchain = false;
+};
+
+/// What the validation layer reported. Thread-safe: the layer may call from any thread.
+struct ValidationLog {
+  std::atomic<uint32_t> errors{0};
+  std::atomic<uint32_t> warnings{0};
+  std::mutex mutex;
+  std::vector<std::string> messages;
+  void clear();
+};
+
+struct DeviceInfo {
+  uint32_t index;
+  std::string name;
+  VkPhysicalDeviceType type;
+  std::string missing;  // features Tessera needs that the device lacks ("" if none)
+};
+
+struct Context {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkCommandPool command_pool = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memory_properties{};
+  uint32_t timestamp_valid_bits = 0;  // 0: the queue cannot write timestamps
+  std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
+
+  Context() = default;
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  ~Context();
+};
+
+/// Creates the instance and device chosen by `options`. Throws tessera::Error naming what is
+/// missing: the Vulkan loader or any device, the requested device, Vulkan 1.2, 64-bit
+/// integers or 64-bit buffer atomics, the validation layer when asked for.
+std::unique_ptr<Context> create_context(const ContextOptions& options);
+
+/// Every physical device the loader sees, with what Tessera would miss on each.
+std::vector<DeviceInfo> list_devices();
+
+/// "discrete GPU", "CPU", ... for messages.
+const char* device_type_name(VkPhysicalDeviceType type);
+
+}  // namespace tessera

@@ -1,0 +1,158 @@
+#include "compute/gpu_memory.h"
+
+#include <string>
+
+#include "compute/vk_check.h"
+#include "core/check.h"
+
+namespace tessera {
+namespace {
+
+uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags wanted,
+                          VkMemoryPropertyFlags preferred) {
+  const VkPhysicalDeviceMemoryProperties& props = ctx.memory_properties;
+  for (VkMemoryPropertyFlags flags : {wanted | preferred, wanted}) {
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
+      if ((type_bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    }
+  }
+  throw Error("the device has no memory type with the properties " + std::to_string(wanted));
+}
+
+VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind kind) {
+  VkMemoryPropertyFlags wanted = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  VkMemoryPropertyFlags preferred = 0;
+  if (kind == MemoryKind::upload) {
+    wanted = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  } else if (kind == MemoryKind::readback) {
+    wanted = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  }
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = req.size;
+  info.memoryTypeIndex = find_memory_type(ctx, req.memoryTypeBits, wanted, preferred);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkResult result = vkAllocateMemory(ctx.device, &info, nullptr, &memory);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    throw Error("out of memory allocating " + std::to_string(req.size >> 20) + " MiB on " +
+                ctx.properties.deviceName);
+  }
+  vk_check(result, "vkAllocateMemory");
+  return memory;
+}
+
+}  // namespace
+
+Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind) {
+  TESSERA_CHECK(size > 0);
+  Buffer b;
+  b.size = size;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+  try {
+    b.memory = allocate(ctx, req, kind);
+  } catch (...) {
+    vkDestroyBuffer(ctx.device, b.buffer, nullptr);
+    throw;
+  }
+  VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  if (kind != MemoryKind::device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, size, 0, &b.mapped));
+  return b;
+}
+
+void destroy_buffer(const Context& ctx, Buffer& b) {
+  if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+  b = Buffer{};
+}
+
+StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format) {
+  StorageImage img;
+  img.format = format;
+  img.width = width;
+  img.height = height;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+  img.memory = allocate(ctx, req, MemoryKind::device);
+  VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = img.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &img.view));
+
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    barrier.srcAccessMask = 0;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = img.image;
+    barrier.subresourceRange = view.subresourceRange;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         0, 0, nullptr, 0, nullptr, 1, &barrier);
+  });
+  return img;
+}
+
+void destroy_image(const Context& ctx, StorageImage& img) {
+  if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
+  if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
+  if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+  img = StorageImage{};
+}
+
+void submit_and_wait(const Context& ctx, const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = ctx.command_pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &cmd));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateFence(ctx.device, &fence_info, nullptr, &fence));
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  VkResult result = vkQueueSubmit(ctx.queue, 1, &submit, fence);
+  if (result == VK_SUCCESS) result = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX);
+  vkDestroyFence(ctx.device, fence, nullptr);
+  vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+  vk_check(result, "vkQueueSubmit/vkWaitForFences");
+}
+
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                    VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = src_access;
+  barrier.dstAccessMask = dst_access;
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace tessera

@@ -1,0 +1,102 @@
+#include "compute/pipelines.h"
+
+#include <string>
+#include <vector>
+
+#include "compute/vk_check.h"
+#include "core/check.h"
+#include "shaders/shader_registry.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+namespace {
+
+VkDescriptorType binding_type(uint32_t binding) {
+  if (binding == TS_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  if (binding == TS_BINDING_HDR_IMAGE || binding == TS_BINDING_LDR_IMAGE) {
+    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  }
+  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
+                                   std::string_view shader, bool debug_coverage) {
+  std::span<const uint32_t> code = find_shader(shader);
+  TESSERA_CHECK(!code.empty());
+  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  module_info.codeSize = code.size_bytes();
+  module_info.pCode = code.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
+
+  const VkBool32 coverage = debug_coverage ? VK_TRUE : VK_FALSE;
+  VkSpecializationMapEntry entry{TS_SPEC_DEBUG_COVERAGE, 0, sizeof(VkBool32)};
+  VkSpecializationInfo spec{1, &entry, sizeof(coverage), &coverage};
+
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = &spec;
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  vkDestroyShaderModule(ctx.device, module, nullptr);
+  vk_check(result, ("vkCreateComputePipelines(" + std::string(shader) + ")").c_str());
+  return pipeline;
+}
+
+}  // namespace
+
+Pipelines create_pipelines(const Context& ctx) {
+  Pipelines p;
+  std::vector<VkDescriptorSetLayoutBinding> bindings;
+  for (uint32_t b = 0; b < TS_BINDING_COUNT; ++b) {
+    bindings.push_back({b, binding_type(b), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  }
+  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  set_info.bindingCount = uint32_t(bindings.size());
+  set_info.pBindings = bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &p.set_layout));
+
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::GpuBatch)};
+  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &p.set_layout;
+  layout_info.pushConstantRangeCount = 1;
+  layout_info.pPushConstantRanges = &push;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &p.layout));
+
+  struct Variant {
+    Pipeline id;
+    const char* shader;
+    bool coverage;
+  };
+  const Variant variants[] = {
+      {Pipeline::setup, "setup", false},
+      {Pipeline::scan, "scan", false},
+      {Pipeline::fill, "fill", false},
+      {Pipeline::raster_small, "raster_small", false},
+      {Pipeline::raster_tiles, "raster_tiles", false},
+      {Pipeline::raster_small_coverage, "raster_small", true},
+      {Pipeline::raster_tiles_coverage, "raster_tiles", true},
+      {Pipeline::shade, "shade", false},
+      {Pipeline::resolve, "resolve", false},
+  };
+  for (const Variant& v : variants) {
+    p.pipelines[size_t(v.id)] = create_compute_pipeline(ctx, p.layout, v.shader, v.coverage);
+  }
+  return p;
+}
+
+void destroy_pipelines(const Context& ctx, Pipelines& p) {
+  for (VkPipeline& pipeline : p.pipelines) {
+    if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  }
+  if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
+  if (p.set_layout) vkDestroyDescriptorSetLayout(ctx.device, p.set_layout, nullptr);
+  p = Pipelines{};
+}
+
+}  // namespace tessera

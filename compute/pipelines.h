@@ -1,0 +1,37 @@
+#pragma once
+// The descriptor set layout shared by every pass, and the compute pipelines, created once.
+
+#include <array>
+#include <string_view>
+
+#include <vulkan/vulkan.h>
+
+#include "compute/context.h"
+
+namespace tessera {
+
+enum class Pipeline {
+  setup,
+  scan,
+  fill,
+  raster_small,
+  raster_tiles,
+  raster_small_coverage,  // raster_small with DEBUG_COVERAGE on
+  raster_tiles_coverage,  // raster_tiles with DEBUG_COVERAGE on
+  shade,
+  resolve,
+  count
+};
+
+struct Pipelines {
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::array<VkPipeline, size_t(Pipeline::count)> pipelines{};
+  VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
+};
+
+/// Creates the layouts and every pipeline from the embedded SPIR-V.
+Pipelines create_pipelines(const Context& ctx);
+void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
+
+}  // namespace tessera

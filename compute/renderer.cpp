@@ -1,0 +1,612 @@
+#include "compute/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <glm/gtc/packing.hpp>
+
+#include "compute/pipelines.h"
+#include "compute/readback.h"
+#include "compute/scene_upload.h"
+#include "compute/vk_check.h"
+#include "core/check.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+namespace {
+
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+constexpr uint32_t kMaxAttempts = 64;
+
+uint32_t div_up(uint64_t a, uint64_t b) { return uint32_t((a + b - 1) / b); }
+
+// Barrier between two compute passes: writes of the first visible to reads and writes of the
+// second, and to indirect-argument reads.
+void compute_to_compute(VkCommandBuffer cmd) {
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                     VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+void transfer_to_compute(VkCommandBuffer cmd) {
+  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                     VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+// Everything before (earlier submissions included) complete and visible to everything after.
+void full_barrier(VkCommandBuffer cmd) {
+  memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                 VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+}
+
+uint32_t tonemap_id(ToneMap t) {
+  switch (t) {
+    case ToneMap::aces: return TS_TONEMAP_ACES;
+    case ToneMap::reinhard: return TS_TONEMAP_REINHARD;
+    case ToneMap::clamp: return TS_TONEMAP_CLAMP;
+  }
+  return TS_TONEMAP_ACES;
+}
+
+}  // namespace
+
+const char* pass_name(Pass pass) {
+  static const char* const kNames[] = {"clear", "setup",       "scan",  "fill",
+                                       "raster_tiles", "raster_small", "shade", "resolve"};
+  static_assert(std::size(kNames) == kPassCount);
+  return kNames[size_t(pass)];
+}
+
+struct Renderer::State {
+  Context& ctx;
+  RendererOptions options;
+  Pipelines pipelines;
+  VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  bool descriptors_dirty = true;
+
+  // The scene as it is on the GPU.
+  bool has_scene = false;
+  GpuSceneArrays uploaded;
+  Camera camera;
+  glm::vec3 background{0.0f};
+  glm::vec3 ambient{0.0f};
+  Buffer vertices, indices, objects, materials, lights;
+
+  // Sized by the image.
+  uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+  Buffer visibility, coverage, tile_counts, tile_offsets, tile_cursors;
+  StorageImage hdr, ldr;
+
+  // Scratch, sized by capacities that grow on demand.
+  uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
+  uint32_t counter_slots = 0;
+  Buffer raster_tris, small_list, big_list, tile_entries, counters, counters_readback;
+
+  Buffer frame_constants;
+  VkQueryPool queries = VK_NULL_HANDLE;
+  uint32_t query_capacity = 0;
+
+  explicit State(Context& c) : ctx(c) {}
+
+  uint32_t max_raster_capacity() const {
+    const VkPhysicalDeviceLimits& l = ctx.properties.limits;
+    uint64_t by_range = l.maxStorageBufferRange / sizeof(gpu::GpuRasterTri);
+    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(gpu::GpuRasterTri);
+    uint64_t by_dispatch = uint64_t(l.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+    return uint32_t(std::min({by_range, by_budget, by_dispatch, uint64_t(0xFFFFFFFFu)}));
+  }
+  uint32_t max_tile_entry_capacity() const {
+    uint64_t by_range = ctx.properties.limits.maxStorageBufferRange / sizeof(uint32_t);
+    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(uint32_t);
+    return uint32_t(std::min({by_range, by_budget, uint64_t(0xFFFFFFFFu)}));
+  }
+  uint32_t max_batch() const {
+    uint64_t by_dispatch = uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+    uint64_t limit = std::min<uint64_t>(by_dispatch, max_raster_capacity());
+    if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
+    return uint32_t(std::max<uint64_t>(limit, 1));
+  }
+};
+
+Renderer::Renderer(Context& ctx, const RendererOptions& options) : s_(std::make_unique<State>(ctx)) {
+  s_->options = options;
+  s_->pipelines = create_pipelines(ctx);
+
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, TS_BINDING_COUNT},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = uint32_t(std::size(sizes));
+  pool_info.pPoolSizes = sizes;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &pool_info, nullptr, &s_->descriptor_pool));
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = s_->descriptor_pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &s_->pipelines.set_layout;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
+
+  s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                      MemoryKind::upload);
+}
+
+Renderer::~Renderer() {
+  Context& ctx = s_->ctx;
+  vkDeviceWaitIdle(ctx.device);
+  for (Buffer* b : {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights,
+                    &s_->visibility, &s_->coverage, &s_->tile_counts, &s_->tile_offsets,
+                    &s_->tile_cursors, &s_->raster_tris, &s_->small_list, &s_->big_list,
+                    &s_->tile_entries, &s_->counters, &s_->counters_readback, &s_->frame_constants}) {
+    destroy_buffer(ctx, *b);
+  }
+  destroy_image(ctx, s_->hdr);
+  destroy_image(ctx, s_->ldr);
+  if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
+  vkDestroyDescriptorPool(ctx.device, s_->descriptor_pool, nullptr);
+  destroy_pipelines(ctx, s_->pipelines);
+}
+
+namespace {
+
+struct PendingCopy {
+  VkBuffer dst;
+  VkDeviceSize dst_offset;
+  const void* data;
+  VkDeviceSize size;
+};
+
+// Makes `buffer` hold `next`, given that it holds `previous`: reallocates if it is too small,
+// else queues a copy of the range of elements that differ (nothing if none does).
+template <typename T>
+void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
+                        const std::vector<T>& next, std::vector<PendingCopy>& copies,
+                        UploadStats& stats, bool& dirty) {
+  const VkDeviceSize bytes = next.size() * sizeof(T);
+  if (!buffer.buffer || buffer.size < bytes) {
+    destroy_buffer(ctx, buffer);
+    // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
+    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorage, MemoryKind::device);
+    stats.buffers_created++;
+    dirty = true;
+    if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
+    return;
+  }
+  size_t first = 0;
+  size_t common = std::min(previous.size(), next.size());
+  while (first < common && std::memcmp(&previous[first], &next[first], sizeof(T)) == 0) ++first;
+  if (first == next.size()) return;
+  size_t last = next.size();  // one past the last element that differs
+  while (last > first && last <= common &&
+         std::memcmp(&previous[last - 1], &next[last - 1], sizeof(T)) == 0) {
+    --last;
+  }
+  copies.push_back({buffer.buffer, first * sizeof(T), &next[first], (last - first) * sizeof(T)});
+}
+
+}  // namespace
+
+UploadStats Renderer::set_scene(const Scene& scene) {
+  validate_scene(scene);
+  GpuSceneArrays next = flatten_scene(scene);
+  State& s = *s_;
+  UploadStats stats;
+  std::vector<PendingCopy> copies;
+  const GpuSceneArrays& prev = s.uploaded;
+  queue_array_upload(s.ctx, s.vertices, prev.vertices, next.vertices, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.indices, prev.indices, next.indices, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.objects, prev.objects, next.objects, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.materials, prev.materials, next.materials, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.lights, prev.lights, next.lights, copies, stats, s.descriptors_dirty);
+
+  VkDeviceSize total = 0;
+  for (const PendingCopy& c : copies) total += c.size;
+  if (total > 0) {
+    Buffer staging = create_buffer(s.ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
+    VkDeviceSize offset = 0;
+    for (const PendingCopy& c : copies) {
+      std::memcpy(static_cast<char*>(staging.mapped) + offset, c.data, c.size);
+      offset += c.size;
+    }
+    submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
+      full_barrier(cmd);
+      VkDeviceSize src = 0;
+      for (const PendingCopy& c : copies) {
+        VkBufferCopy region{src, c.dst_offset, c.size};
+        vkCmdCopyBuffer(cmd, staging.buffer, c.dst, 1, &region);
+        src += c.size;
+      }
+      transfer_to_compute(cmd);
+    });
+    destroy_buffer(s.ctx, staging);
+  }
+  stats.bytes = total;
+  s.uploaded = std::move(next);
+  s.camera = scene.camera;
+  s.background = scene.background;
+  s.ambient = scene.ambient;
+  s.has_scene = true;
+  return stats;
+}
+
+namespace {
+
+void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
+  const VkPhysicalDeviceLimits& l = ctx.properties.limits;
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width == 0 || height == 0) throw Error("image size " + size + " is empty");
+  const uint32_t max_side = std::min<uint32_t>(TS_MAX_IMAGE_SIDE, l.maxImageDimension2D);
+  if (width > max_side || height > max_side) {
+    throw Error("image size " + size + " is over the largest side of " + std::to_string(max_side) +
+                " px");
+  }
+  const uint64_t vis_bytes = uint64_t(width) * height * sizeof(uint64_t);
+  if (vis_bytes > l.maxStorageBufferRange) {
+    throw Error("image size " + size + " needs a " + std::to_string(vis_bytes >> 20) +
+                " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
+                std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
+  }
+}
+
+}  // namespace
+
+FrameStats Renderer::render(const FrameSettings& settings) {
+  State& s = *s_;
+  Context& ctx = s.ctx;
+  if (!s.has_scene) throw Error("render() was called before set_scene()");
+  check_frame_size(ctx, settings.width, settings.height);
+  if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
+    throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
+  }
+
+  // Image-sized resources.
+  if (settings.width != s.width || settings.height != s.height) {
+    for (Buffer* b : {&s.visibility, &s.coverage, &s.tile_counts, &s.tile_offsets, &s.tile_cursors}) {
+      destroy_buffer(ctx, *b);
+    }
+    destroy_image(ctx, s.hdr);
+    destroy_image(ctx, s.ldr);
+    s.width = settings.width;
+    s.height = settings.height;
+    s.tiles_x = div_up(s.width, TS_TILE_SIZE);
+    s.tiles_y = div_up(s.height, TS_TILE_SIZE);
+    const uint64_t pixels = uint64_t(s.width) * s.height;
+    const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
+    s.visibility = create_buffer(ctx, pixels * 8, kStorage, MemoryKind::device);
+    s.coverage = create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorage, MemoryKind::device);
+    s.tile_counts = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
+    s.tile_offsets = create_buffer(ctx, (tiles + 1) * 4, kStorage, MemoryKind::device);
+    s.tile_cursors = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
+    s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT);
+    s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
+    s.descriptors_dirty = true;
+  }
+
+  const uint64_t total = s.uploaded.triangle_count;
+  if (s.batch_triangles == 0) {
+    s.batch_triangles = uint32_t(std::min<uint64_t>(std::max<uint64_t>(total, 1), s.max_batch()));
+  }
+  if (s.raster_capacity == 0) {
+    s.raster_capacity = s.options.initial_raster_capacity
+                            ? s.options.initial_raster_capacity
+                            : std::min<uint32_t>(s.batch_triangles + 1024, s.max_raster_capacity());
+  }
+  if (s.tile_entry_capacity == 0) {
+    s.tile_entry_capacity = s.options.initial_tile_entry_capacity
+                                ? s.options.initial_tile_entry_capacity
+                                : std::min<uint32_t>(std::max<uint32_t>(s.tiles_x * s.tiles_y * 4, 1u << 16),
+                                                     s.max_tile_entry_capacity());
+  }
+
+  FrameStats stats;
+  stats.triangles_submitted = total;
+  for (uint32_t attempt = 1;; ++attempt) {
+    if (attempt > kMaxAttempts) {
+      throw Error("the frame still overflowed its buffers after " + std::to_string(kMaxAttempts) +
+                  " attempts (batch of " + std::to_string(s.batch_triangles) + " triangles)");
+    }
+    const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
+    if (!s.raster_tris.buffer || s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
+      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list}) destroy_buffer(ctx, *b);
+      s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri), kStorage, MemoryKind::device);
+      s.small_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+      s.big_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+      s.descriptors_dirty = true;
+    }
+    if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
+      destroy_buffer(ctx, s.tile_entries);
+      s.tile_entries = create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorage, MemoryKind::device);
+      s.descriptors_dirty = true;
+    }
+    if (s.counter_slots < std::max(batches, 1u)) {
+      destroy_buffer(ctx, s.counters);
+      destroy_buffer(ctx, s.counters_readback);
+      s.counter_slots = std::max(batches, 1u);
+      const VkDeviceSize bytes = VkDeviceSize(s.counter_slots) * sizeof(gpu::GpuCounters);
+      s.counters = create_buffer(ctx, bytes, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::device);
+      s.counters_readback = create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
+      s.descriptors_dirty = true;
+    }
+    const bool timestamps = ctx.timestamp_valid_bits > 0;
+    const uint32_t queries_needed = 2 + 5 * batches + 2;
+    if (timestamps && s.query_capacity < queries_needed) {
+      if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
+      VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      info.queryCount = queries_needed;
+      VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &s.queries));
+      s.query_capacity = queries_needed;
+    }
+    if (s.descriptors_dirty) {
+      update_descriptors();
+      s.descriptors_dirty = false;
+    }
+    write_frame_constants(settings);
+
+    std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
+    const auto start = std::chrono::steady_clock::now();
+    submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+      record_frame(cmd, batches, timestamps, query_passes);
+      stats.cpu_record_submit_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    });
+
+    // Read the counters: did any batch need more room than it had?
+    const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
+    uint64_t need_raster = 0, need_entries = 0;
+    for (uint32_t b = 0; b < batches; ++b) {
+      need_raster = std::max<uint64_t>(need_raster, counters[b].raster_tris);
+      need_entries = std::max<uint64_t>(need_entries, counters[b].tile_entries);
+    }
+    bool redo = false;
+    if (need_raster > s.raster_capacity) {
+      redo = true;
+      if (s.raster_capacity < s.max_raster_capacity()) {
+        s.raster_capacity = uint32_t(std::min<uint64_t>(need_raster + need_raster / 4, s.max_raster_capacity()));
+      } else {
+        s.batch_triangles = std::max(1u, s.batch_triangles / 2);
+      }
+    }
+    if (need_entries > s.tile_entry_capacity) {
+      redo = true;
+      if (s.tile_entry_capacity < s.max_tile_entry_capacity()) {
+        s.tile_entry_capacity =
+            uint32_t(std::min<uint64_t>(need_entries + need_entries / 4, s.max_tile_entry_capacity()));
+      } else {
+        s.batch_triangles = std::max(1u, s.batch_triangles / 2);
+      }
+    }
+    if (redo) continue;
+
+    stats.attempts = attempt;
+    stats.batches = batches;
+    for (uint32_t b = 0; b < batches; ++b) {
+      const gpu::GpuCounters& c = counters[b];
+      stats.raster_triangles += c.raster_tris;
+      stats.small_triangles += c.small_tris;
+      stats.big_triangles += c.big_tris;
+      stats.tile_entries += c.tile_entries;
+      stats.culled_backface += c.culled_backface;
+      stats.culled_frustum += c.culled_frustum;
+      stats.culled_empty += c.culled_empty;
+      stats.culled_nonfinite += c.culled_nonfinite;
+      stats.clipped += c.clipped;
+    }
+    if (timestamps) {
+      std::vector<uint64_t> ticks(query_passes.size() + 1);
+      VK_CHECK(vkGetQueryPoolResults(ctx.device, s.queries, 0, uint32_t(ticks.size()),
+                                     ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+      const uint64_t mask = ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
+      const double ns_per_tick = ctx.properties.limits.timestampPeriod;
+      for (size_t i = 0; i < query_passes.size(); ++i) {
+        const uint64_t delta = ((ticks[i + 1] & mask) - (ticks[i] & mask)) & mask;
+        stats.pass_ms[size_t(query_passes[i])] += double(delta) * ns_per_tick * 1e-6;
+      }
+      const uint64_t all = ((ticks.back() & mask) - (ticks.front() & mask)) & mask;
+      stats.gpu_total_ms = double(all) * ns_per_tick * 1e-6;
+      stats.has_timestamps = true;
+    }
+    return stats;
+  }
+}
+
+void Renderer::update_descriptors() {
+  State& s = *s_;
+  struct BufferBinding {
+    uint32_t binding;
+    const Buffer* buffer;
+  };
+  const BufferBinding buffers[] = {
+      {TS_BINDING_FRAME, &s.frame_constants}, {TS_BINDING_VERTICES, &s.vertices},
+      {TS_BINDING_INDICES, &s.indices},       {TS_BINDING_OBJECTS, &s.objects},
+      {TS_BINDING_MATERIALS, &s.materials},   {TS_BINDING_LIGHTS, &s.lights},
+      {TS_BINDING_RASTER_TRIS, &s.raster_tris}, {TS_BINDING_SMALL_LIST, &s.small_list},
+      {TS_BINDING_BIG_LIST, &s.big_list},     {TS_BINDING_TILE_COUNTS, &s.tile_counts},
+      {TS_BINDING_TILE_OFFSETS, &s.tile_offsets}, {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
+      {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
+      {TS_BINDING_VISIBILITY, &s.visibility}, {TS_BINDING_COVERAGE, &s.coverage},
+  };
+  std::vector<VkDescriptorBufferInfo> buffer_infos;
+  buffer_infos.reserve(std::size(buffers));
+  std::vector<VkWriteDescriptorSet> writes;
+  for (const BufferBinding& b : buffers) {
+    TESSERA_CHECK(b.buffer->buffer != VK_NULL_HANDLE);
+    buffer_infos.push_back({b.buffer->buffer, 0, VK_WHOLE_SIZE});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = s.set;
+    w.dstBinding = b.binding;
+    w.descriptorCount = 1;
+    w.descriptorType = b.binding == TS_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                     : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &buffer_infos.back();
+    writes.push_back(w);
+  }
+  const VkDescriptorImageInfo images[] = {{VK_NULL_HANDLE, s.hdr.view, VK_IMAGE_LAYOUT_GENERAL},
+                                          {VK_NULL_HANDLE, s.ldr.view, VK_IMAGE_LAYOUT_GENERAL}};
+  for (uint32_t i = 0; i < 2; ++i) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = s.set;
+    w.dstBinding = i == 0 ? TS_BINDING_HDR_IMAGE : TS_BINDING_LDR_IMAGE;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    w.pImageInfo = &images[i];
+    writes.push_back(w);
+  }
+  vkUpdateDescriptorSets(s.ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void Renderer::write_frame_constants(const FrameSettings& settings) {
+  State& s = *s_;
+  const Camera& camera = s.camera;
+  const float aspect = float(s.width) / float(s.height);
+  const glm::dmat4 view_proj =
+      glm::dmat4(projection_matrix(camera, aspect)) * glm::dmat4(view_matrix(camera));
+  gpu::GpuFrame f{};
+  f.view_proj = glm::mat4(view_proj);
+  f.inv_view_proj = glm::mat4(glm::inverse(view_proj));
+  f.camera_position = glm::vec4(camera.position, camera.near_plane);
+  f.background = glm::vec4(s.background, 1.0f);
+  f.ambient = glm::vec4(s.ambient, 0.0f);
+  // Guard band: NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
+  f.raster_params = glm::vec4(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
+                              float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0),
+                              std::exp2(settings.exposure_ev), 0.0f);
+  f.image_size = glm::uvec4(s.width, s.height, s.tiles_x, s.tiles_y);
+  f.scene_counts = glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
+                              uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
+  f.limits = glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area, 0);
+  std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
+}
+
+void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
+                            std::vector<Pass>& query_passes) {
+  State& s = *s_;
+  const Pipelines& p = s.pipelines;
+  query_passes.clear();
+  auto mark = [&](Pass pass) {
+    if (!timestamps) return;
+    query_passes.push_back(pass);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries, uint32_t(query_passes.size()));
+  };
+  auto bind = [&](Pipeline pipeline) { vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p[pipeline]); };
+
+  full_barrier(cmd);  // earlier submissions (uploads, read-backs, the last frame) are done
+  if (timestamps) {
+    vkCmdResetQueryPool(cmd, s.queries, 0, s.query_capacity);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
+  }
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
+  vkCmdFillBuffer(cmd, s.visibility.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);  // TS_VIS_EMPTY
+  if (s.options.debug_coverage) vkCmdFillBuffer(cmd, s.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, s.counters.buffer, 0, VK_WHOLE_SIZE, 0);
+  transfer_to_compute(cmd);
+  mark(Pass::clear);
+
+  const uint64_t total = s.uploaded.triangle_count;
+  for (uint32_t b = 0; b < batches; ++b) {
+    const uint64_t first = uint64_t(b) * s.batch_triangles;
+    gpu::GpuBatch batch{uint32_t(first), uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
+    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+
+    // The tile counts of the previous batch were read by its tile passes.
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, s.tile_counts.buffer, 0, VK_WHOLE_SIZE, 0);
+    transfer_to_compute(cmd);
+
+    bind(Pipeline::setup);
+    vkCmdDispatch(cmd, div_up(batch.triangle_count, TS_GROUP_SIZE), 1, 1);
+    compute_to_compute(cmd);
+    mark(Pass::setup);
+
+    bind(Pipeline::scan);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    compute_to_compute(cmd);
+    mark(Pass::scan);
+
+    const VkDeviceSize slot = VkDeviceSize(b) * sizeof(gpu::GpuCounters);
+    bind(Pipeline::fill);
+    vkCmdDispatchIndirect(cmd, s.counters.buffer, slot + offsetof(gpu::GpuCounters, big_dispatch));
+    compute_to_compute(cmd);
+    mark(Pass::fill);
+
+    bind(s.options.debug_coverage ? Pipeline::raster_tiles_coverage : Pipeline::raster_tiles);
+    vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
+    compute_to_compute(cmd);
+    mark(Pass::raster_tiles);
+
+    bind(s.options.debug_coverage ? Pipeline::raster_small_coverage : Pipeline::raster_small);
+    vkCmdDispatchIndirect(cmd, s.counters.buffer, slot + offsetof(gpu::GpuCounters, small_dispatch));
+    compute_to_compute(cmd);
+    mark(Pass::raster_small);
+  }
+
+  bind(Pipeline::shade);
+  vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
+  compute_to_compute(cmd);
+  mark(Pass::shade);
+
+  bind(Pipeline::resolve);
+  vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  mark(Pass::resolve);
+
+  VkBufferCopy region{0, 0, s.counters.size};
+  vkCmdCopyBuffer(cmd, s.counters.buffer, s.counters_readback.buffer, 1, &region);
+  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
+ImageF Renderer::read_hdr() const {
+  const State& s = *s_;
+  TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE);
+  std::vector<uint16_t> halves = download_image<uint16_t>(s.ctx, s.hdr, 4);
+  ImageF out{s.width, s.height, std::vector<glm::vec4>(size_t(s.width) * s.height)};
+  for (size_t i = 0; i < out.pixels.size(); ++i) {
+    for (int c = 0; c < 4; ++c) out.pixels[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+  }
+  return out;
+}
+
+Image8 Renderer::read_ldr() const {
+  const State& s = *s_;
+  TESSERA_CHECK(s.ldr.image != VK_NULL_HANDLE);
+  std::vector<glm::u8vec4> texels = download_image<glm::u8vec4>(s.ctx, s.ldr, 1);
+  return Image8{s.width, s.height, std::move(texels)};
+}
+
+std::vector<uint64_t> Renderer::read_visibility() const {
+  TESSERA_CHECK(s_->visibility.buffer != VK_NULL_HANDLE);
+  return download_buffer<uint64_t>(s_->ctx, s_->visibility, uint64_t(s_->width) * s_->height);
+}
+
+std::vector<uint32_t> Renderer::read_coverage() const {
+  TESSERA_CHECK(s_->options.debug_coverage && s_->coverage.buffer != VK_NULL_HANDLE);
+  return download_buffer<uint32_t>(s_->ctx, s_->coverage, uint64_t(s_->width) * s_->height);
+}
+
+const StorageImage& Renderer::output_image() const { return s_->ldr; }
+
+uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
+  const auto& objects = s_->uploaded.objects;
+  auto it = std::upper_bound(objects.begin(), objects.end(), triangle_id,
+                             [](uint32_t id, const gpu::GpuObject& o) { return id < o.first_triangle; });
+  TESSERA_CHECK(it != objects.begin());
+  const size_t slot = size_t(it - objects.begin()) - 1;
+  TESSERA_CHECK(triangle_id - objects[slot].first_triangle < objects[slot].triangle_count);
+  return s_->uploaded.object_of_slot[slot];
+}
+
+}  // namespace tessera

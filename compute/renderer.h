@@ -1,0 +1,110 @@
+#pragma once
+// The compute rasterizer: created once per device, renders many frames of many scenes.
+//
+// Per frame: setup -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve, over
+// one or more batches of triangle instances (see docs/architecture.md). The output stays on
+// the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "compute/context.h"
+#include "compute/gpu_memory.h"
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace tessera {
+
+struct RendererOptions {
+  /// Triangles whose pixel box has at most this many pixels are rasterized one thread per
+  /// triangle; larger ones are binned into 16x16 tiles. Any value gives the same image.
+  uint32_t small_triangle_max_area = 64;
+  /// Most triangle instances set up per batch (0: as many as the scratch buffers allow).
+  uint32_t max_batch_triangles = 0;
+  /// Starting capacities of the scratch buffers (0: sized from the scene). They grow, and the
+  /// frame is rendered again, whenever a frame needs more: nothing is ever dropped.
+  uint32_t initial_raster_capacity = 0;
+  uint32_t initial_tile_entry_capacity = 0;
+  /// Upper bound on each scratch buffer, in bytes, besides the device's maxStorageBufferRange.
+  /// Past it the renderer splits the frame into more batches instead of growing.
+  uint64_t max_scratch_buffer_bytes = 256ull << 20;
+  /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
+  /// covered exactly once. Slower; for tests.
+  bool debug_coverage = false;
+};
+
+struct FrameSettings {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
+  ToneMap tonemap = ToneMap::aces;
+};
+
+enum class Pass { clear, setup, scan, fill, raster_tiles, raster_small, shade, resolve, count };
+constexpr size_t kPassCount = size_t(Pass::count);
+const char* pass_name(Pass pass);
+
+struct FrameStats {
+  bool has_timestamps = false;            // false if the queue cannot write timestamps
+  std::array<double, kPassCount> pass_ms{};  // GPU time per pass, summed over batches
+  double gpu_total_ms = 0.0;
+  double cpu_record_submit_ms = 0.0;  // recording and submitting the final attempt
+  uint64_t triangles_submitted = 0;   // triangle instances in the scene
+  uint64_t raster_triangles = 0;      // after culling and clipping
+  uint64_t small_triangles = 0;
+  uint64_t big_triangles = 0;
+  uint64_t tile_entries = 0;
+  uint64_t culled_backface = 0;
+  uint64_t culled_frustum = 0;
+  uint64_t culled_empty = 0;
+  uint64_t culled_nonfinite = 0;
+  uint64_t clipped = 0;
+  uint32_t batches = 0;
+  uint32_t attempts = 0;  // 1, plus one per re-render after growing a buffer or splitting
+};
+
+struct UploadStats {
+  uint64_t bytes = 0;            // bytes copied to the GPU
+  uint32_t buffers_created = 0;  // buffers (re)allocated because they were too small
+};
+
+class Renderer {
+ public:
+  /// Builds every pipeline once. `ctx` must outlive the renderer.
+  explicit Renderer(Context& ctx, const RendererOptions& options = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Validates `scene` (throws Error on bad input) and makes it the scene rendered next.
+  /// Compared with the scene set before, only the changed range of each array is uploaded.
+  UploadStats set_scene(const Scene& scene);
+
+  /// Renders the current scene into the output images. Throws Error for a size the device
+  /// cannot handle or when no scene was set.
+  FrameStats render(const FrameSettings& settings);
+
+  /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage.
+  ImageF read_hdr() const;
+  Image8 read_ldr() const;
+  std::vector<uint64_t> read_visibility() const;
+  std::vector<uint32_t> read_coverage() const;
+
+  /// The display image (RGBA8, VK_IMAGE_LAYOUT_GENERAL, usable as a copy or blit source).
+  const StorageImage& output_image() const;
+  /// Maps a triangle-instance id from read_visibility to its index in Scene::objects.
+  uint32_t object_of_triangle(uint32_t triangle_id) const;
+
+ private:
+  void update_descriptors();
+  void write_frame_constants(const FrameSettings& settings);
+  void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
+                    std::vector<Pass>& query_passes);
+
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace tessera

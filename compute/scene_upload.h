@@ -1,0 +1,29 @@
+#pragma once
+// Flattening a Scene into the arrays the GPU reads, in a canonical order.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/scene.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+
+struct GpuSceneArrays {
+  std::vector<gpu::GpuVertex> vertices;   // all meshes, one after another
+  std::vector<uint32_t> indices;          // all meshes, relative to each mesh's first vertex
+  std::vector<gpu::GpuObject> objects;    // canonical order (see flatten_scene)
+  std::vector<gpu::GpuMaterial> materials;
+  std::vector<gpu::GpuLight> lights;
+  std::vector<uint32_t> object_of_slot;   // GPU object slot -> index in Scene::objects
+  uint64_t triangle_count = 0;            // triangle instances over all objects
+};
+
+/// Flattens `scene` (which must have passed validate_scene). Objects are sorted by their
+/// content (mesh, material, transform), not by their position in Scene::objects, and their
+/// triangles numbered in that order: the triangle-instance ids that break depth ties, and so
+/// the image, do not depend on the order objects were submitted in.
+/// Throws Error if the scene has more than 2^32 - 2 triangle instances.
+GpuSceneArrays flatten_scene(const Scene& scene);
+
+}  // namespace tessera

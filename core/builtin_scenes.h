@@ -1,0 +1,31 @@
+#pragma once
+// Scenes built into Tessera, by name.
+
+#include <span>
+#include <string_view>
+
+#include "core/scene.h"
+
+namespace tessera {
+
+struct BuiltinSceneInfo {
+  std::string_view name;
+  std::string_view description;
+};
+
+/// Names and one-line descriptions of the built-in scenes; the first is the default.
+std::span<const BuiltinSceneInfo> builtin_scenes();
+
+/// Builds the built-in scene `name`. Throws Error naming the known scenes if there is none.
+Scene make_builtin_scene(std::string_view name);
+
+/// The classic PBR demo: a 7 x 7 grid of spheres, metallic rising from 0 (bottom row) to 1
+/// (top row) and roughness from exactly 0 (left column) to exactly 1 (right), lit by four
+/// point lights. Sphere (row, column) is object row * 7 + column.
+Scene make_sphere_grid_scene();
+
+/// A row of metal presets (columns) at three roughness values (rows), two point lights and a
+/// directional light.
+Scene make_metals_scene();
+
+}  // namespace tessera

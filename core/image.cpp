@@ -1,0 +1,99 @@
+#include "core/image.h"
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <filesystem>
+#include <memory>
+
+#include <unistd.h>
+
+#include "core/check.h"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+namespace tessera {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image8& image) {
+  TESSERA_CHECK(image.pixels.size() == size_t(image.width) * image.height);
+  if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 4, image.pixels.data(),
+                      int(image.width * 4))) {
+    throw Error("cannot write PNG '" + path + "'");
+  }
+}
+
+void write_hdr_image(const std::string& path, const ImageF& image) {
+  TESSERA_CHECK(image.pixels.size() == size_t(image.width) * image.height);
+  std::vector<float> rgb(size_t(image.width) * image.height * 3);
+  if (ends_with(path, ".hdr")) {
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = image.pixels[i][c];
+    }
+    if (!stbi_write_hdr(path.c_str(), int(image.width), int(image.height), 3, rgb.data())) {
+      throw Error("cannot write HDR image '" + path + "'");
+    }
+    return;
+  }
+  if (!ends_with(path, ".pfm")) {
+    throw Error("HDR output '" + path + "' must end in .pfm or .hdr");
+  }
+  // PFM stores rows bottom to top; a negative scale means little-endian.
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const glm::vec4& p = image.at(x, image.height - 1 - y);
+      float* out = &rgb[(size_t(y) * image.width + x) * 3];
+      out[0] = p.r;
+      out[1] = p.g;
+      out[2] = p.b;
+    }
+  }
+  std::ofstream file(path, std::ios::binary);
+  file << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+  file.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size() * 4));
+  if (!file) throw Error("cannot write PFM '" + path + "'");
+}
+
+ImageF read_pfm(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error("cannot open PFM '" + path + "'");
+  std::string magic;
+  long width = 0, height = 0;
+  double scale = 0;
+  file >> magic >> width >> height >> scale;
+  file.get();  // the single whitespace after the header
+  if (magic != "PF" || width <= 0 || height <= 0 || scale >= 0 || width > 65536 || height > 65536) {
+    throw Error("'" + path + "' is not a little-endian RGB PFM file");
+  }
+  ImageF image{uint32_t(width), uint32_t(height), {}};
+  std::vector<float> rgb(size_t(width) * height * 3);
+  file.read(reinterpret_cast<char*>(rgb.data()), std::streamsize(rgb.size() * 4));
+  if (!file) throw Error("PFM '" + path + "' is truncated");
+  image.pixels.resize(size_t(width) * height);
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const float* in = &rgb[(size_t(image.height - 1 - y) * width + x) * 3];
+      image.at(x, y) = glm::vec4(in[0], in[1], in[2], 1.0f);
+    }
+  }
+  return image;
+}
+
+bool can_write_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  if (p.filename().empty() || fs::is_directory(p, ec)) return false;
+  if (fs::exists(p, ec)) return ::access(path.c_str(), W_OK) == 0;
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  return fs::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) == 0;
+}
+
+}  // namespace tessera

@@ -1,0 +1,29 @@
+#pragma once
+// Procedural meshes. Every mesh is closed where its shape is (spheres, cube), winds its
+// triangles counter-clockwise seen from outside, and has unit normals and uvs. Vertices that
+// meet at a seam are bit-identical copies, so shared edges snap to the same fixed-point
+// coordinates and the rasterizer leaves no cracks.
+
+#include <cstdint>
+
+#include "core/scene.h"
+
+namespace tessera {
+
+/// Unit sphere (radius 1, centre at the origin) as `segments` slices around the y axis and
+/// `rings` stacks from pole to pole. Requires segments >= 3 and rings >= 2 (throws Error).
+/// Triangle count: 2 * segments * (rings - 1).
+Mesh make_uv_sphere(uint32_t segments, uint32_t rings);
+
+/// Unit icosphere: an icosahedron subdivided `level` times (0..8, throws Error otherwise),
+/// 20 * 4^level triangles, vertices shared between triangles.
+Mesh make_icosphere(uint32_t level);
+
+/// Cube from -1 to 1 on each axis, 12 triangles, flat normals per face.
+Mesh make_cube();
+
+/// Plane from -1 to 1 in x and y at z = 0, facing +z, split into `nx` by `ny` quads
+/// (2 * nx * ny triangles). Requires nx, ny >= 1 (throws Error).
+Mesh make_plane(uint32_t nx, uint32_t ny);
+
+}  // namespace tessera

@@ -1,0 +1,109 @@
+#include "core/scene.h"
+
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/check.h"
+
+namespace tessera {
+namespace {
+
+bool finite(float v) { return std::isfinite(v); }
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    if (!finite(m[c])) return false;
+  }
+  return true;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw Error("invalid scene: " + what);
+}
+
+void validate_mesh(const Mesh& mesh, size_t m) {
+  const std::string name = "mesh " + std::to_string(m);
+  require(mesh.normals.size() == mesh.positions.size(),
+          name + " has " + std::to_string(mesh.normals.size()) + " normals for " +
+              std::to_string(mesh.positions.size()) + " positions");
+  require(mesh.uvs.size() == mesh.positions.size(),
+          name + " has " + std::to_string(mesh.uvs.size()) + " uvs for " +
+              std::to_string(mesh.positions.size()) + " positions");
+  require(mesh.indices.size() % 3 == 0,
+          name + " has " + std::to_string(mesh.indices.size()) + " indices, not a multiple of 3");
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    require(finite(mesh.positions[v]) && finite(mesh.normals[v]) && finite(mesh.uvs[v]),
+            name + " vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+  }
+  for (size_t i = 0; i < mesh.indices.size(); ++i) {
+    require(mesh.indices[i] < mesh.positions.size(),
+            name + " index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                ", past its " + std::to_string(mesh.positions.size()) + " vertices");
+  }
+}
+
+}  // namespace
+
+void validate_scene(const Scene& scene) {
+  const Camera& c = scene.camera;
+  require(finite(c.position) && finite(c.target) && finite(c.up),
+          "the camera has a NaN or infinite coordinate");
+  require(glm::length(c.target - c.position) > 0.0f, "the camera's target equals its position");
+  require(glm::length(glm::cross(c.target - c.position, c.up)) > 0.0f,
+          "the camera's up vector is zero or parallel to its view direction");
+  require(finite(c.vertical_fov) && c.vertical_fov > 0.0f && c.vertical_fov < 3.1f,
+          "the camera's vertical field of view must be in (0, 3.1) radians");
+  require(finite(c.near_plane) && c.near_plane > 0.0f, "the camera's near plane must be > 0");
+  require(finite(scene.background) && finite(scene.ambient),
+          "the background or ambient colour has a NaN or infinite component");
+
+  for (size_t m = 0; m < scene.meshes.size(); ++m) validate_mesh(scene.meshes[m], m);
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& mat = scene.materials[m];
+    require(finite(mat.base_color) && finite(mat.metallic) && finite(mat.roughness),
+            "material " + std::to_string(m) + " has a NaN or infinite value");
+  }
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Object& obj = scene.objects[o];
+    const std::string name = "object " + std::to_string(o);
+    require(obj.mesh < scene.meshes.size(), name + " uses mesh " + std::to_string(obj.mesh) +
+                                                " of " + std::to_string(scene.meshes.size()));
+    require(obj.material < scene.materials.size(),
+            name + " uses material " + std::to_string(obj.material) + " of " +
+                std::to_string(scene.materials.size()));
+    require(finite(obj.transform), name + " has a NaN or infinite transform");
+  }
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const Light& light = scene.lights[l];
+    const std::string name = "light " + std::to_string(l);
+    require(finite(light.position) && finite(light.direction) && finite(light.color) &&
+                finite(light.intensity),
+            name + " has a NaN or infinite value");
+    require(light.kind != LightKind::directional || glm::length(light.direction) > 0.0f,
+            name + " is directional with a zero direction");
+  }
+}
+
+glm::mat4 view_matrix(const Camera& camera) {
+  return glm::lookAtRH(camera.position, camera.target, camera.up);
+}
+
+glm::mat4 projection_matrix(const Camera& camera, float aspect) {
+  TESSERA_CHECK(aspect > 0.0f);
+  // Any far plane works: clip.z is not used. One far enough not to cost precision in the
+  // inverse used for camera rays.
+  glm::mat4 p = glm::perspectiveRH_ZO(camera.vertical_fov, aspect, camera.near_plane,
+                                      camera.near_plane * 1000.0f);
+  p[1][1] = -p[1][1];  // Vulkan's NDC has y pointing down
+  return p;
+}
+
+}  // namespace tessera

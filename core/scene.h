@@ -1,0 +1,80 @@
+#pragma once
+// The scene model: what Tessera renders. Plain data, no Vulkan. Units are metres and radians;
+// colours are linear RGB.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tessera {
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f, 0.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float vertical_fov = glm::radians(45.0f);  // full angle
+  float near_plane = 0.1f;                   // > 0; there is no far plane
+};
+
+/// Triangle mesh with one normal and uv per vertex. Triangles wind counter-clockwise seen from
+/// outside (their front side); back faces are culled.
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // unit length, same count as positions
+  std::vector<glm::vec2> uvs;      // same count as positions
+  std::vector<uint32_t> indices;   // 3 per triangle, each < positions.size()
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+/// Metallic-roughness material. roughness is perceptual (alpha = roughness^2), in [0, 1].
+struct Material {
+  glm::vec3 base_color{0.8f};
+  float metallic = 0.0f;
+  float roughness = 0.5f;
+};
+
+enum class LightKind { point, directional };
+
+struct Light {
+  LightKind kind = LightKind::point;
+  glm::vec3 position{0.0f};              // point lights
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: the way light travels
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;  // point: W/sr (radiance scale at 1 m); directional: W/m^2
+};
+
+/// One placed instance of a mesh; many objects may share a mesh and a material.
+struct Object {
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  glm::mat4 transform{1.0f};  // object -> world
+};
+
+enum class ToneMap { aces, reinhard, clamp };
+
+struct Scene {
+  Camera camera;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  glm::vec3 background{0.0f};  // linear HDR colour of pixels no triangle covers
+  glm::vec3 ambient{0.0f};     // constant ambient radiance, times the base colour
+};
+
+/// Checks `scene` for bad input: out-of-range mesh, material or vertex indices, NaN or
+/// infinite values in positions, normals, transforms, materials, lights or the camera, a
+/// degenerate camera. Throws tessera::Error naming the first problem found (which mesh,
+/// object, vertex or field).
+void validate_scene(const Scene& scene);
+
+/// World -> view transform of `camera` (right-handed, looking down -z).
+glm::mat4 view_matrix(const Camera& camera);
+
+/// View -> clip projection for Vulkan's y-down NDC. clip.w is the distance along the view
+/// axis; clip.z is unused by the rasterizer (depth is near / w). `aspect` = width / height.
+glm::mat4 projection_matrix(const Camera& camera, float aspect);
+
+}  // namespace tessera

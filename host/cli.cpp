@@ -1,0 +1,135 @@
+#include "host/cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "core/check.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+namespace {
+
+uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min, uint32_t max) {
+  uint64_t value = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
+    throw Error(option + " expects a whole number from " + std::to_string(min) + " to " +
+                std::to_string(max) + ", got '" + text + "'");
+  }
+  return uint32_t(value);
+}
+
+float parse_float(const std::string& option, const std::string& text) {
+  float value = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    throw Error(option + " expects a number, got '" + text + "'");
+  }
+  return value;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+void parse_size(const std::string& text, uint32_t& width, uint32_t& height) {
+  const size_t x = text.find('x');
+  if (x == std::string::npos) throw Error("--size expects WxH (e.g. 512x512), got '" + text + "'");
+  width = parse_uint("--size width", text.substr(0, x), 1, TS_MAX_IMAGE_SIDE);
+  height = parse_uint("--size height", text.substr(x + 1), 1, TS_MAX_IMAGE_SIDE);
+}
+
+std::string main_help() {
+  return "tessera: a triangle rasterizer and PBR shader written entirely in Vulkan compute\n"
+         "\n"
+         "usage: tessera <command> [options]\n"
+         "\n"
+         "commands:\n"
+         "  render     render a scene to a PNG (tessera render --help)\n"
+         "  devices    list the Vulkan devices and whether Tessera can use them\n"
+         "  scenes     list the built-in scenes\n";
+}
+
+std::string render_help() {
+  return "usage: tessera render [options]\n"
+         "\n"
+         "  --scene NAME        built-in scene (default spheres; see `tessera scenes`)\n"
+         "  --size WxH          image size in pixels, each side 1..16384 (default 512x512)\n"
+         "  --out FILE.png      display image, sRGB (default tessera.png)\n"
+         "  --hdr-out FILE      linear HDR image too, .pfm (exact floats) or .hdr (RGBE)\n"
+         "  --device D          lavapipe, gpu, or a device index (default: a discrete GPU if\n"
+         "                      there is one, else lavapipe)\n"
+         "  --exposure EV       exposure in stops, applied before tone mapping (default 0)\n"
+         "  --tonemap OP        aces (default), reinhard or clamp\n"
+         "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
+         "  --validate          enable the Khronos validation layer (synchronization too)\n"
+         "  --quiet             print nothing but errors\n"
+         "  --help              this text\n";
+}
+
+bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
+  using Handler = std::function<void(const std::string&)>;
+  const std::map<std::string, Handler> with_value = {
+      {"--scene", [&](const std::string& v) { out.scene = v; }},
+      {"--size", [&](const std::string& v) { parse_size(v, out.width, out.height); }},
+      {"--out",
+       [&](const std::string& v) {
+         if (!ends_with(v, ".png")) throw Error("--out must name a .png file, got '" + v + "'");
+         out.out = v;
+       }},
+      {"--hdr-out",
+       [&](const std::string& v) {
+         if (!ends_with(v, ".pfm") && !ends_with(v, ".hdr")) {
+           throw Error("--hdr-out must name a .pfm or .hdr file, got '" + v + "'");
+         }
+         out.hdr_out = v;
+       }},
+      {"--device", [&](const std::string& v) { out.device = v; }},
+      {"--exposure",
+       [&](const std::string& v) {
+         out.exposure_ev = parse_float("--exposure", v);
+         if (std::abs(out.exposure_ev) > 64.0f) throw Error("--exposure must be within [-64, 64] EV");
+       }},
+      {"--tonemap",
+       [&](const std::string& v) {
+         if (v == "aces") out.tonemap = ToneMap::aces;
+         else if (v == "reinhard") out.tonemap = ToneMap::reinhard;
+         else if (v == "clamp") out.tonemap = ToneMap::clamp;
+         else throw Error("--tonemap expects aces, reinhard or clamp, got '" + v + "'");
+       }},
+      {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
+  };
+  const std::map<std::string, std::function<void()>> flags = {
+      {"--validate", [&] { out.validate = true; }},
+      {"--quiet", [&] { out.quiet = true; }},
+  };
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string name = args[i];
+    std::string value;
+    bool has_inline_value = false;
+    if (size_t eq = name.find('='); name.rfind("--", 0) == 0 && eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_inline_value = true;
+    }
+    if (name == "--help" || name == "-h") return false;
+    if (auto f = flags.find(name); f != flags.end() && !has_inline_value) {
+      f->second();
+      continue;
+    }
+    auto h = with_value.find(name);
+    if (h == with_value.end()) throw Error("unknown option '" + args[i] + "' (see tessera render --help)");
+    if (!has_inline_value) {
+      if (i + 1 >= args.size()) throw Error(name + " needs a value");
+      value = args[++i];
+    }
+    h->second(value);
+  }
+  return true;
+}
+
+}  // namespace tessera

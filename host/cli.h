@@ -1,0 +1,39 @@
+#pragma once
+// Command-line parsing for the `tessera` tool. Each command has an options struct and a
+// parser; adding an option means adding a field and one entry in its parser's table.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace tessera {
+
+struct RenderArgs {
+  std::string scene = "spheres";
+  uint32_t width = 512;
+  uint32_t height = 512;
+  std::string out = "tessera.png";
+  std::string hdr_out;  // empty: no HDR file
+  std::string device = "auto";
+  float exposure_ev = 0.0f;
+  ToneMap tonemap = ToneMap::aces;
+  uint32_t repeat = 1;   // frames rendered; timings are the median over them
+  bool validate = false;
+  bool quiet = false;
+};
+
+/// Parses the arguments after `tessera render`. Throws tessera::Error naming the bad
+/// argument. Returns false (and prints nothing) if --help was given.
+bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out);
+
+/// Help text of `tessera render`.
+std::string render_help();
+/// Help text of `tessera` itself.
+std::string main_help();
+
+/// Parses "WxH" (e.g. "1920x1080"), each side in [1, 16384]. Throws Error otherwise.
+void parse_size(const std::string& text, uint32_t& width, uint32_t& height);
+
+}  // namespace tessera

@@ -1,0 +1,84 @@
+#include "host/render_command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "compute/context.h"
+#include "compute/renderer.h"
+#include "core/builtin_scenes.h"
+#include "core/check.h"
+#include "core/image.h"
+
+namespace tessera {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+  Scene scene = make_builtin_scene(args.scene);
+  // Check outputs before spending time on a render.
+  if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");
+  if (!args.hdr_out.empty() && !can_write_file(args.hdr_out)) {
+    throw Error("cannot write HDR output file '" + args.hdr_out + "'");
+  }
+
+  ContextOptions options;
+  options.device = args.device;
+  options.validation = args.validate;
+  std::unique_ptr<Context> ctx = create_context(options);
+  Renderer renderer(*ctx);
+  renderer.set_scene(scene);
+
+  FrameSettings settings;
+  settings.width = args.width;
+  settings.height = args.height;
+  settings.exposure_ev = args.exposure_ev;
+  settings.tonemap = args.tonemap;
+
+  std::vector<FrameStats> frames;
+  for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));
+
+  write_png(args.out, renderer.read_ldr());
+  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, renderer.read_hdr());
+
+  if (!args.quiet) {
+    const FrameStats& last = frames.back();
+    std::printf("wrote %s (%ux%u, scene '%s', device '%s')\n", args.out.c_str(), args.width,
+                args.height, args.scene.c_str(), ctx->properties.deviceName);
+    if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
+    std::printf("triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
+                "%llu outside, %llu empty, %llu clipped\n",
+                (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
+                (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
+                (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
+                (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+    if (last.has_timestamps) {
+      std::printf("GPU time, median of %u frame%s (ms):", args.repeat, args.repeat > 1 ? "s" : "");
+      for (size_t p = 0; p < kPassCount; ++p) {
+        std::vector<double> v;
+        for (const FrameStats& f : frames) v.push_back(f.pass_ms[p]);
+        std::printf(" %s %.3f", pass_name(Pass(p)), median(v));
+      }
+      std::vector<double> totals;
+      for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
+      std::printf(" | total %.3f\n", median(totals));
+    } else {
+      std::printf("GPU timings unavailable: the queue has no timestamp support\n");
+    }
+  }
+  if (ctx->validation && (ctx->validation->errors || ctx->validation->warnings)) {
+    std::fprintf(stderr, "validation reported %u errors and %u warnings\n",
+                 ctx->validation->errors.load(), ctx->validation->warnings.load());
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace tessera

@@ -1,0 +1,49 @@
+// The one descriptor set every pass uses (bindings from shared/gpu_types.h).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+
+#include "shared/gpu_types.h"
+
+layout(set = 0, binding = TS_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
+layout(set = 0, binding = TS_BINDING_VERTICES, std430) readonly buffer Vertices { GpuVertex vertices[]; };
+layout(set = 0, binding = TS_BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
+layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
+layout(set = 0, binding = TS_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = TS_BINDING_RASTER_TRIS, std430) buffer RasterTris { GpuRasterTri raster_tris[]; };
+layout(set = 0, binding = TS_BINDING_SMALL_LIST, std430) buffer SmallList { uint small_list[]; };
+layout(set = 0, binding = TS_BINDING_BIG_LIST, std430) buffer BigList { uint big_list[]; };
+layout(set = 0, binding = TS_BINDING_TILE_COUNTS, std430) buffer TileCounts { uint tile_counts[]; };
+layout(set = 0, binding = TS_BINDING_TILE_OFFSETS, std430) buffer TileOffsets { uint tile_offsets[]; };
+layout(set = 0, binding = TS_BINDING_TILE_CURSORS, std430) buffer TileCursors { uint tile_cursors[]; };
+layout(set = 0, binding = TS_BINDING_TILE_ENTRIES, std430) buffer TileEntries { uint tile_entries[]; };
+layout(set = 0, binding = TS_BINDING_COUNTERS, std430) buffer CountersBlock { GpuCounters counters[]; };
+layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) buffer Visibility { uint64_t visibility[]; };
+layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint coverage[]; };
+layout(set = 0, binding = TS_BINDING_HDR_IMAGE, rgba16f) uniform image2D hdr_image;
+layout(set = 0, binding = TS_BINDING_LDR_IMAGE, rgba8) uniform image2D ldr_image;
+
+layout(push_constant) uniform BatchBlock { GpuBatch batch; };
+
+// Last object whose first triangle-instance id is <= `tri` (objects are sorted by it).
+uint find_object(uint tri) {
+  uint lo = 0u;
+  uint hi = frame.scene_counts.x;
+  while (hi - lo > 1u) {
+    uint mid = (lo + hi) >> 1;
+    if (objects[mid].first_triangle <= tri) lo = mid; else hi = mid;
+  }
+  return lo;
+}
+
+// Vertex indices (into `vertices`) of triangle-instance `tri` of object `o`.
+uvec3 triangle_vertices(GpuObject o, uint tri) {
+  uint base = o.first_index + 3u * (tri - o.first_triangle);
+  return uvec3(indices[base], indices[base + 1u], indices[base + 2u]) + o.base_vertex;
+}
+
+// Row-major index of a pixel in the visibility and coverage buffers.
+uint pixel_index(ivec2 pixel) {
+  return uint(pixel.y) * frame.image_size.x + uint(pixel.x);
+}

@@ -1,0 +1,118 @@
+// Coverage, depth and visibility keys shared by both rasterizers (per triangle and per tile).
+// Both paths must produce bit-identical keys, so every value here is either exact integer
+// arithmetic or float arithmetic marked `precise` and evaluated in one fixed order.
+
+layout(constant_id = TS_SPEC_DEBUG_COVERAGE) const bool DEBUG_COVERAGE = false;
+
+struct RasterTri {
+  ivec2 v0, v1, v2;     // fixed point, oriented so that the doubled area is positive
+  ivec2 box_min, box_max;
+  vec3 depth;           // near / w at each vertex (reverse depth: larger is nearer)
+  uint id;              // triangle-instance id
+};
+
+RasterTri load_raster_tri(uint index) {
+  GpuRasterTri t = raster_tris[index];
+  RasterTri r;
+  r.v0 = ivec2(t.xy01.xy);
+  r.v1 = ivec2(t.xy01.zw);
+  r.v2 = ivec2(t.xy2_box.xy);
+  r.box_min = ivec2(t.xy2_box.z & 0xFFFFu, t.xy2_box.z >> 16);
+  r.box_max = ivec2(t.xy2_box.w & 0xFFFFu, t.xy2_box.w >> 16);
+  r.depth = uintBitsToFloat(t.depth_id.xyz);
+  r.id = t.depth_id.w;
+  return r;
+}
+
+// Fixed-point position of the centre of pixel (x, y).
+ivec2 pixel_centre(ivec2 pixel) {
+  return pixel * TS_SUBPIXEL_ONE + TS_SUBPIXEL_ONE / 2;
+}
+
+// Edge function of the directed edge a->b at p: twice the signed area of (a, b, p).
+// Inputs are < 2^24 in magnitude, so the products need 48 bits: int64 is exact.
+int64_t edge_function(ivec2 a, ivec2 b, ivec2 p) {
+  return int64_t(b.x - a.x) * int64_t(p.y - a.y) - int64_t(b.y - a.y) * int64_t(p.x - a.x);
+}
+
+// Top-left fill rule for positively oriented triangles in y-down pixel coordinates: a sample
+// exactly on an edge belongs to the triangle only if the edge is a top edge (horizontal,
+// running in +x) or a left edge (running in -y). Two triangles sharing an edge traverse it in
+// opposite directions, so exactly one of them owns samples on it.
+// Returns the smallest edge value that counts as covered: 0 for top-left edges, 1 otherwise.
+int64_t edge_threshold(ivec2 a, ivec2 b) {
+  bool top = a.y == b.y && b.x > a.x;
+  bool left = b.y < a.y;
+  return (top || left) ? 0l : 1l;
+}
+
+// Edge values at a pixel centre: x for edge v1->v2 (weight of v0), y for v2->v0, z for v0->v1.
+struct Edges {
+  int64_t e0, e1, e2;
+};
+
+Edges edges_at(RasterTri t, ivec2 p) {
+  Edges e;
+  e.e0 = edge_function(t.v1, t.v2, p);
+  e.e1 = edge_function(t.v2, t.v0, p);
+  e.e2 = edge_function(t.v0, t.v1, p);
+  return e;
+}
+
+struct Thresholds {
+  int64_t t0, t1, t2;
+};
+
+Thresholds thresholds_of(RasterTri t) {
+  Thresholds h;
+  h.t0 = edge_threshold(t.v1, t.v2);
+  h.t1 = edge_threshold(t.v2, t.v0);
+  h.t2 = edge_threshold(t.v0, t.v1);
+  return h;
+}
+
+bool is_covered(Edges e, Thresholds h) {
+  return e.e0 >= h.t0 && e.e1 >= h.t1 && e.e2 >= h.t2;
+}
+
+// Reverse depth near/w at a covered sample: an affine function of screen position, so the
+// screen-space barycentrics (edge values over the doubled area) interpolate it exactly.
+// The weights are >= 0 and the vertex depths > 0, so the result is > 0 and finite.
+float depth_at(RasterTri t, Edges e) {
+  precise float area = float(e.e0 + e.e1 + e.e2);
+  precise float d = float(e.e0) * t.depth.x + float(e.e1) * t.depth.y + float(e.e2) * t.depth.z;
+  return d / area;
+}
+
+// 64-bit visibility key: inverted depth bits above, triangle-instance id below. Positive
+// floats order like their bit patterns, so under atomicMin the nearest sample wins and equal
+// depths go to the lower id, whatever order threads run in.
+uint64_t visibility_key(float depth, uint id) {
+  return (uint64_t(~floatBitsToUint(depth)) << 32) | uint64_t(id);
+}
+
+// Conservative test: can any pixel centre of `tile` be covered by the triangle? Each edge
+// function is maximised over the tile's corner sample positions; below the edge's threshold
+// there, no sample of the tile is inside. Used identically by counting and filling.
+bool tile_may_overlap(RasterTri t, ivec2 tile) {
+  ivec2 lo = pixel_centre(tile * TS_TILE_SIZE);
+  ivec2 hi = pixel_centre(tile * TS_TILE_SIZE + (TS_TILE_SIZE - 1));
+  Thresholds h = thresholds_of(t);
+  ivec2 a[3] = ivec2[3](t.v1, t.v2, t.v0);
+  ivec2 b[3] = ivec2[3](t.v2, t.v0, t.v1);
+  int64_t th[3] = int64_t[3](h.t0, h.t1, h.t2);
+  for (int i = 0; i < 3; ++i) {
+    // E(p) = dx * (p.y - a.y) - dy * (p.x - a.x): grows with p.y when dx > 0, with p.x when dy < 0.
+    int dx = b[i].x - a[i].x;
+    int dy = b[i].y - a[i].y;
+    ivec2 p = ivec2(dy < 0 ? hi.x : lo.x, dx > 0 ? hi.y : lo.y);
+    if (edge_function(a[i], b[i], p) < th[i]) return false;
+  }
+  return true;
+}
+
+// Tile range (inclusive) overlapped by the triangle's pixel box.
+void tile_range(RasterTri t, out ivec2 first, out ivec2 last) {
+  first = t.box_min / TS_TILE_SIZE;
+  last = t.box_max / TS_TILE_SIZE;
+}

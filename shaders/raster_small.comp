@@ -1,0 +1,43 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
+// integer edge functions, and atomicMin's each covered sample into the visibility buffer.
+#include "bindings.glsl"
+#include "raster_common.glsl"
+
+layout(local_size_x = TS_GROUP_SIZE) in;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= min(counters[batch.index].small_tris, frame.limits.x)) return;
+  RasterTri t = load_raster_tri(small_list[i]);
+  Thresholds h = thresholds_of(t);
+  // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
+  Edges step_x, step_y;
+  step_x.e0 = -int64_t(t.v2.y - t.v1.y) * TS_SUBPIXEL_ONE;
+  step_x.e1 = -int64_t(t.v0.y - t.v2.y) * TS_SUBPIXEL_ONE;
+  step_x.e2 = -int64_t(t.v1.y - t.v0.y) * TS_SUBPIXEL_ONE;
+  step_y.e0 = int64_t(t.v2.x - t.v1.x) * TS_SUBPIXEL_ONE;
+  step_y.e1 = int64_t(t.v0.x - t.v2.x) * TS_SUBPIXEL_ONE;
+  step_y.e2 = int64_t(t.v1.x - t.v0.x) * TS_SUBPIXEL_ONE;
+
+  Edges row = edges_at(t, pixel_centre(t.box_min));
+  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
+    Edges e = row;
+    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
+      if (is_covered(e, h)) {
+        uint p = pixel_index(ivec2(x, y));
+        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+        uint64_t key = visibility_key(depth_at(t, e), t.id);
+        // A plain read first skips most atomics; a stale value is never below the true one.
+        if (visibility[p] > key) atomicMin(visibility[p], key);
+      }
+      e.e0 += step_x.e0;
+      e.e1 += step_x.e1;
+      e.e2 += step_x.e2;
+    }
+    row.e0 += step_y.e0;
+    row.e1 += step_y.e1;
+    row.e2 += step_y.e2;
+  }
+}

@@ -1,0 +1,31 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Rasterizer for large triangles: one workgroup per screen tile, one thread per pixel. Each
+// thread keeps the minimum key over the tile's list and writes it with a single atomicMin.
+#include "bindings.glsl"
+#include "raster_common.glsl"
+
+layout(local_size_x = TS_TILE_SIZE, local_size_y = TS_TILE_SIZE) in;
+
+void main() {
+  ivec2 tile = ivec2(gl_WorkGroupID.xy);
+  uint tile_index = uint(tile.y) * frame.image_size.z + uint(tile.x);
+  uint count = tile_counts[tile_index];
+  if (count == 0u) return;
+  uint first = tile_offsets[tile_index];
+  uint end = min(first + count, frame.limits.y);  // past capacity the frame is redone anyway
+
+  ivec2 pixel = tile * TS_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  ivec2 p = pixel_centre(pixel);
+  uint64_t best = TS_VIS_EMPTY;
+  for (uint k = first; k < end; ++k) {
+    RasterTri t = load_raster_tri(tile_entries[k]);
+    // The box is clamped to the image, so this also keeps pixels past the image's edge out.
+    if (any(lessThan(pixel, t.box_min)) || any(greaterThan(pixel, t.box_max))) continue;
+    Edges e = edges_at(t, p);
+    if (!is_covered(e, thresholds_of(t))) continue;
+    if (DEBUG_COVERAGE) atomicAdd(coverage[pixel_index(pixel)], 1u);
+    best = min(best, visibility_key(depth_at(t, e), t.id));
+  }
+  if (best != TS_VIS_EMPTY) atomicMin(visibility[pixel_index(pixel)], best);
+}

@@ -1,0 +1,35 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Resolve: exposure, tone mapping and sRGB encoding of the HDR image into the RGBA8 image.
+#include "bindings.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// Narkowicz 2015, "ACES Filmic Tone Mapping Curve": a fit of the ACES reference rendering
+// transform's luminance response.
+vec3 tonemap_aces(vec3 x) {
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+// Reinhard et al. 2002, "Photographic Tone Reproduction for Digital Images", per channel.
+vec3 tonemap_reinhard(vec3 x) {
+  return x / (1.0 + x);
+}
+
+// IEC 61966-2-1 sRGB transfer function.
+vec3 srgb_encode(vec3 c) {
+  vec3 lo = 12.92 * c;
+  vec3 hi = 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055;
+  return mix(hi, lo, lessThanEqual(c, vec3(0.0031308)));
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, ivec2(frame.image_size.xy)))) return;
+  vec3 hdr = max(imageLoad(hdr_image, pixel).rgb, vec3(0.0)) * frame.raster_params.z;
+  uint op = frame.scene_counts.w;
+  vec3 mapped = op == TS_TONEMAP_ACES       ? tonemap_aces(hdr)
+                : op == TS_TONEMAP_REINHARD ? tonemap_reinhard(hdr)
+                                            : clamp(hdr, 0.0, 1.0);
+  imageStore(ldr_image, pixel, vec4(srgb_encode(mapped), 1.0));
+}

@@ -1,0 +1,42 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Exclusive prefix sum of the per-tile triangle counts, in one workgroup: each thread sums a
+// contiguous chunk, the chunk sums are scanned in shared memory, then each chunk is written.
+// Also writes the indirect dispatch sizes of the two passes that follow.
+#include "bindings.glsl"
+
+layout(local_size_x = TS_SCAN_GROUP_SIZE) in;
+
+shared uint partial[TS_SCAN_GROUP_SIZE];
+
+void main() {
+  uint n = frame.image_size.z * frame.image_size.w;
+  uint t = gl_LocalInvocationID.x;
+  uint chunk = (n + TS_SCAN_GROUP_SIZE - 1) / TS_SCAN_GROUP_SIZE;
+  uint begin = min(t * chunk, n);
+  uint end = min(begin + chunk, n);
+  uint sum = 0u;
+  for (uint i = begin; i < end; ++i) sum += tile_counts[i];
+  partial[t] = sum;
+  barrier();
+  for (uint offset = 1u; offset < TS_SCAN_GROUP_SIZE; offset <<= 1) {
+    uint v = t >= offset ? partial[t - offset] : 0u;
+    barrier();
+    partial[t] += v;
+    barrier();
+  }
+  uint running = partial[t] - sum;
+  for (uint i = begin; i < end; ++i) {
+    tile_offsets[i] = running;
+    tile_cursors[i] = running;
+    running += tile_counts[i];
+  }
+  if (t == TS_SCAN_GROUP_SIZE - 1) {
+    uint b = batch.index;
+    counters[b].tile_entries = partial[t];
+    uint small_count = min(counters[b].small_tris, frame.limits.x);
+    uint big_count = min(counters[b].big_tris, frame.limits.x);
+    counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+    counters[b].big_dispatch = uvec4((big_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+  }
+}

@@ -1,0 +1,15 @@
+#pragma once
+// Embedded SPIR-V of every compute shader, compiled at build time from shaders/*.comp.
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace tessera {
+
+/// Returns the SPIR-V words of the shader compiled from `shaders/<name>.comp`.
+/// The span points into static storage owned by the library (valid for the program's life).
+/// Returns an empty span when no shader has that name.
+std::span<const uint32_t> find_shader(std::string_view name);
+
+}  // namespace tessera

@@ -1,0 +1,180 @@
+// GPU-visible data layouts, shared by the GLSL compute shaders and the C++ host.
+//
+// This is the one definition of every struct that crosses the host/GPU boundary. Members are
+// only vec4, uvec4, mat4 and groups of four 32-bit scalars, so std430 (buffers) and std140
+// (the frame uniform block) give the same offsets as C++ with glm; the static_asserts at the
+// end check size and offsets on the C++ side.
+#ifndef TESSERA_GPU_TYPES_H
+#define TESSERA_GPU_TYPES_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace tessera::gpu {
+using uint = std::uint32_t;
+using glm::mat4;
+using glm::uvec4;
+using glm::vec4;
+#endif
+
+// Fixed-point screen coordinates: 8 sub-pixel bits, as in common hardware rasterizers.
+#define TS_SUBPIXEL_BITS 8
+#define TS_SUBPIXEL_ONE 256
+// Screen tiles used by binning and the per-tile rasterizer, in pixels per side.
+#define TS_TILE_SIZE 16
+// Snapped coordinates stay inside +-TS_GUARD_BAND_PX so that edge products fit easily in int64
+// and the coordinates themselves in int32 (2^15 px * 2^8 = 2^23).
+#define TS_GUARD_BAND_PX 32768.0
+// Largest image side the renderer accepts: box corners are packed as two 16-bit halves.
+#define TS_MAX_IMAGE_SIDE 16384
+// Visibility buffer value of a pixel no triangle covers (all bits set: larger than any key).
+#define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
+// Threads per workgroup of the one-thread-per-item passes.
+#define TS_GROUP_SIZE 64
+// Workgroup size of the prefix-sum pass.
+#define TS_SCAN_GROUP_SIZE 256
+
+// Light kinds (GpuLight.kind.x).
+#define TS_LIGHT_POINT 0u
+#define TS_LIGHT_DIRECTIONAL 1u
+
+// Tone-mapping operators (GpuFrame.scene_counts.w).
+#define TS_TONEMAP_ACES 0u
+#define TS_TONEMAP_REINHARD 1u
+#define TS_TONEMAP_CLAMP 2u
+
+// Descriptor bindings of the one descriptor set every pass uses.
+#define TS_BINDING_FRAME 0
+#define TS_BINDING_VERTICES 1
+#define TS_BINDING_INDICES 2
+#define TS_BINDING_OBJECTS 3
+#define TS_BINDING_MATERIALS 4
+#define TS_BINDING_LIGHTS 5
+#define TS_BINDING_RASTER_TRIS 6
+#define TS_BINDING_SMALL_LIST 7
+#define TS_BINDING_BIG_LIST 8
+#define TS_BINDING_TILE_COUNTS 9
+#define TS_BINDING_TILE_OFFSETS 10
+#define TS_BINDING_TILE_CURSORS 11
+#define TS_BINDING_TILE_ENTRIES 12
+#define TS_BINDING_COUNTERS 13
+#define TS_BINDING_VISIBILITY 14
+#define TS_BINDING_COVERAGE 15
+#define TS_BINDING_HDR_IMAGE 16
+#define TS_BINDING_LDR_IMAGE 17
+#define TS_BINDING_COUNT 18
+
+// Specialization constant ids.
+#define TS_SPEC_DEBUG_COVERAGE 0
+
+// One mesh vertex: position and normal in object space, uv split over the two w components.
+struct GpuVertex {
+  vec4 position_u;
+  vec4 normal_v;
+};
+
+// One placed instance of a mesh. Objects are uploaded in a canonical order (see
+// compute/scene_upload.cpp) and their triangles numbered consecutively: triangle-instance id
+// `first_triangle + t` is triangle t of this object.
+struct GpuObject {
+  mat4 model;          // object -> world
+  mat4 normal_matrix;  // inverse transpose of model's upper 3x3 (in a mat4 for alignment)
+  uint first_index;    // first entry of the mesh in the index buffer
+  uint base_vertex;    // added to every index of the mesh
+  uint triangle_count;
+  uint material;
+  uint first_triangle;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// Metallic-roughness material; roughness is perceptual (alpha = roughness^2).
+struct GpuMaterial {
+  vec4 base_color;  // linear RGB, a unused
+  float metallic;
+  float roughness;
+  float pad0;
+  float pad1;
+};
+
+struct GpuLight {
+  vec4 position;   // world, point lights
+  vec4 direction;  // world, unit, the direction light travels (directional lights)
+  vec4 radiance;   // rgb: colour * intensity (W/sr for point lights, W/m^2 for directional)
+  uvec4 kind;      // x: TS_LIGHT_*
+};
+
+// Per-frame constants (uniform block, std140).
+struct GpuFrame {
+  mat4 view_proj;        // world -> clip; clip.w is the view-space distance along the view axis
+  mat4 inv_view_proj;    // clip -> world, for the shading pass's camera rays
+  vec4 camera_position;  // xyz world, w: near-plane distance
+  vec4 background;       // linear HDR colour of pixels no triangle covers
+  vec4 ambient;          // rgb: constant ambient radiance, multiplied by the diffuse albedo
+  vec4 raster_params;    // x, y: guard band in NDC units; z: exposure scale 2^EV; w: unused
+  uvec4 image_size;      // width, height, tiles_x, tiles_y
+  uvec4 scene_counts;    // objects, lights, triangle instances, tone-mapping operator
+  uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box area
+};
+
+// Push constants: the range of triangle instances one batch of the rasterizer handles.
+struct GpuBatch {
+  uint first_triangle;
+  uint triangle_count;
+  uint index;  // which GpuCounters slot this batch uses
+  uint pad;
+};
+
+// A triangle after setup, clipped and snapped, ready to rasterize. 48 bytes.
+struct GpuRasterTri {
+  uvec4 xy01;     // x0, y0, x1, y1: int32 fixed point (TS_SUBPIXEL_BITS), stored as bits
+  uvec4 xy2_box;  // x2, y2, box min (x | y << 16), box max (x | y << 16), inclusive pixels
+  uvec4 depth_id; // x, y, z: float bits of near/w at each vertex; w: triangle-instance id
+};
+
+// Counters of one batch, written by the GPU and read back by the host after the frame.
+struct GpuCounters {
+  uvec4 small_dispatch;  // VkDispatchIndirectCommand for the per-triangle rasterizer (xyz)
+  uvec4 big_dispatch;    // VkDispatchIndirectCommand for the tile-fill pass (xyz)
+  uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
+  uint small_tris;
+  uint big_tris;
+  uint tile_entries;     // entries the tile lists need (may exceed capacity, likewise)
+  uint culled_backface;
+  uint culled_frustum;   // entirely outside the view or behind the near plane
+  uint culled_empty;     // zero area or no pixel centre covered
+  uint culled_nonfinite; // a vertex with NaN or Inf clip coordinates
+  uint clipped;          // triangles that crossed the near plane or the guard band
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(GpuVertex) == 32);
+static_assert(offsetof(GpuVertex, normal_v) == 16);
+static_assert(sizeof(GpuObject) == 160);
+static_assert(offsetof(GpuObject, normal_matrix) == 64);
+static_assert(offsetof(GpuObject, first_index) == 128);
+static_assert(offsetof(GpuObject, first_triangle) == 144);
+static_assert(sizeof(GpuMaterial) == 32);
+static_assert(offsetof(GpuMaterial, metallic) == 16);
+static_assert(sizeof(GpuLight) == 64);
+static_assert(offsetof(GpuLight, kind) == 48);
+static_assert(sizeof(GpuFrame) == 240);
+static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
+static_assert(offsetof(GpuFrame, camera_position) == 128);
+static_assert(offsetof(GpuFrame, image_size) == 192);
+static_assert(offsetof(GpuFrame, limits) == 224);
+static_assert(sizeof(GpuBatch) == 16);
+static_assert(sizeof(GpuRasterTri) == 48);
+static_assert(sizeof(GpuCounters) == 80);
+static_assert(offsetof(GpuCounters, big_dispatch) == 16);
+static_assert(offsetof(GpuCounters, raster_tris) == 32);
+static_assert(offsetof(GpuCounters, clipped) == 64);
+}  // namespace tessera::gpu
+#endif
+
+#endif  // TESSERA_GPU_TYPES_H
