@@ -1,0 +1,128 @@
+// Bad scenes are rejected with a message that names the problem, before anything reaches the GPU.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/builtin_scenes.h"
+#include "core/check.h"
+#include "core/mesh.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+Scene one_triangle_scene() {
+  Scene s;
+  Mesh m;
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+  m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  m.uvs = {{0, 0}, {1, 0}, {0, 1}};
+  m.indices = {0, 1, 2};
+  s.meshes.push_back(m);
+  s.materials.push_back({});
+  s.objects.push_back({});
+  return s;
+}
+
+std::string error_of(const Scene& s) {
+  try {
+    validate_scene(s);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneValidation, AcceptsBuiltinScenes) {
+  for (const auto& info : builtin_scenes()) EXPECT_EQ(error_of(make_builtin_scene(info.name)), "");
+}
+
+TEST(SceneValidation, NamesNonFiniteVertex) {
+  Scene s = one_triangle_scene();
+  s.meshes[0].positions[1].y = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(error_of(s).find("mesh 0 vertex 1"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.meshes[0].positions[2].x = std::numeric_limits<float>::infinity();
+  EXPECT_NE(error_of(s).find("mesh 0 vertex 2"), std::string::npos) << error_of(s);
+}
+
+TEST(SceneValidation, NamesOutOfRangeReferences) {
+  Scene s = one_triangle_scene();
+  s.meshes[0].indices[2] = 7;
+  EXPECT_NE(error_of(s).find("index 2 is 7"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.objects[0].mesh = 3;
+  EXPECT_NE(error_of(s).find("object 0 uses mesh 3"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.objects[0].material = 1;
+  EXPECT_NE(error_of(s).find("object 0 uses material 1"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.meshes[0].indices.pop_back();
+  EXPECT_NE(error_of(s).find("not a multiple of 3"), std::string::npos) << error_of(s);
+}
+
+TEST(SceneValidation, NamesBadTransformCameraAndLights) {
+  Scene s = one_triangle_scene();
+  s.objects[0].transform[3][0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(error_of(s).find("object 0 has a NaN"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.camera.target = s.camera.position;
+  EXPECT_NE(error_of(s).find("target equals its position"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.camera.near_plane = 0.0f;
+  EXPECT_NE(error_of(s).find("near plane"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.lights.push_back({});
+  s.lights[0].intensity = std::numeric_limits<float>::infinity();
+  EXPECT_NE(error_of(s).find("light 0"), std::string::npos) << error_of(s);
+}
+
+class SceneUpload : public test::VulkanTest {};
+
+TEST_F(SceneUpload, RendererRejectsBadSceneAndBadSizes) {
+  Renderer renderer(context());
+  Scene bad = one_triangle_scene();
+  bad.meshes[0].normals[0].z = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(renderer.set_scene(bad), Error);
+  FrameSettings settings;
+  EXPECT_THROW(renderer.render(settings), Error) << "render before any scene was set";
+  renderer.set_scene(one_triangle_scene());
+  settings.width = 0;
+  EXPECT_THROW(renderer.render(settings), Error);
+  settings.width = 20000;
+  EXPECT_THROW(renderer.render(settings), Error);
+  // 8192 x 8192 needs a 512 MiB visibility buffer, over lavapipe's 128 MiB storage range.
+  settings.width = settings.height = 8192;
+  try {
+    renderer.render(settings);
+    ADD_FAILURE() << "8192x8192 should not fit lavapipe";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
+  Renderer renderer(context());
+  Scene scene = make_sphere_grid_scene();
+  UploadStats first = renderer.set_scene(scene);
+  uint64_t all_bytes = scene.objects.size() * 160 + scene.materials.size() * 32 + scene.lights.size() * 64;
+  for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 32 + m.indices.size() * 4;
+  EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
+  EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
+
+  scene.materials[10].roughness = 0.77f;
+  UploadStats one_material = renderer.set_scene(scene);
+  EXPECT_EQ(one_material.bytes, 32u) << "one GpuMaterial";
+  EXPECT_EQ(one_material.buffers_created, 0u);
+
+  scene.lights[2].intensity = 10.0f;
+  EXPECT_EQ(renderer.set_scene(scene).bytes, 64u) << "one GpuLight";
+
+  FrameSettings settings;
+  settings.width = settings.height = 64;
+  renderer.render(settings);  // and it still renders after partial updates
+}
+
+}  // namespace
+}  // namespace tessera

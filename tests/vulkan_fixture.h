@@ -1,0 +1,43 @@
+#pragma once
+// Base fixture of every test that touches Vulkan: a lavapipe context with the Khronos
+// validation layer and synchronization validation on. The test fails if the layer reports any
+// warning or error, including while the device is destroyed at the end of the test.
+
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "compute/context.h"
+#include "compute/renderer.h"
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace tessera::test {
+
+class VulkanTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+  Context& context() { return *ctx_; }
+
+  /// Renders `scene` once with a fresh renderer and returns what the tests look at.
+  struct Frame {
+    FrameStats stats;
+    ImageF hdr;
+    Image8 ldr;
+    std::vector<uint64_t> visibility;
+    std::vector<uint32_t> coverage;  // only with options.debug_coverage
+  };
+  Frame render(const Scene& scene, uint32_t width, uint32_t height, RendererOptions options = {});
+
+ private:
+  std::unique_ptr<Context> ctx_;
+};
+
+/// Path of a file in the test's own output folder (created if needed).
+std::string output_path(const std::string& name);
+
+/// Runs a shell command, returning its exit status and capturing stdout and stderr in `output`.
+int run_command(const std::string& command, std::string& output);
+
+}  // namespace tessera::test
