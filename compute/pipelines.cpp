@@ -75,6 +75,7 @@ Pipelines create_pipelines(const Context& ctx) {
   };
   const Variant variants[] = {
       {Pipeline::setup, "setup", false},
+      {Pipeline::clip, "clip", false},
       {Pipeline::scan, "scan", false},
       {Pipeline::fill, "fill", false},
       {Pipeline::raster_small, "raster_small", false},

@@ -12,6 +12,7 @@ namespace tessera {
 
 enum class Pipeline {
   setup,
+  clip,
   scan,
   fill,
   raster_small,

@@ -61,7 +61,7 @@ uint32_t tonemap_id(ToneMap t) {
 }  // namespace
 
 const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"clear", "setup",       "scan",  "fill",
+  static const char* const kNames[] = {"clear", "setup",        "clip",         "scan", "fill",
                                        "raster_tiles", "raster_small", "shade", "resolve"};
   static_assert(std::size(kNames) == kPassCount);
   return kNames[size_t(pass)];
@@ -91,7 +91,7 @@ struct Renderer::State {
   // Scratch, sized by capacities that grow on demand.
   uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
   uint32_t counter_slots = 0;
-  Buffer raster_tris, small_list, big_list, tile_entries, counters, counters_readback;
+  Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
 
   Buffer frame_constants;
   VkQueryPool queries = VK_NULL_HANDLE;
@@ -146,7 +146,7 @@ Renderer::~Renderer() {
   vkDeviceWaitIdle(ctx.device);
   for (Buffer* b : {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights,
                     &s_->visibility, &s_->coverage, &s_->tile_counts, &s_->tile_offsets,
-                    &s_->tile_cursors, &s_->raster_tris, &s_->small_list, &s_->big_list,
+                    &s_->tile_cursors, &s_->raster_tris, &s_->small_list, &s_->big_list, &s_->clip_list,
                     &s_->tile_entries, &s_->counters, &s_->counters_readback, &s_->frame_constants}) {
     destroy_buffer(ctx, *b);
   }
@@ -317,10 +317,11 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     }
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
     if (!s.raster_tris.buffer || s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
-      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list}) destroy_buffer(ctx, *b);
+      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list}) destroy_buffer(ctx, *b);
       s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri), kStorage, MemoryKind::device);
       s.small_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
       s.big_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+      s.clip_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
       s.descriptors_dirty = true;
     }
     if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
@@ -338,7 +339,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       s.descriptors_dirty = true;
     }
     const bool timestamps = ctx.timestamp_valid_bits > 0;
-    const uint32_t queries_needed = 2 + 5 * batches + 2;
+    const uint32_t queries_needed = 2 + 6 * batches + 2;
     if (timestamps && s.query_capacity < queries_needed) {
       if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
       VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -365,7 +366,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
     uint64_t need_raster = 0, need_entries = 0;
     for (uint32_t b = 0; b < batches; ++b) {
-      need_raster = std::max<uint64_t>(need_raster, counters[b].raster_tris);
+      need_raster = std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list});
       need_entries = std::max<uint64_t>(need_entries, counters[b].tile_entries);
     }
     bool redo = false;
@@ -436,6 +437,7 @@ void Renderer::update_descriptors() {
       {TS_BINDING_TILE_OFFSETS, &s.tile_offsets}, {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
       {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
       {TS_BINDING_VISIBILITY, &s.visibility}, {TS_BINDING_COVERAGE, &s.coverage},
+      {TS_BINDING_CLIP_LIST, &s.clip_list},
   };
   std::vector<VkDescriptorBufferInfo> buffer_infos;
   buffer_infos.reserve(std::size(buffers));
@@ -529,6 +531,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdDispatch(cmd, div_up(batch.triangle_count, TS_GROUP_SIZE), 1, 1);
     compute_to_compute(cmd);
     mark(Pass::setup);
+
+    bind(Pipeline::clip);
+    vkCmdDispatch(cmd, TS_CLIP_GROUPS, 1, 1);
+    compute_to_compute(cmd);
+    mark(Pass::clip);
 
     bind(Pipeline::scan);
     vkCmdDispatch(cmd, 1, 1, 1);

@@ -1,7 +1,7 @@
 #pragma once
 // The compute rasterizer: created once per device, renders many frames of many scenes.
 //
-// Per frame: setup -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve, over
+// Per frame: setup -> clip -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve, over
 // one or more batches of triangle instances (see docs/architecture.md). The output stays on
 // the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
 
@@ -42,7 +42,7 @@ struct FrameSettings {
   ToneMap tonemap = ToneMap::aces;
 };
 
-enum class Pass { clear, setup, scan, fill, raster_tiles, raster_small, shade, resolve, count };
+enum class Pass { clear, setup, clip, scan, fill, raster_tiles, raster_small, shade, resolve, count };
 constexpr size_t kPassCount = size_t(Pass::count);
 const char* pass_name(Pass pass);
 

@@ -21,6 +21,7 @@ layout(set = 0, binding = TS_BINDING_TILE_ENTRIES, std430) buffer TileEntries { 
 layout(set = 0, binding = TS_BINDING_COUNTERS, std430) buffer CountersBlock { GpuCounters counters[]; };
 layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) buffer Visibility { uint64_t visibility[]; };
 layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint coverage[]; };
+layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint clip_list[]; };
 layout(set = 0, binding = TS_BINDING_HDR_IMAGE, rgba16f) uniform image2D hdr_image;
 layout(set = 0, binding = TS_BINDING_LDR_IMAGE, rgba8) uniform image2D ldr_image;
 

@@ -1,95 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Triangle setup: one thread per triangle instance of the batch. Transforms to clip space,
-// culls (non-finite, frustum, back face, empty), clips against the near plane and the guard
-// band, snaps to fixed point, and appends raster triangles; small ones go to the
-// per-triangle list, larger ones are counted into the screen tiles they may touch.
+// culls (non-finite, frustum, back face, empty), snaps to fixed point and appends raster
+// triangles; small ones go to the per-triangle list, larger ones are counted into the screen
+// tiles they may touch. Triangles that cross the near plane or the guard band are listed for
+// the clip pass instead: clipping code here, even never taken, slows every thread on lavapipe.
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
 layout(local_size_x = TS_GROUP_SIZE) in;
 
-// Signed distance to clip plane `plane` (inside >= 0): the near plane, then the guard band.
-float plane_distance(vec4 c, int plane) {
-  float gx = frame.raster_params.x;
-  float gy = frame.raster_params.y;
-  switch (plane) {
-    case 0: return c.w - frame.camera_position.w;
-    case 1: return gx * c.w - c.x;
-    case 2: return gx * c.w + c.x;
-    case 3: return gy * c.w - c.y;
-    default: return gy * c.w + c.y;
-  }
-}
-
-void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
-  vec2 size = vec2(frame.image_size.xy);
-  float near_plane = frame.camera_position.w;
-  vec4 c[3] = vec4[3](c0, c1, c2);
-  ivec2 v[3];
-  float d[3];
-  for (int k = 0; k < 3; ++k) {
-    vec2 screen = (c[k].xy / c[k].w * 0.5 + 0.5) * size;
-    v[k] = ivec2(floor(screen * float(TS_SUBPIXEL_ONE) + 0.5));
-    d[k] = near_plane / c[k].w;
-  }
-  int64_t area = edge_function(v[0], v[1], v[2]);
-  if (area == 0) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
-  }
-  // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
-  // their doubled area comes out negative here.
-  if (area > 0) {
-    atomicAdd(counters[batch.index].culled_backface, 1u);
-    return;
-  }
-  RasterTri t;
-  t.v0 = v[0];
-  t.v1 = v[2];  // reorder so the area is positive: every edge function is >= 0 inside
-  t.v2 = v[1];
-  t.depth = vec3(d[0], d[2], d[1]);
-  t.id = id;
-
-  ivec2 lo = min(min(t.v0, t.v1), t.v2);
-  ivec2 hi = max(max(t.v0, t.v1), t.v2);
-  // Pixel x has its centre at x*256 + 128: the first centre >= lo and the last <= hi.
-  ivec2 box_min = max((lo - TS_SUBPIXEL_ONE / 2 + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
-  ivec2 box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size.xy) - 1);
-  if (any(greaterThan(box_min, box_max))) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
-  }
-  t.box_min = box_min;
-  t.box_max = box_max;
-  if (box_min == box_max && !is_covered(edges_at(t, pixel_centre(box_min)), thresholds_of(t))) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
-  }
-
-  uint index = atomicAdd(counters[batch.index].raster_tris, 1u);
-  if (index >= frame.limits.x) return;  // overflow: the host sees the count, grows, redoes
-  raster_tris[index].xy01 = uvec4(ivec4(t.v0, t.v1));
-  raster_tris[index].xy2_box =
-      uvec4(uvec2(t.v2), uint(box_min.x) | (uint(box_min.y) << 16), uint(box_max.x) | (uint(box_max.y) << 16));
-  raster_tris[index].depth_id = uvec4(floatBitsToUint(t.depth), id);
-
-  uvec2 extent = uvec2(box_max - box_min) + 1u;
-  if (extent.x * extent.y <= frame.limits.z) {
-    small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
-    return;
-  }
-  big_list[atomicAdd(counters[batch.index].big_tris, 1u)] = index;
-  ivec2 first, last;
-  tile_range(t, first, last);
-  for (int ty = first.y; ty <= last.y; ++ty) {
-    for (int tx = first.x; tx <= last.x; ++tx) {
-      if (tile_may_overlap(t, ivec2(tx, ty))) {
-        atomicAdd(tile_counts[uint(ty) * frame.image_size.z + uint(tx)], 1u);
-      }
-    }
-  }
-}
+#include "setup_common.glsl"
 
 bool is_finite(vec4 c) {
   return !any(isnan(c)) && !any(isinf(c));
@@ -99,11 +20,8 @@ void main() {
   uint local = gl_GlobalInvocationID.x;
   if (local >= batch.triangle_count) return;
   uint id = batch.first_triangle + local;
-  GpuObject o = objects[find_object(id)];
-  uvec3 vi = triangle_vertices(o, id);
-  mat4 to_clip = frame.view_proj * o.model;
   vec4 c[3];
-  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
+  triangle_clip_coords(id, c);
 
   if (!is_finite(c[0]) || !is_finite(c[1]) || !is_finite(c[2])) {
     atomicAdd(counters[batch.index].culled_nonfinite, 1u);
@@ -125,32 +43,10 @@ void main() {
     atomicAdd(counters[batch.index].culled_frustum, 1u);
     return;
   }
-  if (!needs_clip) {
-    emit(c[0], c[1], c[2], id);
+  if (needs_clip) {
+    uint slot = atomicAdd(counters[batch.index].clip_list, 1u);
+    if (slot < frame.limits.x) clip_list[slot] = id;  // overflow: the host grows and redoes
     return;
   }
-
-  // Sutherland-Hodgman against the near plane and the four guard-band planes: a triangle
-  // becomes a convex polygon of at most 3 + 5 vertices, emitted as a fan.
-  atomicAdd(counters[batch.index].clipped, 1u);
-  vec4 poly[9];
-  vec4 next_poly[9];
-  int n = 3;
-  poly[0] = c[0];
-  poly[1] = c[1];
-  poly[2] = c[2];
-  for (int plane = 0; plane < 5 && n > 0; ++plane) {
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-      vec4 a = poly[i];
-      vec4 b = poly[(i + 1) % n];
-      float da = plane_distance(a, plane);
-      float db = plane_distance(b, plane);
-      if (da >= 0.0) next_poly[m++] = a;
-      if ((da >= 0.0) != (db >= 0.0)) next_poly[m++] = mix(a, b, da / (da - db));
-    }
-    n = m;
-    for (int i = 0; i < n; ++i) poly[i] = next_poly[i];
-  }
-  for (int i = 1; i + 1 < n; ++i) emit(poly[0], poly[i], poly[i + 1], id);
+  emit(c[0], c[1], c[2], id);
 }

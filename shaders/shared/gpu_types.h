@@ -34,6 +34,8 @@ using glm::vec4;
 #define TS_GROUP_SIZE 64
 // Workgroup size of the prefix-sum pass.
 #define TS_SCAN_GROUP_SIZE 256
+// Workgroups of the clipping pass; its threads loop over the (usually short) clip list.
+#define TS_CLIP_GROUPS 16
 
 // Light kinds (GpuLight.kind.x).
 #define TS_LIGHT_POINT 0u
@@ -63,7 +65,8 @@ using glm::vec4;
 #define TS_BINDING_COVERAGE 15
 #define TS_BINDING_HDR_IMAGE 16
 #define TS_BINDING_LDR_IMAGE 17
-#define TS_BINDING_COUNT 18
+#define TS_BINDING_CLIP_LIST 18
+#define TS_BINDING_COUNT 19
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
@@ -147,7 +150,7 @@ struct GpuCounters {
   uint culled_empty;     // zero area or no pixel centre covered
   uint culled_nonfinite; // a vertex with NaN or Inf clip coordinates
   uint clipped;          // triangles that crossed the near plane or the guard band
-  uint pad0;
+  uint clip_list;        // entries in the clip list (== clipped unless it overflowed)
   uint pad1;
   uint pad2;
 };
@@ -174,6 +177,7 @@ static_assert(sizeof(GpuCounters) == 80);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
 static_assert(offsetof(GpuCounters, raster_tris) == 32);
 static_assert(offsetof(GpuCounters, clipped) == 64);
+static_assert(offsetof(GpuCounters, clip_list) == 68);
 }  // namespace tessera::gpu
 #endif
 

@@ -1,0 +1,42 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Clipping: triangles that cross the near plane or the guard band, listed by setup. Each is
+// clipped (Sutherland-Hodgman) against the near plane and the four guard-band planes into a
+// convex polygon of at most 3 + 5 vertices, then emitted as a fan of raster triangles. The
+// list is short in practice, so a fixed grid of threads loops over it.
+#include "bindings.glsl"
+#include "raster_common.glsl"
+
+layout(local_size_x = TS_GROUP_SIZE) in;
+
+#include "setup_common.glsl"
+
+void main() {
+  uint count = min(counters[batch.index].clip_list, frame.limits.x);
+  for (uint i = gl_GlobalInvocationID.x; i < count; i += TS_CLIP_GROUPS * TS_GROUP_SIZE) {
+    uint id = clip_list[i];
+    vec4 c[3];
+    triangle_clip_coords(id, c);
+    atomicAdd(counters[batch.index].clipped, 1u);
+    vec4 poly[9];
+    vec4 next_poly[9];
+    int n = 3;
+    poly[0] = c[0];
+    poly[1] = c[1];
+    poly[2] = c[2];
+    for (int plane = 0; plane < 5 && n > 0; ++plane) {
+      int m = 0;
+      for (int k = 0; k < n; ++k) {
+        vec4 a = poly[k];
+        vec4 b = poly[(k + 1) % n];
+        float da = plane_distance(a, plane);
+        float db = plane_distance(b, plane);
+        if (da >= 0.0) next_poly[m++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) next_poly[m++] = mix(a, b, da / (da - db));
+      }
+      n = m;
+      for (int k = 0; k < n; ++k) poly[k] = next_poly[k];
+    }
+    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id);
+  }
+}
