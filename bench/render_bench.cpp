@@ -42,7 +42,8 @@ void render_scene(benchmark::State& state, const char* name) {
     cpu_sum += f.cpu_record_submit_ms;
   }
   const double n = double(state.iterations());
-  for (size_t p = 0; p < kPassCount; ++p) state.counters[std::string(pass_name(Pass(p))) + "_ms"] = pass_sum[p] / n;
+  for (size_t p = 0; p < kPassCount; ++p)
+    state.counters[std::string(pass_name(Pass(p))) + "_ms"] = pass_sum[p] / n;
   state.counters["cpu_record_ms"] = cpu_sum / n;
   state.counters["tris_submitted"] = double(warm.triangles_submitted);
   state.counters["tris_rasterized"] = double(warm.raster_triangles);

@@ -32,8 +32,9 @@ bool has_layer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 VkInstance create_instance(const ContextOptions& options, bool validation) {
@@ -72,7 +73,8 @@ VkInstance create_instance(const ContextOptions& options, bool validation) {
   VkInstance instance = VK_NULL_HANDLE;
   VkResult result = vkCreateInstance(&info, nullptr, &instance);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER) {
-    throw Error("no Vulkan driver is installed (for the CPU driver: Debian package mesa-vulkan-drivers)");
+    throw Error(
+        "no Vulkan driver is installed (for the CPU driver: Debian package mesa-vulkan-drivers)");
   }
   vk_check(result, "vkCreateInstance");
   return instance;
@@ -93,7 +95,9 @@ std::string missing_features(VkPhysicalDevice device) {
   VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   std::string missing;
-  auto add = [&](const char* what) { missing += (missing.empty() ? "" : ", ") + std::string(what); };
+  auto add = [&](const char* what) {
+    missing += (missing.empty() ? "" : ", ") + std::string(what);
+  };
   if (props.apiVersion < VK_API_VERSION_1_2) {
     add("Vulkan 1.2");
     return missing;
@@ -113,10 +117,14 @@ bool is_lavapipe(VkPhysicalDevice device) {
 
 int type_rank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    default: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    default:
+      return 3;
   }
 }
 
@@ -141,7 +149,8 @@ VkPhysicalDevice choose_device(VkInstance instance, const std::string& wanted) {
     for (VkPhysicalDevice d : devices) {
       if (is_lavapipe(d)) chosen = d;
     }
-    if (!chosen) throw Error("no lavapipe (CPU) device found; devices: " + describe_devices(devices));
+    if (!chosen)
+      throw Error("no lavapipe (CPU) device found; devices: " + describe_devices(devices));
   } else if (wanted == "gpu" || wanted == "auto") {
     int best = 3;
     for (VkPhysicalDevice d : devices) {
@@ -169,7 +178,8 @@ VkPhysicalDevice choose_device(VkInstance instance, const std::string& wanted) {
       throw Error("unknown device '" + wanted + "' (use lavapipe, gpu, or an index)");
     }
     if (index >= devices.size()) {
-      throw Error("device index " + wanted + " is out of range; devices: " + describe_devices(devices));
+      throw Error("device index " + wanted +
+                  " is out of range; devices: " + describe_devices(devices));
     }
     chosen = devices[index];
   }
@@ -177,7 +187,8 @@ VkPhysicalDevice choose_device(VkInstance instance, const std::string& wanted) {
   if (!missing.empty()) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(chosen, &props);
-    throw Error(std::string("device '") + props.deviceName + "' lacks what Tessera needs: " + missing);
+    throw Error(std::string("device '") + props.deviceName +
+                "' lacks what Tessera needs: " + missing);
   }
   return chosen;
 }
@@ -193,11 +204,16 @@ void ValidationLog::clear() {
 
 const char* device_type_name(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
@@ -219,7 +235,8 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   ctx->instance = create_instance(options, options.validation);
   if (options.validation) {
     ctx->validation = std::make_unique<ValidationLog>();
-    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |

@@ -50,7 +50,7 @@ struct Context {
   VkCommandPool command_pool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
-  uint32_t timestamp_valid_bits = 0;  // 0: the queue cannot write timestamps
+  uint32_t timestamp_valid_bits = 0;          // 0: the queue cannot write timestamps
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
 
   Context() = default;

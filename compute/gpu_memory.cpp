@@ -13,7 +13,8 @@ uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryProper
   const VkPhysicalDeviceMemoryProperties& props = ctx.memory_properties;
   for (VkMemoryPropertyFlags flags : {wanted | preferred, wanted}) {
     for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
-      if ((type_bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+      if ((type_bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags)
+        return i;
     }
   }
   throw Error("the device has no memory type with the properties " + std::to_string(wanted));
@@ -43,7 +44,8 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind
 
 }  // namespace
 
-Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind) {
+Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                     MemoryKind kind) {
   TESSERA_CHECK(size > 0);
   Buffer b;
   b.size = size;
@@ -61,7 +63,8 @@ Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags u
     throw;
   }
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
-  if (kind != MemoryKind::device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, size, 0, &b.mapped));
+  if (kind != MemoryKind::device)
+    VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, size, 0, &b.mapped));
   return b;
 }
 
@@ -71,7 +74,8 @@ void destroy_buffer(const Context& ctx, Buffer& b) {
   b = Buffer{};
 }
 
-StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format) {
+StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
+                                  VkFormat format) {
   StorageImage img;
   img.format = format;
   img.width = width;
@@ -109,8 +113,9 @@ StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t h
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = img.image;
     barrier.subresourceRange = view.subresourceRange;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                         0, 0, nullptr, 0, nullptr, 1, &barrier);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                         &barrier);
   });
   return img;
 }

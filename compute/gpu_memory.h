@@ -24,7 +24,8 @@ struct Buffer {
 };
 
 /// Creates a buffer of `size` bytes (> 0). Throws Error if the device is out of memory.
-Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind);
+Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                     MemoryKind kind);
 /// Destroys `buffer` (if any) and resets it to empty.
 void destroy_buffer(const Context& ctx, Buffer& buffer);
 
@@ -39,7 +40,8 @@ struct StorageImage {
 
 /// Creates a 2D image usable as a storage image and as a copy and blit source (so a window can
 /// present it), and leaves it in VK_IMAGE_LAYOUT_GENERAL, where it stays.
-StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format);
+StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
+                                  VkFormat format);
 void destroy_image(const Context& ctx, StorageImage& image);
 
 /// Records commands with `record` into a fresh command buffer, submits it and waits for it.

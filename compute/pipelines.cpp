@@ -41,7 +41,8 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   info.stage.pSpecializationInfo = &spec;
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result = vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  VkResult result =
+      vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
   vkDestroyShaderModule(ctx.device, module, nullptr);
   vk_check(result, ("vkCreateComputePipelines(" + std::string(shader) + ")").c_str());
   return pipeline;

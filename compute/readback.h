@@ -14,7 +14,8 @@ std::vector<T> download_buffer(const Context& ctx, const Buffer& src, uint64_t c
   std::vector<T> out(count);
   if (count == 0) return out;
   const VkDeviceSize bytes = count * sizeof(T);
-  Buffer staging = create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
+  Buffer staging =
+      create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
@@ -31,11 +32,13 @@ std::vector<T> download_buffer(const Context& ctx, const Buffer& src, uint64_t c
 /// Copies all texels of `image` (in VK_IMAGE_LAYOUT_GENERAL) to the host, as
 /// `elements_per_texel` values of T each, rows top to bottom.
 template <typename T>
-std::vector<T> download_image(const Context& ctx, const StorageImage& image, uint32_t elements_per_texel) {
+std::vector<T> download_image(const Context& ctx, const StorageImage& image,
+                              uint32_t elements_per_texel) {
   const uint64_t count = uint64_t(image.width) * image.height * elements_per_texel;
   std::vector<T> out(count);
   const VkDeviceSize bytes = count * sizeof(T);
-  Buffer staging = create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
+  Buffer staging =
+      create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     // To TRANSFER_SRC_OPTIMAL for the copy and back to GENERAL, where the passes expect it.
     VkImageMemoryBarrier to_copy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -52,16 +55,16 @@ std::vector<T> download_image(const Context& ctx, const StorageImage& image, uin
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {image.width, image.height, 1};
-    vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1,
-                           &region);
+    vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer,
+                           1, &region);
     VkImageMemoryBarrier back = to_copy;
     back.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
     back.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     back.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                         nullptr, 0, nullptr, 1, &back);
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         0, nullptr, 0, nullptr, 1, &back);
     memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
   });

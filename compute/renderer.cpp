@@ -23,23 +23,25 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 constexpr uint32_t kMaxAttempts = 64;
 
-uint32_t div_up(uint64_t a, uint64_t b) { return uint32_t((a + b - 1) / b); }
+uint32_t div_up(uint64_t a, uint64_t b) {
+  return uint32_t((a + b - 1) / b);
+}
 
 // Barrier between two compute passes: writes of the first visible to reads and writes of the
 // second, and to indirect-argument reads.
 void compute_to_compute(VkCommandBuffer cmd) {
-  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                     VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  memory_barrier(
+      cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
 void transfer_to_compute(VkCommandBuffer cmd) {
-  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                     VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  memory_barrier(
+      cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
 // Everything before (earlier submissions included) complete and visible to everything after.
@@ -51,9 +53,12 @@ void full_barrier(VkCommandBuffer cmd) {
 
 uint32_t tonemap_id(ToneMap t) {
   switch (t) {
-    case ToneMap::aces: return TS_TONEMAP_ACES;
-    case ToneMap::reinhard: return TS_TONEMAP_REINHARD;
-    case ToneMap::clamp: return TS_TONEMAP_CLAMP;
+    case ToneMap::aces:
+      return TS_TONEMAP_ACES;
+    case ToneMap::reinhard:
+      return TS_TONEMAP_REINHARD;
+    case ToneMap::clamp:
+      return TS_TONEMAP_CLAMP;
   }
   return TS_TONEMAP_ACES;
 }
@@ -61,7 +66,7 @@ uint32_t tonemap_id(ToneMap t) {
 }  // namespace
 
 const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"clear", "setup",        "clip",         "scan", "fill",
+  static const char* const kNames[] = {"clear",        "setup",        "clip",  "scan",   "fill",
                                        "raster_tiles", "raster_small", "shade", "resolve"};
   static_assert(std::size(kNames) == kPassCount);
   return kNames[size_t(pass)];
@@ -112,14 +117,16 @@ struct Renderer::State {
     return uint32_t(std::min({by_range, by_budget, uint64_t(0xFFFFFFFFu)}));
   }
   uint32_t max_batch() const {
-    uint64_t by_dispatch = uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+    uint64_t by_dispatch =
+        uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
     uint64_t limit = std::min<uint64_t>(by_dispatch, max_raster_capacity());
     if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
     return uint32_t(std::max<uint64_t>(limit, 1));
   }
 };
 
-Renderer::Renderer(Context& ctx, const RendererOptions& options) : s_(std::make_unique<State>(ctx)) {
+Renderer::Renderer(Context& ctx, const RendererOptions& options)
+    : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
   s_->pipelines = create_pipelines(ctx);
 
@@ -137,17 +144,18 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options) : s_(std::make_
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
-  s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                      MemoryKind::upload);
+  s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
+                                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
 }
 
 Renderer::~Renderer() {
   Context& ctx = s_->ctx;
   vkDeviceWaitIdle(ctx.device);
-  for (Buffer* b : {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights,
-                    &s_->visibility, &s_->coverage, &s_->tile_counts, &s_->tile_offsets,
-                    &s_->tile_cursors, &s_->raster_tris, &s_->small_list, &s_->big_list, &s_->clip_list,
-                    &s_->tile_entries, &s_->counters, &s_->counters_readback, &s_->frame_constants}) {
+  for (Buffer* b :
+       {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights, &s_->visibility,
+        &s_->coverage, &s_->tile_counts, &s_->tile_offsets, &s_->tile_cursors, &s_->raster_tris,
+        &s_->small_list, &s_->big_list, &s_->clip_list, &s_->tile_entries, &s_->counters,
+        &s_->counters_readback, &s_->frame_constants}) {
     destroy_buffer(ctx, *b);
   }
   destroy_image(ctx, s_->hdr);
@@ -176,7 +184,8 @@ void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>
   if (!buffer.buffer || buffer.size < bytes) {
     destroy_buffer(ctx, buffer);
     // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
-    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorage, MemoryKind::device);
+    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorage,
+                           MemoryKind::device);
     stats.buffers_created++;
     dirty = true;
     if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
@@ -203,16 +212,21 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   UploadStats stats;
   std::vector<PendingCopy> copies;
   const GpuSceneArrays& prev = s.uploaded;
-  queue_array_upload(s.ctx, s.vertices, prev.vertices, next.vertices, copies, stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.indices, prev.indices, next.indices, copies, stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.objects, prev.objects, next.objects, copies, stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.materials, prev.materials, next.materials, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.vertices, prev.vertices, next.vertices, copies, stats,
+                     s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.indices, prev.indices, next.indices, copies, stats,
+                     s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.objects, prev.objects, next.objects, copies, stats,
+                     s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.materials, prev.materials, next.materials, copies, stats,
+                     s.descriptors_dirty);
   queue_array_upload(s.ctx, s.lights, prev.lights, next.lights, copies, stats, s.descriptors_dirty);
 
   VkDeviceSize total = 0;
   for (const PendingCopy& c : copies) total += c.size;
   if (total > 0) {
-    Buffer staging = create_buffer(s.ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
+    Buffer staging =
+        create_buffer(s.ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
     VkDeviceSize offset = 0;
     for (const PendingCopy& c : copies) {
       std::memcpy(static_cast<char*>(staging.mapped) + offset, c.data, c.size);
@@ -271,7 +285,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
 
   // Image-sized resources.
   if (settings.width != s.width || settings.height != s.height) {
-    for (Buffer* b : {&s.visibility, &s.coverage, &s.tile_counts, &s.tile_offsets, &s.tile_cursors}) {
+    for (Buffer* b :
+         {&s.visibility, &s.coverage, &s.tile_counts, &s.tile_offsets, &s.tile_cursors}) {
       destroy_buffer(ctx, *b);
     }
     destroy_image(ctx, s.hdr);
@@ -283,7 +298,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     const uint64_t pixels = uint64_t(s.width) * s.height;
     const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
     s.visibility = create_buffer(ctx, pixels * 8, kStorage, MemoryKind::device);
-    s.coverage = create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorage, MemoryKind::device);
+    s.coverage =
+        create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorage, MemoryKind::device);
     s.tile_counts = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
     s.tile_offsets = create_buffer(ctx, (tiles + 1) * 4, kStorage, MemoryKind::device);
     s.tile_cursors = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
@@ -302,10 +318,11 @@ FrameStats Renderer::render(const FrameSettings& settings) {
                             : std::min<uint32_t>(s.batch_triangles + 1024, s.max_raster_capacity());
   }
   if (s.tile_entry_capacity == 0) {
-    s.tile_entry_capacity = s.options.initial_tile_entry_capacity
-                                ? s.options.initial_tile_entry_capacity
-                                : std::min<uint32_t>(std::max<uint32_t>(s.tiles_x * s.tiles_y * 4, 1u << 16),
-                                                     s.max_tile_entry_capacity());
+    s.tile_entry_capacity =
+        s.options.initial_tile_entry_capacity
+            ? s.options.initial_tile_entry_capacity
+            : std::min<uint32_t>(std::max<uint32_t>(s.tiles_x * s.tiles_y * 4, 1u << 16),
+                                 s.max_tile_entry_capacity());
   }
 
   FrameStats stats;
@@ -316,17 +333,24 @@ FrameStats Renderer::render(const FrameSettings& settings) {
                   " attempts (batch of " + std::to_string(s.batch_triangles) + " triangles)");
     }
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
-    if (!s.raster_tris.buffer || s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
-      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list}) destroy_buffer(ctx, *b);
-      s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri), kStorage, MemoryKind::device);
-      s.small_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
-      s.big_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
-      s.clip_list = create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+    if (!s.raster_tris.buffer ||
+        s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
+      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list})
+        destroy_buffer(ctx, *b);
+      s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri),
+                                    kStorage, MemoryKind::device);
+      s.small_list =
+          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+      s.big_list =
+          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
+      s.clip_list =
+          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
       s.descriptors_dirty = true;
     }
     if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
       destroy_buffer(ctx, s.tile_entries);
-      s.tile_entries = create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorage, MemoryKind::device);
+      s.tile_entries =
+          create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorage, MemoryKind::device);
       s.descriptors_dirty = true;
     }
     if (s.counter_slots < std::max(batches, 1u)) {
@@ -334,8 +358,10 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       destroy_buffer(ctx, s.counters_readback);
       s.counter_slots = std::max(batches, 1u);
       const VkDeviceSize bytes = VkDeviceSize(s.counter_slots) * sizeof(gpu::GpuCounters);
-      s.counters = create_buffer(ctx, bytes, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::device);
-      s.counters_readback = create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
+      s.counters = create_buffer(ctx, bytes, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                                 MemoryKind::device);
+      s.counters_readback =
+          create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
       s.descriptors_dirty = true;
     }
     const bool timestamps = ctx.timestamp_valid_bits > 0;
@@ -359,21 +385,24 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
       record_frame(cmd, batches, timestamps, query_passes);
       stats.cpu_record_submit_ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
     });
 
     // Read the counters: did any batch need more room than it had?
     const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
     uint64_t need_raster = 0, need_entries = 0;
     for (uint32_t b = 0; b < batches; ++b) {
-      need_raster = std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list});
+      need_raster =
+          std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list});
       need_entries = std::max<uint64_t>(need_entries, counters[b].tile_entries);
     }
     bool redo = false;
     if (need_raster > s.raster_capacity) {
       redo = true;
       if (s.raster_capacity < s.max_raster_capacity()) {
-        s.raster_capacity = uint32_t(std::min<uint64_t>(need_raster + need_raster / 4, s.max_raster_capacity()));
+        s.raster_capacity =
+            uint32_t(std::min<uint64_t>(need_raster + need_raster / 4, s.max_raster_capacity()));
       } else {
         s.batch_triangles = std::max(1u, s.batch_triangles / 2);
       }
@@ -381,8 +410,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     if (need_entries > s.tile_entry_capacity) {
       redo = true;
       if (s.tile_entry_capacity < s.max_tile_entry_capacity()) {
-        s.tile_entry_capacity =
-            uint32_t(std::min<uint64_t>(need_entries + need_entries / 4, s.max_tile_entry_capacity()));
+        s.tile_entry_capacity = uint32_t(
+            std::min<uint64_t>(need_entries + need_entries / 4, s.max_tile_entry_capacity()));
       } else {
         s.batch_triangles = std::max(1u, s.batch_triangles / 2);
       }
@@ -405,10 +434,11 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     }
     if (timestamps) {
       std::vector<uint64_t> ticks(query_passes.size() + 1);
-      VK_CHECK(vkGetQueryPoolResults(ctx.device, s.queries, 0, uint32_t(ticks.size()),
-                                     ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-      const uint64_t mask = ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
+      VK_CHECK(vkGetQueryPoolResults(
+          ctx.device, s.queries, 0, uint32_t(ticks.size()), ticks.size() * sizeof(uint64_t),
+          ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+      const uint64_t mask =
+          ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
       const double ns_per_tick = ctx.properties.limits.timestampPeriod;
       for (size_t i = 0; i < query_passes.size(); ++i) {
         const uint64_t delta = ((ticks[i + 1] & mask) - (ticks[i] & mask)) & mask;
@@ -429,14 +459,14 @@ void Renderer::update_descriptors() {
     const Buffer* buffer;
   };
   const BufferBinding buffers[] = {
-      {TS_BINDING_FRAME, &s.frame_constants}, {TS_BINDING_VERTICES, &s.vertices},
-      {TS_BINDING_INDICES, &s.indices},       {TS_BINDING_OBJECTS, &s.objects},
-      {TS_BINDING_MATERIALS, &s.materials},   {TS_BINDING_LIGHTS, &s.lights},
-      {TS_BINDING_RASTER_TRIS, &s.raster_tris}, {TS_BINDING_SMALL_LIST, &s.small_list},
-      {TS_BINDING_BIG_LIST, &s.big_list},     {TS_BINDING_TILE_COUNTS, &s.tile_counts},
+      {TS_BINDING_FRAME, &s.frame_constants},     {TS_BINDING_VERTICES, &s.vertices},
+      {TS_BINDING_INDICES, &s.indices},           {TS_BINDING_OBJECTS, &s.objects},
+      {TS_BINDING_MATERIALS, &s.materials},       {TS_BINDING_LIGHTS, &s.lights},
+      {TS_BINDING_RASTER_TRIS, &s.raster_tris},   {TS_BINDING_SMALL_LIST, &s.small_list},
+      {TS_BINDING_BIG_LIST, &s.big_list},         {TS_BINDING_TILE_COUNTS, &s.tile_counts},
       {TS_BINDING_TILE_OFFSETS, &s.tile_offsets}, {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
       {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
-      {TS_BINDING_VISIBILITY, &s.visibility}, {TS_BINDING_COVERAGE, &s.coverage},
+      {TS_BINDING_VISIBILITY, &s.visibility},     {TS_BINDING_COVERAGE, &s.coverage},
       {TS_BINDING_CLIP_LIST, &s.clip_list},
   };
   std::vector<VkDescriptorBufferInfo> buffer_infos;
@@ -485,9 +515,11 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                               float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0),
                               std::exp2(settings.exposure_ev), 0.0f);
   f.image_size = glm::uvec4(s.width, s.height, s.tiles_x, s.tiles_y);
-  f.scene_counts = glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
-                              uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
-  f.limits = glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area, 0);
+  f.scene_counts =
+      glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
+                 uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
+  f.limits =
+      glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area, 0);
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 
@@ -499,9 +531,12 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
   auto mark = [&](Pass pass) {
     if (!timestamps) return;
     query_passes.push_back(pass);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries, uint32_t(query_passes.size()));
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries,
+                        uint32_t(query_passes.size()));
   };
-  auto bind = [&](Pipeline pipeline) { vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p[pipeline]); };
+  auto bind = [&](Pipeline pipeline) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p[pipeline]);
+  };
 
   full_barrier(cmd);  // earlier submissions (uploads, read-backs, the last frame) are done
   if (timestamps) {
@@ -518,11 +553,13 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
   const uint64_t total = s.uploaded.triangle_count;
   for (uint32_t b = 0; b < batches; ++b) {
     const uint64_t first = uint64_t(b) * s.batch_triangles;
-    gpu::GpuBatch batch{uint32_t(first), uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
+    gpu::GpuBatch batch{uint32_t(first),
+                        uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
     vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
 
     // The tile counts of the previous batch were read by its tile passes.
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdFillBuffer(cmd, s.tile_counts.buffer, 0, VK_WHOLE_SIZE, 0);
     transfer_to_compute(cmd);
@@ -554,7 +591,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     mark(Pass::raster_tiles);
 
     bind(s.options.debug_coverage ? Pipeline::raster_small_coverage : Pipeline::raster_small);
-    vkCmdDispatchIndirect(cmd, s.counters.buffer, slot + offsetof(gpu::GpuCounters, small_dispatch));
+    vkCmdDispatchIndirect(cmd, s.counters.buffer,
+                          slot + offsetof(gpu::GpuCounters, small_dispatch));
     compute_to_compute(cmd);
     mark(Pass::raster_small);
   }
@@ -604,12 +642,15 @@ std::vector<uint32_t> Renderer::read_coverage() const {
   return download_buffer<uint32_t>(s_->ctx, s_->coverage, uint64_t(s_->width) * s_->height);
 }
 
-const StorageImage& Renderer::output_image() const { return s_->ldr; }
+const StorageImage& Renderer::output_image() const {
+  return s_->ldr;
+}
 
 uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
   const auto& objects = s_->uploaded.objects;
-  auto it = std::upper_bound(objects.begin(), objects.end(), triangle_id,
-                             [](uint32_t id, const gpu::GpuObject& o) { return id < o.first_triangle; });
+  auto it =
+      std::upper_bound(objects.begin(), objects.end(), triangle_id,
+                       [](uint32_t id, const gpu::GpuObject& o) { return id < o.first_triangle; });
   TESSERA_CHECK(it != objects.begin());
   const size_t slot = size_t(it - objects.begin()) - 1;
   TESSERA_CHECK(triangle_id - objects[slot].first_triangle < objects[slot].triangle_count);

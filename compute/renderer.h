@@ -1,8 +1,8 @@
 #pragma once
 // The compute rasterizer: created once per device, renders many frames of many scenes.
 //
-// Per frame: setup -> clip -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve, over
-// one or more batches of triangle instances (see docs/architecture.md). The output stays on
+// Per frame: setup -> clip -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve,
+// over one or more batches of triangle instances (see docs/architecture.md). The output stays on
 // the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
 
 #include <array>
@@ -42,12 +42,23 @@ struct FrameSettings {
   ToneMap tonemap = ToneMap::aces;
 };
 
-enum class Pass { clear, setup, clip, scan, fill, raster_tiles, raster_small, shade, resolve, count };
+enum class Pass {
+  clear,
+  setup,
+  clip,
+  scan,
+  fill,
+  raster_tiles,
+  raster_small,
+  shade,
+  resolve,
+  count
+};
 constexpr size_t kPassCount = size_t(Pass::count);
 const char* pass_name(Pass pass);
 
 struct FrameStats {
-  bool has_timestamps = false;            // false if the queue cannot write timestamps
+  bool has_timestamps = false;               // false if the queue cannot write timestamps
   std::array<double, kPassCount> pass_ms{};  // GPU time per pass, summed over batches
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;  // recording and submitting the final attempt

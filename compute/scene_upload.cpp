@@ -33,17 +33,17 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     first_index[m] = uint32_t(out.indices.size());
     base_vertex[m] = uint32_t(out.vertices.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      out.vertices.push_back({glm::vec4(mesh.positions[v], mesh.uvs[v].x),
-                              glm::vec4(mesh.normals[v], mesh.uvs[v].y)});
+      out.vertices.push_back(
+          {glm::vec4(mesh.positions[v], mesh.uvs[v].x), glm::vec4(mesh.normals[v], mesh.uvs[v].y)});
     }
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
 
   out.object_of_slot.resize(scene.objects.size());
   std::iota(out.object_of_slot.begin(), out.object_of_slot.end(), 0u);
-  std::stable_sort(out.object_of_slot.begin(), out.object_of_slot.end(), [&](uint32_t a, uint32_t b) {
-    return content_less(scene.objects[a], scene.objects[b]);
-  });
+  std::stable_sort(
+      out.object_of_slot.begin(), out.object_of_slot.end(),
+      [&](uint32_t a, uint32_t b) { return content_less(scene.objects[a], scene.objects[b]); });
 
   uint64_t next_triangle = 0;
   for (uint32_t slot : out.object_of_slot) {
@@ -61,13 +61,15 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     next_triangle += triangles;
     // The all-ones id is never used: it marks empty pixels in the visibility buffer.
     if (next_triangle > 0xFFFFFFFFull) {
-      throw Error("the scene has more than 2^32 - 2 triangle instances, more than Tessera can number");
+      throw Error(
+          "the scene has more than 2^32 - 2 triangle instances, more than Tessera can number");
     }
     out.objects.push_back(g);
   }
   // Keep the slot -> object map aligned with the objects actually uploaded.
-  std::erase_if(out.object_of_slot,
-                [&](uint32_t o) { return scene.meshes[scene.objects[o].mesh].triangle_count() == 0; });
+  std::erase_if(out.object_of_slot, [&](uint32_t o) {
+    return scene.meshes[scene.objects[o].mesh].triangle_count() == 0;
+  });
   out.triangle_count = next_triangle;
 
   for (const Material& m : scene.materials) {
@@ -76,10 +78,12 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   for (const Light& l : scene.lights) {
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
-    glm::vec3 dir = l.kind == LightKind::directional ? glm::normalize(l.direction) : glm::vec3(0.0f);
+    glm::vec3 dir =
+        l.kind == LightKind::directional ? glm::normalize(l.direction) : glm::vec3(0.0f);
     g.direction = glm::vec4(dir, 0.0f);
     g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
-    g.kind = glm::uvec4(l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL : TS_LIGHT_POINT, 0, 0, 0);
+    g.kind = glm::uvec4(l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL : TS_LIGHT_POINT, 0,
+                        0, 0);
     out.lights.push_back(g);
   }
   return out;

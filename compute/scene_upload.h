@@ -10,13 +10,13 @@
 namespace tessera {
 
 struct GpuSceneArrays {
-  std::vector<gpu::GpuVertex> vertices;   // all meshes, one after another
-  std::vector<uint32_t> indices;          // all meshes, relative to each mesh's first vertex
-  std::vector<gpu::GpuObject> objects;    // canonical order (see flatten_scene)
+  std::vector<gpu::GpuVertex> vertices;  // all meshes, one after another
+  std::vector<uint32_t> indices;         // all meshes, relative to each mesh's first vertex
+  std::vector<gpu::GpuObject> objects;   // canonical order (see flatten_scene)
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuLight> lights;
-  std::vector<uint32_t> object_of_slot;   // GPU object slot -> index in Scene::objects
-  uint64_t triangle_count = 0;            // triangle instances over all objects
+  std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
+  uint64_t triangle_count = 0;           // triangle instances over all objects
 };
 
 /// Flattens `scene` (which must have passed validate_scene). Objects are sorted by their

@@ -22,7 +22,9 @@ glm::mat4 place(glm::vec3 position, float scale) {
 
 }  // namespace
 
-std::span<const BuiltinSceneInfo> builtin_scenes() { return kScenes; }
+std::span<const BuiltinSceneInfo> builtin_scenes() {
+  return kScenes;
+}
 
 Scene make_builtin_scene(std::string_view name) {
   if (name == "spheres") return make_sphere_grid_scene();
@@ -54,10 +56,9 @@ Scene make_sphere_grid_scene() {
       Object o;
       o.mesh = 0;
       o.material = uint32_t(scene.materials.size() - 1);
-      o.transform =
-          place({(col - (kGrid - 1) / 2.0f) * kSpacing, (row - (kGrid - 1) / 2.0f) * kSpacing,
-                 0.0f},
-                1.0f);
+      o.transform = place(
+          {(col - (kGrid - 1) / 2.0f) * kSpacing, (row - (kGrid - 1) / 2.0f) * kSpacing, 0.0f},
+          1.0f);
       scene.objects.push_back(o);
     }
   }
@@ -92,7 +93,8 @@ Scene make_metals_scene() {
       scene.materials.push_back(m);
       Object o;
       o.material = uint32_t(scene.materials.size() - 1);
-      o.transform = place({(float(col) - (columns - 1) / 2.0f) * 2.2f, (1 - row) * 2.2f, 0.0f}, 1.0f);
+      o.transform =
+          place({(float(col) - (columns - 1) / 2.0f) * 2.2f, (1 - row) * 2.2f, 0.0f}, 1.0f);
       scene.objects.push_back(o);
     }
   }

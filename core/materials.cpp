@@ -16,7 +16,9 @@ constexpr MetalPreset kPresets[] = {
 
 }  // namespace
 
-std::span<const MetalPreset> metal_presets() { return kPresets; }
+std::span<const MetalPreset> metal_presets() {
+  return kPresets;
+}
 
 const MetalPreset* find_metal_preset(std::string_view name) {
   for (const MetalPreset& p : kPresets) {

@@ -65,14 +65,14 @@ Mesh make_uv_sphere(uint32_t segments, uint32_t rings) {
 Mesh make_icosphere(uint32_t level) {
   if (level > 8) throw Error("icosphere level " + std::to_string(level) + " is above 8");
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<glm::dvec3> points = {{-1, t, 0}, {1, t, 0},   {-1, -t, 0}, {1, -t, 0},
-                                    {0, -1, t}, {0, 1, t},   {0, -1, -t}, {0, 1, -t},
-                                    {t, 0, -1}, {t, 0, 1},   {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<glm::dvec3> points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                    {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                    {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (auto& p : points) p = glm::normalize(p);
   std::vector<std::array<uint32_t, 3>> faces = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9},  {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6},  {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+      {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (uint32_t l = 0; l < level; ++l) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
     auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -106,17 +106,17 @@ Mesh make_icosphere(uint32_t level) {
 
 Mesh make_cube() {
   Mesh mesh;
-  const std::array<glm::vec3, 6> normals = {glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0),
-                                            glm::vec3(0, 1, 0),  glm::vec3(0, -1, 0),
-                                            glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+  const std::array<glm::vec3, 6> normals = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
+                                            glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
+                                            glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
   for (glm::vec3 n : normals) {
     // Two axes spanning the face, chosen so that u x v = n (counter-clockwise from outside).
     glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     glm::vec3 v = glm::cross(n, u);
     u = glm::cross(v, n);
     uint32_t first = uint32_t(mesh.positions.size());
-    const std::array<glm::vec2, 4> corners = {glm::vec2(-1, -1), glm::vec2(1, -1),
-                                              glm::vec2(1, 1), glm::vec2(-1, 1)};
+    const std::array<glm::vec2, 4> corners = {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1),
+                                              glm::vec2(-1, 1)};
     for (glm::vec2 c : corners) add_vertex(mesh, n + c.x * u + c.y * v, n, c * 0.5f + 0.5f);
     add_triangle(mesh, first, first + 1, first + 2);
     add_triangle(mesh, first, first + 2, first + 3);

@@ -10,7 +10,9 @@
 namespace tessera {
 namespace {
 
-bool finite(float v) { return std::isfinite(v); }
+bool finite(float v) {
+  return std::isfinite(v);
+}
 template <int N>
 bool finite(const glm::vec<N, float>& v) {
   for (int i = 0; i < N; ++i) {
@@ -76,9 +78,9 @@ void validate_scene(const Scene& scene) {
     const std::string name = "object " + std::to_string(o);
     require(obj.mesh < scene.meshes.size(), name + " uses mesh " + std::to_string(obj.mesh) +
                                                 " of " + std::to_string(scene.meshes.size()));
-    require(obj.material < scene.materials.size(),
-            name + " uses material " + std::to_string(obj.material) + " of " +
-                std::to_string(scene.materials.size()));
+    require(obj.material < scene.materials.size(), name + " uses material " +
+                                                       std::to_string(obj.material) + " of " +
+                                                       std::to_string(scene.materials.size()));
     require(finite(obj.transform), name + " has a NaN or infinite transform");
   }
   for (size_t l = 0; l < scene.lights.size(); ++l) {

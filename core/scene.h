@@ -39,7 +39,7 @@ enum class LightKind { point, directional };
 
 struct Light {
   LightKind kind = LightKind::point;
-  glm::vec3 position{0.0f};              // point lights
+  glm::vec3 position{0.0f};                // point lights
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: the way light travels
   glm::vec3 color{1.0f};
   float intensity = 1.0f;  // point: W/sr (radiance scale at 1 m); directional: W/m^2

@@ -11,7 +11,8 @@
 namespace tessera {
 namespace {
 
-uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min, uint32_t max) {
+uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min,
+                    uint32_t max) {
   uint64_t value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
@@ -31,7 +32,8 @@ float parse_float(const std::string& option, const std::string& text) {
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -92,14 +94,19 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
       {"--exposure",
        [&](const std::string& v) {
          out.exposure_ev = parse_float("--exposure", v);
-         if (std::abs(out.exposure_ev) > 64.0f) throw Error("--exposure must be within [-64, 64] EV");
+         if (std::abs(out.exposure_ev) > 64.0f)
+           throw Error("--exposure must be within [-64, 64] EV");
        }},
       {"--tonemap",
        [&](const std::string& v) {
-         if (v == "aces") out.tonemap = ToneMap::aces;
-         else if (v == "reinhard") out.tonemap = ToneMap::reinhard;
-         else if (v == "clamp") out.tonemap = ToneMap::clamp;
-         else throw Error("--tonemap expects aces, reinhard or clamp, got '" + v + "'");
+         if (v == "aces")
+           out.tonemap = ToneMap::aces;
+         else if (v == "reinhard")
+           out.tonemap = ToneMap::reinhard;
+         else if (v == "clamp")
+           out.tonemap = ToneMap::clamp;
+         else
+           throw Error("--tonemap expects aces, reinhard or clamp, got '" + v + "'");
        }},
       {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
   };
@@ -122,7 +129,8 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
       continue;
     }
     auto h = with_value.find(name);
-    if (h == with_value.end()) throw Error("unknown option '" + args[i] + "' (see tessera render --help)");
+    if (h == with_value.end())
+      throw Error("unknown option '" + args[i] + "' (see tessera render --help)");
     if (!has_inline_value) {
       if (i + 1 >= args.size()) throw Error(name + " needs a value");
       value = args[++i];

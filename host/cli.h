@@ -19,7 +19,7 @@ struct RenderArgs {
   std::string device = "auto";
   float exposure_ev = 0.0f;
   ToneMap tonemap = ToneMap::aces;
-  uint32_t repeat = 1;   // frames rendered; timings are the median over them
+  uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;
 };

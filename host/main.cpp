@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
     }
     if (command == "devices") return run_devices();
     if (command == "scenes") return run_scenes();
-    std::fprintf(stderr, "tessera: unknown command '%s'\n\n%s", command.c_str(), tessera::main_help().c_str());
+    std::fprintf(stderr, "tessera: unknown command '%s'\n\n%s", command.c_str(),
+                 tessera::main_help().c_str());
     return 2;
   } catch (const tessera::Error& e) {
     std::fprintf(stderr, "tessera: %s\n", e.what());

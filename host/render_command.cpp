@@ -53,12 +53,13 @@ int run_render(const RenderArgs& args) {
     std::printf("wrote %s (%ux%u, scene '%s', device '%s')\n", args.out.c_str(), args.width,
                 args.height, args.scene.c_str(), ctx->properties.deviceName);
     if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
-    std::printf("triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
-                "%llu outside, %llu empty, %llu clipped\n",
-                (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
-                (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
-                (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
-                (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+    std::printf(
+        "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
+        "%llu outside, %llu empty, %llu clipped\n",
+        (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
+        (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
+        (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
+        (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
     if (last.has_timestamps) {
       std::printf("GPU time, median of %u frame%s (ms):", args.repeat, args.repeat > 1 ? "s" : "");
       for (size_t p = 0; p < kPassCount; ++p) {

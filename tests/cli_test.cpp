@@ -20,9 +20,9 @@ std::string parse_error(std::vector<std::string> args) {
 
 TEST(Cli, ParsesEveryOption) {
   RenderArgs a;
-  ASSERT_TRUE(parse_render_args({"--scene", "metals", "--size=640x360", "--out", "x.png", "--hdr-out",
-                                 "x.pfm", "--device", "lavapipe", "--exposure", "-1.5", "--tonemap",
-                                 "reinhard", "--repeat", "5", "--validate", "--quiet"},
+  ASSERT_TRUE(parse_render_args({"--scene", "metals", "--size=640x360", "--out", "x.png",
+                                 "--hdr-out", "x.pfm", "--device", "lavapipe", "--exposure", "-1.5",
+                                 "--tonemap", "reinhard", "--repeat", "5", "--validate", "--quiet"},
                                 a));
   EXPECT_EQ(a.scene, "metals");
   EXPECT_EQ(a.width, 640u);
@@ -80,8 +80,13 @@ TEST(Cli, ToolExitsNonZeroWithAMessage) {
 TEST(Cli, RendersAndSaysWhereItWrote) {
   const std::string png = test::output_path("cli.png");
   std::string out;
-  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --device lavapipe --validate "
-                              "--size 96x64 --out " + png, out), 0) << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --validate "
+                                  "--size 96x64 --out " +
+                                  png,
+                              out),
+            0)
+      << out;
   EXPECT_NE(out.find("wrote " + png), std::string::npos) << out;
   EXPECT_NE(out.find("GPU time"), std::string::npos) << out;
   std::string help;

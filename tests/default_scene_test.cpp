@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/packing.hpp>
 
 #include "core/builtin_scenes.h"
 #include "tests/vulkan_fixture.h"
@@ -47,8 +47,12 @@ glm::dvec3 cook_torrance_by_hand(glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, glm::
   return (diffuse + specular) * nl;
 }
 
-double aces(double x) { return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
-double srgb(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055; }
+double aces(double x) {
+  return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+double srgb(double c) {
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
 
 // Projects a world point to pixel coordinates with the scene camera (y down).
 glm::dvec2 project(const Camera& c, glm::dvec3 p, uint32_t w, uint32_t h) {
@@ -124,7 +128,9 @@ TEST_F(DefaultScene, SphereCentrePixelMatchesHandComputedBrdf) {
     glm::dvec3 to_light = glm::dvec3(light.position) - p;
     double d2 = glm::dot(to_light, to_light);
     glm::dvec3 radiance = glm::dvec3(light.color) * double(light.intensity) / d2;
-    expected += cook_torrance_by_hand(n, v, glm::normalize(to_light), base, m.metallic, m.roughness) * radiance;
+    expected +=
+        cook_torrance_by_hand(n, v, glm::normalize(to_light), base, m.metallic, m.roughness) *
+        radiance;
   }
   glm::vec4 actual = f.hdr.at(x, y);
   // Tolerance: 1% relative covers the tessellation (normals within 0.1 degree of the analytic

@@ -20,9 +20,8 @@ class Determinism : public test::VulkanTest {};
 
 bool same_bits(const ImageF& a, const ImageF& b) {
   return a.width == b.width && a.height == b.height &&
-         std::equal(a.pixels.begin(), a.pixels.end(), b.pixels.begin(), [](glm::vec4 x, glm::vec4 y) {
-           return std::memcmp(&x, &y, sizeof(x)) == 0;
-         });
+         std::equal(a.pixels.begin(), a.pixels.end(), b.pixels.begin(),
+                    [](glm::vec4 x, glm::vec4 y) { return std::memcmp(&x, &y, sizeof(x)) == 0; });
 }
 
 // Overlapping, intersecting and coplanar objects, so that depth ties and overdraw matter.
@@ -41,7 +40,8 @@ Scene crowded_scene() {
   for (int i = 0; i < 3; ++i) {
     glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f + 3.0f * i, 0.5f * i, 0.5f));
     t = glm::rotate(t, 0.4f + 0.7f * i, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
-    s.objects.push_back({uint32_t(s.meshes.size() - 1), uint32_t(i * 5), glm::scale(t, glm::vec3(1.6f))});
+    s.objects.push_back(
+        {uint32_t(s.meshes.size() - 1), uint32_t(i * 5), glm::scale(t, glm::vec3(1.6f))});
   }
   // Exact duplicates: identical depth everywhere, so only the id tie-break decides.
   for (size_t i = 0; i < 10; ++i) {
@@ -110,9 +110,10 @@ TEST(DeterminismAcrossThreads, OneAndTwoLavapipeThreadsGiveIdenticalFiles) {
     const std::string png = test::output_path("threads" + std::to_string(threads) + ".png");
     const std::string pfm = test::output_path("threads" + std::to_string(threads) + ".pfm");
     std::string log;
-    const std::string command = "LP_NUM_THREADS=" + std::to_string(threads) + " " TESSERA_BINARY
-                                " render --device lavapipe --size 256x192 --quiet --out " + png +
-                                " --hdr-out " + pfm;
+    const std::string command = "LP_NUM_THREADS=" + std::to_string(threads) +
+                                " " TESSERA_BINARY
+                                " render --device lavapipe --size 256x192 --quiet --out " +
+                                png + " --hdr-out " + pfm;
     ASSERT_EQ(test::run_command(command, log), 0) << log;
     outputs[threads - 1][0] = read_file(png);
     outputs[threads - 1][1] = read_file(pfm);

@@ -3,8 +3,8 @@
 // lights) give finite pixels. Non-finite vertices cannot reach the GPU.
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/check.h"
 #include "core/mesh.h"
@@ -31,8 +31,9 @@ Scene guard_scene(float roughness, float metallic) {
   s.materials.push_back({glm::vec3(0.9f, 0.5f, 0.2f), metallic, roughness});
   s.objects.push_back({0, 0, glm::mat4(1.0f)});
   // A plane seen exactly edge-on (its normal is perpendicular to the view direction).
-  s.objects.push_back({1, 0, glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 0.3f, 0.0f)),
-                                         glm::radians(90.0f), glm::vec3(0, 1, 0))});
+  s.objects.push_back({1, 0,
+                       glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 0.3f, 0.0f)),
+                                   glm::radians(90.0f), glm::vec3(0, 1, 0))});
   Light on_surface;
   on_surface.position = {0.0f, 0.0f, 1.0f};  // exactly on the sphere (a vertex)
   on_surface.intensity = 5.0f;

@@ -11,7 +11,9 @@ namespace tessera {
 namespace {
 
 using Edge = std::tuple<float, float, float, float, float, float>;
-Edge edge_key(glm::vec3 a, glm::vec3 b) { return {a.x, a.y, a.z, b.x, b.y, b.z}; }
+Edge edge_key(glm::vec3 a, glm::vec3 b) {
+  return {a.x, a.y, a.z, b.x, b.y, b.z};
+}
 
 // Every directed edge (by exact vertex position) must appear once and its reverse once: the
 // surface is closed and consistently wound. Degenerate (pole) triangles are not allowed.
@@ -36,7 +38,8 @@ void expect_closed(const Mesh& mesh) {
 void expect_outward_winding(const Mesh& mesh) {
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     uint32_t i0 = mesh.indices[t * 3], i1 = mesh.indices[t * 3 + 1], i2 = mesh.indices[t * 3 + 2];
-    glm::vec3 n = glm::cross(mesh.positions[i1] - mesh.positions[i0], mesh.positions[i2] - mesh.positions[i0]);
+    glm::vec3 n = glm::cross(mesh.positions[i1] - mesh.positions[i0],
+                             mesh.positions[i2] - mesh.positions[i0]);
     glm::vec3 avg = mesh.normals[i0] + mesh.normals[i1] + mesh.normals[i2];
     EXPECT_GT(glm::dot(n, avg), 0.0f) << "triangle " << t << " winds clockwise from outside";
   }

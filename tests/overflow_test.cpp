@@ -1,7 +1,7 @@
 // Buffers that are too small grow and the frame is rendered again; batches split the work.
 // Either way the image is the one a roomy renderer makes: nothing is dropped.
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/builtin_scenes.h"
 #include "core/mesh.h"
@@ -18,8 +18,10 @@ Scene mixed_sizes_scene() {
   // Cubes whose triangles are binned into many tiles each.
   s.meshes.push_back(make_cube());
   for (int i = 0; i < 4; ++i) {
-    glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3(-2.5f + 1.7f * i, 1.0f - 0.6f * i, 1.0f));
-    s.objects.push_back({1, uint32_t(i), glm::rotate(t, 0.5f * i + 0.3f, glm::vec3(0.3f, 1.0f, 0.2f))});
+    glm::mat4 t =
+        glm::translate(glm::mat4(1.0f), glm::vec3(-2.5f + 1.7f * i, 1.0f - 0.6f * i, 1.0f));
+    s.objects.push_back(
+        {1, uint32_t(i), glm::rotate(t, 0.5f * i + 0.3f, glm::vec3(0.3f, 1.0f, 0.2f))});
   }
   return s;
 }

@@ -1,9 +1,9 @@
 #include "tests/vulkan_fixture.h"
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <sys/wait.h>
 
 namespace tessera::test {
 

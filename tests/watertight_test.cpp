@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/mesh.h"
 #include "tests/vulkan_fixture.h"
@@ -15,9 +15,23 @@ namespace {
 class Watertight : public test::VulkanTest {};
 
 RendererOptions paths[] = {
-    [] { RendererOptions o; o.debug_coverage = true; return o; }(),
-    [] { RendererOptions o; o.debug_coverage = true; o.small_triangle_max_area = 1u << 30; return o; }(),
-    [] { RendererOptions o; o.debug_coverage = true; o.small_triangle_max_area = 0; return o; }(),
+    [] {
+      RendererOptions o;
+      o.debug_coverage = true;
+      return o;
+    }(),
+    [] {
+      RendererOptions o;
+      o.debug_coverage = true;
+      o.small_triangle_max_area = 1u << 30;
+      return o;
+    }(),
+    [] {
+      RendererOptions o;
+      o.debug_coverage = true;
+      o.small_triangle_max_area = 0;
+      return o;
+    }(),
 };
 const char* path_names[] = {"default split", "all per-triangle", "all per-tile"};
 
