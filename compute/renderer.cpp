@@ -63,6 +63,22 @@ uint32_t tonemap_id(ToneMap t) {
   return TS_TONEMAP_ACES;
 }
 
+uint32_t view_id(View v) {
+  switch (v) {
+    case View::shaded:
+      return TS_VIEW_SHADED;
+    case View::normal:
+      return TS_VIEW_NORMAL;
+    case View::uv:
+      return TS_VIEW_UV;
+    case View::triangle:
+      return TS_VIEW_TRIANGLE;
+    case View::object:
+      return TS_VIEW_OBJECT;
+  }
+  return TS_VIEW_SHADED;
+}
+
 }  // namespace
 
 const char* pass_name(Pass pass) {
@@ -518,8 +534,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   f.scene_counts =
       glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
                  uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
-  f.limits =
-      glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area, 0);
+  f.limits = glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area,
+                        view_id(settings.view));
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 

@@ -40,6 +40,7 @@ struct FrameSettings {
   uint32_t height = 512;
   float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
   ToneMap tonemap = ToneMap::aces;
+  View view = View::shaded;  // debug views are written as they are, without exposure or curve
 };
 
 enum class Pass {

@@ -54,6 +54,9 @@ struct Object {
 
 enum class ToneMap { aces, reinhard, clamp };
 
+/// What an image shows: the shaded scene, or a debug view of what the rasterizer produced.
+enum class View { shaded, normal, uv, triangle, object };
+
 struct Scene {
   Camera camera;
   std::vector<Mesh> meshes;

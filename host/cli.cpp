@@ -67,6 +67,8 @@ std::string render_help() {
          "                      there is one, else lavapipe)\n"
          "  --exposure EV       exposure in stops, applied before tone mapping (default 0)\n"
          "  --tonemap OP        aces (default), reinhard or clamp\n"
+         "  --view V            shaded (default), or a debug view: normal, uv, triangle\n"
+         "                      (a colour per triangle) or object (a colour per object)\n"
          "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
          "  --validate          enable the Khronos validation layer (synchronization too)\n"
          "  --quiet             print nothing but errors\n"
@@ -107,6 +109,19 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
            out.tonemap = ToneMap::clamp;
          else
            throw Error("--tonemap expects aces, reinhard or clamp, got '" + v + "'");
+       }},
+      {"--view",
+       [&](const std::string& v) {
+         const std::map<std::string, View> views = {{"shaded", View::shaded},
+                                                    {"normal", View::normal},
+                                                    {"uv", View::uv},
+                                                    {"triangle", View::triangle},
+                                                    {"object", View::object}};
+         auto it = views.find(v);
+         if (it == views.end()) {
+           throw Error("--view expects shaded, normal, uv, triangle or object, got '" + v + "'");
+         }
+         out.view = it->second;
        }},
       {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
   };

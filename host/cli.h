@@ -19,6 +19,7 @@ struct RenderArgs {
   std::string device = "auto";
   float exposure_ev = 0.0f;
   ToneMap tonemap = ToneMap::aces;
+  View view = View::shaded;
   uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;

@@ -41,6 +41,7 @@ int run_render(const RenderArgs& args) {
   settings.height = args.height;
   settings.exposure_ev = args.exposure_ev;
   settings.tonemap = args.tonemap;
+  settings.view = args.view;
 
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));

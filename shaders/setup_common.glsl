@@ -62,9 +62,20 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
   }
   t.box_min = box_min;
   t.box_max = box_max;
-  if (box_min == box_max && !is_covered(edges_at(t, pixel_centre(box_min)), thresholds_of(t))) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
+  // Slivers and sub-pixel triangles often cover no pixel centre: for boxes of up to 2x2
+  // pixels, test the centres here rather than pay for a raster triangle that writes nothing.
+  if (all(lessThanEqual(box_max - box_min, ivec2(1)))) {
+    Thresholds h = thresholds_of(t);
+    bool any_covered = false;
+    for (int y = box_min.y; y <= box_max.y; ++y) {
+      for (int x = box_min.x; x <= box_max.x; ++x) {
+        any_covered = any_covered || is_covered(edges_at(t, pixel_centre(ivec2(x, y))), h);
+      }
+    }
+    if (!any_covered) {
+      atomicAdd(counters[batch.index].culled_empty, 1u);
+      return;
+    }
   }
 
   uint index = atomicAdd(counters[batch.index].raster_tris, 1u);

@@ -35,15 +35,26 @@ vec3 ray_barycentrics(vec3 origin, vec3 dir, vec3 p0, vec3 p1, vec3 p2) {
   return b / (b.x + b.y + b.z);
 }
 
+// A well-spread colour for an integer (PCG hash, O'Neill 2014), for the id debug views.
+vec3 id_colour(uint id) {
+  uint h = id * 747796405u + 2891336453u;
+  h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return vec3(h & 0xFFu, (h >> 8) & 0xFFu, (h >> 16) & 0xFFu) / 255.0;
+}
+
 vec3 shade_sample(uint id, ivec2 pixel) {
-  GpuObject o = objects[find_object(id)];
+  uint slot = find_object(id);
+  GpuObject o = objects[slot];
   uvec3 vi = triangle_vertices(o, id);
   vec3 p[3];
   vec3 n[3];
+  vec2 t[3];
   for (int k = 0; k < 3; ++k) {
     GpuVertex vert = vertices[vi[k]];
     p[k] = (o.model * vec4(vert.position_u.xyz, 1.0)).xyz;
     n[k] = mat3(o.normal_matrix) * vert.normal_v.xyz;
+    t[k] = vec2(vert.position_u.w, vert.normal_v.w);
   }
   vec3 origin = frame.camera_position.xyz;
   vec3 dir = camera_ray(pixel);
@@ -53,6 +64,13 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   float n2 = dot(N, N);
   // Opposite vertex normals can cancel; the face normal is then the only sensible choice.
   N = n2 > 1e-20 ? N * inversesqrt(n2) : normalize(cross(p[1] - p[0], p[2] - p[0]));
+  vec2 uv = b.x * t[0] + b.y * t[1] + b.z * t[2];
+
+  uint view = frame.limits.w;
+  if (view == TS_VIEW_NORMAL) return N * 0.5 + 0.5;
+  if (view == TS_VIEW_UV) return vec3(uv, 0.0);
+  if (view == TS_VIEW_TRIANGLE) return id_colour(id);
+  if (view == TS_VIEW_OBJECT) return id_colour(slot);
 
   GpuMaterial m = materials[o.material];
   vec3 base_color = m.base_color.rgb;

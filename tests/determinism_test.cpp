@@ -110,10 +110,10 @@ TEST(DeterminismAcrossThreads, OneAndTwoLavapipeThreadsGiveIdenticalFiles) {
     const std::string png = test::output_path("threads" + std::to_string(threads) + ".png");
     const std::string pfm = test::output_path("threads" + std::to_string(threads) + ".pfm");
     std::string log;
-    const std::string command = "LP_NUM_THREADS=" + std::to_string(threads) +
-                                " " TESSERA_BINARY
-                                " render --device lavapipe --size 256x192 --quiet --out " +
-                                png + " --hdr-out " + pfm;
+    const std::string command =
+        "LP_NUM_THREADS=" + std::to_string(threads) +
+        " " TESSERA_BINARY " render --device lavapipe --validate --size 256x192 --quiet --out " +
+        png + " --hdr-out " + pfm;
     ASSERT_EQ(test::run_command(command, log), 0) << log;
     outputs[threads - 1][0] = read_file(png);
     outputs[threads - 1][1] = read_file(pfm);

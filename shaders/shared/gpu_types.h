@@ -46,6 +46,13 @@ using glm::vec4;
 #define TS_TONEMAP_REINHARD 1u
 #define TS_TONEMAP_CLAMP 2u
 
+// What the shading pass writes (GpuFrame.limits.w): shaded colour, or a debug view.
+#define TS_VIEW_SHADED 0u
+#define TS_VIEW_NORMAL 1u    // world normal * 0.5 + 0.5
+#define TS_VIEW_UV 2u        // (u, v, 0)
+#define TS_VIEW_TRIANGLE 3u  // a colour hashed from the triangle-instance id
+#define TS_VIEW_OBJECT 4u    // a colour hashed from the object slot
+
 // Descriptor bindings of the one descriptor set every pass uses.
 #define TS_BINDING_FRAME 0
 #define TS_BINDING_VERTICES 1
@@ -119,7 +126,8 @@ struct GpuFrame {
   vec4 raster_params;    // x, y: guard band in NDC units; z: exposure scale 2^EV; w: unused
   uvec4 image_size;      // width, height, tiles_x, tiles_y
   uvec4 scene_counts;    // objects, lights, triangle instances, tone-mapping operator
-  uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box area
+  uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box
+                         // area, view (TS_VIEW_*)
 };
 
 // Push constants: the range of triangle instances one batch of the rasterizer handles.
