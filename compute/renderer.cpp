@@ -536,6 +536,10 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                  uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
   f.limits = glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area,
                         view_id(settings.view));
+  f.flags = glm::uvec4(s.options.cull == CullMode::back    ? TS_CULL_BACK
+                       : s.options.cull == CullMode::front ? TS_CULL_FRONT
+                                                           : TS_CULL_NONE,
+                       0, 0, 0);
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 

@@ -30,6 +30,8 @@ struct RendererOptions {
   /// Upper bound on each scratch buffer, in bytes, besides the device's maxStorageBufferRange.
   /// Past it the renderer splits the frame into more batches instead of growing.
   uint64_t max_scratch_buffer_bytes = 256ull << 20;
+  /// Which faces setup culls. Back faces by default; tests of closed meshes use the others.
+  CullMode cull = CullMode::back;
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
   /// covered exactly once. Slower; for tests.
   bool debug_coverage = false;
@@ -68,7 +70,7 @@ struct FrameStats {
   uint64_t small_triangles = 0;
   uint64_t big_triangles = 0;
   uint64_t tile_entries = 0;
-  uint64_t culled_backface = 0;
+  uint64_t culled_backface = 0;  // culled by facing (RendererOptions::cull)
   uint64_t culled_frustum = 0;
   uint64_t culled_empty = 0;
   uint64_t culled_nonfinite = 0;

@@ -1,29 +1,10 @@
 #include "compute/scene_upload.h"
 
-#include <algorithm>
-#include <numeric>
 #include <string>
-#include <tuple>
 
 #include "core/check.h"
 
 namespace tessera {
-namespace {
-
-// Total order on objects by content. Validation has excluded NaN, so < is a strict weak order.
-bool content_less(const Object& a, const Object& b) {
-  if (a.mesh != b.mesh) return a.mesh < b.mesh;
-  if (a.material != b.material) return a.material < b.material;
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) {
-      if (a.transform[c][r] != b.transform[c][r]) return a.transform[c][r] < b.transform[c][r];
-    }
-  }
-  return false;
-}
-
-}  // namespace
-
 GpuSceneArrays flatten_scene(const Scene& scene) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
@@ -39,38 +20,26 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
 
-  out.object_of_slot.resize(scene.objects.size());
-  std::iota(out.object_of_slot.begin(), out.object_of_slot.end(), 0u);
-  std::stable_sort(
-      out.object_of_slot.begin(), out.object_of_slot.end(),
-      [&](uint32_t a, uint32_t b) { return content_less(scene.objects[a], scene.objects[b]); });
-
-  uint64_t next_triangle = 0;
-  for (uint32_t slot : out.object_of_slot) {
-    const Object& o = scene.objects[slot];
-    const uint32_t triangles = uint32_t(scene.meshes[o.mesh].triangle_count());
-    if (triangles == 0) continue;  // nothing to draw; keeps first_triangle strictly ordered
+  const ObjectNumbering numbering = number_objects(scene);
+  // The all-ones id is never used: it marks empty pixels in the visibility buffer.
+  if (numbering.triangle_count > 0xFFFFFFFFull) {
+    throw Error("the scene has " + std::to_string(numbering.triangle_count) +
+                " triangle instances, more than the 2^32 - 1 Tessera can number");
+  }
+  out.object_of_slot = numbering.objects;
+  out.triangle_count = numbering.triangle_count;
+  for (size_t slot = 0; slot < numbering.objects.size(); ++slot) {
+    const Object& o = scene.objects[numbering.objects[slot]];
     gpu::GpuObject g{};
     g.model = o.transform;
     g.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(o.transform))));
     g.first_index = first_index[o.mesh];
     g.base_vertex = base_vertex[o.mesh];
-    g.triangle_count = triangles;
+    g.triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count());
     g.material = o.material;
-    g.first_triangle = uint32_t(next_triangle);
-    next_triangle += triangles;
-    // The all-ones id is never used: it marks empty pixels in the visibility buffer.
-    if (next_triangle > 0xFFFFFFFFull) {
-      throw Error(
-          "the scene has more than 2^32 - 2 triangle instances, more than Tessera can number");
-    }
+    g.first_triangle = uint32_t(numbering.first_triangle[slot]);
     out.objects.push_back(g);
   }
-  // Keep the slot -> object map aligned with the objects actually uploaded.
-  std::erase_if(out.object_of_slot, [&](uint32_t o) {
-    return scene.meshes[scene.objects[o].mesh].triangle_count() == 0;
-  });
-  out.triangle_count = next_triangle;
 
   for (const Material& m : scene.materials) {
     out.materials.push_back({glm::vec4(m.base_color, 1.0f), m.metallic, m.roughness, 0.0f, 0.0f});

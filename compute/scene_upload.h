@@ -19,11 +19,9 @@ struct GpuSceneArrays {
   uint64_t triangle_count = 0;           // triangle instances over all objects
 };
 
-/// Flattens `scene` (which must have passed validate_scene). Objects are sorted by their
-/// content (mesh, material, transform), not by their position in Scene::objects, and their
-/// triangles numbered in that order: the triangle-instance ids that break depth ties, and so
-/// the image, do not depend on the order objects were submitted in.
-/// Throws Error if the scene has more than 2^32 - 2 triangle instances.
+/// Flattens `scene` (which must have passed validate_scene). Objects are uploaded in the order
+/// of number_objects (core/scene.h), so the image does not depend on submission order.
+/// Throws Error if the scene has more than 2^32 - 1 triangle instances.
 GpuSceneArrays flatten_scene(const Scene& scene);
 
 }  // namespace tessera

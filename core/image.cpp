@@ -12,6 +12,9 @@
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
 
 namespace tessera {
 namespace {
@@ -29,6 +32,16 @@ void write_png(const std::string& path, const Image8& image) {
                       int(image.width * 4))) {
     throw Error("cannot write PNG '" + path + "'");
   }
+}
+
+Image8 read_png(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4),
+                                                 stbi_image_free);
+  if (!data) throw Error("cannot read PNG '" + path + "': " + stbi_failure_reason());
+  Image8 image{uint32_t(w), uint32_t(h), std::vector<glm::u8vec4>(size_t(w) * h)};
+  std::memcpy(image.pixels.data(), data.get(), image.pixels.size() * 4);
+  return image;
 }
 
 void write_hdr_image(const std::string& path, const ImageF& image) {

@@ -30,6 +30,10 @@ struct Image8 {
 /// Writes `image` as PNG. Throws Error naming the path if it cannot be written.
 void write_png(const std::string& path, const Image8& image);
 
+/// Reads a PNG (any channel count, 8 bits; converted to RGBA). Throws Error naming the path
+/// and the reason if it cannot be read.
+Image8 read_png(const std::string& path);
+
 /// Writes the RGB channels of `image` as a little-endian PFM (portable float map, bit-exact)
 /// or Radiance .hdr (RGBE, 8-bit shared exponent), chosen by the extension `.pfm` or `.hdr`.
 /// Throws Error for another extension or an unwritable path.

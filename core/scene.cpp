@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -52,7 +53,41 @@ void validate_mesh(const Mesh& mesh, size_t m) {
   }
 }
 
+// Total order on objects by content. Validation has excluded NaN, so < is a strict weak order.
+bool content_less(const Object& a, const Object& b) {
+  if (a.mesh != b.mesh) return a.mesh < b.mesh;
+  if (a.material != b.material) return a.material < b.material;
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (a.transform[c][r] != b.transform[c][r]) return a.transform[c][r] < b.transform[c][r];
+    }
+  }
+  return false;
+}
+
 }  // namespace
+
+ObjectNumbering number_objects(const Scene& scene) {
+  ObjectNumbering n;
+  for (uint32_t o = 0; o < scene.objects.size(); ++o) {
+    if (scene.meshes[scene.objects[o].mesh].triangle_count() > 0) n.objects.push_back(o);
+  }
+  std::stable_sort(n.objects.begin(), n.objects.end(), [&](uint32_t a, uint32_t b) {
+    return content_less(scene.objects[a], scene.objects[b]);
+  });
+  for (uint32_t o : n.objects) {
+    n.first_triangle.push_back(n.triangle_count);
+    n.triangle_count += scene.meshes[scene.objects[o].mesh].triangle_count();
+  }
+  return n;
+}
+
+glm::vec3 id_colour(uint32_t id) {
+  uint32_t h = id * 747796405u + 2891336453u;
+  h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return glm::vec3(h & 0xFFu, (h >> 8) & 0xFFu, (h >> 16) & 0xFFu) / 255.0f;
+}
 
 void validate_scene(const Scene& scene) {
   const Camera& c = scene.camera;

@@ -54,6 +54,9 @@ struct Object {
 
 enum class ToneMap { aces, reinhard, clamp };
 
+/// Which triangles are culled by their facing. Front faces wind counter-clockwise as seen.
+enum class CullMode { back, front, none };
+
 /// What an image shows: the shaded scene, or a debug view of what the rasterizer produced.
 enum class View { shaded, normal, uv, triangle, object };
 
@@ -72,6 +75,23 @@ struct Scene {
 /// degenerate camera. Throws tessera::Error naming the first problem found (which mesh,
 /// object, vertex or field).
 void validate_scene(const Scene& scene);
+
+/// How objects are numbered for rendering. Objects are sorted by their content (mesh,
+/// material, transform), not by their position in Scene::objects, and their triangles numbered
+/// consecutively in that order, so that the triangle-instance ids that break depth ties, and
+/// so the image, do not depend on the order objects were submitted in. Objects whose mesh has
+/// no triangles are left out.
+struct ObjectNumbering {
+  std::vector<uint32_t> objects;         // indices into Scene::objects, in numbering order
+  std::vector<uint64_t> first_triangle;  // id of each listed object's triangle 0
+  uint64_t triangle_count = 0;           // ids run from 0 to triangle_count - 1
+};
+
+/// Numbers the objects of `scene` (which must have passed validate_scene).
+ObjectNumbering number_objects(const Scene& scene);
+
+/// Colour that the debug views give an id (PCG hash, O'Neill 2014); each channel in [0, 1].
+glm::vec3 id_colour(uint32_t id);
 
 /// World -> view transform of `camera` (right-handed, looking down -z).
 glm::mat4 view_matrix(const Camera& camera);

@@ -1,6 +1,7 @@
 #include "host/render_command.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
+#include "core/reference_renderer.h"
 
 namespace tessera {
 namespace {
@@ -17,6 +19,40 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr) {
+  write_png(args.out, ldr);
+  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
+}
+
+// The CPU reference renderer (core/reference_renderer.h): same options, same files.
+int run_reference(const Scene& scene, const RenderArgs& args) {
+  ReferenceSettings settings;
+  settings.width = args.width;
+  settings.height = args.height;
+  settings.exposure_ev = args.exposure_ev;
+  settings.tonemap = args.tonemap;
+  settings.view = args.view;
+  std::vector<double> times;
+  ReferenceFrame frame;
+  for (uint32_t i = 0; i < args.repeat; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    frame = render_reference(scene, settings);
+    times.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+  }
+  write_outputs(args, frame.ldr, frame.hdr);
+  if (!args.quiet) {
+    std::printf("wrote %s (%ux%u, scene '%s', device 'reference (CPU, double precision)')\n",
+                args.out.c_str(), args.width, args.height, args.scene.c_str());
+    if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
+    std::printf("triangles: %llu rasterized\n", (unsigned long long)frame.raster_triangles);
+    std::printf("CPU time, median of %u frame%s: %.1f ms\n", args.repeat,
+                args.repeat > 1 ? "s" : "", median(times));
+  }
+  return 0;
 }
 
 }  // namespace
@@ -28,6 +64,8 @@ int run_render(const RenderArgs& args) {
   if (!args.hdr_out.empty() && !can_write_file(args.hdr_out)) {
     throw Error("cannot write HDR output file '" + args.hdr_out + "'");
   }
+
+  if (args.device == "reference") return run_reference(scene, args);
 
   ContextOptions options;
   options.device = args.device;
@@ -46,8 +84,7 @@ int run_render(const RenderArgs& args) {
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));
 
-  write_png(args.out, renderer.read_ldr());
-  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, renderer.read_hdr());
+  write_outputs(args, renderer.read_ldr(), args.hdr_out.empty() ? ImageF{} : renderer.read_hdr());
 
   if (!args.quiet) {
     const FrameStats& last = frames.back();

@@ -40,15 +40,19 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
   }
   // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
   // their doubled area comes out negative here.
-  if (area > 0) {
+  bool front = area < 0;
+  if ((front && frame.flags.x == TS_CULL_FRONT) || (!front && frame.flags.x == TS_CULL_BACK)) {
     atomicAdd(counters[batch.index].culled_backface, 1u);
     return;
   }
+  // Order the vertices so the area is positive: every edge function is then >= 0 inside.
+  int second = front ? 2 : 1;
+  int third = front ? 1 : 2;
   RasterTri t;
   t.v0 = v[0];
-  t.v1 = v[2];  // reorder so the area is positive: every edge function is >= 0 inside
-  t.v2 = v[1];
-  t.depth = vec3(d[0], d[2], d[1]);
+  t.v1 = v[second];
+  t.v2 = v[third];
+  t.depth = vec3(d[0], d[second], d[third]);
   t.id = id;
 
   ivec2 lo = min(min(t.v0, t.v1), t.v2);

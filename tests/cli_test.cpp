@@ -89,6 +89,13 @@ TEST(Cli, RendersAndSaysWhereItWrote) {
       << out;
   EXPECT_NE(out.find("wrote " + png), std::string::npos) << out;
   EXPECT_NE(out.find("GPU time"), std::string::npos) << out;
+  const std::string reference = test::output_path("reference.png");
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device reference --size 96x64 --out " + reference,
+                              out),
+            0)
+      << out;
+  EXPECT_NE(out.find("wrote " + reference), std::string::npos) << out;
   std::string help;
   ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --help", help), 0);
   EXPECT_NE(help.find("--size WxH"), std::string::npos);

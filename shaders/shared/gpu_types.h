@@ -53,6 +53,11 @@ using glm::vec4;
 #define TS_VIEW_TRIANGLE 3u  // a colour hashed from the triangle-instance id
 #define TS_VIEW_OBJECT 4u    // a colour hashed from the object slot
 
+// Facing culled by setup (GpuFrame.flags.x).
+#define TS_CULL_BACK 0u
+#define TS_CULL_FRONT 1u
+#define TS_CULL_NONE 2u
+
 // Descriptor bindings of the one descriptor set every pass uses.
 #define TS_BINDING_FRAME 0
 #define TS_BINDING_VERTICES 1
@@ -128,6 +133,7 @@ struct GpuFrame {
   uvec4 scene_counts;    // objects, lights, triangle instances, tone-mapping operator
   uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box
                          // area, view (TS_VIEW_*)
+  uvec4 flags;           // x: culling (TS_CULL_*)
 };
 
 // Push constants: the range of triangle instances one batch of the rasterizer handles.
@@ -174,11 +180,12 @@ static_assert(sizeof(GpuMaterial) == 32);
 static_assert(offsetof(GpuMaterial, metallic) == 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(offsetof(GpuLight, kind) == 48);
-static_assert(sizeof(GpuFrame) == 240);
+static_assert(sizeof(GpuFrame) == 256);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
 static_assert(offsetof(GpuFrame, image_size) == 192);
 static_assert(offsetof(GpuFrame, limits) == 224);
+static_assert(offsetof(GpuFrame, flags) == 240);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuRasterTri) == 48);
 static_assert(sizeof(GpuCounters) == 80);

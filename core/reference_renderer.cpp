@@ -1,0 +1,508 @@
+#include "core/reference_renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <thread>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/check.h"
+
+namespace tessera {
+namespace {
+
+using glm::dmat3;
+using glm::dmat4;
+using glm::dvec2;
+using glm::dvec3;
+using glm::dvec4;
+
+constexpr double kPi = std::numbers::pi;
+constexpr int64_t kSubpixelOne = 256;  // 8 sub-pixel bits
+constexpr double kGuardBandPx = 32768.0;
+constexpr uint32_t kMaxSide = 16384;
+// The shading model's guards, the same constants as the compute path's (shaders/brdf.glsl
+// gives the reasons): they are part of the model, not of either implementation.
+constexpr double kMinPerceptualRoughness = 0.045;
+constexpr double kMinNoV = 1e-4;
+constexpr double kMinLightDistanceSquared = 1e-4;
+constexpr double kMaxHalf = 65504.0;  // the HDR output is fp16
+
+struct CameraModel {
+  dmat4 view_proj;
+  dvec3 position, forward, right, up;
+  double tan_x, tan_y, near_plane;
+  double width, height;
+  double guard_x, guard_y;  // guard band in NDC units
+};
+
+CameraModel make_camera(const Camera& c, uint32_t width, uint32_t height) {
+  CameraModel m;
+  m.width = width;
+  m.height = height;
+  m.position = dvec3(c.position);
+  m.forward = glm::normalize(dvec3(c.target) - m.position);
+  m.right = glm::normalize(glm::cross(m.forward, dvec3(c.up)));
+  m.up = glm::cross(m.right, m.forward);
+  m.tan_y = std::tan(double(c.vertical_fov) / 2.0);
+  m.tan_x = m.tan_y * m.width / m.height;
+  m.near_plane = c.near_plane;
+  // Clip space: x right, y down (Vulkan), w = distance along the view axis.
+  dmat4 view = glm::lookAtRH(m.position, dvec3(c.target), dvec3(c.up));
+  dmat4 proj(0.0);
+  proj[0][0] = 1.0 / m.tan_x;
+  proj[1][1] = -1.0 / m.tan_y;
+  proj[2][3] = -1.0;
+  m.view_proj = proj * view;
+  m.guard_x = 2.0 * kGuardBandPx / m.width - 1.0;
+  m.guard_y = 2.0 * kGuardBandPx / m.height - 1.0;
+  return m;
+}
+
+// Unit ray direction through the centre of pixel (x, y).
+dvec3 camera_ray(const CameraModel& cam, uint32_t x, uint32_t y) {
+  double ndc_x = (x + 0.5) / cam.width * 2.0 - 1.0;
+  double ndc_y = (y + 0.5) / cam.height * 2.0 - 1.0;
+  return glm::normalize(cam.forward + ndc_x * cam.tan_x * cam.right - ndc_y * cam.tan_y * cam.up);
+}
+
+struct Instance {
+  const Mesh* mesh;
+  const Material* material;
+  dmat4 model;
+  dmat3 normal_matrix;
+  uint64_t first_triangle;
+  uint32_t slot;
+};
+
+std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& numbering) {
+  std::vector<Instance> out;
+  for (size_t slot = 0; slot < numbering.objects.size(); ++slot) {
+    const Object& o = scene.objects[numbering.objects[slot]];
+    dmat4 model(o.transform);
+    out.push_back({&scene.meshes[o.mesh], &scene.materials[o.material], model,
+                   glm::transpose(glm::inverse(dmat3(model))), numbering.first_triangle[slot],
+                   uint32_t(slot)});
+  }
+  return out;
+}
+
+const Instance& instance_of(const std::vector<Instance>& instances, uint64_t id) {
+  auto it = std::upper_bound(instances.begin(), instances.end(), id,
+                             [](uint64_t v, const Instance& i) { return v < i.first_triangle; });
+  TESSERA_CHECK(it != instances.begin());
+  return *(it - 1);
+}
+
+std::array<uint32_t, 3> corner_indices(const Instance& inst, uint64_t id) {
+  const size_t t = size_t(id - inst.first_triangle);
+  return {inst.mesh->indices[t * 3], inst.mesh->indices[t * 3 + 1], inst.mesh->indices[t * 3 + 2]};
+}
+
+// --- Coverage -----------------------------------------------------------------------------
+
+// Signed distance of clip-space point c to clip plane `plane` (inside >= 0): the near plane,
+// then the four guard-band planes.
+double plane_distance(const CameraModel& cam, dvec4 c, int plane) {
+  switch (plane) {
+    case 0:
+      return c.w - cam.near_plane;
+    case 1:
+      return cam.guard_x * c.w - c.x;
+    case 2:
+      return cam.guard_x * c.w + c.x;
+    case 3:
+      return cam.guard_y * c.w - c.y;
+    default:
+      return cam.guard_y * c.w + c.y;
+  }
+}
+
+// The triangle as the convex polygon left after clipping to the near plane and guard band
+// (Sutherland & Hodgman 1974); empty when it is trivially outside the view.
+std::vector<dvec4> clipped_polygon(const CameraModel& cam, const std::array<dvec4, 3>& c) {
+  for (int axis = 0; axis < 2; ++axis) {
+    if (c[0][axis] > c[0].w && c[1][axis] > c[1].w && c[2][axis] > c[2].w) return {};
+    if (c[0][axis] < -c[0].w && c[1][axis] < -c[1].w && c[2][axis] < -c[2].w) return {};
+  }
+  std::vector<dvec4> poly(c.begin(), c.end());
+  for (int plane = 0; plane < 5 && !poly.empty(); ++plane) {
+    std::vector<dvec4> next;
+    for (size_t i = 0; i < poly.size(); ++i) {
+      dvec4 a = poly[i], b = poly[(i + 1) % poly.size()];
+      double da = plane_distance(cam, a, plane), db = plane_distance(cam, b, plane);
+      if (da >= 0) next.push_back(a);
+      if ((da >= 0) != (db >= 0)) next.push_back(a + (b - a) * (da / (da - db)));
+    }
+    poly = std::move(next);
+  }
+  return poly;
+}
+
+dvec2 to_pixels(const CameraModel& cam, dvec4 c) {
+  return {(c.x / c.w * 0.5 + 0.5) * cam.width, (c.y / c.w * 0.5 + 0.5) * cam.height};
+}
+
+struct FixedPoint {
+  int64_t x, y;
+};
+
+int64_t edge(FixedPoint a, FixedPoint b, FixedPoint p) {
+  return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+// Top-left rule: 0 if a sample exactly on edge a->b belongs to the (positively oriented)
+// triangle, 1 if it does not.
+int64_t edge_threshold(FixedPoint a, FixedPoint b) {
+  bool top = a.y == b.y && b.x > a.x;
+  bool left = b.y < a.y;
+  return (top || left) ? 0 : 1;
+}
+
+int64_t floor_shift(int64_t v) {
+  return v >= 0 ? v / kSubpixelOne : -((-v + kSubpixelOne - 1) / kSubpixelOne);
+}
+
+struct RasterTriangle {
+  FixedPoint v[3];  // positively oriented
+  double depth[3];  // near / w
+  int64_t box_min_x, box_min_y, box_max_x, box_max_y;
+  uint32_t id;
+};
+
+// Snaps, culls by facing and area, and computes the pixel box; false if nothing remains.
+bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4 c1, dvec4 c2,
+                          uint32_t id, RasterTriangle& t) {
+  const dvec4 c[3] = {c0, c1, c2};
+  FixedPoint v[3];
+  double d[3];
+  for (int k = 0; k < 3; ++k) {
+    dvec2 p = to_pixels(cam, c[k]);
+    v[k] = {int64_t(std::floor(p.x * kSubpixelOne + 0.5)),
+            int64_t(std::floor(p.y * kSubpixelOne + 0.5))};
+    d[k] = cam.near_plane / c[k].w;
+  }
+  const int64_t area = edge(v[0], v[1], v[2]);
+  if (area == 0) return false;
+  const bool front = area < 0;  // counter-clockwise in the world is clockwise in y-down pixels
+  if ((front && cull == CullMode::front) || (!front && cull == CullMode::back)) return false;
+  const int second = front ? 2 : 1, third = front ? 1 : 2;
+  t.v[0] = v[0];
+  t.v[1] = v[second];
+  t.v[2] = v[third];
+  t.depth[0] = d[0];
+  t.depth[1] = d[second];
+  t.depth[2] = d[third];
+  t.id = id;
+  const int64_t half = kSubpixelOne / 2;
+  int64_t lo_x = std::min({v[0].x, v[1].x, v[2].x}), hi_x = std::max({v[0].x, v[1].x, v[2].x});
+  int64_t lo_y = std::min({v[0].y, v[1].y, v[2].y}), hi_y = std::max({v[0].y, v[1].y, v[2].y});
+  t.box_min_x = std::max<int64_t>(floor_shift(lo_x - half + kSubpixelOne - 1), 0);
+  t.box_min_y = std::max<int64_t>(floor_shift(lo_y - half + kSubpixelOne - 1), 0);
+  t.box_max_x = std::min<int64_t>(floor_shift(hi_x - half), int64_t(cam.width) - 1);
+  t.box_max_y = std::min<int64_t>(floor_shift(hi_y - half), int64_t(cam.height) - 1);
+  return t.box_min_x <= t.box_max_x && t.box_min_y <= t.box_max_y;
+}
+
+std::array<dvec4, 3> clip_coords(const CameraModel& cam, const Instance& inst, uint64_t id) {
+  const auto idx = corner_indices(inst, id);
+  const dmat4 to_clip = cam.view_proj * inst.model;
+  return {to_clip * dvec4(dvec3(inst.mesh->positions[idx[0]]), 1.0),
+          to_clip * dvec4(dvec3(inst.mesh->positions[idx[1]]), 1.0),
+          to_clip * dvec4(dvec3(inst.mesh->positions[idx[2]]), 1.0)};
+}
+
+void setup_triangle(const CameraModel& cam, CullMode cull, const Instance& inst, uint64_t id,
+                    std::vector<RasterTriangle>& out) {
+  const std::array<dvec4, 3> c = clip_coords(cam, inst, id);
+  RasterTriangle t;
+  bool inside = true;
+  for (const dvec4& v : c) {
+    for (int plane = 0; plane < 5; ++plane) inside = inside && plane_distance(cam, v, plane) >= 0;
+  }
+  if (inside) {
+    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), t)) out.push_back(t);
+    return;
+  }
+  std::vector<dvec4> poly = clipped_polygon(cam, c);
+  for (size_t k = 1; k + 1 < poly.size(); ++k) {
+    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), t))
+      out.push_back(t);
+  }
+}
+
+// Rasterizes every triangle into rows [y0, y1): nearest depth wins, ties to the lower id.
+void rasterize_rows(const std::vector<RasterTriangle>& tris, uint32_t width, int64_t y0, int64_t y1,
+                    ReferenceFrame& f) {
+  for (const RasterTriangle& t : tris) {
+    const int64_t ya = std::max(t.box_min_y, y0), yb = std::min(t.box_max_y, y1 - 1);
+    if (ya > yb) continue;
+    const int64_t th0 = edge_threshold(t.v[1], t.v[2]);
+    const int64_t th1 = edge_threshold(t.v[2], t.v[0]);
+    const int64_t th2 = edge_threshold(t.v[0], t.v[1]);
+    for (int64_t y = ya; y <= yb; ++y) {
+      for (int64_t x = t.box_min_x; x <= t.box_max_x; ++x) {
+        const FixedPoint p{x * kSubpixelOne + kSubpixelOne / 2,
+                           y * kSubpixelOne + kSubpixelOne / 2};
+        const int64_t e0 = edge(t.v[1], t.v[2], p), e1 = edge(t.v[2], t.v[0], p),
+                      e2 = edge(t.v[0], t.v[1], p);
+        if (e0 < th0 || e1 < th1 || e2 < th2) continue;
+        const size_t i = size_t(y) * width + size_t(x);
+        f.coverage[i]++;
+        // Screen-space barycentrics interpolate near / w exactly: it is affine in the image.
+        const double d =
+            (double(e0) * t.depth[0] + double(e1) * t.depth[1] + double(e2) * t.depth[2]) /
+            double(e0 + e1 + e2);
+        if (d > f.depth[i] || (d == f.depth[i] && t.id < f.owner[i])) {
+          f.depth[i] = d;
+          f.owner[i] = t.id;
+        }
+      }
+    }
+  }
+}
+
+// --- Shading -------------------------------------------------------------------------------
+
+// GGX / Trowbridge-Reitz normal distribution (Walter et al. 2007), alpha = roughness^2.
+double ggx_distribution(double n_dot_h, double alpha) {
+  const double a2 = alpha * alpha;
+  const double denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * denom * denom);
+}
+
+// Smith's masking-shadowing as the product of two Schlick-GGX terms, k = (r + 1)^2 / 8
+// (Karis 2013).
+double smith_schlick_ggx(double n_dot_v, double n_dot_l, double roughness) {
+  const double k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+  auto g1 = [k](double c) { return c / (c * (1.0 - k) + k); };
+  return g1(n_dot_v) * g1(n_dot_l);
+}
+
+// Schlick's approximation of the Fresnel reflectance (Schlick 1994).
+dvec3 schlick_fresnel(double cos_theta, dvec3 f0) {
+  return f0 + (dvec3(1.0) - f0) * std::pow(1.0 - cos_theta, 5.0);
+}
+
+// Reflected radiance towards v from light arriving along l with radiance `incident`:
+// (Lambert diffuse weighted by (1 - F)(1 - metallic) + D G F / (4 N.L N.V)) * incident * N.L.
+dvec3 reflected(dvec3 n, dvec3 v, dvec3 l, double n_dot_v, const Material& m, dvec3 incident) {
+  const double n_dot_l = glm::dot(n, l);
+  if (n_dot_l <= 0.0) return dvec3(0.0);
+  const dvec3 half_vector = v + l;
+  const double length2 = glm::dot(half_vector, half_vector);
+  const dvec3 h = length2 > 0.0 ? half_vector / std::sqrt(length2) : n;
+  const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
+  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
+  const dvec3 base(m.base_color);
+  const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
+  const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
+  const double d = ggx_distribution(std::clamp(glm::dot(n, h), 0.0, 1.0), roughness * roughness);
+  const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
+  const dvec3 specular = d * g * fresnel / (4.0 * n_dot_l * n_dot_v);
+  const dvec3 diffuse = (dvec3(1.0) - fresnel) * (1.0 - metallic) * base / kPi;
+  return (diffuse + specular) * incident * n_dot_l;
+}
+
+struct Surface {
+  dvec3 position, normal;
+  dvec2 uv;
+};
+
+// The point of the triangle seen through the pixel: barycentrics of the ray's hit on its plane
+// by Cramer's rule, clamped to the triangle (snapping can cover a centre just outside it).
+Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
+  const auto idx = corner_indices(inst, id);
+  dvec3 p[3], n[3];
+  dvec2 uv[3];
+  for (int k = 0; k < 3; ++k) {
+    p[k] = dvec3(inst.model * dvec4(dvec3(inst.mesh->positions[idx[k]]), 1.0));
+    n[k] = inst.normal_matrix * dvec3(inst.mesh->normals[idx[k]]);
+    uv[k] = dvec2(inst.mesh->uvs[idx[k]]);
+  }
+  const dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0], s = origin - p[0];
+  const dvec3 q = glm::cross(dir, e2);
+  const double det = glm::dot(e1, q);
+  dvec3 b(1.0 / 3.0);
+  if (det != 0.0 && std::isfinite(1.0 / det)) {
+    const double u = glm::dot(s, q) / det;
+    const double v = glm::dot(dir, glm::cross(s, e1)) / det;
+    b = glm::max(dvec3(1.0 - u - v, u, v), dvec3(0.0));
+    b /= b.x + b.y + b.z;
+  }
+  Surface out;
+  out.position = b.x * p[0] + b.y * p[1] + b.z * p[2];
+  const dvec3 normal = b.x * n[0] + b.y * n[1] + b.z * n[2];
+  const double length2 = glm::dot(normal, normal);
+  out.normal = length2 > 1e-20 ? normal / std::sqrt(length2) : glm::normalize(glm::cross(e1, e2));
+  out.uv = b.x * uv[0] + b.y * uv[1] + b.z * uv[2];
+  return out;
+}
+
+dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
+                  const std::vector<Instance>& instances, uint64_t id, uint32_t x, uint32_t y,
+                  View view) {
+  const Instance& inst = instance_of(instances, id);
+  const dvec3 dir = camera_ray(cam, x, y);
+  const Surface s = surface_at(inst, id, cam.position, dir);
+  switch (view) {
+    case View::normal:
+      return s.normal * 0.5 + 0.5;
+    case View::uv:
+      return dvec3(s.uv, 0.0);
+    case View::triangle:
+      return dvec3(id_colour(uint32_t(id)));
+    case View::object:
+      return dvec3(id_colour(inst.slot));
+    case View::shaded:
+      break;
+  }
+  const Material& m = *inst.material;
+  const dvec3 v = -dir;
+  const double n_dot_v = std::max(glm::dot(s.normal, v), kMinNoV);
+  dvec3 color = dvec3(scene.ambient) * dvec3(m.base_color);
+  for (const Light& light : scene.lights) {
+    dvec3 l, incident;
+    const dvec3 power = dvec3(light.color) * double(light.intensity);
+    if (light.kind == LightKind::directional) {
+      l = -glm::normalize(dvec3(light.direction));
+      incident = power;
+    } else {
+      const dvec3 to_light = dvec3(light.position) - s.position;
+      const double d2 = glm::dot(to_light, to_light);
+      l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
+      incident = power / std::max(d2, kMinLightDistanceSquared);  // inverse-square falloff
+    }
+    color += reflected(s.normal, v, l, n_dot_v, m, incident);
+  }
+  return glm::min(color, dvec3(kMaxHalf));
+}
+
+// --- Resolve -------------------------------------------------------------------------------
+
+double tone_curve(double x, ToneMap op) {
+  switch (op) {
+    case ToneMap::aces:  // Narkowicz 2015, fit of the ACES RRT + ODT
+      return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    case ToneMap::reinhard:
+      return x / (1.0 + x);  // Reinhard et al. 2002
+    case ToneMap::clamp:
+      break;
+  }
+  return std::clamp(x, 0.0, 1.0);
+}
+
+double srgb_encode(double linear) {  // IEC 61966-2-1
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+template <typename Fn>
+void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
+  threads = std::max(1u, std::min(threads, height));
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    const uint32_t y0 = uint32_t(uint64_t(height) * t / threads);
+    const uint32_t y1 = uint32_t(uint64_t(height) * (t + 1) / threads);
+    pool.emplace_back([&fn, y0, y1] { fn(y0, y1); });
+  }
+  for (std::thread& th : pool) th.join();
+}
+
+void check_size(const ReferenceSettings& settings) {
+  if (settings.width == 0 || settings.height == 0 || settings.width > kMaxSide ||
+      settings.height > kMaxSide) {
+    throw Error("image size " + std::to_string(settings.width) + "x" +
+                std::to_string(settings.height) + " is outside 1..16384 per side");
+  }
+}
+
+}  // namespace
+
+ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings) {
+  validate_scene(scene);
+  check_size(settings);
+  const uint32_t w = settings.width, h = settings.height;
+  const size_t pixels = size_t(w) * h;
+  const CameraModel cam = make_camera(scene.camera, w, h);
+  const ObjectNumbering numbering = number_objects(scene);
+  const std::vector<Instance> instances = make_instances(scene, numbering);
+  const unsigned threads =
+      settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+
+  std::vector<RasterTriangle> tris;
+  for (const Instance& inst : instances) {
+    for (uint64_t t = 0; t < inst.mesh->triangle_count(); ++t) {
+      setup_triangle(cam, settings.cull, inst, inst.first_triangle + t, tris);
+    }
+  }
+
+  ReferenceFrame f;
+  f.raster_triangles = tris.size();
+  f.owner.assign(pixels, kNoTriangle);
+  f.depth.assign(pixels, 0.0);
+  f.coverage.assign(pixels, 0);
+  f.hdr = {w, h, std::vector<glm::vec4>(pixels)};
+  f.ldr = {w, h, std::vector<glm::u8vec4>(pixels)};
+  parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
+    rasterize_rows(tris, w, y0, y1, f);
+    const bool shaded = settings.view == View::shaded;
+    const double exposure = shaded ? std::exp2(double(settings.exposure_ev)) : 1.0;
+    const ToneMap op = shaded ? settings.tonemap : ToneMap::clamp;
+    for (uint32_t y = y0; y < y1; ++y) {
+      for (uint32_t x = 0; x < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        const dvec3 c = f.owner[i] == kNoTriangle
+                            ? dvec3(scene.background)
+                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view);
+        f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
+        glm::u8vec4 out(0, 0, 0, 255);
+        for (int ch = 0; ch < 3; ++ch) {
+          const double display = srgb_encode(tone_curve(std::max(c[ch], 0.0) * exposure, op));
+          out[ch] = uint8_t(std::floor(std::clamp(display, 0.0, 1.0) * 255.0 + 0.5));
+        }
+        f.ldr.pixels[i] = out;
+      }
+    }
+  });
+  return f;
+}
+
+ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,
+                               uint32_t triangle_id, uint32_t x, uint32_t y) {
+  check_size(settings);
+  const CameraModel cam = make_camera(scene.camera, settings.width, settings.height);
+  const ObjectNumbering numbering = number_objects(scene);
+  const std::vector<Instance> instances = make_instances(scene, numbering);
+  TESSERA_CHECK(triangle_id < numbering.triangle_count);
+  const Instance& inst = instance_of(instances, triangle_id);
+
+  ReferenceProbe probe{std::numeric_limits<double>::infinity(), 0.0};
+  const std::vector<dvec4> poly = clipped_polygon(cam, clip_coords(cam, inst, triangle_id));
+  const dvec2 centre(x + 0.5, y + 0.5);
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const dvec2 a = to_pixels(cam, poly[i]), b = to_pixels(cam, poly[(i + 1) % poly.size()]);
+    const dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(centre - a, ab) / len2, 0.0, 1.0) : 0.0;
+    probe.edge_distance_px = std::min(probe.edge_distance_px, glm::length(centre - (a + t * ab)));
+  }
+  // Depth of the triangle's plane along the pixel's ray.
+  const auto idx = corner_indices(inst, triangle_id);
+  dvec3 p[3];
+  for (int k = 0; k < 3; ++k)
+    p[k] = dvec3(inst.model * dvec4(dvec3(inst.mesh->positions[idx[k]]), 1.0));
+  const dvec3 dir = camera_ray(cam, x, y);
+  const dvec3 normal = glm::cross(p[1] - p[0], p[2] - p[0]);
+  const double denom = glm::dot(normal, dir);
+  if (denom != 0.0) {
+    const double t = glm::dot(normal, p[0] - cam.position) / denom;
+    const double w = t * glm::dot(dir, cam.forward);
+    if (t > 0.0 && w > 0.0) probe.depth = cam.near_plane / w;
+  }
+  return probe;
+}
+
+}  // namespace tessera

@@ -1,0 +1,59 @@
+#pragma once
+// An independent CPU renderer in double precision, the yardstick for the compute path.
+//
+// It shares the scene model with the compute path, never its shading code: the BRDF, the
+// camera rays and the tone curves here are written from their formulas. Coverage follows the
+// same rules as the compute path, so that which triangle owns each pixel can be compared
+// exactly: vertices snapped to 8 sub-pixel bits, integer edge functions with the top-left rule,
+// clipping against the near plane and the same guard band, reverse depth near/w with ties to
+// the lower triangle-instance id (docs/architecture.md). What it does not share is float
+// arithmetic: vertices are transformed in double, so a snapped coordinate can differ from the
+// GPU's by one sub-pixel step where the exact value lies within float rounding of a step
+// boundary (docs/accuracy.md).
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace tessera {
+
+struct ReferenceSettings {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  float exposure_ev = 0.0f;
+  ToneMap tonemap = ToneMap::aces;
+  View view = View::shaded;
+  CullMode cull = CullMode::back;
+  unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread
+};
+
+constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
+
+struct ReferenceFrame {
+  ImageF hdr;  // linear HDR in the model of the compute path (clamped to 65504), as float
+  Image8 ldr;  // exposure, tone curve, sRGB, rounded to nearest
+  std::vector<uint32_t> owner;     // triangle-instance id per pixel, kNoTriangle where empty
+  std::vector<double> depth;       // the owner's near / w at the pixel centre, 0 where empty
+  std::vector<uint32_t> coverage;  // samples covered per pixel, over all triangles not culled
+  uint64_t raster_triangles = 0;   // triangles after culling and clipping
+};
+
+/// Renders `scene` (which must pass validate_scene; throws Error otherwise) at the settings'
+/// size. Sizes follow the compute path's limits: 1 to 16384 per side (throws Error otherwise).
+ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings);
+
+/// Geometry of one triangle instance as the reference sees it, for explaining differences:
+/// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge
+/// of the triangle's projection after near-plane clipping (infinite if it is culled or behind
+/// the camera), and near / w of the triangle's plane along that pixel's ray (0 if the ray
+/// misses the plane or hits it behind the camera).
+struct ReferenceProbe {
+  double edge_distance_px;
+  double depth;
+};
+ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,
+                               uint32_t triangle_id, uint32_t x, uint32_t y);
+
+}  // namespace tessera
