@@ -15,7 +15,7 @@
 namespace tessera::test {
 
 class VulkanTest : public ::testing::Test {
- protected:
+ public:
   void SetUp() override;
   void TearDown() override;
   Context& context() { return *ctx_; }
