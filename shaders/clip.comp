@@ -3,13 +3,35 @@
 // Clipping: triangles that cross the near plane or the guard band, listed by setup. Each is
 // clipped (Sutherland-Hodgman) against the near plane and the four guard-band planes into a
 // convex polygon of at most 3 + 5 vertices, then emitted as a fan of raster triangles. The
-// list is short in practice, so a fixed grid of threads loops over it.
+// list is short in practice, so a fixed grid of threads loops over it, with plain atomics.
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
 layout(local_size_x = TS_GROUP_SIZE) in;
 
 #include "setup_common.glsl"
+
+void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
+  RasterTri t;
+  uint outcome = prepare_triangle(c0, c1, c2, id, t);
+  if (outcome == OUTCOME_FACING) {
+    atomicAdd(counters[batch.index].culled_backface, 1u);
+    return;
+  }
+  if (outcome == OUTCOME_EMPTY) {
+    atomicAdd(counters[batch.index].culled_empty, 1u);
+    return;
+  }
+  uint index = atomicAdd(counters[batch.index].raster_tris, 1u);
+  if (index >= frame.limits.x) return;  // overflow: the host sees the count, grows, redoes
+  store_raster_tri(index, t);
+  if (outcome == OUTCOME_SMALL) {
+    small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
+  } else {
+    big_list[atomicAdd(counters[batch.index].big_tris, 1u)] = index;
+    count_tiles(t);
+  }
+}
 
 void main() {
   uint count = min(counters[batch.index].clip_list, frame.limits.x);

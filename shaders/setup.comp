@@ -1,10 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Triangle setup: one thread per triangle instance of the batch. Transforms to clip space,
-// culls (non-finite, frustum, back face, empty), snaps to fixed point and appends raster
+// culls (non-finite, frustum, facing, empty), snaps to fixed point and appends raster
 // triangles; small ones go to the per-triangle list, larger ones are counted into the screen
 // tiles they may touch. Triangles that cross the near plane or the guard band are listed for
 // the clip pass instead: clipping code here, even never taken, slows every thread on lavapipe.
+// Counters and appends are made once per subgroup: one atomic per thread on a single address
+// would serialize a million-triangle batch.
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
@@ -16,17 +20,10 @@ bool is_finite(vec4 c) {
   return !any(isnan(c)) && !any(isinf(c));
 }
 
-void main() {
-  uint local = gl_GlobalInvocationID.x;
-  if (local >= batch.triangle_count) return;
-  uint id = batch.first_triangle + local;
+uint classify(uint id, out RasterTri t) {
   vec4 c[3];
   triangle_clip_coords(id, c);
-
-  if (!is_finite(c[0]) || !is_finite(c[1]) || !is_finite(c[2])) {
-    atomicAdd(counters[batch.index].culled_nonfinite, 1u);
-    return;
-  }
+  if (!is_finite(c[0]) || !is_finite(c[1]) || !is_finite(c[2])) return OUTCOME_NONFINITE;
   // Trivial reject: all three vertices outside one viewport plane or behind the near plane.
   bool outside = false;
   bool needs_clip = false;
@@ -39,14 +36,55 @@ void main() {
     if (plane == 0) outside = outside || (d0 < 0.0 && d1 < 0.0 && d2 < 0.0);
     needs_clip = needs_clip || d0 < 0.0 || d1 < 0.0 || d2 < 0.0;
   }
-  if (outside) {
-    atomicAdd(counters[batch.index].culled_frustum, 1u);
-    return;
+  if (outside) return OUTCOME_OUTSIDE;
+  if (needs_clip) return OUTCOME_CLIP;
+  return prepare_triangle(c[0], c[1], c[2], id, t);
+}
+
+// Adds the number of this subgroup's threads for which `mine` holds to `counter`, once.
+#define COUNT_ONCE(counter, mine)                                      \
+  {                                                                    \
+    uint n = subgroupBallotBitCount(subgroupBallot(mine));             \
+    if (n > 0u && subgroupElect()) atomicAdd(counter, n);              \
   }
-  if (needs_clip) {
-    uint slot = atomicAdd(counters[batch.index].clip_list, 1u);
-    if (slot < frame.limits.x) clip_list[slot] = id;  // overflow: the host grows and redoes
-    return;
+
+// Slot of this thread in an append list whose length is `counter`, one atomic per subgroup.
+#define APPEND_SLOT(counter, mine, slot)                               \
+  {                                                                    \
+    uvec4 ballot = subgroupBallot(mine);                               \
+    uint n = subgroupBallotBitCount(ballot);                           \
+    uint base = 0u;                                                    \
+    if (n > 0u && subgroupElect()) base = atomicAdd(counter, n);       \
+    slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot); \
   }
-  emit(c[0], c[1], c[2], id);
+
+void main() {
+  uint local = gl_GlobalInvocationID.x;
+  uint id = batch.first_triangle + local;
+  RasterTri t;
+  uint outcome = local < batch.triangle_count ? classify(id, t) : OUTCOME_NONE;
+
+  COUNT_ONCE(counters[batch.index].culled_nonfinite, outcome == OUTCOME_NONFINITE);
+  COUNT_ONCE(counters[batch.index].culled_frustum, outcome == OUTCOME_OUTSIDE);
+  COUNT_ONCE(counters[batch.index].culled_backface, outcome == OUTCOME_FACING);
+  COUNT_ONCE(counters[batch.index].culled_empty, outcome == OUTCOME_EMPTY);
+
+  uint clip_slot;
+  APPEND_SLOT(counters[batch.index].clip_list, outcome == OUTCOME_CLIP, clip_slot);
+  if (outcome == OUTCOME_CLIP && clip_slot < frame.limits.x) clip_list[clip_slot] = id;
+
+  // Past capacity the write is skipped; the host sees the count, grows the buffers, redoes.
+  bool emits = outcome == OUTCOME_SMALL || outcome == OUTCOME_BIG;
+  uint index;
+  APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
+  bool stored = emits && index < frame.limits.x;
+  if (stored) store_raster_tri(index, t);
+  uint small_slot, big_slot;
+  APPEND_SLOT(counters[batch.index].small_tris, stored && outcome == OUTCOME_SMALL, small_slot);
+  APPEND_SLOT(counters[batch.index].big_tris, stored && outcome == OUTCOME_BIG, big_slot);
+  if (stored && outcome == OUTCOME_SMALL) small_list[small_slot] = index;
+  if (stored && outcome == OUTCOME_BIG) {
+    big_list[big_slot] = index;
+    count_tiles(t);
+  }
 }

@@ -1,7 +1,19 @@
 // Triangle setup shared by the setup and clip passes: clip planes, snapping, culling of what
-// covers no pixel, and appending a raster triangle (small list, or counted into its tiles).
+// covers no pixel, and storing a raster triangle (small list, or counted into its tiles).
+// prepare_triangle only decides; the callers count and append, so that the setup pass can do
+// it once per subgroup instead of once per thread.
 
-// Clip-space position of vertex k of triangle instance `id`.
+// What setup decided for one triangle.
+const uint OUTCOME_NONE = 0u;          // no triangle (thread past the batch's end)
+const uint OUTCOME_NONFINITE = 1u;
+const uint OUTCOME_OUTSIDE = 2u;       // outside the view or behind the near plane
+const uint OUTCOME_FACING = 3u;        // culled by facing
+const uint OUTCOME_EMPTY = 4u;         // zero area, or no pixel centre covered
+const uint OUTCOME_CLIP = 5u;          // crosses the near plane or the guard band
+const uint OUTCOME_SMALL = 6u;         // rasterize one thread per triangle
+const uint OUTCOME_BIG = 7u;           // bin into tiles
+
+// Clip-space position of the corners of triangle instance `id`.
 void triangle_clip_coords(uint id, out vec4 c[3]) {
   GpuObject o = objects[find_object(id)];
   uvec3 vi = triangle_vertices(o, id);
@@ -22,7 +34,10 @@ float plane_distance(vec4 c, int plane) {
   }
 }
 
-void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
+// Snaps a triangle whose corners are in front of the near plane and inside the guard band,
+// culls it by facing and by what it covers, and fills `t`. Returns OUTCOME_FACING, _EMPTY,
+// _SMALL or _BIG.
+uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
   vec2 size = vec2(frame.image_size.xy);
   float near_plane = frame.camera_position.w;
   vec4 c[3] = vec4[3](c0, c1, c2);
@@ -34,21 +49,16 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
     d[k] = near_plane / c[k].w;
   }
   int64_t area = edge_function(v[0], v[1], v[2]);
-  if (area == 0) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
-  }
+  if (area == 0) return OUTCOME_EMPTY;
   // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
   // their doubled area comes out negative here.
   bool front = area < 0;
   if ((front && frame.flags.x == TS_CULL_FRONT) || (!front && frame.flags.x == TS_CULL_BACK)) {
-    atomicAdd(counters[batch.index].culled_backface, 1u);
-    return;
+    return OUTCOME_FACING;
   }
   // Order the vertices so the area is positive: every edge function is then >= 0 inside.
   int second = front ? 2 : 1;
   int third = front ? 1 : 2;
-  RasterTri t;
   t.v0 = v[0];
   t.v1 = v[second];
   t.v2 = v[third];
@@ -58,43 +68,34 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
   ivec2 lo = min(min(t.v0, t.v1), t.v2);
   ivec2 hi = max(max(t.v0, t.v1), t.v2);
   // Pixel x has its centre at x*256 + 128: the first centre >= lo and the last <= hi.
-  ivec2 box_min = max((lo - TS_SUBPIXEL_ONE / 2 + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
-  ivec2 box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size.xy) - 1);
-  if (any(greaterThan(box_min, box_max))) {
-    atomicAdd(counters[batch.index].culled_empty, 1u);
-    return;
-  }
-  t.box_min = box_min;
-  t.box_max = box_max;
+  t.box_min = max((lo - TS_SUBPIXEL_ONE / 2 + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
+  t.box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size.xy) - 1);
+  if (any(greaterThan(t.box_min, t.box_max))) return OUTCOME_EMPTY;
   // Slivers and sub-pixel triangles often cover no pixel centre: for boxes of up to 2x2
   // pixels, test the centres here rather than pay for a raster triangle that writes nothing.
-  if (all(lessThanEqual(box_max - box_min, ivec2(1)))) {
+  if (all(lessThanEqual(t.box_max - t.box_min, ivec2(1)))) {
     Thresholds h = thresholds_of(t);
     bool any_covered = false;
-    for (int y = box_min.y; y <= box_max.y; ++y) {
-      for (int x = box_min.x; x <= box_max.x; ++x) {
+    for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
+      for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
         any_covered = any_covered || is_covered(edges_at(t, pixel_centre(ivec2(x, y))), h);
       }
     }
-    if (!any_covered) {
-      atomicAdd(counters[batch.index].culled_empty, 1u);
-      return;
-    }
+    if (!any_covered) return OUTCOME_EMPTY;
   }
+  uvec2 extent = uvec2(t.box_max - t.box_min) + 1u;
+  return extent.x * extent.y <= frame.limits.z ? OUTCOME_SMALL : OUTCOME_BIG;
+}
 
-  uint index = atomicAdd(counters[batch.index].raster_tris, 1u);
-  if (index >= frame.limits.x) return;  // overflow: the host sees the count, grows, redoes
+void store_raster_tri(uint index, RasterTri t) {
   raster_tris[index].xy01 = uvec4(ivec4(t.v0, t.v1));
-  raster_tris[index].xy2_box =
-      uvec4(uvec2(t.v2), uint(box_min.x) | (uint(box_min.y) << 16), uint(box_max.x) | (uint(box_max.y) << 16));
-  raster_tris[index].depth_id = uvec4(floatBitsToUint(t.depth), id);
+  raster_tris[index].xy2_box = uvec4(uvec2(t.v2), uint(t.box_min.x) | (uint(t.box_min.y) << 16),
+                                     uint(t.box_max.x) | (uint(t.box_max.y) << 16));
+  raster_tris[index].depth_id = uvec4(floatBitsToUint(t.depth), t.id);
+}
 
-  uvec2 extent = uvec2(box_max - box_min) + 1u;
-  if (extent.x * extent.y <= frame.limits.z) {
-    small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
-    return;
-  }
-  big_list[atomicAdd(counters[batch.index].big_tris, 1u)] = index;
+// Adds one to the count of every tile a big triangle may cover.
+void count_tiles(RasterTri t) {
   ivec2 first, last;
   tile_range(t, first, last);
   for (int ty = first.y; ty <= last.y; ++ty) {
@@ -105,4 +106,3 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
     }
   }
 }
-
