@@ -105,12 +105,15 @@ std::string missing_features(VkPhysicalDevice device) {
   features.pNext = &v12;
   vkGetPhysicalDeviceFeatures2(device, &features);
   if (!features.features.shaderInt64) add("shaderInt64 (64-bit integers in shaders)");
-  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props2.pNext = &subgroup;
   vkGetPhysicalDeviceProperties2(device, &props2);
-  const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
-  if ((subgroup.supportedOperations & needed) != needed || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT)) {
+  const VkSubgroupFeatureFlags needed =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+  if ((subgroup.supportedOperations & needed) != needed ||
+      !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT)) {
     add("subgroup ballot operations in compute shaders");
   }
   if (!v12.shaderBufferInt64Atomics) add("shaderBufferInt64Atomics (64-bit buffer atomics)");

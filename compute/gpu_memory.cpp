@@ -75,7 +75,7 @@ void destroy_buffer(const Context& ctx, Buffer& b) {
 }
 
 StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
-                                  VkFormat format) {
+                                  VkFormat format, VkImageUsageFlags extra_usage) {
   StorageImage img;
   img.format = format;
   img.width = width;
@@ -88,7 +88,7 @@ StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t h
   info.arrayLayers = 1;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra_usage;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
   VkMemoryRequirements req;

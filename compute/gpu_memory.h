@@ -41,7 +41,7 @@ struct StorageImage {
 /// Creates a 2D image usable as a storage image and as a copy and blit source (so a window can
 /// present it), and leaves it in VK_IMAGE_LAYOUT_GENERAL, where it stays.
 StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
-                                  VkFormat format);
+                                  VkFormat format, VkImageUsageFlags extra_usage = 0);
 void destroy_image(const Context& ctx, StorageImage& image);
 
 /// Records commands with `record` into a fresh command buffer, submits it and waits for it.

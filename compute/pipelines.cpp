@@ -54,14 +54,14 @@ Pipelines create_pipelines(const Context& ctx) {
   Pipelines p;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b < TS_BINDING_COUNT; ++b) {
-    bindings.push_back({b, binding_type(b), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    bindings.push_back({b, binding_type(b), 1, kShaderStages, nullptr});
   }
   VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   set_info.bindingCount = uint32_t(bindings.size());
   set_info.pBindings = bindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &p.set_layout));
 
-  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::GpuBatch)};
+  VkPushConstantRange push{kShaderStages, 0, sizeof(gpu::GpuBatch)};
   VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layout_info.setLayoutCount = 1;
   layout_info.pSetLayouts = &p.set_layout;

@@ -24,6 +24,11 @@ enum class Pipeline {
   count
 };
 
+/// Stages of the shared descriptor set and push constants: the compute passes, and the
+/// graphics baseline's vertex and fragment shaders.
+constexpr VkShaderStageFlags kShaderStages =
+    VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
 struct Pipelines {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;

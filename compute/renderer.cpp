@@ -10,6 +10,7 @@
 
 #include "compute/pipelines.h"
 #include "compute/readback.h"
+#include "compute/renderer_state.h"
 #include "compute/scene_upload.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
@@ -18,9 +19,6 @@
 namespace tessera {
 namespace {
 
-constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 constexpr uint32_t kMaxAttempts = 64;
 
 uint32_t div_up(uint64_t a, uint64_t b) {
@@ -88,59 +86,6 @@ const char* pass_name(Pass pass) {
   return kNames[size_t(pass)];
 }
 
-struct Renderer::State {
-  Context& ctx;
-  RendererOptions options;
-  Pipelines pipelines;
-  VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  bool descriptors_dirty = true;
-
-  // The scene as it is on the GPU.
-  bool has_scene = false;
-  GpuSceneArrays uploaded;
-  Camera camera;
-  glm::vec3 background{0.0f};
-  glm::vec3 ambient{0.0f};
-  Buffer vertices, indices, objects, materials, lights;
-
-  // Sized by the image.
-  uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
-  Buffer visibility, coverage, tile_counts, tile_offsets, tile_cursors;
-  StorageImage hdr, ldr;
-
-  // Scratch, sized by capacities that grow on demand.
-  uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
-  uint32_t counter_slots = 0;
-  Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
-
-  Buffer frame_constants;
-  VkQueryPool queries = VK_NULL_HANDLE;
-  uint32_t query_capacity = 0;
-
-  explicit State(Context& c) : ctx(c) {}
-
-  uint32_t max_raster_capacity() const {
-    const VkPhysicalDeviceLimits& l = ctx.properties.limits;
-    uint64_t by_range = l.maxStorageBufferRange / sizeof(gpu::GpuRasterTri);
-    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(gpu::GpuRasterTri);
-    uint64_t by_dispatch = uint64_t(l.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
-    return uint32_t(std::min({by_range, by_budget, by_dispatch, uint64_t(0xFFFFFFFFu)}));
-  }
-  uint32_t max_tile_entry_capacity() const {
-    uint64_t by_range = ctx.properties.limits.maxStorageBufferRange / sizeof(uint32_t);
-    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(uint32_t);
-    return uint32_t(std::min({by_range, by_budget, uint64_t(0xFFFFFFFFu)}));
-  }
-  uint32_t max_batch() const {
-    uint64_t by_dispatch =
-        uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
-    uint64_t limit = std::min<uint64_t>(by_dispatch, max_raster_capacity());
-    if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
-    return uint32_t(std::max<uint64_t>(limit, 1));
-  }
-};
-
 Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
@@ -174,6 +119,7 @@ Renderer::~Renderer() {
         &s_->counters_readback, &s_->frame_constants}) {
     destroy_buffer(ctx, *b);
   }
+  destroy_hardware_baseline(*s_);
   destroy_image(ctx, s_->hdr);
   destroy_image(ctx, s_->ldr);
   if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
@@ -200,7 +146,7 @@ void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>
   if (!buffer.buffer || buffer.size < bytes) {
     destroy_buffer(ctx, buffer);
     // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
-    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorage,
+    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
                            MemoryKind::device);
     stats.buffers_created++;
     dirty = true;
@@ -261,6 +207,11 @@ UploadStats Renderer::set_scene(const Scene& scene) {
     destroy_buffer(s.ctx, staging);
   }
   stats.bytes = total;
+  if (next.triangle_count != s.uploaded.triangle_count) {
+    // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
+    s.batch_triangles = 0;
+    s.raster_capacity = 0;
+  }
   s.uploaded = std::move(next);
   s.camera = scene.camera;
   s.background = scene.background;
@@ -290,16 +241,9 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
 
 }  // namespace
 
-FrameStats Renderer::render(const FrameSettings& settings) {
-  State& s = *s_;
+void ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
-  if (!s.has_scene) throw Error("render() was called before set_scene()");
   check_frame_size(ctx, settings.width, settings.height);
-  if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
-    throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
-  }
-
-  // Image-sized resources.
   if (settings.width != s.width || settings.height != s.height) {
     for (Buffer* b :
          {&s.visibility, &s.coverage, &s.tile_counts, &s.tile_offsets, &s.tile_cursors}) {
@@ -313,17 +257,21 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     s.tiles_y = div_up(s.height, TS_TILE_SIZE);
     const uint64_t pixels = uint64_t(s.width) * s.height;
     const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
-    s.visibility = create_buffer(ctx, pixels * 8, kStorage, MemoryKind::device);
-    s.coverage =
-        create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorage, MemoryKind::device);
-    s.tile_counts = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
-    s.tile_offsets = create_buffer(ctx, (tiles + 1) * 4, kStorage, MemoryKind::device);
-    s.tile_cursors = create_buffer(ctx, tiles * 4, kStorage, MemoryKind::device);
-    s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT);
+    s.visibility = create_buffer(ctx, pixels * 8, kStorageUsage, MemoryKind::device);
+    s.coverage = create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorageUsage,
+                               MemoryKind::device);
+    s.tile_counts = create_buffer(ctx, tiles * 4, kStorageUsage, MemoryKind::device);
+    s.tile_offsets = create_buffer(ctx, (tiles + 1) * 4, kStorageUsage, MemoryKind::device);
+    s.tile_cursors = create_buffer(ctx, tiles * 4, kStorageUsage, MemoryKind::device);
+    // A colour attachment too, for the graphics baseline.
+    s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
     s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
     s.descriptors_dirty = true;
   }
+}
 
+void init_capacities(Renderer::State& s) {
   const uint64_t total = s.uploaded.triangle_count;
   if (s.batch_triangles == 0) {
     s.batch_triangles = uint32_t(std::min<uint64_t>(std::max<uint64_t>(total, 1), s.max_batch()));
@@ -340,6 +288,55 @@ FrameStats Renderer::render(const FrameSettings& settings) {
             : std::min<uint32_t>(std::max<uint32_t>(s.tiles_x * s.tiles_y * 4, 1u << 16),
                                  s.max_tile_entry_capacity());
   }
+}
+
+void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
+  Context& ctx = s.ctx;
+  if (!s.raster_tris.buffer ||
+      s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
+    for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list})
+      destroy_buffer(ctx, *b);
+    s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri),
+                                  kStorageUsage, MemoryKind::device);
+    s.small_list =
+        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
+    s.big_list =
+        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
+    s.clip_list =
+        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
+    s.descriptors_dirty = true;
+  }
+  if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
+    destroy_buffer(ctx, s.tile_entries);
+    s.tile_entries =
+        create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorageUsage, MemoryKind::device);
+    s.descriptors_dirty = true;
+  }
+  if (s.counter_slots < std::max(batches, 1u)) {
+    destroy_buffer(ctx, s.counters);
+    destroy_buffer(ctx, s.counters_readback);
+    s.counter_slots = std::max(batches, 1u);
+    const VkDeviceSize bytes = VkDeviceSize(s.counter_slots) * sizeof(gpu::GpuCounters);
+    s.counters = create_buffer(ctx, bytes, kStorageUsage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                               MemoryKind::device);
+    s.counters_readback =
+        create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
+    s.descriptors_dirty = true;
+  }
+}
+
+FrameStats Renderer::render(const FrameSettings& settings) {
+  State& s = *s_;
+  Context& ctx = s.ctx;
+  if (!s.has_scene) throw Error("render() was called before set_scene()");
+  if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
+    throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
+  }
+
+  ensure_frame_resources(s, settings);
+
+  const uint64_t total = s.uploaded.triangle_count;
+  init_capacities(s);
 
   FrameStats stats;
   stats.triangles_submitted = total;
@@ -349,37 +346,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
                   " attempts (batch of " + std::to_string(s.batch_triangles) + " triangles)");
     }
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
-    if (!s.raster_tris.buffer ||
-        s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
-      for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list})
-        destroy_buffer(ctx, *b);
-      s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri),
-                                    kStorage, MemoryKind::device);
-      s.small_list =
-          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
-      s.big_list =
-          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
-      s.clip_list =
-          create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorage, MemoryKind::device);
-      s.descriptors_dirty = true;
-    }
-    if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
-      destroy_buffer(ctx, s.tile_entries);
-      s.tile_entries =
-          create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorage, MemoryKind::device);
-      s.descriptors_dirty = true;
-    }
-    if (s.counter_slots < std::max(batches, 1u)) {
-      destroy_buffer(ctx, s.counters);
-      destroy_buffer(ctx, s.counters_readback);
-      s.counter_slots = std::max(batches, 1u);
-      const VkDeviceSize bytes = VkDeviceSize(s.counter_slots) * sizeof(gpu::GpuCounters);
-      s.counters = create_buffer(ctx, bytes, kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                                 MemoryKind::device);
-      s.counters_readback =
-          create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
-      s.descriptors_dirty = true;
-    }
+    ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = 2 + 6 * batches + 2;
     if (timestamps && s.query_capacity < queries_needed) {
@@ -575,7 +542,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     const uint64_t first = uint64_t(b) * s.batch_triangles;
     gpu::GpuBatch batch{uint32_t(first),
                         uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
-    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+    vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
 
     // The tile counts of the previous batch were read by its tile passes.
     memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

@@ -111,13 +111,29 @@ class Renderer {
   /// Maps a triangle-instance id from read_visibility to its index in Scene::objects.
   uint32_t object_of_triangle(uint32_t triangle_id) const;
 
+  /// The hardware baseline, for benchmarks and tests only (never the product path): renders
+  /// the current scene with the device's graphics pipeline (vertex and fragment shaders with
+  /// the same BRDF code, reverse depth, the same face culling) into the same HDR image, then
+  /// runs the same resolve pass. read_hdr() / read_ldr() then return its images.
+  /// Throws Error if the queue has no graphics support. Defined in hardware_baseline.cpp.
+  struct BaselineStats {
+    bool has_timestamps = false;
+    double render_pass_ms = 0.0;  // GPU time of the render pass (clear, draws)
+    double resolve_ms = 0.0;
+    double gpu_total_ms = 0.0;
+    double cpu_record_submit_ms = 0.0;
+    uint32_t draws = 0;  // one instanced draw per mesh
+  };
+  BaselineStats render_hardware(const FrameSettings& settings);
+
+  struct State;  // internal (compute/renderer_state.h)
+
  private:
   void update_descriptors();
   void write_frame_constants(const FrameSettings& settings);
   void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
                     std::vector<Pass>& query_passes);
 
-  struct State;
   std::unique_ptr<State> s_;
 };
 

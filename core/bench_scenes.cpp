@@ -22,13 +22,15 @@ constexpr BenchFamilyInfo kFamilies[] = {
 void add_palette(Scene& s) {
   for (int row = 0; row < 7; ++row) {
     for (int col = 0; col < 7; ++col) {
-      s.materials.push_back({glm::vec3(0.5f, 0.1f + 0.1f * (col % 3), 0.05f), row / 6.0f, col / 6.0f});
+      s.materials.push_back(
+          {glm::vec3(0.5f, 0.1f + 0.1f * (col % 3), 0.05f), row / 6.0f, col / 6.0f});
     }
   }
 }
 
 void add_four_lights(Scene& s, float distance) {
-  for (glm::vec3 d : {glm::vec3(-1, 1, 1), glm::vec3(1, 1, 1), glm::vec3(-1, -1, 1), glm::vec3(1, -1, 1)}) {
+  for (glm::vec3 d :
+       {glm::vec3(-1, 1, 1), glm::vec3(1, 1, 1), glm::vec3(-1, -1, 1), glm::vec3(1, -1, 1)}) {
     Light l;
     l.position = d * distance;
     l.intensity = 3.0f * distance * distance;  // about the default scene's brightness
@@ -38,11 +40,14 @@ void add_four_lights(Scene& s, float distance) {
 
 }  // namespace
 
-std::span<const BenchFamilyInfo> bench_families() { return kFamilies; }
+std::span<const BenchFamilyInfo> bench_families() {
+  return kFamilies;
+}
 
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect) {
   if (objects == 0) throw Error("a benchmark scene needs at least one object");
-  if (segments < 4) throw Error("spheres need at least 4 segments (got " + std::to_string(segments) + ")");
+  if (segments < 4)
+    throw Error("spheres need at least 4 segments (got " + std::to_string(segments) + ")");
   if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error("the image aspect must be positive");
   Scene s;
   s.background = {0.02f, 0.02f, 0.025f};
@@ -58,7 +63,8 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
     for (uint32_t i = 0; i < objects; ++i) {
       const float x = (float(i % cols) - (cols - 1) / 2.0f) * spacing;
       const float y = (float(i / cols) - (rows - 1) / 2.0f) * spacing;
-      s.objects.push_back({0, (i / cols % 7) * 7 + i % cols % 7, glm::translate(glm::mat4(1.0f), {x, y, 0.0f})});
+      s.objects.push_back(
+          {0, (i / cols % 7) * 7 + i % cols % 7, glm::translate(glm::mat4(1.0f), {x, y, 0.0f})});
     }
     // Far enough that the whole grid fits: half extents over tan of the half angles.
     const float half_w = cols * spacing / 2.0f, half_h = rows * spacing / 2.0f;
@@ -95,7 +101,8 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
     for (uint32_t i = 0; i < objects; ++i) {
       // Nearest last, so that each new triangle overdraws the ones before it.
       const float depth = 10.0f + 10.0f * float(objects - 1 - i) / float(objects);
-      s.objects.push_back({0, i % uint32_t(s.materials.size()), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -depth})});
+      s.objects.push_back({0, i % uint32_t(s.materials.size()),
+                           glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -depth})});
     }
     s.camera.position = {0.0f, 0.0f, 0.0f};
     s.camera.target = {0.0f, 0.0f, -1.0f};

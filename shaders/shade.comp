@@ -4,7 +4,7 @@
 // in world space, intersects the pixel's camera ray with it for perspective-correct
 // barycentrics, and evaluates the Cook-Torrance BRDF for every light into linear HDR.
 #include "bindings.glsl"
-#include "brdf.glsl"
+#include "lighting.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -72,31 +72,7 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   if (view == TS_VIEW_TRIANGLE) return id_colour(id);
   if (view == TS_VIEW_OBJECT) return id_colour(slot);
 
-  GpuMaterial m = materials[o.material];
-  vec3 base_color = m.base_color.rgb;
-  float metallic = clamp(m.metallic, 0.0, 1.0);
-  float roughness = clamp(m.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
-  vec3 V = -dir;
-  float NoV = max(dot(N, V), MIN_N_DOT_V);
-
-  vec3 color = frame.ambient.rgb * base_color;
-  for (uint i = 0u; i < frame.scene_counts.y; ++i) {
-    GpuLight light = lights[i];
-    vec3 L;
-    vec3 radiance;
-    if (light.kind.x == TS_LIGHT_DIRECTIONAL) {
-      L = -light.direction.xyz;
-      radiance = light.radiance.rgb;
-    } else {
-      vec3 to_light = light.position.xyz - P;
-      float d2 = dot(to_light, to_light);
-      // A light exactly on the surface has no direction: treat it as arriving along N.
-      L = d2 > 0.0 ? to_light * inversesqrt(d2) : N;
-      radiance = light.radiance.rgb / max(d2, MIN_LIGHT_DISTANCE_SQUARED);
-    }
-    color += cook_torrance(N, V, L, NoV, base_color, metallic, roughness, radiance);
-  }
-  return color;
+  return shade_surface(P, N, -dir, o.material);
 }
 
 void main() {

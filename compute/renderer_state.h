@@ -1,0 +1,95 @@
+#pragma once
+// The renderer's private state, shared by renderer.cpp (the compute path) and
+// hardware_baseline.cpp (the graphics-pipeline baseline). Not part of the public interface.
+
+#include <algorithm>
+
+#include "compute/gpu_memory.h"
+#include "compute/pipelines.h"
+#include "compute/renderer.h"
+#include "compute/scene_upload.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+
+struct Renderer::State {
+  Context& ctx;
+  RendererOptions options;
+  Pipelines pipelines;
+  VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  bool descriptors_dirty = true;
+
+  // The scene as it is on the GPU.
+  bool has_scene = false;
+  GpuSceneArrays uploaded;
+  Camera camera;
+  glm::vec3 background{0.0f};
+  glm::vec3 ambient{0.0f};
+  Buffer vertices, indices, objects, materials, lights;
+
+  // Sized by the image.
+  uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+  Buffer visibility, coverage, tile_counts, tile_offsets, tile_cursors;
+  StorageImage hdr, ldr;
+
+  // Scratch, sized by capacities that grow on demand.
+  uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
+  uint32_t counter_slots = 0;
+  Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
+
+  Buffer frame_constants;
+
+  // The graphics baseline (hardware_baseline.cpp), created on first use.
+  VkRenderPass baseline_pass = VK_NULL_HANDLE;
+  VkPipeline baseline_pipeline = VK_NULL_HANDLE;
+  VkImage depth_image = VK_NULL_HANDLE;
+  VkDeviceMemory depth_memory = VK_NULL_HANDLE;
+  VkImageView depth_view = VK_NULL_HANDLE;
+  VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
+  uint32_t baseline_width = 0, baseline_height = 0;
+  VkQueryPool queries = VK_NULL_HANDLE;
+  uint32_t query_capacity = 0;
+
+  explicit State(Context& c) : ctx(c) {}
+
+  uint32_t max_raster_capacity() const {
+    const VkPhysicalDeviceLimits& l = ctx.properties.limits;
+    uint64_t by_range = l.maxStorageBufferRange / sizeof(gpu::GpuRasterTri);
+    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(gpu::GpuRasterTri);
+    uint64_t by_dispatch = uint64_t(l.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+    return uint32_t(std::min({by_range, by_budget, by_dispatch, uint64_t(0xFFFFFFFFu)}));
+  }
+  uint32_t max_tile_entry_capacity() const {
+    uint64_t by_range = ctx.properties.limits.maxStorageBufferRange / sizeof(uint32_t);
+    uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(uint32_t);
+    return uint32_t(std::min({by_range, by_budget, uint64_t(0xFFFFFFFFu)}));
+  }
+  uint32_t max_batch() const {
+    uint64_t by_dispatch =
+        uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+    uint64_t limit = std::min<uint64_t>(by_dispatch, max_raster_capacity());
+    if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
+    return uint32_t(std::max<uint64_t>(limit, 1));
+  }
+};
+
+/// Allocates the image-sized buffers and images for `settings` if the size changed.
+void ensure_frame_resources(Renderer::State& s, const FrameSettings& settings);
+
+/// Sets the scratch capacities and batch size from the scene and options, if not yet set.
+void init_capacities(Renderer::State& s);
+
+/// Allocates the scratch buffers for the current capacities and `batches` counter slots.
+void ensure_scratch_buffers(Renderer::State& s, uint32_t batches);
+
+/// Releases what render_hardware created (hardware_baseline.cpp).
+void destroy_hardware_baseline(Renderer::State& s);
+
+/// Usage of every storage buffer: read and written by shaders, filled and copied by transfers,
+/// and indices drawn from by the graphics baseline.
+constexpr VkBufferUsageFlags kStorageUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+    VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+
+}  // namespace tessera

@@ -1,0 +1,22 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Graphics baseline (benchmarks and tests only): the compute path's shading model per fragment.
+#include "bindings.glsl"
+#include "lighting.glsl"
+
+layout(location = 0) in vec3 world_position;
+layout(location = 1) in vec3 world_normal;
+layout(location = 2) flat in uint material;
+layout(location = 0) out vec4 color;
+
+// Largest finite fp16 value: the HDR image is RGBA16F.
+const float MAX_HALF = 65504.0;
+
+void main() {
+  float n2 = dot(world_normal, world_normal);
+  // Opposite vertex normals can cancel; the face normal is then the only sensible choice.
+  vec3 N = n2 > 1e-20 ? world_normal * inversesqrt(n2)
+                      : normalize(cross(dFdx(world_position), dFdy(world_position)));
+  vec3 V = normalize(frame.camera_position.xyz - world_position);
+  color = vec4(min(shade_surface(world_position, N, V, material), vec3(MAX_HALF)), 1.0);
+}

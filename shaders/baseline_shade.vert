@@ -1,0 +1,21 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Graphics baseline (benchmarks and tests only): instanced meshes, vertices pulled from the
+// same buffers the compute path reads; one instance per object slot (gl_InstanceIndex).
+#include "bindings.glsl"
+
+layout(location = 0) out vec3 world_position;
+layout(location = 1) out vec3 world_normal;
+layout(location = 2) flat out uint material;
+
+void main() {
+  GpuObject o = objects[gl_InstanceIndex];
+  GpuVertex v = vertices[gl_VertexIndex];
+  vec4 world = o.model * vec4(v.position_u.xyz, 1.0);
+  world_position = world.xyz;
+  world_normal = mat3(o.normal_matrix) * v.normal_v.xyz;
+  material = o.material;
+  gl_Position = frame.view_proj * world;
+  // Reverse depth as in the compute path: z / w = near / w, nearer is larger.
+  gl_Position.z = frame.camera_position.w;
+}

@@ -1,0 +1,33 @@
+// The shading model of a surface point: constant ambient plus Cook-Torrance (brdf.glsl) for
+// every light. Shared by the compute shading pass and the graphics baseline's fragment shader,
+// so both do the same work. Needs bindings.glsl (frame, lights, materials).
+#include "brdf.glsl"
+
+// Radiance leaving surface point P (world) with unit normal N towards the unit direction V
+// (towards the viewer), for material `material`.
+vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
+  GpuMaterial m = materials[material];
+  vec3 base_color = m.base_color.rgb;
+  float metallic = clamp(m.metallic, 0.0, 1.0);
+  float roughness = clamp(m.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  float NoV = max(dot(N, V), MIN_N_DOT_V);
+
+  vec3 color = frame.ambient.rgb * base_color;
+  for (uint i = 0u; i < frame.scene_counts.y; ++i) {
+    GpuLight light = lights[i];
+    vec3 L;
+    vec3 radiance;
+    if (light.kind.x == TS_LIGHT_DIRECTIONAL) {
+      L = -light.direction.xyz;
+      radiance = light.radiance.rgb;
+    } else {
+      vec3 to_light = light.position.xyz - P;
+      float d2 = dot(to_light, to_light);
+      // A light exactly on the surface has no direction: treat it as arriving along N.
+      L = d2 > 0.0 ? to_light * inversesqrt(d2) : N;
+      radiance = light.radiance.rgb / max(d2, MIN_LIGHT_DISTANCE_SQUARED);
+    }
+    color += cook_torrance(N, V, L, NoV, base_color, metallic, roughness, radiance);
+  }
+  return color;
+}
