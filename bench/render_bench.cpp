@@ -1,7 +1,11 @@
-// GPU timings of the compute renderer (Google Benchmark, manual time = GPU time from
-// timestamp queries). Each pass's time is reported as a counter (ms per frame).
+// GPU timings of the compute renderer and the hardware baseline (Google Benchmark, manual
+// time = GPU time from timestamp queries), by scene and by object count.
 //
 //   build/bench/tessera_bench [--benchmark_filter=...]   (TESSERA_DEVICE=lavapipe|gpu|N)
+//
+// Each iteration renders kFrames frames and reports their median GPU time, so rare slow frames
+// (clock changes, other work) do not move the figure; counters are per-pass medians.
+// `tessera bench` runs the same measurements as a sweep with CSV, JSON and charts.
 #include <algorithm>
 #include <cstdlib>
 #include <memory>
@@ -11,10 +15,13 @@
 
 #include "compute/context.h"
 #include "compute/renderer.h"
+#include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 
 namespace tessera {
 namespace {
+
+constexpr int kFrames = 11;
 
 Context& bench_context() {
   static std::unique_ptr<Context> ctx = [] {
@@ -30,26 +37,8 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Renders built-in scene `name` at state.range(0) x state.range(1). The scene is uploaded and
-// one warm-up frame rendered outside the timed loop. Each iteration renders kFrames frames and
-// reports their median GPU time, so rare slow frames (clock changes, other work) do not move
-// the figure; the counters are per-pass medians of the last iteration.
-void render_scene(benchmark::State& state, const char* name) {
-  constexpr int kFrames = 11;
-  Context& ctx = bench_context();
-  Renderer renderer(ctx);
-  renderer.set_scene(make_builtin_scene(name));
-  FrameSettings settings;
-  settings.width = uint32_t(state.range(0));
-  settings.height = uint32_t(state.range(1));
-  FrameStats warm = renderer.render(settings);
-  std::vector<FrameStats> frames(kFrames);
-  for (auto _ : state) {
-    for (FrameStats& f : frames) f = renderer.render(settings);
-    std::vector<double> totals;
-    for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
-    state.SetIterationTime(median(totals) * 1e-3);
-  }
+void report_counters(benchmark::State& state, const std::vector<FrameStats>& frames,
+                     uint64_t triangles) {
   for (size_t p = 0; p < kPassCount; ++p) {
     std::vector<double> v;
     for (const FrameStats& f : frames) v.push_back(f.pass_ms[p]);
@@ -58,21 +47,106 @@ void render_scene(benchmark::State& state, const char* name) {
   std::vector<double> cpu;
   for (const FrameStats& f : frames) cpu.push_back(f.cpu_record_submit_ms);
   state.counters["cpu_record_ms"] = median(cpu);
-  state.counters["tris_submitted"] = double(warm.triangles_submitted);
-  state.counters["tris_rasterized"] = double(warm.raster_triangles);
-  state.counters["tris_per_s"] = benchmark::Counter(double(warm.triangles_submitted),
-                                                    benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris_submitted"] = double(triangles);
+  state.counters["tris_rasterized"] = double(frames.back().raster_triangles);
+  state.counters["tris_per_s"] =
+      benchmark::Counter(double(triangles), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// The compute path on `scene` at width x height.
+void run_compute(benchmark::State& state, const Scene& scene, uint32_t width, uint32_t height) {
+  Context& ctx = bench_context();
+  Renderer renderer(ctx);
+  renderer.set_scene(scene);
+  FrameSettings settings;
+  settings.width = width;
+  settings.height = height;
+  renderer.render(settings);  // warm-up: pipelines compiled, buffers grown
+  std::vector<FrameStats> frames(kFrames);
+  for (auto _ : state) {
+    for (FrameStats& f : frames) f = renderer.render(settings);
+    std::vector<double> totals;
+    for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
+    state.SetIterationTime(median(totals) * 1e-3);
+  }
+  report_counters(state, frames, frames.back().triangles_submitted);
   state.SetLabel(ctx.properties.deviceName);
 }
 
-BENCHMARK_CAPTURE(render_scene, spheres, "spheres")
+// The hardware baseline: timestamps around its render pass.
+void run_hardware(benchmark::State& state, const Scene& scene, uint32_t width, uint32_t height) {
+  Context& ctx = bench_context();
+  Renderer renderer(ctx);
+  renderer.set_scene(scene);
+  FrameSettings settings;
+  settings.width = width;
+  settings.height = height;
+  renderer.render_hardware(settings);
+  uint64_t triangles = 0;
+  for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
+  for (auto _ : state) {
+    std::vector<double> pass;
+    for (int i = 0; i < kFrames; ++i)
+      pass.push_back(renderer.render_hardware(settings).render_pass_ms);
+    state.SetIterationTime(median(pass) * 1e-3);
+  }
+  state.counters["tris_submitted"] = double(triangles);
+  state.counters["tris_per_s"] =
+      benchmark::Counter(double(triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(ctx.properties.deviceName);
+}
+
+void BuiltinScene(benchmark::State& state, const char* name) {
+  run_compute(state, make_builtin_scene(name), uint32_t(state.range(0)), uint32_t(state.range(1)));
+}
+
+// Families by object count (range 0), at 512x512 so lavapipe can run them too.
+void ComputeGrid(benchmark::State& state) {
+  run_compute(state, make_bench_scene("grid", uint32_t(state.range(0)), 32, 1.0f), 512, 512);
+}
+void HardwareGrid(benchmark::State& state) {
+  run_hardware(state, make_bench_scene("grid", uint32_t(state.range(0)), 32, 1.0f), 512, 512);
+}
+void ComputeScatter(benchmark::State& state) {
+  run_compute(state, make_bench_scene("scatter", uint32_t(state.range(0)), 16, 1.0f), 512, 512);
+}
+void ComputeHuge(benchmark::State& state) {
+  run_compute(state, make_bench_scene("huge", uint32_t(state.range(0)), 16, 1.0f), 512, 512);
+}
+
+BENCHMARK_CAPTURE(BuiltinScene, spheres, "spheres")
     ->Args({512, 512})
     ->Args({1920, 1080})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.2);
-BENCHMARK_CAPTURE(render_scene, metals, "metals")
+BENCHMARK_CAPTURE(BuiltinScene, metals, "metals")
     ->Args({512, 512})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK(ComputeGrid)
+    ->RangeMultiplier(10)
+    ->Range(1, 1000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK(HardwareGrid)
+    ->RangeMultiplier(10)
+    ->Range(1, 1000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK(ComputeScatter)
+    ->RangeMultiplier(10)
+    ->Range(10, 1000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK(ComputeHuge)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(16)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.2);

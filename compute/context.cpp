@@ -264,6 +264,11 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   ctx->physical_device = choose_device(ctx->instance, options.device);
   vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
   vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props2.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(ctx->physical_device, &props2);
+  ctx->driver = std::string(driver.driverName) + " " + driver.driverInfo;
 
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical_device, &family_count, nullptr);

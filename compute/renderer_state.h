@@ -65,10 +65,12 @@ struct Renderer::State {
     uint64_t by_budget = options.max_scratch_buffer_bytes / sizeof(uint32_t);
     return uint32_t(std::min({by_range, by_budget, uint64_t(0xFFFFFFFFu)}));
   }
+  // Most submitted triangles are culled, so a batch may hold more triangles than the raster
+  // buffer: if its survivors overflow a buffer already at its limit, render() halves it.
   uint32_t max_batch() const {
     uint64_t by_dispatch =
         uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
-    uint64_t limit = std::min<uint64_t>(by_dispatch, max_raster_capacity());
+    uint64_t limit = std::min<uint64_t>(by_dispatch, 1ull << 26);
     if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
     return uint32_t(std::max<uint64_t>(limit, 1));
   }

@@ -9,7 +9,6 @@
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
-namespace {
 
 uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min,
                     uint32_t max) {
@@ -21,6 +20,8 @@ uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t
   }
   return uint32_t(value);
 }
+
+namespace {
 
 float parse_float(const std::string& option, const std::string& text) {
   float value = 0;
@@ -38,6 +39,36 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+bool parse_options(const std::vector<std::string>& args,
+                   const std::map<std::string, ValueHandler>& with_value,
+                   const std::map<std::string, std::function<void()>>& flags,
+                   const std::string& command) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string name = args[i];
+    std::string value;
+    bool has_inline_value = false;
+    if (size_t eq = name.find('='); name.rfind("--", 0) == 0 && eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_inline_value = true;
+    }
+    if (name == "--help" || name == "-h") return false;
+    if (auto f = flags.find(name); f != flags.end() && !has_inline_value) {
+      f->second();
+      continue;
+    }
+    auto h = with_value.find(name);
+    if (h == with_value.end())
+      throw Error("unknown option '" + args[i] + "' (see " + command + " --help)");
+    if (!has_inline_value) {
+      if (i + 1 >= args.size()) throw Error(name + " needs a value");
+      value = args[++i];
+    }
+    h->second(value);
+  }
+  return true;
+}
+
 void parse_size(const std::string& text, uint32_t& width, uint32_t& height) {
   const size_t x = text.find('x');
   if (x == std::string::npos) throw Error("--size expects WxH (e.g. 512x512), got '" + text + "'");
@@ -52,6 +83,8 @@ std::string main_help() {
          "\n"
          "commands:\n"
          "  render     render a scene to a PNG (tessera render --help)\n"
+         "  bench      sweep a benchmark scene over object counts and backends (tessera bench "
+         "--help)\n"
          "  devices    list the Vulkan devices and whether Tessera can use them\n"
          "  scenes     list the built-in scenes\n";
 }
@@ -77,8 +110,7 @@ std::string render_help() {
 }
 
 bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
-  using Handler = std::function<void(const std::string&)>;
-  const std::map<std::string, Handler> with_value = {
+  const std::map<std::string, ValueHandler> with_value = {
       {"--scene", [&](const std::string& v) { out.scene = v; }},
       {"--size", [&](const std::string& v) { parse_size(v, out.width, out.height); }},
       {"--out",
@@ -130,30 +162,7 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
       {"--validate", [&] { out.validate = true; }},
       {"--quiet", [&] { out.quiet = true; }},
   };
-  for (size_t i = 0; i < args.size(); ++i) {
-    std::string name = args[i];
-    std::string value;
-    bool has_inline_value = false;
-    if (size_t eq = name.find('='); name.rfind("--", 0) == 0 && eq != std::string::npos) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-      has_inline_value = true;
-    }
-    if (name == "--help" || name == "-h") return false;
-    if (auto f = flags.find(name); f != flags.end() && !has_inline_value) {
-      f->second();
-      continue;
-    }
-    auto h = with_value.find(name);
-    if (h == with_value.end())
-      throw Error("unknown option '" + args[i] + "' (see tessera render --help)");
-    if (!has_inline_value) {
-      if (i + 1 >= args.size()) throw Error(name + " needs a value");
-      value = args[++i];
-    }
-    h->second(value);
-  }
-  return true;
+  return parse_options(args, with_value, flags, "tessera render");
 }
 
 }  // namespace tessera

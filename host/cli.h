@@ -3,6 +3,8 @@
 // parser; adding an option means adding a field and one entry in its parser's table.
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,19 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out);
 std::string render_help();
 /// Help text of `tessera` itself.
 std::string main_help();
+
+using ValueHandler = std::function<void(const std::string&)>;
+
+/// Parses `--name value`, `--name=value` and `--flag` arguments with the given handlers.
+/// Throws Error for an unknown option (naming `command` for help) or a missing value.
+/// Returns false, handling nothing further, if --help or -h was given.
+bool parse_options(const std::vector<std::string>& args,
+                   const std::map<std::string, ValueHandler>& with_value,
+                   const std::map<std::string, std::function<void()>>& flags,
+                   const std::string& command);
+
+/// Parses a whole number in [min, max] for `option`. Throws Error naming the option otherwise.
+uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min, uint32_t max);
 
 /// Parses "WxH" (e.g. "1920x1080"), each side in [1, 16384]. Throws Error otherwise.
 void parse_size(const std::string& text, uint32_t& width, uint32_t& height);

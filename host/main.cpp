@@ -7,6 +7,7 @@
 #include "compute/context.h"
 #include "core/builtin_scenes.h"
 #include "core/check.h"
+#include "host/bench_command.h"
 #include "host/cli.h"
 #include "host/render_command.h"
 
@@ -45,6 +46,16 @@ int main(int argc, char** argv) {
         return 0;
       }
       return tessera::run_render(render);
+    }
+    if (command == "bench") {
+      tessera::BenchArgs bench;
+      if (!tessera::parse_bench_args(args, bench)) {
+        std::fputs(tessera::bench_help().c_str(), stdout);
+        return 0;
+      }
+      std::string command_line = "tessera";
+      for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
+      return tessera::run_bench(bench, command_line);
     }
     if (command == "devices") return run_devices();
     if (command == "scenes") return run_scenes();

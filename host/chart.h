@@ -1,0 +1,35 @@
+#pragma once
+// Charts of benchmark sweeps, written as SVG or PNG (chosen by the file's extension).
+
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+struct Series {
+  std::string name;
+  std::vector<double> x;  // > 0 (log axis)
+  std::vector<double> y;  // > 0 (log axis); entries <= 0 are gaps
+};
+
+struct StackedBars {
+  std::vector<std::string> categories;      // one bar each (e.g. object counts)
+  std::vector<std::string> layers;          // stacked parts (e.g. passes)
+  std::vector<std::vector<double>> values;  // values[category][layer], >= 0
+};
+
+struct ChartSpec {
+  std::string title;
+  // Left panel: log-log lines.
+  std::string x_label, y_label;
+  std::vector<Series> lines;
+  // Right panel: stacked bars (skipped if it has no categories).
+  std::string bars_title, bars_y_label;
+  StackedBars bars;
+};
+
+/// Writes `spec` to `path`, which must end in .svg or .png. Throws Error otherwise or if the
+/// file cannot be written.
+void write_chart(const std::string& path, const ChartSpec& spec);
+
+}  // namespace tessera
