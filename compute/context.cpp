@@ -114,7 +114,7 @@ std::string missing_features(VkPhysicalDevice device) {
       VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
   if ((subgroup.supportedOperations & needed) != needed ||
       !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT)) {
-    add("subgroup ballot operations in compute shaders");
+    add("subgroup ballot and arithmetic operations in compute shaders");
   }
   if (!v12.shaderBufferInt64Atomics) add("shaderBufferInt64Atomics (64-bit buffer atomics)");
   return missing;

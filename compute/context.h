@@ -51,7 +51,7 @@ struct Context {
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
   uint32_t timestamp_valid_bits = 0;          // 0: the queue cannot write timestamps
-  std::string driver;  // driver name and version, e.g. "NVIDIA 580.159.04"
+  std::string driver;                         // driver name and version, e.g. "NVIDIA 580.159.04"
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
 
   Context() = default;

@@ -77,6 +77,7 @@ Pipelines create_pipelines(const Context& ctx) {
   const Variant variants[] = {
       {Pipeline::setup, "setup", false},
       {Pipeline::clip, "clip", false},
+      {Pipeline::bin_count, "count", false},
       {Pipeline::scan, "scan", false},
       {Pipeline::fill, "fill", false},
       {Pipeline::raster_small, "raster_small", false},

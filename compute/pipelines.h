@@ -13,6 +13,7 @@ namespace tessera {
 enum class Pipeline {
   setup,
   clip,
+  bin_count,
   scan,
   fill,
   raster_small,

@@ -80,8 +80,8 @@ uint32_t view_id(View v) {
 }  // namespace
 
 const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"clear",        "setup",        "clip",  "scan",   "fill",
-                                       "raster_tiles", "raster_small", "shade", "resolve"};
+  static const char* const kNames[] = {"clear", "setup",        "clip",         "count", "scan",
+                                       "fill",  "raster_tiles", "raster_small", "shade", "resolve"};
   static_assert(std::size(kNames) == kPassCount);
   return kNames[size_t(pass)];
 }
@@ -300,8 +300,8 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
                                   kStorageUsage, MemoryKind::device);
     s.small_list =
         create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
-    s.big_list =
-        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
+    s.big_list = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(glm::uvec2), kStorageUsage,
+                               MemoryKind::device);  // (raster triangle, tile block) bin entries
     s.clip_list =
         create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
     s.descriptors_dirty = true;
@@ -348,7 +348,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
     ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
-    const uint32_t queries_needed = 2 + 6 * batches + 2;
+    const uint32_t queries_needed = 2 + 7 * batches + 2;
     if (timestamps && s.query_capacity < queries_needed) {
       if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
       VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -561,6 +561,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     compute_to_compute(cmd);
     mark(Pass::clip);
 
+    bind(Pipeline::bin_count);
+    vkCmdDispatch(cmd, TS_COUNT_GROUPS, 1, 1);
+    compute_to_compute(cmd);
+    mark(Pass::bin_count);
+
     bind(Pipeline::scan);
     vkCmdDispatch(cmd, 1, 1, 1);
     compute_to_compute(cmd);
@@ -573,7 +578,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     mark(Pass::fill);
 
     bind(s.options.debug_coverage ? Pipeline::raster_tiles_coverage : Pipeline::raster_tiles);
-    vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
+    vkCmdDispatchIndirect(cmd, s.counters.buffer,
+                          slot + offsetof(gpu::GpuCounters, tiles_dispatch));
     compute_to_compute(cmd);
     mark(Pass::raster_tiles);
 

@@ -1,9 +1,9 @@
 #pragma once
 // The compute rasterizer: created once per device, renders many frames of many scenes.
 //
-// Per frame: setup -> clip -> scan -> fill -> raster_tiles -> raster_small -> shade -> resolve,
-// over one or more batches of triangle instances (see docs/architecture.md). The output stays on
-// the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
+// Per frame: setup -> clip -> count -> scan -> fill -> raster_tiles -> raster_small -> shade ->
+// resolve, over one or more batches of triangle instances (see docs/architecture.md). The output
+// stays on the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
 
 #include <array>
 #include <cstdint>
@@ -49,6 +49,7 @@ enum class Pass {
   clear,
   setup,
   clip,
+  bin_count,
   scan,
   fill,
   raster_tiles,

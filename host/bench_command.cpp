@@ -242,6 +242,8 @@ std::string bench_help() {
          "  --repeat K          timed frames per point, 1..1000 (default 10)\n"
          "  --warmup K          untimed frames first, 0..100 (default 2)\n"
          "  --reference-max-triangles T   skip the reference above T triangles (default 2000000)\n"
+         "  --small-triangle-area A   pixel-box area up to which a triangle is rasterized by one\n"
+         "                      thread; larger ones are binned into tiles (default 64)\n"
          "  --csv FILE          write every measurement as CSV\n"
          "  --json FILE         the same as JSON, with device, driver and command\n"
          "  --chart FILE        .svg or .png: time against objects (log-log, one line per "
@@ -281,6 +283,10 @@ bool parse_bench_args(const std::vector<std::string>& args, BenchArgs& out) {
          out.reference_max_triangles =
              parse_uint("--reference-max-triangles", v, 1, 4'000'000'000u);
        }},
+      {"--small-triangle-area",
+       [&](const std::string& v) {
+         out.small_triangle_area = parse_uint("--small-triangle-area", v, 0, 1u << 24);
+       }},
       {"--csv", [&](const std::string& v) { out.csv = v; }},
       {"--json", [&](const std::string& v) { out.json = v; }},
       {"--chart", [&](const std::string& v) { out.chart = v; }},
@@ -310,7 +316,9 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
     ContextOptions options;
     options.device = a.device;
     ctx = create_context(options);
-    renderer = std::make_unique<Renderer>(*ctx);
+    RendererOptions options_r;
+    options_r.small_triangle_max_area = a.small_triangle_area;
+    renderer = std::make_unique<Renderer>(*ctx, options_r);
     device = ctx->properties.deviceName;
     driver = ctx->driver;
   }

@@ -13,7 +13,7 @@ layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Material
 layout(set = 0, binding = TS_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = TS_BINDING_RASTER_TRIS, std430) buffer RasterTris { GpuRasterTri raster_tris[]; };
 layout(set = 0, binding = TS_BINDING_SMALL_LIST, std430) buffer SmallList { uint small_list[]; };
-layout(set = 0, binding = TS_BINDING_BIG_LIST, std430) buffer BigList { uint big_list[]; };
+layout(set = 0, binding = TS_BINDING_BIG_LIST, std430) buffer BigList { uvec2 big_list[]; };  // (raster triangle, tile block)
 layout(set = 0, binding = TS_BINDING_TILE_COUNTS, std430) buffer TileCounts { uint tile_counts[]; };
 layout(set = 0, binding = TS_BINDING_TILE_OFFSETS, std430) buffer TileOffsets { uint tile_offsets[]; };
 layout(set = 0, binding = TS_BINDING_TILE_CURSORS, std430) buffer TileCursors { uint tile_cursors[]; };

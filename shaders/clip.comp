@@ -28,8 +28,8 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
   if (outcome == OUTCOME_SMALL) {
     small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
   } else {
-    big_list[atomicAdd(counters[batch.index].big_tris, 1u)] = index;
-    count_tiles(t);
+    uint entries = bin_entry_count(t);
+    store_bin_entries(index, t, atomicAdd(counters[batch.index].big_tris, entries), entries);
   }
 }
 

@@ -9,9 +9,26 @@ layout(local_size_x = TS_SCAN_GROUP_SIZE) in;
 
 shared uint partial[TS_SCAN_GROUP_SIZE];
 
+void write_dispatch_sizes(uint b, bool tiles_used) {
+  uint small_count = min(counters[b].small_tris, frame.limits.x);
+  uint big_count = min(counters[b].big_tris, frame.limits.x);
+  counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+  counters[b].big_dispatch = uvec4((big_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+  counters[b].tiles_dispatch = tiles_used ? uvec4(frame.image_size.z, frame.image_size.w, 1, 0) : uvec4(0, 1, 1, 0);
+}
+
 void main() {
   uint n = frame.image_size.z * frame.image_size.w;
   uint t = gl_LocalInvocationID.x;
+  // Nothing binned (the common case for small triangles): every count is 0, so the offsets
+  // are never read; skip the scan and the tile passes.
+  if (counters[batch.index].big_tris == 0u) {
+    if (t == 0u) {
+      counters[batch.index].tile_entries = 0u;
+      write_dispatch_sizes(batch.index, false);
+    }
+    return;
+  }
   uint chunk = (n + TS_SCAN_GROUP_SIZE - 1) / TS_SCAN_GROUP_SIZE;
   uint begin = min(t * chunk, n);
   uint end = min(begin + chunk, n);
@@ -32,11 +49,7 @@ void main() {
     running += tile_counts[i];
   }
   if (t == TS_SCAN_GROUP_SIZE - 1) {
-    uint b = batch.index;
-    counters[b].tile_entries = partial[t];
-    uint small_count = min(counters[b].small_tris, frame.limits.x);
-    uint big_count = min(counters[b].big_tris, frame.limits.x);
-    counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
-    counters[b].big_dispatch = uvec4((big_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+    counters[batch.index].tile_entries = partial[t];
+    write_dispatch_sizes(batch.index, true);
   }
 }

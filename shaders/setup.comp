@@ -2,10 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // Triangle setup: one thread per triangle instance of the batch. Transforms to clip space,
 // culls (non-finite, frustum, facing, empty), snaps to fixed point and appends raster
-// triangles; small ones go to the per-triangle list, larger ones are counted into the screen
-// tiles they may touch. Triangles that cross the near plane or the guard band are listed for
+// triangles; small ones go to the per-triangle list, larger ones to the bin entries that the
+// count and fill passes spread over the tiles. Triangles that cross the near plane or the guard band are listed for
 // the clip pass instead: clipping code here, even never taken, slows every thread on lavapipe.
 // Counters and appends are made once per subgroup: one atomic per thread on a single address
 // would serialize a million-triangle batch.
@@ -79,12 +80,14 @@ void main() {
   APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
   bool stored = emits && index < frame.limits.x;
   if (stored) store_raster_tri(index, t);
-  uint small_slot, big_slot;
+  uint small_slot;
   APPEND_SLOT(counters[batch.index].small_tris, stored && outcome == OUTCOME_SMALL, small_slot);
-  APPEND_SLOT(counters[batch.index].big_tris, stored && outcome == OUTCOME_BIG, big_slot);
   if (stored && outcome == OUTCOME_SMALL) small_list[small_slot] = index;
-  if (stored && outcome == OUTCOME_BIG) {
-    big_list[big_slot] = index;
-    count_tiles(t);
-  }
+  // Bin entries: a variable number per thread, so the subgroup takes them with a prefix sum.
+  uint entries = stored && outcome == OUTCOME_BIG ? bin_entry_count(t) : 0u;
+  uint total = subgroupAdd(entries);
+  uint base = 0u;
+  if (total > 0u && subgroupElect()) base = atomicAdd(counters[batch.index].big_tris, total);
+  uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
+  if (entries > 0u) store_bin_entries(index, t, first_entry, entries);
 }

@@ -94,15 +94,29 @@ void store_raster_tri(uint index, RasterTri t) {
   raster_tris[index].depth_id = uvec4(floatBitsToUint(t.depth), t.id);
 }
 
-// Adds one to the count of every tile a big triangle may cover.
-void count_tiles(RasterTri t) {
+// Bin entries of a binned triangle: its tile range split into blocks of at most
+// TS_BIN_CHUNK x TS_BIN_CHUNK tiles, each packed as x | y << 10 | (w - 1) << 20 | (h - 1) << 24
+// (tiles_x and tiles_y are at most 16384 / 16 = 1024).
+uint bin_entry_count(RasterTri t) {
   ivec2 first, last;
   tile_range(t, first, last);
-  for (int ty = first.y; ty <= last.y; ++ty) {
-    for (int tx = first.x; tx <= last.x; ++tx) {
-      if (tile_may_overlap(t, ivec2(tx, ty))) {
-        atomicAdd(tile_counts[uint(ty) * frame.image_size.z + uint(tx)], 1u);
-      }
-    }
+  uvec2 blocks = (uvec2(last - first) + TS_BIN_CHUNK) / TS_BIN_CHUNK;
+  return blocks.x * blocks.y;
+}
+
+uint bin_entry(RasterTri t, uint k) {
+  ivec2 first, last;
+  tile_range(t, first, last);
+  uint blocks_x = (uint(last.x - first.x) + TS_BIN_CHUNK) / TS_BIN_CHUNK;
+  ivec2 origin = first + ivec2(k % blocks_x, k / blocks_x) * TS_BIN_CHUNK;
+  uvec2 size = uvec2(min(last - origin + 1, ivec2(TS_BIN_CHUNK)));
+  return uint(origin.x) | (uint(origin.y) << 10) | ((size.x - 1u) << 20) | ((size.y - 1u) << 24);
+}
+
+// Writes the bin entries of raster triangle `index` at slots [first, first + count) of the big
+// list, skipping those past its capacity (the host sees the count and redoes the frame).
+void store_bin_entries(uint index, RasterTri t, uint first, uint count) {
+  for (uint k = 0u; k < count && first + k < frame.limits.x; ++k) {
+    big_list[first + k] = uvec2(index, bin_entry(t, k));
   }
 }

@@ -36,6 +36,11 @@ using glm::vec4;
 #define TS_SCAN_GROUP_SIZE 256
 // Workgroups of the clipping pass; its threads loop over the (usually short) clip list.
 #define TS_CLIP_GROUPS 16
+// Workgroups of the tile-counting pass; its threads loop over the bin entries.
+#define TS_COUNT_GROUPS 512
+// A binned triangle is split into bin entries of at most this many tiles per side, so that no
+// thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
+#define TS_BIN_CHUNK 8
 
 // Light kinds (GpuLight.kind.x).
 #define TS_LIGHT_POINT 0u
@@ -155,9 +160,10 @@ struct GpuRasterTri {
 struct GpuCounters {
   uvec4 small_dispatch;  // VkDispatchIndirectCommand for the per-triangle rasterizer (xyz)
   uvec4 big_dispatch;    // VkDispatchIndirectCommand for the tile-fill pass (xyz)
+  uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
   uint small_tris;
-  uint big_tris;
+  uint big_tris;         // bin entries (a binned triangle makes one per 8x8 block of tiles)
   uint tile_entries;     // entries the tile lists need (may exceed capacity, likewise)
   uint culled_backface;
   uint culled_frustum;   // entirely outside the view or behind the near plane
@@ -188,11 +194,12 @@ static_assert(offsetof(GpuFrame, limits) == 224);
 static_assert(offsetof(GpuFrame, flags) == 240);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuRasterTri) == 48);
-static_assert(sizeof(GpuCounters) == 80);
+static_assert(sizeof(GpuCounters) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
-static_assert(offsetof(GpuCounters, raster_tris) == 32);
-static_assert(offsetof(GpuCounters, clipped) == 64);
-static_assert(offsetof(GpuCounters, clip_list) == 68);
+static_assert(offsetof(GpuCounters, tiles_dispatch) == 32);
+static_assert(offsetof(GpuCounters, raster_tris) == 48);
+static_assert(offsetof(GpuCounters, clipped) == 80);
+static_assert(offsetof(GpuCounters, clip_list) == 84);
 }  // namespace tessera::gpu
 #endif
 
