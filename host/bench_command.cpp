@@ -184,7 +184,7 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Ben
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
     << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
-    << ",\n  \"frames\": " << a.repeat << ",\n  \"statistic\": \"median\",\n  \"results\": [";
+    << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat << ",\n  \"statistic\": \"median\",\n  \"results\": [";
   bool first = true;
   for (const Row& r : rows) {
     if (r.skipped) continue;
@@ -372,9 +372,9 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   }
 
   if (!a.quiet) {
-    std::printf("scene %s, %ux%u, %u segments, device '%s' (%s), medians of %u frames\n",
-                a.scene.c_str(), a.width, a.height, a.segments, device.c_str(), driver.c_str(),
-                a.repeat);
+    std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), medians of %u frames\n",
+                a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area, device.c_str(),
+                driver.c_str(), a.repeat);
     std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
                 "rasterized", "ms", "triangles/s", "cpu ms");
     for (const Row& r : rows) {
