@@ -38,7 +38,7 @@ void main() {
   for (uint i = gl_GlobalInvocationID.x; i < count; i += TS_CLIP_GROUPS * TS_GROUP_SIZE) {
     uint id = clip_list[i];
     vec4 c[3];
-    triangle_clip_coords(id, c);
+    triangle_clip_coords(find_object(id), id, c);
     atomicAdd(counters[batch.index].clipped, 1u);
     vec4 poly[9];
     vec4 next_poly[9];

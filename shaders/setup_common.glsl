@@ -13,9 +13,9 @@ const uint OUTCOME_CLIP = 5u;          // crosses the near plane or the guard ba
 const uint OUTCOME_SMALL = 6u;         // rasterize one thread per triangle
 const uint OUTCOME_BIG = 7u;           // bin into tiles
 
-// Clip-space position of the corners of triangle instance `id`.
-void triangle_clip_coords(uint id, out vec4 c[3]) {
-  GpuObject o = objects[find_object(id)];
+// Clip-space position of the corners of triangle instance `id` of object slot `slot`.
+void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
+  GpuObject o = objects[slot];
   uvec3 vi = triangle_vertices(o, id);
   mat4 to_clip = frame.view_proj * o.model;
   for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
