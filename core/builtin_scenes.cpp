@@ -26,6 +26,13 @@ std::span<const BuiltinSceneInfo> builtin_scenes() {
   return kScenes;
 }
 
+bool is_builtin_scene(std::string_view name) {
+  for (const auto& s : kScenes) {
+    if (s.name == name) return true;
+  }
+  return false;
+}
+
 Scene make_builtin_scene(std::string_view name) {
   if (name == "spheres") return make_sphere_grid_scene();
   if (name == "metals") return make_metals_scene();

@@ -16,6 +16,9 @@ struct BuiltinSceneInfo {
 /// Names and one-line descriptions of the built-in scenes; the first is the default.
 std::span<const BuiltinSceneInfo> builtin_scenes();
 
+/// True if `name` is a built-in scene.
+bool is_builtin_scene(std::string_view name);
+
 /// Builds the built-in scene `name`. Throws Error naming the known scenes if there is none.
 Scene make_builtin_scene(std::string_view name);
 

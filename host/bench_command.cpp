@@ -14,6 +14,7 @@
 #include "compute/context.h"
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
+#include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
 #include "core/reference_renderer.h"
@@ -184,7 +185,8 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Ben
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
     << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
-    << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat << ",\n  \"statistic\": \"median\",\n  \"results\": [";
+    << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
+    << ",\n  \"statistic\": \"median\",\n  \"results\": [";
   bool first = true;
   for (const Row& r : rows) {
     if (r.skipped) continue;
@@ -232,7 +234,8 @@ std::string bench_help() {
          "medians of GPU timestamps (per pass for the compute path; around the render pass for\n"
          "the hardware baseline; wall time for the CPU reference).\n"
          "\n"
-         "  --scene NAME        grid (default), scatter or huge\n"
+         "  --scene NAME        grid (default), scatter or huge; or a built-in scene of\n"
+         "                      `tessera scenes` (one point: its own object count)\n"
          "  --objects LIST      object counts, e.g. 1,10,100,1000 (default 1,10,100)\n"
          "  --size WxH          image size (default 512x512)\n"
          "  --segments S        sphere slices; S/2 stacks (default 32: 960 triangles)\n"
@@ -294,7 +297,8 @@ bool parse_bench_args(const std::vector<std::string>& args, BenchArgs& out) {
   const std::map<std::string, std::function<void()>> flags = {
       {"--quiet", [&] { out.quiet = true; }}};
   if (!parse_options(args, with_value, flags, "tessera bench")) return false;
-  make_bench_scene(out.scene, 1, out.segments, 1.0f);  // an unknown family fails here, early
+  if (!is_builtin_scene(out.scene))
+    make_bench_scene(out.scene, 1, out.segments, 1.0f);  // unknown: fails early
   for (const std::string* path : {&out.csv, &out.json, &out.chart}) {
     if (!path->empty() && !can_write_file(*path))
       throw Error("cannot write output file '" + *path + "'");
@@ -328,9 +332,15 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   const float aspect = float(a.width) / float(a.height);
 
   std::vector<Row> rows;
-  Progress progress(a.objects.size() * a.backends.size(), !a.quiet);
-  for (uint32_t n : a.objects) {
-    const Scene scene = make_bench_scene(a.scene, n, a.segments, aspect);
+  // A built-in scene has a fixed object count: it is one point of the sweep.
+  const bool builtin = is_builtin_scene(a.scene);
+  const std::vector<uint32_t> counts =
+      builtin ? std::vector<uint32_t>{uint32_t(make_builtin_scene(a.scene).objects.size())}
+              : a.objects;
+  Progress progress(counts.size() * a.backends.size(), !a.quiet);
+  for (uint32_t n : counts) {
+    const Scene scene =
+        builtin ? make_builtin_scene(a.scene) : make_bench_scene(a.scene, n, a.segments, aspect);
     uint64_t triangles = 0;
     for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
     uint64_t pixels_shaded = 0;
@@ -361,7 +371,7 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
 
   // compute / hardware per object count, from the same run.
   std::vector<std::pair<uint32_t, double>> ratios;
-  for (uint32_t n : a.objects) {
+  for (uint32_t n : counts) {
     const Row* c = nullptr;
     const Row* h = nullptr;
     for (const Row& r : rows) {
@@ -372,9 +382,11 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   }
 
   if (!a.quiet) {
-    std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), medians of %u frames\n",
-                a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area, device.c_str(),
-                driver.c_str(), a.repeat);
+    std::printf(
+        "scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), medians of %u "
+        "frames\n",
+        a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area, device.c_str(),
+        driver.c_str(), a.repeat);
     std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
                 "rasterized", "ms", "triangles/s", "cpu ms");
     for (const Row& r : rows) {
