@@ -552,7 +552,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     transfer_to_compute(cmd);
 
     bind(Pipeline::setup);
-    vkCmdDispatch(cmd, div_up(batch.triangle_count, TS_GROUP_SIZE), 1, 1);
+    vkCmdDispatch(cmd, div_up(batch.triangle_count, TS_SETUP_GROUP_SIZE), 1, 1);
     compute_to_compute(cmd);
     mark(Pass::setup);
 

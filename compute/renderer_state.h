@@ -69,7 +69,7 @@ struct Renderer::State {
   // buffer: if its survivors overflow a buffer already at its limit, render() halves it.
   uint32_t max_batch() const {
     uint64_t by_dispatch =
-        uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_GROUP_SIZE;
+        uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * TS_SETUP_GROUP_SIZE;
     uint64_t limit = std::min<uint64_t>(by_dispatch, 1ull << 26);
     if (options.max_batch_triangles) limit = std::min<uint64_t>(limit, options.max_batch_triangles);
     return uint32_t(std::max<uint64_t>(limit, 1));

@@ -13,7 +13,11 @@
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
-layout(local_size_x = TS_GROUP_SIZE) in;
+layout(local_size_x = TS_SETUP_GROUP_SIZE) in;
+
+// Cull counts of the workgroup: a million-object frame culls ~10^9 triangles, and even one
+// atomic per subgroup on the same four addresses limited setup's throughput.
+shared uint group_culled[4];
 
 #include "setup_common.glsl"
 
@@ -72,10 +76,19 @@ void main() {
   RasterTri t;
   uint outcome = local < batch.triangle_count ? classify(slot, id, t) : OUTCOME_NONE;
 
-  COUNT_ONCE(counters[batch.index].culled_nonfinite, outcome == OUTCOME_NONFINITE);
-  COUNT_ONCE(counters[batch.index].culled_frustum, outcome == OUTCOME_OUTSIDE);
-  COUNT_ONCE(counters[batch.index].culled_backface, outcome == OUTCOME_FACING);
-  COUNT_ONCE(counters[batch.index].culled_empty, outcome == OUTCOME_EMPTY);
+  if (gl_LocalInvocationIndex < 4u) group_culled[gl_LocalInvocationIndex] = 0u;
+  barrier();
+  COUNT_ONCE(group_culled[0], outcome == OUTCOME_NONFINITE);
+  COUNT_ONCE(group_culled[1], outcome == OUTCOME_OUTSIDE);
+  COUNT_ONCE(group_culled[2], outcome == OUTCOME_FACING);
+  COUNT_ONCE(group_culled[3], outcome == OUTCOME_EMPTY);
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    if (group_culled[0] > 0u) atomicAdd(counters[batch.index].culled_nonfinite, group_culled[0]);
+    if (group_culled[1] > 0u) atomicAdd(counters[batch.index].culled_frustum, group_culled[1]);
+    if (group_culled[2] > 0u) atomicAdd(counters[batch.index].culled_backface, group_culled[2]);
+    if (group_culled[3] > 0u) atomicAdd(counters[batch.index].culled_empty, group_culled[3]);
+  }
 
   uint clip_slot;
   APPEND_SLOT(counters[batch.index].clip_list, outcome == OUTCOME_CLIP, clip_slot);

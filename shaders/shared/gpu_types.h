@@ -32,6 +32,9 @@ using glm::vec4;
 #define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
 // Threads per workgroup of the one-thread-per-item passes.
 #define TS_GROUP_SIZE 64
+// Workgroup size of the setup pass: its cull counters are summed per workgroup, so larger
+// groups mean fewer atomics on the same few addresses.
+#define TS_SETUP_GROUP_SIZE 256
 // Workgroup size of the prefix-sum pass.
 #define TS_SCAN_GROUP_SIZE 256
 // Workgroups of the clipping pass; its threads loop over the (usually short) clip list.
