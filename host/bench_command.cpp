@@ -46,6 +46,9 @@ struct Row {
   uint64_t triangles_submitted = 0;
   uint64_t triangles_rasterized = 0;  // after culling and clipping (0: not known)
   uint64_t pixels_shaded = 0;
+  uint64_t small_triangles = 0;  // compute: rasterized one thread per triangle
+  uint64_t bin_entries = 0;      // compute: blocks of tiles of binned triangles
+  uint64_t tile_entries = 0;     // compute: (tile, triangle) pairs the per-tile rasterizer tests
   double total_ms = 0.0;  // GPU time (compute, hardware) or wall time (reference)
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
@@ -99,6 +102,9 @@ Row measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
   row.cpu_record_ms = median(cpu);
   row.triangles_submitted = frames.back().triangles_submitted;
   row.triangles_rasterized = frames.back().raster_triangles;
+  row.small_triangles = frames.back().small_triangles;
+  row.bin_entries = frames.back().big_triangles;
+  row.tile_entries = frames.back().tile_entries;
   row.batches = frames.back().batches;
   row.frames = a.repeat;
   if (!frames.back().has_timestamps) row.note = "no timestamps";
