@@ -200,7 +200,9 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Ben
       << ", \"backend\": " << json_string(r.backend)
       << ", \"triangles_submitted\": " << r.triangles_submitted
       << ", \"triangles_rasterized\": " << r.triangles_rasterized
-      << ", \"pixels_shaded\": " << r.pixels_shaded << ", \"total_ms\": " << r.total_ms
+      << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
+      << ", \"tile_entries\": " << r.tile_entries << ", \"pixels_shaded\": " << r.pixels_shaded
+      << ", \"total_ms\": " << r.total_ms
       << ", \"cpu_record_ms\": " << r.cpu_record_ms
       << ", \"triangles_per_s\": " << r.triangles_per_second() << ", \"batches\": " << r.batches
       << ", \"frames\": " << r.frames << ", \"passes_ms\": {";
