@@ -49,7 +49,7 @@ struct Row {
   uint64_t small_triangles = 0;  // compute: rasterized one thread per triangle
   uint64_t bin_entries = 0;      // compute: blocks of tiles of binned triangles
   uint64_t tile_entries = 0;     // compute: (tile, triangle) pairs the per-tile rasterizer tests
-  double total_ms = 0.0;  // GPU time (compute, hardware) or wall time (reference)
+  double total_ms = 0.0;         // GPU time (compute, hardware) or wall time (reference)
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
   uint32_t frames = 0;
@@ -202,8 +202,7 @@ void write_json(const std::string& path, const std::vector<Row>& rows, const Ben
       << ", \"triangles_rasterized\": " << r.triangles_rasterized
       << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
       << ", \"tile_entries\": " << r.tile_entries << ", \"pixels_shaded\": " << r.pixels_shaded
-      << ", \"total_ms\": " << r.total_ms
-      << ", \"cpu_record_ms\": " << r.cpu_record_ms
+      << ", \"total_ms\": " << r.total_ms << ", \"cpu_record_ms\": " << r.cpu_record_ms
       << ", \"triangles_per_s\": " << r.triangles_per_second() << ", \"batches\": " << r.batches
       << ", \"frames\": " << r.frames << ", \"passes_ms\": {";
     for (size_t p = 0; p < kPassCount; ++p)
