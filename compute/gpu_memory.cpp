@@ -74,8 +74,8 @@ void destroy_buffer(const Context& ctx, Buffer& b) {
   b = Buffer{};
 }
 
-StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
-                                  VkFormat format, VkImageUsageFlags extra_usage) {
+StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
+                          VkImageUsageFlags usage, VkImageAspectFlags aspect) {
   StorageImage img;
   img.format = format;
   img.width = width;
@@ -88,21 +88,33 @@ StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t h
   info.arrayLayers = 1;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra_usage;
+  info.usage = usage;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device, img.image, &req);
-  img.memory = allocate(ctx, req, MemoryKind::device);
+  try {
+    img.memory = allocate(ctx, req, MemoryKind::device);
+  } catch (...) {
+    vkDestroyImage(ctx.device, img.image, nullptr);
+    throw;
+  }
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
-
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = img.image;
   view.viewType = VK_IMAGE_VIEW_TYPE_2D;
   view.format = format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  view.subresourceRange = {aspect, 0, 1, 0, 1};
   VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &img.view));
+  return img;
+}
 
+StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,
+                                  VkFormat format, VkImageUsageFlags extra_usage) {
+  StorageImage img =
+      create_image(ctx, width, height, format,
+                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra_usage,
+                   VK_IMAGE_ASPECT_COLOR_BIT);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
     barrier.srcAccessMask = 0;
@@ -112,7 +124,7 @@ StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t h
     barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = img.image;
-    barrier.subresourceRange = view.subresourceRange;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
                          &barrier);

@@ -38,6 +38,10 @@ struct StorageImage {
   uint32_t height = 0;
 };
 
+/// Creates a device-local 2D image of `usage` with a view on `aspect`, in layout UNDEFINED.
+StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
+                          VkImageUsageFlags usage, VkImageAspectFlags aspect);
+
 /// Creates a 2D image usable as a storage image and as a copy and blit source (so a window can
 /// present it), and leaves it in VK_IMAGE_LAYOUT_GENERAL, where it stays.
 StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t height,

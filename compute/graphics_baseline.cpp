@@ -4,75 +4,15 @@
 #include <string>
 
 #include "compute/gpu_memory.h"
+#include "compute/graphics_util.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
-#include "shaders/shader_registry.h"
 
 namespace tessera {
 namespace {
 
 constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-
-struct Attachment {
-  VkImage image = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
-};
-
-Attachment create_attachment(const Context& ctx, uint32_t w, uint32_t h, VkFormat format,
-                             VkImageUsageFlags usage, VkImageAspectFlags aspect) {
-  Attachment a;
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {w, h, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = usage;
-  VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &a.image));
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device, a.image, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = UINT32_MAX;
-  for (uint32_t i = 0; i < ctx.memory_properties.memoryTypeCount; ++i) {
-    if ((req.memoryTypeBits & (1u << i)) && (ctx.memory_properties.memoryTypes[i].propertyFlags &
-                                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-      alloc.memoryTypeIndex = i;
-      break;
-    }
-  }
-  if (alloc.memoryTypeIndex == UINT32_MAX) throw Error("no device-local memory for an attachment");
-  VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &a.memory));
-  VK_CHECK(vkBindImageMemory(ctx.device, a.image, a.memory, 0));
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = a.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = format;
-  view.subresourceRange = {aspect, 0, 1, 0, 1};
-  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &a.view));
-  return a;
-}
-
-void destroy_attachment(const Context& ctx, Attachment& a) {
-  vkDestroyImageView(ctx.device, a.view, nullptr);
-  vkDestroyImage(ctx.device, a.image, nullptr);
-  vkFreeMemory(ctx.device, a.memory, nullptr);
-}
-
-VkShaderModule shader_module(const Context& ctx, const char* name) {
-  std::span<const uint32_t> code = find_shader(name);
-  TESSERA_CHECK(!code.empty());
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = code.size_bytes();
-  info.pCode = code.data();
-  VkShaderModule m = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &m));
-  return m;
-}
 
 VkRenderPass create_render_pass(const Context& ctx) {
   VkAttachmentDescription attachments[2] = {};
@@ -115,75 +55,6 @@ VkRenderPass create_render_pass(const Context& ctx) {
   return pass;
 }
 
-VkPipeline create_pipeline(const Context& ctx, VkRenderPass pass, VkPipelineLayout layout,
-                           uint32_t w, uint32_t h) {
-  VkShaderModule vert = shader_module(ctx, "baseline_ids_vert");
-  VkShaderModule frag = shader_module(ctx, "baseline_ids_frag");
-  VkPipelineShaderStageCreateInfo stages[2] = {};
-  stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vert;
-  stages[0].pName = "main";
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = frag;
-  stages[1].pName = "main";
-  VkVertexInputBindingDescription binding{0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
-  VkPipelineVertexInputStateCreateInfo input{
-      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  input.vertexBindingDescriptionCount = 1;
-  input.pVertexBindingDescriptions = &binding;
-  input.vertexAttributeDescriptionCount = 1;
-  input.pVertexAttributeDescriptions = &attribute;
-  VkPipelineInputAssemblyStateCreateInfo assembly{
-      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkViewport viewport{0, 0, float(w), float(h), 0, 1};
-  VkRect2D scissor{{0, 0}, {w, h}};
-  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  vp.viewportCount = 1;
-  vp.pViewports = &viewport;
-  vp.scissorCount = 1;
-  vp.pScissors = &scissor;
-  VkPipelineRasterizationStateCreateInfo raster{
-      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{
-      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT;
-  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = 2;
-  info.pStages = stages;
-  info.pVertexInputState = &input;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &vp;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &ms;
-  info.pDepthStencilState = &ds;
-  info.pColorBlendState = &cb;
-  info.layout = layout;
-  info.renderPass = pass;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result =
-      vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-  vkDestroyShaderModule(ctx.device, vert, nullptr);
-  vkDestroyShaderModule(ctx.device, frag, nullptr);
-  vk_check(result, "vkCreateGraphicsPipelines(baseline_ids)");
-  return pipeline;
-}
-
 }  // namespace
 
 std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
@@ -191,22 +62,15 @@ std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
                                             uint32_t width, uint32_t height) {
   TESSERA_CHECK(clip_positions.size() % 3 == 0);
   TESSERA_CHECK(width > 0 && height > 0);
-  uint32_t families = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical_device, &families, nullptr);
-  std::vector<VkQueueFamilyProperties> props(families);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical_device, &families, props.data());
-  if (!(props[ctx.queue_family].queueFlags & VK_QUEUE_GRAPHICS_BIT)) {
-    throw Error(std::string("device '") + ctx.properties.deviceName +
-                "' has no graphics queue for the baseline");
-  }
+  require_graphics_queue(ctx);
 
   Attachment ids =
-      create_attachment(ctx, width, height, kIdFormat,
-                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                        VK_IMAGE_ASPECT_COLOR_BIT);
+      create_image(ctx, width, height, kIdFormat,
+                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                   VK_IMAGE_ASPECT_COLOR_BIT);
   Attachment depth =
-      create_attachment(ctx, width, height, kDepthFormat,
-                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+      create_image(ctx, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                   VK_IMAGE_ASPECT_DEPTH_BIT);
   VkRenderPass pass = create_render_pass(ctx);
   VkImageView views[2] = {ids.view, depth.view};
   VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -221,7 +85,10 @@ std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
   VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &layout));
-  VkPipeline pipeline = create_pipeline(ctx, pass, layout, width, height);
+  const GraphicsPipelineDesc desc{
+      "baseline_ids_vert", "baseline_ids_frag", true,
+      VK_CULL_MODE_NONE,   VK_COMPARE_OP_LESS,  VK_COLOR_COMPONENT_R_BIT};
+  VkPipeline pipeline = create_graphics_pipeline(ctx, pass, layout, desc);
 
   const VkDeviceSize vertex_bytes =
       std::max<VkDeviceSize>(clip_positions.size() * sizeof(glm::vec4), 16);
@@ -246,6 +113,10 @@ std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
     begin.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    const VkViewport viewport{0, 0, float(width), float(height), 0, 1};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertices.buffer, &offset);
     vkCmdDraw(cmd, uint32_t(clip_positions.size()), 1, 0, 0);
@@ -267,8 +138,8 @@ std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
   vkDestroyPipelineLayout(ctx.device, layout, nullptr);
   vkDestroyFramebuffer(ctx.device, framebuffer, nullptr);
   vkDestroyRenderPass(ctx.device, pass, nullptr);
-  destroy_attachment(ctx, depth);
-  destroy_attachment(ctx, ids);
+  destroy_image(ctx, depth);
+  destroy_image(ctx, ids);
   return out;
 }
 

@@ -4,26 +4,15 @@
 #include <chrono>
 #include <string>
 
+#include "compute/graphics_util.h"
 #include "compute/renderer_state.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
-#include "shaders/shader_registry.h"
 
 namespace tessera {
 namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-
-VkShaderModule shader_module(const Context& ctx, const char* name) {
-  std::span<const uint32_t> code = find_shader(name);
-  TESSERA_CHECK(!code.empty());
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = code.size_bytes();
-  info.pCode = code.data();
-  VkShaderModule m = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &m));
-  return m;
-}
 
 VkRenderPass create_pass(const Context& ctx) {
   VkAttachmentDescription a[2] = {};
@@ -76,85 +65,10 @@ VkRenderPass create_pass(const Context& ctx) {
   return pass;
 }
 
-VkPipeline create_pipeline(const Context& ctx, VkRenderPass pass, VkPipelineLayout layout,
-                           CullMode cull) {
-  VkShaderModule vert = shader_module(ctx, "baseline_shade_vert");
-  VkShaderModule frag = shader_module(ctx, "baseline_shade_frag");
-  VkPipelineShaderStageCreateInfo stages[2] = {};
-  stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vert;
-  stages[0].pName = "main";
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = frag;
-  stages[1].pName = "main";
-  VkPipelineVertexInputStateCreateInfo input{
-      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo assembly{
-      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  vp.viewportCount = 1;
-  vp.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{
-      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  // Vulkan's facing uses the y-down framebuffer's area with a minus sign, so the world's
-  // counter-clockwise front faces stay counter-clockwise here.
-  raster.cullMode = cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
-                    : cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
-                                              : VK_CULL_MODE_NONE;
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{
-      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_GREATER;  // reverse depth: nearer is larger
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                         VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
-  const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dyn.dynamicStateCount = 2;
-  dyn.pDynamicStates = dynamic;
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = 2;
-  info.pStages = stages;
-  info.pVertexInputState = &input;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &vp;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &ms;
-  info.pDepthStencilState = &ds;
-  info.pColorBlendState = &cb;
-  info.pDynamicState = &dyn;
-  info.layout = layout;
-  info.renderPass = pass;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result =
-      vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-  vkDestroyShaderModule(ctx.device, vert, nullptr);
-  vkDestroyShaderModule(ctx.device, frag, nullptr);
-  vk_check(result, "vkCreateGraphicsPipelines(baseline_shade)");
-  return pipeline;
-}
-
 void destroy_size_dependent(Renderer::State& s) {
-  const VkDevice d = s.ctx.device;
-  if (s.baseline_framebuffer) vkDestroyFramebuffer(d, s.baseline_framebuffer, nullptr);
-  if (s.depth_view) vkDestroyImageView(d, s.depth_view, nullptr);
-  if (s.depth_image) vkDestroyImage(d, s.depth_image, nullptr);
-  if (s.depth_memory) vkFreeMemory(d, s.depth_memory, nullptr);
+  if (s.baseline_framebuffer) vkDestroyFramebuffer(s.ctx.device, s.baseline_framebuffer, nullptr);
   s.baseline_framebuffer = VK_NULL_HANDLE;
-  s.depth_view = VK_NULL_HANDLE;
-  s.depth_image = VK_NULL_HANDLE;
-  s.depth_memory = VK_NULL_HANDLE;
+  destroy_image(s.ctx, s.depth);
   s.baseline_width = s.baseline_height = 0;
 }
 
@@ -165,39 +79,9 @@ void ensure_targets(Renderer::State& s) {
   if (s.baseline_width == s.width && s.baseline_height == s.height && s.baseline_framebuffer)
     return;
   destroy_size_dependent(s);
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = kDepthFormat;
-  info.extent = {s.width, s.height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-  VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &s.depth_image));
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(ctx.device, s.depth_image, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = UINT32_MAX;
-  for (uint32_t i = 0;
-       i < ctx.memory_properties.memoryTypeCount && alloc.memoryTypeIndex == UINT32_MAX; ++i) {
-    if ((req.memoryTypeBits & (1u << i)) && (ctx.memory_properties.memoryTypes[i].propertyFlags &
-                                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-      alloc.memoryTypeIndex = i;
-    }
-  }
-  if (alloc.memoryTypeIndex == UINT32_MAX)
-    throw Error("no device-local memory for the baseline's depth image");
-  VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &s.depth_memory));
-  VK_CHECK(vkBindImageMemory(ctx.device, s.depth_image, s.depth_memory, 0));
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = s.depth_image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = kDepthFormat;
-  view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &s.depth_view));
-  VkImageView views[2] = {s.hdr.view, s.depth_view};
+  s.depth = create_image(ctx, s.width, s.height, kDepthFormat,
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  VkImageView views[2] = {s.hdr.view, s.depth.view};
   VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fb.renderPass = s.baseline_pass;
   fb.attachmentCount = 2;
@@ -228,22 +112,26 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
   State& s = *s_;
   Context& ctx = s.ctx;
   if (!s.has_scene) throw Error("render_hardware() was called before set_scene()");
-  uint32_t family_count = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical_device, &family_count, nullptr);
-  std::vector<VkQueueFamilyProperties> families(family_count);
-  vkGetPhysicalDeviceQueueFamilyProperties(ctx.physical_device, &family_count, families.data());
-  if (!(families[ctx.queue_family].queueFlags & VK_QUEUE_GRAPHICS_BIT)) {
-    throw Error(std::string("device '") + ctx.properties.deviceName +
-                "' has no graphics queue for the baseline");
-  }
+  require_graphics_queue(ctx);
   const uint32_t old_width = s.width, old_height = s.height;
   ensure_frame_resources(s, settings);
   if (s.width != old_width || s.height != old_height) destroy_size_dependent(s);
   init_capacities(s);
   ensure_scratch_buffers(s, 1);
   if (!s.baseline_pass) s.baseline_pass = create_pass(ctx);
-  if (!s.baseline_pipeline)
-    s.baseline_pipeline = create_pipeline(ctx, s.baseline_pass, s.pipelines.layout, s.options.cull);
+  if (!s.baseline_pipeline) {
+    const GraphicsPipelineDesc desc{
+        "baseline_shade_vert",
+        "baseline_shade_frag",
+        false,
+        VkCullModeFlags(s.options.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
+                        : s.options.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
+                                                            : VK_CULL_MODE_NONE),
+        VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
+        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+            VK_COLOR_COMPONENT_A_BIT};
+    s.baseline_pipeline = create_graphics_pipeline(ctx, s.baseline_pass, s.pipelines.layout, desc);
+  }
   ensure_targets(s);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
   if (timestamps && s.query_capacity < 3) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "compute/gpu_memory.h"
+#include "compute/graphics_util.h"
 #include "compute/pipelines.h"
 #include "compute/renderer.h"
 #include "compute/scene_upload.h"
@@ -43,9 +44,7 @@ struct Renderer::State {
   // The graphics baseline (hardware_baseline.cpp), created on first use.
   VkRenderPass baseline_pass = VK_NULL_HANDLE;
   VkPipeline baseline_pipeline = VK_NULL_HANDLE;
-  VkImage depth_image = VK_NULL_HANDLE;
-  VkDeviceMemory depth_memory = VK_NULL_HANDLE;
-  VkImageView depth_view = VK_NULL_HANDLE;
+  Attachment depth;
   VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
   uint32_t baseline_width = 0, baseline_height = 0;
   VkQueryPool queries = VK_NULL_HANDLE;
