@@ -8,6 +8,7 @@
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "shaders/shader_registry.h"
+#include "shaders/shared/gpu_types.h"
 
 namespace tessera {
 namespace {
@@ -48,6 +49,9 @@ VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPip
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = frag;
   stages[1].pName = "main";
+  const VkSpecializationMapEntry brdf_entry{TS_SPEC_BRDF, 0, sizeof(uint32_t)};
+  const VkSpecializationInfo spec{1, &brdf_entry, sizeof(uint32_t), &desc.brdf};
+  stages[1].pSpecializationInfo = &spec;
   const VkVertexInputBindingDescription binding{0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX};
   const VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
   VkPipelineVertexInputStateCreateInfo input{

@@ -21,6 +21,7 @@ struct GraphicsPipelineDesc {
   VkCullModeFlags cull;       // front faces wind counter-clockwise
   VkCompareOp depth_compare;  // depth test and write on
   VkColorComponentFlags color_mask;
+  uint32_t brdf = 0;  // specialization constant TS_SPEC_BRDF of the fragment shader
 };
 
 /// A triangle-list pipeline for `pass`'s subpass 0, one sample, dynamic viewport and scissor.

@@ -13,6 +13,9 @@ namespace tessera {
 namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+// Brdf values are passed as the TS_SPEC_BRDF specialization constant.
+static_assert(uint32_t(Brdf::classic) == TS_BRDF_CLASSIC && uint32_t(Brdf::filament) == TS_BRDF_FILAMENT &&
+              uint32_t(Brdf::blinn_phong) == TS_BRDF_BLINN_PHONG);
 
 VkRenderPass create_pass(const Context& ctx) {
   VkAttachmentDescription a[2] = {};
@@ -102,9 +105,11 @@ uint32_t div_up(uint32_t a, uint32_t b) {
 
 void destroy_hardware_baseline(Renderer::State& s) {
   destroy_size_dependent(s);
-  if (s.baseline_pipeline) vkDestroyPipeline(s.ctx.device, s.baseline_pipeline, nullptr);
+  for (VkPipeline& p : s.baseline_pipelines) {
+    if (p) vkDestroyPipeline(s.ctx.device, p, nullptr);
+    p = VK_NULL_HANDLE;
+  }
   if (s.baseline_pass) vkDestroyRenderPass(s.ctx.device, s.baseline_pass, nullptr);
-  s.baseline_pipeline = VK_NULL_HANDLE;
   s.baseline_pass = VK_NULL_HANDLE;
 }
 
@@ -119,7 +124,8 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
   init_capacities(s);
   ensure_scratch_buffers(s, 1);
   if (!s.baseline_pass) s.baseline_pass = create_pass(ctx);
-  if (!s.baseline_pipeline) {
+  VkPipeline& pipeline = s.baseline_pipelines[size_t(settings.brdf)];
+  if (!pipeline) {
     const GraphicsPipelineDesc desc{
         "baseline_shade_vert",
         "baseline_shade_frag",
@@ -129,8 +135,9 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
                                                             : VK_CULL_MODE_NONE),
         VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-            VK_COLOR_COMPONENT_A_BIT};
-    s.baseline_pipeline = create_graphics_pipeline(ctx, s.baseline_pass, s.pipelines.layout, desc);
+            VK_COLOR_COMPONENT_A_BIT,
+        uint32_t(settings.brdf)};
+    pipeline = create_graphics_pipeline(ctx, s.baseline_pass, s.pipelines.layout, desc);
   }
   ensure_targets(s);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
@@ -187,7 +194,7 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
     begin.clearValueCount = 2;
     begin.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.baseline_pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.pipelines.layout, 0, 1, &s.set,
                             0, nullptr);
     const VkViewport viewport{0, 0, float(s.width), float(s.height), 0, 1};

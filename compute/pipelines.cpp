@@ -1,5 +1,6 @@
 #include "compute/pipelines.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,14 @@ VkDescriptorType binding_type(uint32_t binding) {
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
+// Values of the specialization constants (TS_SPEC_*); a shader ignores those it does not declare.
+struct Specialization {
+  VkBool32 debug_coverage;
+  uint32_t brdf;
+};
+
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
-                                   std::string_view shader, bool debug_coverage) {
+                                   std::string_view shader, Specialization values) {
   std::span<const uint32_t> code = find_shader(shader);
   TESSERA_CHECK(!code.empty());
   VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -29,9 +36,10 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   VkShaderModule module = VK_NULL_HANDLE;
   VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
 
-  const VkBool32 coverage = debug_coverage ? VK_TRUE : VK_FALSE;
-  VkSpecializationMapEntry entry{TS_SPEC_DEBUG_COVERAGE, 0, sizeof(VkBool32)};
-  VkSpecializationInfo spec{1, &entry, sizeof(coverage), &coverage};
+  const VkSpecializationMapEntry entries[] = {
+      {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},
+      {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)}};
+  VkSpecializationInfo spec{2, entries, sizeof(values), &values};
 
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -72,23 +80,26 @@ Pipelines create_pipelines(const Context& ctx) {
   struct Variant {
     Pipeline id;
     const char* shader;
-    bool coverage;
+    Specialization values;
   };
   const Variant variants[] = {
-      {Pipeline::setup, "setup", false},
-      {Pipeline::clip, "clip", false},
-      {Pipeline::bin_count, "count", false},
-      {Pipeline::scan, "scan", false},
-      {Pipeline::fill, "fill", false},
-      {Pipeline::raster_small, "raster_small", false},
-      {Pipeline::raster_tiles, "raster_tiles", false},
-      {Pipeline::raster_small_coverage, "raster_small", true},
-      {Pipeline::raster_tiles_coverage, "raster_tiles", true},
-      {Pipeline::shade, "shade", false},
-      {Pipeline::resolve, "resolve", false},
+      {Pipeline::setup, "setup", {VK_FALSE, 0}},
+      {Pipeline::clip, "clip", {VK_FALSE, 0}},
+      {Pipeline::bin_count, "count", {VK_FALSE, 0}},
+      {Pipeline::scan, "scan", {VK_FALSE, 0}},
+      {Pipeline::fill, "fill", {VK_FALSE, 0}},
+      {Pipeline::raster_small, "raster_small", {VK_FALSE, 0}},
+      {Pipeline::raster_tiles, "raster_tiles", {VK_FALSE, 0}},
+      {Pipeline::raster_small_coverage, "raster_small", {VK_TRUE, 0}},
+      {Pipeline::raster_tiles_coverage, "raster_tiles", {VK_TRUE, 0}},
+      {Pipeline::shade_classic, "shade", {VK_FALSE, TS_BRDF_CLASSIC}},
+      {Pipeline::shade_filament, "shade", {VK_FALSE, TS_BRDF_FILAMENT}},
+      {Pipeline::shade_blinn_phong, "shade", {VK_FALSE, TS_BRDF_BLINN_PHONG}},
+      {Pipeline::resolve, "resolve", {VK_FALSE, 0}},
   };
+
   for (const Variant& v : variants) {
-    p.pipelines[size_t(v.id)] = create_compute_pipeline(ctx, p.layout, v.shader, v.coverage);
+    p.pipelines[size_t(v.id)] = create_compute_pipeline(ctx, p.layout, v.shader, v.values);
   }
   return p;
 }

@@ -61,6 +61,15 @@ uint32_t tonemap_id(ToneMap t) {
   return TS_TONEMAP_ACES;
 }
 
+Pipeline shade_pipeline(Brdf brdf) {
+  switch (brdf) {
+    case Brdf::classic: return Pipeline::shade_classic;
+    case Brdf::filament: return Pipeline::shade_filament;
+    case Brdf::blinn_phong: return Pipeline::shade_blinn_phong;
+  }
+  return Pipeline::shade_classic;
+}
+
 uint32_t view_id(View v) {
   switch (v) {
     case View::shaded:
@@ -366,7 +375,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
     const auto start = std::chrono::steady_clock::now();
     submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-      record_frame(cmd, batches, timestamps, query_passes);
+      record_frame(cmd, batches, timestamps, query_passes, settings.brdf);
       stats.cpu_record_submit_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
@@ -511,7 +520,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
 }
 
 void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
-                            std::vector<Pass>& query_passes) {
+                            std::vector<Pass>& query_passes, Brdf settings_brdf) {
   State& s = *s_;
   const Pipelines& p = s.pipelines;
   query_passes.clear();
@@ -590,7 +599,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     mark(Pass::raster_small);
   }
 
-  bind(Pipeline::shade);
+  bind(shade_pipeline(settings_brdf));
   vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
   compute_to_compute(cmd);
   mark(Pass::shade);

@@ -43,6 +43,7 @@ struct FrameSettings {
   float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;  // debug views are written as they are, without exposure or curve
+  Brdf brdf = Brdf::classic;
 };
 
 enum class Pass {
@@ -133,7 +134,7 @@ class Renderer {
   void update_descriptors();
   void write_frame_constants(const FrameSettings& settings);
   void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
-                    std::vector<Pass>& query_passes);
+                    std::vector<Pass>& query_passes, Brdf brdf);
 
   std::unique_ptr<State> s_;
 };

@@ -3,6 +3,7 @@
 // hardware_baseline.cpp (the graphics-pipeline baseline). Not part of the public interface.
 
 #include <algorithm>
+#include <array>
 
 #include "compute/gpu_memory.h"
 #include "compute/graphics_util.h"
@@ -43,7 +44,7 @@ struct Renderer::State {
 
   // The graphics baseline (hardware_baseline.cpp), created on first use.
   VkRenderPass baseline_pass = VK_NULL_HANDLE;
-  VkPipeline baseline_pipeline = VK_NULL_HANDLE;
+  std::array<VkPipeline, 3> baseline_pipelines{};  // per Brdf variant
   Attachment depth;
   VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
   uint32_t baseline_width = 0, baseline_height = 0;

@@ -1,5 +1,7 @@
 #include "compute/scene_upload.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/check.h"
@@ -47,12 +49,20 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   for (const Light& l : scene.lights) {
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
-    glm::vec3 dir =
-        l.kind == LightKind::directional ? glm::normalize(l.direction) : glm::vec3(0.0f);
+    const glm::vec3 dir = l.kind == LightKind::point ? glm::vec3(0.0f) : glm::normalize(l.direction);
     g.direction = glm::vec4(dir, 0.0f);
     g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
-    g.kind = glm::uvec4(l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL : TS_LIGHT_POINT, 0,
-                        0, 0);
+    const float inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f;
+    g.falloff = glm::vec4(inv_range4, l.attenuation);
+    // Spot cone as saturate(cos * scale + offset): 1 inside the inner cone, 0 outside the outer.
+    // Equal angles would divide by zero: 1e-4 makes the edge a hard step instead.
+    const float cos_inner = std::cos(l.inner_angle), cos_outer = std::cos(l.outer_angle);
+    const float scale = 1.0f / std::max(cos_inner - cos_outer, 1e-4f);
+    g.cone = glm::vec4(scale, -cos_outer * scale, 0.0f, 0.0f);
+    const uint32_t kind = l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL
+                          : l.kind == LightKind::spot      ? TS_LIGHT_SPOT
+                                                           : TS_LIGHT_POINT;
+    g.kind = glm::uvec4(kind, l.falloff == Falloff::classic ? TS_FALLOFF_CLASSIC : TS_FALLOFF_INVERSE_SQUARE, 0, 0);
     out.lights.push_back(g);
   }
   return out;

@@ -29,6 +29,8 @@ constexpr uint32_t kMaxSide = 16384;
 constexpr double kMinPerceptualRoughness = 0.045;
 constexpr double kMinNoV = 1e-4;
 constexpr double kMinLightDistanceSquared = 1e-4;
+constexpr double kMinAttenuationDenominator = 1e-4;
+constexpr double kMinSpotCosineGap = 1e-4;
 constexpr double kMaxHalf = 65504.0;  // the HDR output is fp16
 
 struct CameraModel {
@@ -287,24 +289,76 @@ dvec3 schlick_fresnel(double cos_theta, dvec3 f0) {
   return f0 + (dvec3(1.0) - f0) * std::pow(1.0 - cos_theta, 5.0);
 }
 
-// Reflected radiance towards v from light arriving along l with radiance `incident`:
-// (Lambert diffuse weighted by (1 - F)(1 - metallic) + D G F / (4 N.L N.V)) * incident * N.L.
-dvec3 reflected(dvec3 n, dvec3 v, dvec3 l, double n_dot_v, const Material& m, dvec3 incident) {
+// Height-correlated Smith masking-shadowing for GGX (Heitz 2014), as G / (4 N.L N.V).
+double smith_ggx_correlated_visibility(double n_dot_v, double n_dot_l, double alpha) {
+  const double a2 = alpha * alpha;
+  const double lambda_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+  const double lambda_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+  return 0.5 / (lambda_v + lambda_l);
+}
+
+// Normalized Blinn-Phong lobe (n + 8) / (8 pi) cos^n, n = 2 / alpha^2 - 2 (Walter et al. 2007).
+double blinn_phong_lobe(double n_dot_h, double alpha) {
+  const double n = 2.0 / (alpha * alpha) - 2.0;
+  return (n + 8.0) / (8.0 * kPi) * std::pow(n_dot_h, n);
+}
+
+}  // namespace
+
+dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return dvec3(0.0);
+  const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
   const dvec3 half_vector = v + l;
   const double length2 = glm::dot(half_vector, half_vector);
   const dvec3 h = length2 > 0.0 ? half_vector / std::sqrt(length2) : n;
   const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
   const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
+  const double alpha = roughness * roughness;
   const dvec3 base(m.base_color);
   const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
+  const dvec3 diffuse_color = (1.0 - metallic) * base;
+  const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
+  if (variant == Brdf::blinn_phong) return diffuse_color / kPi + f0 * blinn_phong_lobe(n_dot_h, alpha);
   const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
-  const double d = ggx_distribution(std::clamp(glm::dot(n, h), 0.0, 1.0), roughness * roughness);
+  const double d = ggx_distribution(n_dot_h, alpha);
+  if (variant == Brdf::filament) {
+    return diffuse_color / kPi + d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel;
+  }
   const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
-  const dvec3 specular = d * g * fresnel / (4.0 * n_dot_l * n_dot_v);
-  const dvec3 diffuse = (dvec3(1.0) - fresnel) * (1.0 - metallic) * base / kPi;
-  return (diffuse + specular) * incident * n_dot_l;
+  return (dvec3(1.0) - fresnel) * diffuse_color / kPi + d * g * fresnel / (4.0 * n_dot_l * n_dot_v);
+}
+
+namespace {
+
+// Reflected radiance towards v from light arriving along l with radiance `incident`.
+dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec3 incident) {
+  const double n_dot_l = glm::dot(n, l);
+  if (n_dot_l <= 0.0) return dvec3(0.0);
+  return reference_brdf(variant, n, v, l, m) * incident * n_dot_l;
+}
+
+// Incident radiance scale of a point or spot light at squared distance d2, arriving along l.
+double attenuation(const Light& light, double d2, dvec3 l) {
+  double a;
+  if (light.falloff == Falloff::classic) {
+    const glm::dvec3 k(light.attenuation);
+    a = 1.0 / std::max(k.x + k.y * std::sqrt(d2) + k.z * d2, kMinAttenuationDenominator);
+  } else {
+    a = 1.0 / std::max(d2, kMinLightDistanceSquared);  // inverse square
+    if (light.range > 0.0f) {
+      const double r = light.range;
+      const double fade = std::clamp(1.0 - (d2 * d2) / (r * r * r * r), 0.0, 1.0);
+      a *= fade * fade;  // Karis 2013 window
+    }
+  }
+  if (light.kind == LightKind::spot) {
+    const double cos_inner = std::cos(double(light.inner_angle)), cos_outer = std::cos(double(light.outer_angle));
+    const double c = glm::dot(glm::normalize(dvec3(light.direction)), -l);
+    const double t = std::clamp((c - cos_outer) / std::max(cos_inner - cos_outer, kMinSpotCosineGap), 0.0, 1.0);
+    a *= t * t;
+  }
+  return a;
 }
 
 struct Surface {
@@ -342,9 +396,8 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
   return out;
 }
 
-dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
-                  const std::vector<Instance>& instances, uint64_t id, uint32_t x, uint32_t y,
-                  View view) {
+dvec3 shade_pixel(const Scene& scene, const CameraModel& cam, const std::vector<Instance>& instances,
+                  uint64_t id, uint32_t x, uint32_t y, View view, Brdf brdf) {
   const Instance& inst = instance_of(instances, id);
   const dvec3 dir = camera_ray(cam, x, y);
   const Surface s = surface_at(inst, id, cam.position, dir);
@@ -362,7 +415,6 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
   }
   const Material& m = *inst.material;
   const dvec3 v = -dir;
-  const double n_dot_v = std::max(glm::dot(s.normal, v), kMinNoV);
   dvec3 color = dvec3(scene.ambient) * dvec3(m.base_color);
   for (const Light& light : scene.lights) {
     dvec3 l, incident;
@@ -374,9 +426,9 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
       const dvec3 to_light = dvec3(light.position) - s.position;
       const double d2 = glm::dot(to_light, to_light);
       l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
-      incident = power / std::max(d2, kMinLightDistanceSquared);  // inverse-square falloff
+      incident = power * attenuation(light, d2, l);
     }
-    color += reflected(s.normal, v, l, n_dot_v, m, incident);
+    color += reflected(brdf, s.normal, v, l, m, incident);
   }
   return glm::min(color, dvec3(kMaxHalf));
 }
@@ -456,7 +508,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
         const size_t i = size_t(y) * w + x;
         const dvec3 c = f.owner[i] == kNoTriangle
                             ? dvec3(scene.background)
-                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view);
+                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view, settings.brdf);
         f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {

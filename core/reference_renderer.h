@@ -26,6 +26,7 @@ struct ReferenceSettings {
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;
   CullMode cull = CullMode::back;
+  Brdf brdf = Brdf::classic;
   unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread
 };
 
@@ -43,6 +44,10 @@ struct ReferenceFrame {
 /// Renders `scene` (which must pass validate_scene; throws Error otherwise) at the settings'
 /// size. Sizes follow the compute path's limits: 1 to 16384 per side (throws Error otherwise).
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings);
+
+/// The BRDF f(l, v) of `variant` for unit normal n, view v and light l (without the cosine),
+/// with the shading model's guards (roughness >= 0.045, N.V >= 1e-4); 0 for N.L <= 0.
+glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, const Material& m);
 
 /// Geometry of one triangle instance as the reference sees it, for explaining differences:
 /// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge

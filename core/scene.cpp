@@ -124,8 +124,15 @@ void validate_scene(const Scene& scene) {
     require(finite(light.position) && finite(light.direction) && finite(light.color) &&
                 finite(light.intensity),
             name + " has a NaN or infinite value");
-    require(light.kind != LightKind::directional || glm::length(light.direction) > 0.0f,
-            name + " is directional with a zero direction");
+    require(light.kind == LightKind::point || glm::length(light.direction) > 0.0f,
+            name + " has a zero direction");
+    require(finite(light.range) && light.range >= 0.0f, name + " has a negative or non-finite range");
+    require(finite(light.attenuation) && light.attenuation.x >= 0.0f && light.attenuation.y >= 0.0f &&
+                light.attenuation.z >= 0.0f && glm::length(light.attenuation) > 0.0f,
+            name + " needs attenuation Kc, Kl, Kq >= 0 and not all zero");
+    require(finite(light.inner_angle) && finite(light.outer_angle) && light.inner_angle >= 0.0f &&
+                light.inner_angle <= light.outer_angle && light.outer_angle < 1.5707963f,
+            name + " needs spot angles with 0 <= inner <= outer < pi/2");
   }
 }
 

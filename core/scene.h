@@ -35,14 +35,31 @@ struct Material {
   float roughness = 0.5f;
 };
 
-enum class LightKind { point, directional };
+enum class LightKind { point, directional, spot };
 
+/// How a point or spot light's intensity falls with distance d.
+enum class Falloff {
+  /// Physically based: intensity / d^2, faded to zero at `range` by
+  /// saturate(1 - (d / range)^4)^2 (Karis 2013); no fade when range is 0.
+  inverse_square,
+  /// The classic model: intensity / (Kc + Kl d + Kq d^2), with `attenuation` = (Kc, Kl, Kq).
+  classic,
+};
+
+/// Units: colour is linear RGB and dimensionless; intensity is radiant intensity (W/sr) for
+/// point and spot lights, so a surface 1 m away facing the light receives `intensity` W/m^2,
+/// and irradiance (W/m^2) for directional lights.
 struct Light {
   LightKind kind = LightKind::point;
-  glm::vec3 position{0.0f};                // point lights
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: the way light travels
+  glm::vec3 position{0.0f};                // point and spot lights
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional and spot lights: the way light travels
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;  // point: W/sr (radiance scale at 1 m); directional: W/m^2
+  float intensity = 1.0f;
+  Falloff falloff = Falloff::inverse_square;
+  float range = 0.0f;                      // inverse-square fade radius in m (0: none)
+  glm::vec3 attenuation{1.0f, 0.0f, 0.0f}; // classic falloff: Kc, Kl, Kq (>= 0, not all 0)
+  float inner_angle = 0.35f;               // spot: half angles in radians, 0 <= inner <= outer
+  float outer_angle = 0.5f;                //       < pi/2; full intensity inside the inner cone
 };
 
 /// One placed instance of a mesh; many objects may share a mesh and a material.
@@ -53,6 +70,13 @@ struct Object {
 };
 
 enum class ToneMap { aces, reinhard, clamp };
+
+/// The BRDF of the shading model (docs/shading.md).
+enum class Brdf {
+  classic,      // GGX, Smith with Schlick-GGX k = (r+1)^2/8, Schlick F on V.H, (1-F)(1-m) Lambert
+  filament,     // GGX, height-correlated Smith visibility, Schlick F on V.H, (1-m) Lambert
+  blinn_phong,  // normalized Blinn-Phong, the non-physical baseline
+};
 
 /// Which triangles are culled by their facing. Front faces wind counter-clockwise as seen.
 enum class CullMode { back, front, none };

@@ -101,6 +101,8 @@ std::string render_help() {
          "                      reference renderer in double precision\n"
          "  --exposure EV       exposure in stops, applied before tone mapping (default 0)\n"
          "  --tonemap OP        aces (default), reinhard or clamp\n"
+         "  --brdf B            classic (default: GGX, Schlick-GGX Smith, Schlick Fresnel),\n"
+         "                      filament (height-correlated Smith) or blinn-phong\n"
          "  --view V            shaded (default), or a debug view: normal, uv, triangle\n"
          "                      (a colour per triangle) or object (a colour per object)\n"
          "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
@@ -155,6 +157,13 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
            throw Error("--view expects shaded, normal, uv, triangle or object, got '" + v + "'");
          }
          out.view = it->second;
+       }},
+      {"--brdf",
+       [&](const std::string& v) {
+         if (v == "classic") out.brdf = Brdf::classic;
+         else if (v == "filament") out.brdf = Brdf::filament;
+         else if (v == "blinn-phong") out.brdf = Brdf::blinn_phong;
+         else throw Error("--brdf expects classic, filament or blinn-phong, got '" + v + "'");
        }},
       {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
   };

@@ -22,6 +22,7 @@ struct RenderArgs {
   float exposure_ev = 0.0f;
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;
+  Brdf brdf = Brdf::classic;
   uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;

@@ -34,6 +34,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   settings.exposure_ev = args.exposure_ev;
   settings.tonemap = args.tonemap;
   settings.view = args.view;
+  settings.brdf = args.brdf;
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < args.repeat; ++i) {
@@ -80,6 +81,7 @@ int run_render(const RenderArgs& args) {
   settings.exposure_ev = args.exposure_ev;
   settings.tonemap = args.tonemap;
   settings.view = args.view;
+  settings.brdf = args.brdf;
 
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));

@@ -25,9 +25,25 @@ vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
       float d2 = dot(to_light, to_light);
       // A light exactly on the surface has no direction: treat it as arriving along N.
       L = d2 > 0.0 ? to_light * inversesqrt(d2) : N;
-      radiance = light.radiance.rgb / max(d2, MIN_LIGHT_DISTANCE_SQUARED);
+      float attenuation;
+      if (light.kind.y == TS_FALLOFF_CLASSIC) {
+        // A classic light with Kc = 0 would divide by zero at distance 0.
+        float d = sqrt(d2);
+        attenuation = 1.0 / max(light.falloff.y + light.falloff.z * d + light.falloff.w * d2, MIN_ATTENUATION_DENOMINATOR);
+      } else {
+        attenuation = 1.0 / max(d2, MIN_LIGHT_DISTANCE_SQUARED);
+        // Smooth fade to zero at the light's range (Karis 2013): saturate(1 - (d/r)^4)^2.
+        float fade = clamp(1.0 - d2 * d2 * light.falloff.x, 0.0, 1.0);
+        attenuation *= fade * fade;
+      }
+      if (light.kind.x == TS_LIGHT_SPOT) {
+        // Smooth step between the outer and inner cones, squared as in Filament.
+        float spot = clamp(dot(light.direction.xyz, -L) * light.cone.x + light.cone.y, 0.0, 1.0);
+        attenuation *= spot * spot;
+      }
+      radiance = light.radiance.rgb * attenuation;
     }
-    color += cook_torrance(N, V, L, NoV, base_color, metallic, roughness, radiance);
+    color += surface_response(N, V, L, NoV, base_color, metallic, roughness, radiance);
   }
   return color;
 }

@@ -13,12 +13,13 @@ namespace tessera::test {
 
 AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
                                       uint32_t height, const std::string& name,
-                                      RendererOptions options) {
+                                      RendererOptions options, Brdf brdf) {
   Renderer renderer(ctx, options);
   renderer.set_scene(scene);
   FrameSettings fs;
   fs.width = width;
   fs.height = height;
+  fs.brdf = brdf;
   renderer.render(fs);
   const ImageF hdr = renderer.read_hdr();
   const Image8 ldr = renderer.read_ldr();
@@ -28,6 +29,7 @@ AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t
   rs.width = width;
   rs.height = height;
   rs.cull = options.cull;
+  rs.brdf = brdf;
   const ReferenceFrame ref = render_reference(scene, rs);
 
   AccuracyReport r;

@@ -41,7 +41,8 @@ struct AccuracyReport {
 /// not met.
 AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
                                       uint32_t height, const std::string& name,
-                                      RendererOptions options = {});
+                                      RendererOptions options = {},
+                                      Brdf brdf = Brdf::classic);
 
 /// The bars: no unexplained ownership mismatch, finite HDR, 8-bit output within 1 level on at
 /// least 99.99 % of pixels and within kMaxLevelError on all.

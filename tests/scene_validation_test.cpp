@@ -107,7 +107,7 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   Scene scene = make_sphere_grid_scene();
   UploadStats first = renderer.set_scene(scene);
   uint64_t all_bytes =
-      scene.objects.size() * 160 + scene.materials.size() * 32 + scene.lights.size() * 64;
+      scene.objects.size() * 160 + scene.materials.size() * 32 + scene.lights.size() * 96;
   for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 32 + m.indices.size() * 4;
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
@@ -118,7 +118,7 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   EXPECT_EQ(one_material.buffers_created, 0u);
 
   scene.lights[2].intensity = 10.0f;
-  EXPECT_EQ(renderer.set_scene(scene).bytes, 64u) << "one GpuLight";
+  EXPECT_EQ(renderer.set_scene(scene).bytes, 96u) << "one GpuLight";
 
   FrameSettings settings;
   settings.width = settings.height = 64;

@@ -45,9 +45,17 @@ using glm::vec4;
 // thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
 #define TS_BIN_CHUNK 8
 
-// Light kinds (GpuLight.kind.x).
+// Light kinds (GpuLight.kind.x) and falloff models (GpuLight.kind.y).
 #define TS_LIGHT_POINT 0u
 #define TS_LIGHT_DIRECTIONAL 1u
+#define TS_LIGHT_SPOT 2u
+#define TS_FALLOFF_INVERSE_SQUARE 0u
+#define TS_FALLOFF_CLASSIC 1u
+
+// BRDF variants (specialization constant TS_SPEC_BRDF of the shading stages).
+#define TS_BRDF_CLASSIC 0u
+#define TS_BRDF_FILAMENT 1u
+#define TS_BRDF_BLINN_PHONG 2u
 
 // Tone-mapping operators (GpuFrame.scene_counts.w).
 #define TS_TONEMAP_ACES 0u
@@ -90,6 +98,7 @@ using glm::vec4;
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
+#define TS_SPEC_BRDF 1
 
 // One mesh vertex: position and normal in object space, uv split over the two w components.
 struct GpuVertex {
@@ -123,10 +132,12 @@ struct GpuMaterial {
 };
 
 struct GpuLight {
-  vec4 position;   // world, point lights
-  vec4 direction;  // world, unit, the direction light travels (directional lights)
-  vec4 radiance;   // rgb: colour * intensity (W/sr for point lights, W/m^2 for directional)
-  uvec4 kind;      // x: TS_LIGHT_*
+  vec4 position;   // world, point and spot lights
+  vec4 direction;  // world, unit, the direction light travels (directional and spot lights)
+  vec4 radiance;   // rgb: colour * intensity (W/sr for point and spot lights, W/m^2 directional)
+  vec4 falloff;    // x: 1 / range^4 (0: no fade), y, z, w: Kc, Kl, Kq (classic falloff)
+  vec4 cone;       // spot: x = 1 / max(cos inner - cos outer, 1e-4), y = -cos outer * x
+  uvec4 kind;      // x: TS_LIGHT_*, y: TS_FALLOFF_*
 };
 
 // Per-frame constants (uniform block, std140).
@@ -187,8 +198,9 @@ static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
 static_assert(sizeof(GpuMaterial) == 32);
 static_assert(offsetof(GpuMaterial, metallic) == 16);
-static_assert(sizeof(GpuLight) == 64);
-static_assert(offsetof(GpuLight, kind) == 48);
+static_assert(sizeof(GpuLight) == 96);
+static_assert(offsetof(GpuLight, falloff) == 48);
+static_assert(offsetof(GpuLight, kind) == 80);
 static_assert(sizeof(GpuFrame) == 256);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
