@@ -14,7 +14,8 @@ namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 // Brdf values are passed as the TS_SPEC_BRDF specialization constant.
-static_assert(uint32_t(Brdf::classic) == TS_BRDF_CLASSIC && uint32_t(Brdf::filament) == TS_BRDF_FILAMENT &&
+static_assert(uint32_t(Brdf::classic) == TS_BRDF_CLASSIC &&
+              uint32_t(Brdf::filament) == TS_BRDF_FILAMENT &&
               uint32_t(Brdf::blinn_phong) == TS_BRDF_BLINN_PHONG);
 
 VkRenderPass create_pass(const Context& ctx) {

@@ -20,9 +20,9 @@ enum class Pipeline {
   raster_tiles,
   raster_small_coverage,  // raster_small with DEBUG_COVERAGE on
   raster_tiles_coverage,  // raster_tiles with DEBUG_COVERAGE on
-  shade_classic,      // shade with BRDF variant TS_BRDF_CLASSIC,
-  shade_filament,     // TS_BRDF_FILAMENT,
-  shade_blinn_phong,  // TS_BRDF_BLINN_PHONG (specialization constant TS_SPEC_BRDF)
+  shade_classic,          // shade with BRDF variant TS_BRDF_CLASSIC,
+  shade_filament,         // TS_BRDF_FILAMENT,
+  shade_blinn_phong,      // TS_BRDF_BLINN_PHONG (specialization constant TS_SPEC_BRDF)
   resolve,
   count
 };

@@ -63,9 +63,12 @@ uint32_t tonemap_id(ToneMap t) {
 
 Pipeline shade_pipeline(Brdf brdf) {
   switch (brdf) {
-    case Brdf::classic: return Pipeline::shade_classic;
-    case Brdf::filament: return Pipeline::shade_filament;
-    case Brdf::blinn_phong: return Pipeline::shade_blinn_phong;
+    case Brdf::classic:
+      return Pipeline::shade_classic;
+    case Brdf::filament:
+      return Pipeline::shade_filament;
+    case Brdf::blinn_phong:
+      return Pipeline::shade_blinn_phong;
   }
   return Pipeline::shade_classic;
 }

@@ -49,7 +49,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   for (const Light& l : scene.lights) {
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
-    const glm::vec3 dir = l.kind == LightKind::point ? glm::vec3(0.0f) : glm::normalize(l.direction);
+    const glm::vec3 dir =
+        l.kind == LightKind::point ? glm::vec3(0.0f) : glm::normalize(l.direction);
     g.direction = glm::vec4(dir, 0.0f);
     g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
     const float inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f;
@@ -62,7 +63,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     const uint32_t kind = l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL
                           : l.kind == LightKind::spot      ? TS_LIGHT_SPOT
                                                            : TS_LIGHT_POINT;
-    g.kind = glm::uvec4(kind, l.falloff == Falloff::classic ? TS_FALLOFF_CLASSIC : TS_FALLOFF_INVERSE_SQUARE, 0, 0);
+    g.kind = glm::uvec4(
+        kind, l.falloff == Falloff::classic ? TS_FALLOFF_CLASSIC : TS_FALLOFF_INVERSE_SQUARE, 0, 0);
     out.lights.push_back(g);
   }
   return out;

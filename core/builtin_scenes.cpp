@@ -14,6 +14,7 @@ namespace {
 constexpr BuiltinSceneInfo kScenes[] = {
     {"spheres", "7x7 spheres, metallic by row and roughness by column, four point lights"},
     {"metals", "metal presets (gold, copper, ...) at three roughness values"},
+    {"lights", "spot, point (both falloffs) and directional lights over spheres and a floor"},
 };
 
 glm::mat4 place(glm::vec3 position, float scale) {
@@ -36,6 +37,7 @@ bool is_builtin_scene(std::string_view name) {
 Scene make_builtin_scene(std::string_view name) {
   if (name == "spheres") return make_sphere_grid_scene();
   if (name == "metals") return make_metals_scene();
+  if (name == "lights") return make_lights_scene();
   std::string known;
   for (const auto& s : kScenes) known += (known.empty() ? "" : ", ") + std::string(s.name);
   throw Error("unknown scene '" + std::string(name) + "' (known scenes: " + known + ")");
@@ -117,6 +119,54 @@ Scene make_metals_scene() {
   sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.6f));
   sun.intensity = 2.0f;
   scene.lights = {key, fill, sun};
+  return scene;
+}
+
+Scene make_lights_scene() {
+  Scene scene;
+  scene.camera.position = {0.0f, 4.0f, 11.0f};
+  scene.camera.target = {0.0f, 0.5f, 0.0f};
+  scene.camera.vertical_fov = glm::radians(40.0f);
+  scene.background = {0.01f, 0.01f, 0.015f};
+  scene.ambient = glm::vec3(0.01f);
+  scene.meshes.push_back(make_uv_sphere(48, 24));
+  scene.meshes.push_back(make_plane(16, 16));
+  scene.materials.push_back({glm::vec3(0.6f), 0.0f, 0.8f});  // floor
+  scene.materials.push_back({glm::vec3(0.8f, 0.2f, 0.1f), 0.0f, 0.3f});
+  scene.materials.push_back({glm::vec3(0.95f, 0.64f, 0.54f), 1.0f, 0.25f});  // copper-like
+  scene.materials.push_back({glm::vec3(0.2f, 0.5f, 0.9f), 0.0f, 0.6f});
+  glm::mat4 floor = glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0));
+  scene.objects.push_back({1, 0, glm::scale(floor, glm::vec3(8.0f))});
+  for (int i = 0; i < 3; ++i) {
+    scene.objects.push_back({0, uint32_t(1 + i), place({(i - 1) * 3.0f, 1.0f, 0.0f}, 1.0f)});
+  }
+  Light spot;  // a soft-edged spot from above the left sphere
+  spot.kind = LightKind::spot;
+  spot.position = {-3.0f, 6.0f, 2.0f};
+  spot.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.3f));
+  spot.inner_angle = glm::radians(15.0f);
+  spot.outer_angle = glm::radians(25.0f);
+  spot.intensity = 120.0f;
+  Light hard_spot = spot;  // equal angles: a hard edge
+  hard_spot.position = {3.0f, 6.0f, 2.0f};
+  hard_spot.inner_angle = hard_spot.outer_angle = glm::radians(18.0f);
+  hard_spot.color = {0.6f, 0.8f, 1.0f};
+  Light windowed;  // inverse square, fading to zero at 6 m
+  windowed.position = {0.0f, 2.5f, 3.0f};
+  windowed.range = 6.0f;
+  windowed.intensity = 15.0f;
+  windowed.color = {1.0f, 0.8f, 0.6f};
+  Light classic;  // constant, linear, quadratic attenuation
+  classic.falloff = Falloff::classic;
+  classic.position = {0.0f, 1.0f, -3.0f};
+  classic.attenuation = {1.0f, 0.35f, 0.44f};
+  classic.intensity = 8.0f;
+  Light moon;
+  moon.kind = LightKind::directional;
+  moon.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.5f));
+  moon.intensity = 0.3f;
+  moon.color = {0.7f, 0.75f, 1.0f};
+  scene.lights = {spot, hard_spot, windowed, classic, moon};
   return scene;
 }
 

@@ -31,4 +31,9 @@ Scene make_sphere_grid_scene();
 /// directional light.
 Scene make_metals_scene();
 
+/// Each kind of light: a soft spot, a hard-edged spot (equal inner and outer angles), a point
+/// light with inverse-square falloff and a range, a point light with classic attenuation and
+/// a directional light, over three spheres on a floor.
+Scene make_lights_scene();
+
 }  // namespace tessera

@@ -319,11 +319,13 @@ dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m)
   const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
   const dvec3 diffuse_color = (1.0 - metallic) * base;
   const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
-  if (variant == Brdf::blinn_phong) return diffuse_color / kPi + f0 * blinn_phong_lobe(n_dot_h, alpha);
+  if (variant == Brdf::blinn_phong)
+    return diffuse_color / kPi + f0 * blinn_phong_lobe(n_dot_h, alpha);
   const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
   const double d = ggx_distribution(n_dot_h, alpha);
   if (variant == Brdf::filament) {
-    return diffuse_color / kPi + d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel;
+    return diffuse_color / kPi +
+           d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel;
   }
   const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
   return (dvec3(1.0) - fresnel) * diffuse_color / kPi + d * g * fresnel / (4.0 * n_dot_l * n_dot_v);
@@ -353,9 +355,11 @@ double attenuation(const Light& light, double d2, dvec3 l) {
     }
   }
   if (light.kind == LightKind::spot) {
-    const double cos_inner = std::cos(double(light.inner_angle)), cos_outer = std::cos(double(light.outer_angle));
+    const double cos_inner = std::cos(double(light.inner_angle)),
+                 cos_outer = std::cos(double(light.outer_angle));
     const double c = glm::dot(glm::normalize(dvec3(light.direction)), -l);
-    const double t = std::clamp((c - cos_outer) / std::max(cos_inner - cos_outer, kMinSpotCosineGap), 0.0, 1.0);
+    const double t =
+        std::clamp((c - cos_outer) / std::max(cos_inner - cos_outer, kMinSpotCosineGap), 0.0, 1.0);
     a *= t * t;
   }
   return a;
@@ -396,8 +400,9 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
   return out;
 }
 
-dvec3 shade_pixel(const Scene& scene, const CameraModel& cam, const std::vector<Instance>& instances,
-                  uint64_t id, uint32_t x, uint32_t y, View view, Brdf brdf) {
+dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
+                  const std::vector<Instance>& instances, uint64_t id, uint32_t x, uint32_t y,
+                  View view, Brdf brdf) {
   const Instance& inst = instance_of(instances, id);
   const dvec3 dir = camera_ray(cam, x, y);
   const Surface s = surface_at(inst, id, cam.position, dir);
@@ -506,9 +511,9 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        const dvec3 c = f.owner[i] == kNoTriangle
-                            ? dvec3(scene.background)
-                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view, settings.brdf);
+        const dvec3 c = f.owner[i] == kNoTriangle ? dvec3(scene.background)
+                                                  : shade_pixel(scene, cam, instances, f.owner[i],
+                                                                x, y, settings.view, settings.brdf);
         f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {

@@ -47,7 +47,8 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
 
 /// The BRDF f(l, v) of `variant` for unit normal n, view v and light l (without the cosine),
 /// with the shading model's guards (roughness >= 0.045, N.V >= 1e-4); 0 for N.L <= 0.
-glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l, const Material& m);
+glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
+                          const Material& m);
 
 /// Geometry of one triangle instance as the reference sees it, for explaining differences:
 /// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge

@@ -126,9 +126,11 @@ void validate_scene(const Scene& scene) {
             name + " has a NaN or infinite value");
     require(light.kind == LightKind::point || glm::length(light.direction) > 0.0f,
             name + " has a zero direction");
-    require(finite(light.range) && light.range >= 0.0f, name + " has a negative or non-finite range");
-    require(finite(light.attenuation) && light.attenuation.x >= 0.0f && light.attenuation.y >= 0.0f &&
-                light.attenuation.z >= 0.0f && glm::length(light.attenuation) > 0.0f,
+    require(finite(light.range) && light.range >= 0.0f,
+            name + " has a negative or non-finite range");
+    require(finite(light.attenuation) && light.attenuation.x >= 0.0f &&
+                light.attenuation.y >= 0.0f && light.attenuation.z >= 0.0f &&
+                glm::length(light.attenuation) > 0.0f,
             name + " needs attenuation Kc, Kl, Kq >= 0 and not all zero");
     require(finite(light.inner_angle) && finite(light.outer_angle) && light.inner_angle >= 0.0f &&
                 light.inner_angle <= light.outer_angle && light.outer_angle < 1.5707963f,

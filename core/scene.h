@@ -56,10 +56,10 @@ struct Light {
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
   Falloff falloff = Falloff::inverse_square;
-  float range = 0.0f;                      // inverse-square fade radius in m (0: none)
-  glm::vec3 attenuation{1.0f, 0.0f, 0.0f}; // classic falloff: Kc, Kl, Kq (>= 0, not all 0)
-  float inner_angle = 0.35f;               // spot: half angles in radians, 0 <= inner <= outer
-  float outer_angle = 0.5f;                //       < pi/2; full intensity inside the inner cone
+  float range = 0.0f;                       // inverse-square fade radius in m (0: none)
+  glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // classic falloff: Kc, Kl, Kq (>= 0, not all 0)
+  float inner_angle = 0.35f;                // spot: half angles in radians, 0 <= inner <= outer
+  float outer_angle = 0.5f;                 //       < pi/2; full intensity inside the inner cone
 };
 
 /// One placed instance of a mesh; many objects may share a mesh and a material.

@@ -18,7 +18,7 @@ struct BenchArgs {
   uint32_t repeat = 10;  // timed frames per point; figures are their medians
   uint32_t warmup = 2;   // untimed frames first
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
-  uint32_t small_triangle_area = 64;  // RendererOptions::small_triangle_max_area
+  uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
   std::string csv, json, chart;
   bool quiet = false;
 };

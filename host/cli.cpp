@@ -160,10 +160,14 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
        }},
       {"--brdf",
        [&](const std::string& v) {
-         if (v == "classic") out.brdf = Brdf::classic;
-         else if (v == "filament") out.brdf = Brdf::filament;
-         else if (v == "blinn-phong") out.brdf = Brdf::blinn_phong;
-         else throw Error("--brdf expects classic, filament or blinn-phong, got '" + v + "'");
+         if (v == "classic")
+           out.brdf = Brdf::classic;
+         else if (v == "filament")
+           out.brdf = Brdf::filament;
+         else if (v == "blinn-phong")
+           out.brdf = Brdf::blinn_phong;
+         else
+           throw Error("--brdf expects classic, filament or blinn-phong, got '" + v + "'");
        }},
       {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
   };

@@ -22,7 +22,8 @@ TEST(Cli, ParsesEveryOption) {
   RenderArgs a;
   ASSERT_TRUE(parse_render_args({"--scene", "metals", "--size=640x360", "--out", "x.png",
                                  "--hdr-out", "x.pfm", "--device", "lavapipe", "--exposure", "-1.5",
-                                 "--tonemap", "reinhard", "--repeat", "5", "--validate", "--quiet"},
+                                 "--tonemap", "reinhard", "--repeat", "5", "--validate", "--quiet",
+                                 "--brdf", "filament"},
                                 a));
   EXPECT_EQ(a.scene, "metals");
   EXPECT_EQ(a.width, 640u);
@@ -35,6 +36,7 @@ TEST(Cli, ParsesEveryOption) {
   EXPECT_EQ(a.repeat, 5u);
   EXPECT_TRUE(a.validate);
   EXPECT_TRUE(a.quiet);
+  EXPECT_EQ(a.brdf, Brdf::filament);
   RenderArgs help;
   EXPECT_FALSE(parse_render_args({"--help"}, help));
 }
@@ -49,6 +51,8 @@ TEST(Cli, BadArgumentsNameTheProblem) {
   EXPECT_NE(parse_error({"--exposure", "bright"}).find("--exposure"), std::string::npos);
   EXPECT_NE(parse_error({"--exposure", "nan"}).find("--exposure"), std::string::npos);
   EXPECT_NE(parse_error({"--tonemap", "filmic"}).find("aces"), std::string::npos);
+  EXPECT_NE(parse_error({"--brdf", "phong"}).find("classic, filament or blinn-phong"),
+            std::string::npos);
   EXPECT_NE(parse_error({"--frobnicate"}).find("unknown option '--frobnicate'"), std::string::npos);
   EXPECT_NE(parse_error({"--repeat", "0"}).find("--repeat"), std::string::npos);
 }

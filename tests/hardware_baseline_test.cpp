@@ -18,12 +18,14 @@ struct Compared {
   size_t pixels_differing_in_coverage = 0;
 };
 
-Compared compare_paths(Context& ctx, const Scene& scene, uint32_t w, uint32_t h) {
+Compared compare_paths(Context& ctx, const Scene& scene, uint32_t w, uint32_t h,
+                       Brdf brdf = Brdf::classic) {
   Renderer renderer(ctx);
   renderer.set_scene(scene);
   FrameSettings fs;
   fs.width = w;
   fs.height = h;
+  fs.brdf = brdf;
   renderer.render(fs);
   const Image8 compute = renderer.read_ldr();
   const ImageF compute_hdr = renderer.read_hdr();
@@ -71,6 +73,14 @@ TEST_F(HardwareBaseline, BenchmarkFamiliesMatchTheComputePath) {
         compare_paths(context(), make_bench_scene(family.name, 30, 16, 4.0f / 3.0f), 200, 150);
     EXPECT_LE(c.pixels_differing_in_coverage, 10u) << family.name;
     EXPECT_LE(c.ldr.max_abs_error, 2.0) << family.name;
+  }
+}
+
+TEST_F(HardwareBaseline, EveryLightTypeAndBrdfVariantMatchesTheComputePath) {
+  for (Brdf brdf : {Brdf::classic, Brdf::filament, Brdf::blinn_phong}) {
+    Compared c = compare_paths(context(), make_lights_scene(), 320, 200, brdf);
+    EXPECT_LE(c.pixels_differing_in_coverage, 10u);
+    EXPECT_LE(c.ldr.max_abs_error, 2.0);
   }
 }
 
