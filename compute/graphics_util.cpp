@@ -49,8 +49,13 @@ VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPip
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = frag;
   stages[1].pName = "main";
-  const VkSpecializationMapEntry brdf_entry{TS_SPEC_BRDF, 0, sizeof(uint32_t)};
-  const VkSpecializationInfo spec{1, &brdf_entry, sizeof(uint32_t), &desc.brdf};
+  const struct {
+    uint32_t brdf;
+    VkBool32 energy_compensation;
+  } values{desc.brdf, desc.energy_compensation};
+  const VkSpecializationMapEntry entries[] = {{TS_SPEC_BRDF, 0, sizeof(uint32_t)},
+                                              {TS_SPEC_ENERGY_COMPENSATION, 4, sizeof(VkBool32)}};
+  const VkSpecializationInfo spec{2, entries, sizeof(values), &values};
   stages[1].pSpecializationInfo = &spec;
   const VkVertexInputBindingDescription binding{0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX};
   const VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0};

@@ -21,7 +21,8 @@ struct GraphicsPipelineDesc {
   VkCullModeFlags cull;       // front faces wind counter-clockwise
   VkCompareOp depth_compare;  // depth test and write on
   VkColorComponentFlags color_mask;
-  uint32_t brdf = 0;  // specialization constant TS_SPEC_BRDF of the fragment shader
+  uint32_t brdf = 0;                        // specialization constants of the fragment shader:
+  VkBool32 energy_compensation = VK_FALSE;  // TS_SPEC_BRDF, TS_SPEC_ENERGY_COMPENSATION
 };
 
 /// A triangle-list pipeline for `pass`'s subpass 0, one sample, dynamic viewport and scissor.

@@ -125,7 +125,8 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
   init_capacities(s);
   ensure_scratch_buffers(s, 1);
   if (!s.baseline_pass) s.baseline_pass = create_pass(ctx);
-  VkPipeline& pipeline = s.baseline_pipelines[size_t(settings.brdf)];
+  VkPipeline& pipeline =
+      s.baseline_pipelines[size_t(settings.brdf) * 2 + (settings.energy_compensation ? 1 : 0)];
   if (!pipeline) {
     const GraphicsPipelineDesc desc{
         "baseline_shade_vert",
@@ -137,7 +138,8 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
         VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
             VK_COLOR_COMPONENT_A_BIT,
-        uint32_t(settings.brdf)};
+        uint32_t(settings.brdf),
+        settings.energy_compensation ? VK_TRUE : VK_FALSE};
     pipeline = create_graphics_pipeline(ctx, s.baseline_pass, s.pipelines.layout, desc);
   }
   ensure_targets(s);
@@ -181,6 +183,9 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
     memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                    VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
+                            0, nullptr);
+    if (settings.energy_compensation) record_dfg_if_needed(s, cmd);
     if (timestamps) {
       vkCmdResetQueryPool(cmd, s.queries, 0, 3);
       vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);

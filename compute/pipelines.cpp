@@ -24,6 +24,7 @@ VkDescriptorType binding_type(uint32_t binding) {
 struct Specialization {
   VkBool32 debug_coverage;
   uint32_t brdf;
+  VkBool32 energy_compensation;
 };
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
@@ -38,8 +39,10 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
 
   const VkSpecializationMapEntry entries[] = {
       {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},
-      {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)}};
-  VkSpecializationInfo spec{2, entries, sizeof(values), &values};
+      {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)},
+      {TS_SPEC_ENERGY_COMPENSATION, offsetof(Specialization, energy_compensation),
+       sizeof(VkBool32)}};
+  VkSpecializationInfo spec{3, entries, sizeof(values), &values};
 
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -83,19 +86,23 @@ Pipelines create_pipelines(const Context& ctx) {
     Specialization values;
   };
   const Variant variants[] = {
-      {Pipeline::setup, "setup", {VK_FALSE, 0}},
-      {Pipeline::clip, "clip", {VK_FALSE, 0}},
-      {Pipeline::bin_count, "count", {VK_FALSE, 0}},
-      {Pipeline::scan, "scan", {VK_FALSE, 0}},
-      {Pipeline::fill, "fill", {VK_FALSE, 0}},
-      {Pipeline::raster_small, "raster_small", {VK_FALSE, 0}},
-      {Pipeline::raster_tiles, "raster_tiles", {VK_FALSE, 0}},
-      {Pipeline::raster_small_coverage, "raster_small", {VK_TRUE, 0}},
-      {Pipeline::raster_tiles_coverage, "raster_tiles", {VK_TRUE, 0}},
-      {Pipeline::shade_classic, "shade", {VK_FALSE, TS_BRDF_CLASSIC}},
-      {Pipeline::shade_filament, "shade", {VK_FALSE, TS_BRDF_FILAMENT}},
-      {Pipeline::shade_blinn_phong, "shade", {VK_FALSE, TS_BRDF_BLINN_PHONG}},
-      {Pipeline::resolve, "resolve", {VK_FALSE, 0}},
+      {Pipeline::setup, "setup", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::clip, "clip", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::bin_count, "count", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::scan, "scan", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::fill, "fill", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::raster_small, "raster_small", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::raster_tiles, "raster_tiles", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::raster_small_coverage, "raster_small", {VK_TRUE, 0, VK_FALSE}},
+      {Pipeline::raster_tiles_coverage, "raster_tiles", {VK_TRUE, 0, VK_FALSE}},
+      {Pipeline::shade_classic, "shade", {VK_FALSE, TS_BRDF_CLASSIC, VK_FALSE}},
+      {Pipeline::shade_filament, "shade", {VK_FALSE, TS_BRDF_FILAMENT, VK_FALSE}},
+      {Pipeline::shade_blinn_phong, "shade", {VK_FALSE, TS_BRDF_BLINN_PHONG, VK_FALSE}},
+      {Pipeline::shade_classic_compensated, "shade", {VK_FALSE, TS_BRDF_CLASSIC, VK_TRUE}},
+      {Pipeline::shade_filament_compensated, "shade", {VK_FALSE, TS_BRDF_FILAMENT, VK_TRUE}},
+      {Pipeline::dfg_classic, "dfg", {VK_FALSE, TS_BRDF_CLASSIC, VK_FALSE}},
+      {Pipeline::dfg_filament, "dfg", {VK_FALSE, TS_BRDF_FILAMENT, VK_FALSE}},
+      {Pipeline::resolve, "resolve", {VK_FALSE, 0, VK_FALSE}},
   };
 
   for (const Variant& v : variants) {

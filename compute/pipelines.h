@@ -18,11 +18,15 @@ enum class Pipeline {
   fill,
   raster_small,
   raster_tiles,
-  raster_small_coverage,  // raster_small with DEBUG_COVERAGE on
-  raster_tiles_coverage,  // raster_tiles with DEBUG_COVERAGE on
-  shade_classic,          // shade with BRDF variant TS_BRDF_CLASSIC,
-  shade_filament,         // TS_BRDF_FILAMENT,
-  shade_blinn_phong,      // TS_BRDF_BLINN_PHONG (specialization constant TS_SPEC_BRDF)
+  raster_small_coverage,      // raster_small with DEBUG_COVERAGE on
+  raster_tiles_coverage,      // raster_tiles with DEBUG_COVERAGE on
+  shade_classic,              // shade with BRDF variant TS_BRDF_CLASSIC,
+  shade_filament,             // TS_BRDF_FILAMENT,
+  shade_blinn_phong,          // TS_BRDF_BLINN_PHONG (specialization constant TS_SPEC_BRDF)
+  shade_classic_compensated,  // with TS_SPEC_ENERGY_COMPENSATION on
+  shade_filament_compensated,
+  dfg_classic,  // the DFG tables, per visibility term
+  dfg_filament,
   resolve,
   count
 };

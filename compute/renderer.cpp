@@ -61,18 +61,6 @@ uint32_t tonemap_id(ToneMap t) {
   return TS_TONEMAP_ACES;
 }
 
-Pipeline shade_pipeline(Brdf brdf) {
-  switch (brdf) {
-    case Brdf::classic:
-      return Pipeline::shade_classic;
-    case Brdf::filament:
-      return Pipeline::shade_filament;
-    case Brdf::blinn_phong:
-      return Pipeline::shade_blinn_phong;
-  }
-  return Pipeline::shade_classic;
-}
-
 uint32_t view_id(View v) {
   switch (v) {
     case View::shaded:
@@ -117,6 +105,8 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
+  s_->dfg = create_buffer(ctx, 2 * TS_DFG_SIZE * TS_DFG_SIZE * sizeof(glm::vec2), kStorageUsage,
+                          MemoryKind::device);
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
 }
@@ -127,7 +117,7 @@ Renderer::~Renderer() {
   for (Buffer* b :
        {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights, &s_->visibility,
         &s_->coverage, &s_->tile_counts, &s_->tile_offsets, &s_->tile_cursors, &s_->raster_tris,
-        &s_->small_list, &s_->big_list, &s_->clip_list, &s_->tile_entries, &s_->counters,
+        &s_->small_list, &s_->big_list, &s_->clip_list, &s_->tile_entries, &s_->dfg, &s_->counters,
         &s_->counters_readback, &s_->frame_constants}) {
     destroy_buffer(ctx, *b);
   }
@@ -337,6 +327,33 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
 }
 
+Pipeline shade_pipeline(const FrameSettings& settings) {
+  const bool compensate = settings.energy_compensation;
+  switch (settings.brdf) {
+    case Brdf::classic:
+      return compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic;
+    case Brdf::filament:
+      return compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament;
+    case Brdf::blinn_phong:
+      return Pipeline::shade_blinn_phong;  // nothing to compensate
+  }
+  return Pipeline::shade_classic;
+}
+
+void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd) {
+  if (s.dfg_ready) return;
+  const uint32_t groups = (TS_DFG_SIZE + 7) / 8;
+  for (Pipeline p : {Pipeline::dfg_classic, Pipeline::dfg_filament}) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[p]);
+    vkCmdDispatch(cmd, groups, groups, 1);
+  }
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                     VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  s.dfg_ready = true;  // the frame it is recorded in always runs to completion or throws
+}
+
 FrameStats Renderer::render(const FrameSettings& settings) {
   State& s = *s_;
   Context& ctx = s.ctx;
@@ -378,7 +395,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
     const auto start = std::chrono::steady_clock::now();
     submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-      record_frame(cmd, batches, timestamps, query_passes, settings.brdf);
+      record_frame(cmd, batches, timestamps, query_passes, settings);
       stats.cpu_record_submit_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
@@ -462,7 +479,7 @@ void Renderer::update_descriptors() {
       {TS_BINDING_TILE_OFFSETS, &s.tile_offsets}, {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
       {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
       {TS_BINDING_VISIBILITY, &s.visibility},     {TS_BINDING_COVERAGE, &s.coverage},
-      {TS_BINDING_CLIP_LIST, &s.clip_list},
+      {TS_BINDING_CLIP_LIST, &s.clip_list},       {TS_BINDING_DFG, &s.dfg},
   };
   std::vector<VkDescriptorBufferInfo> buffer_infos;
   buffer_infos.reserve(std::size(buffers));
@@ -523,7 +540,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
 }
 
 void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
-                            std::vector<Pass>& query_passes, Brdf settings_brdf) {
+                            std::vector<Pass>& query_passes, const FrameSettings& settings) {
   State& s = *s_;
   const Pipelines& p = s.pipelines;
   query_passes.clear();
@@ -543,6 +560,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
+  if (settings.energy_compensation) record_dfg_if_needed(s, cmd);
   vkCmdFillBuffer(cmd, s.visibility.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);  // TS_VIS_EMPTY
   if (s.options.debug_coverage) vkCmdFillBuffer(cmd, s.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, s.counters.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -602,7 +620,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     mark(Pass::raster_small);
   }
 
-  bind(shade_pipeline(settings_brdf));
+  bind(shade_pipeline(settings));
   vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
   compute_to_compute(cmd);
   mark(Pass::shade);
@@ -645,6 +663,12 @@ std::vector<uint64_t> Renderer::read_visibility() const {
 std::vector<uint32_t> Renderer::read_coverage() const {
   TESSERA_CHECK(s_->options.debug_coverage && s_->coverage.buffer != VK_NULL_HANDLE);
   return download_buffer<uint32_t>(s_->ctx, s_->coverage, uint64_t(s_->width) * s_->height);
+}
+
+std::vector<glm::vec2> Renderer::read_dfg_table() const {
+  if (!s_->dfg_ready)
+    throw Error("the DFG table is computed by the first frame with energy compensation");
+  return download_buffer<glm::vec2>(s_->ctx, s_->dfg, 2 * TS_DFG_SIZE * TS_DFG_SIZE);
 }
 
 const StorageImage& Renderer::output_image() const {

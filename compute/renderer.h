@@ -44,6 +44,8 @@ struct FrameSettings {
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;  // debug views are written as they are, without exposure or curve
   Brdf brdf = Brdf::classic;
+  /// Multiple-scattering energy compensation of the specular lobe (classic and filament).
+  bool energy_compensation = false;
 };
 
 enum class Pass {
@@ -108,6 +110,12 @@ class Renderer {
   std::vector<uint64_t> read_visibility() const;
   std::vector<uint32_t> read_coverage() const;
 
+  /// The DFG tables (classic, then filament; TS_DFG_SIZE^2 each, rows by roughness): x the
+  /// Schlick-weighted, y the whole specular albedo with F = 1, at N.V and roughness
+  /// i / (TS_DFG_SIZE - 1). Computed by the first frame with energy compensation; throws
+  /// Error before that.
+  std::vector<glm::vec2> read_dfg_table() const;
+
   /// The display image (RGBA8, VK_IMAGE_LAYOUT_GENERAL, usable as a copy or blit source).
   const StorageImage& output_image() const;
   /// Maps a triangle-instance id from read_visibility to its index in Scene::objects.
@@ -134,7 +142,7 @@ class Renderer {
   void update_descriptors();
   void write_frame_constants(const FrameSettings& settings);
   void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
-                    std::vector<Pass>& query_passes, Brdf brdf);
+                    std::vector<Pass>& query_passes, const FrameSettings& settings);
 
   std::unique_ptr<State> s_;
 };

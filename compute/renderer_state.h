@@ -41,10 +41,13 @@ struct Renderer::State {
   Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
 
   Buffer frame_constants;
+  Buffer dfg;  // DFG tables, computed on the first frame
+  bool dfg_ready = false;
 
   // The graphics baseline (hardware_baseline.cpp), created on first use.
   VkRenderPass baseline_pass = VK_NULL_HANDLE;
-  std::array<VkPipeline, 3> baseline_pipelines{};  // per Brdf variant
+  std::array<VkPipeline, 6>
+      baseline_pipelines{};  // per Brdf variant, with and without compensation
   Attachment depth;
   VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
   uint32_t baseline_width = 0, baseline_height = 0;
@@ -84,6 +87,12 @@ void init_capacities(Renderer::State& s);
 
 /// Allocates the scratch buffers for the current capacities and `batches` counter slots.
 void ensure_scratch_buffers(Renderer::State& s, uint32_t batches);
+
+/// Records the DFG table computation if it has not run yet (the descriptor set must be bound).
+void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd);
+
+/// The shading pipeline for `settings` (BRDF variant and energy compensation).
+Pipeline shade_pipeline(const FrameSettings& settings);
 
 /// Releases what render_hardware created (hardware_baseline.cpp).
 void destroy_hardware_baseline(Renderer::State& s);

@@ -305,9 +305,16 @@ double blinn_phong_lobe(double n_dot_h, double alpha) {
 
 }  // namespace
 
-dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
+namespace {
+
+struct Lobes {
+  dvec3 diffuse, specular;
+};
+
+// The BRDF's two lobes (see reference_brdf).
+Lobes brdf_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
   const double n_dot_l = glm::dot(n, l);
-  if (n_dot_l <= 0.0) return dvec3(0.0);
+  if (n_dot_l <= 0.0) return {dvec3(0.0), dvec3(0.0)};
   const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
   const dvec3 half_vector = v + l;
   const double length2 = glm::dot(half_vector, half_vector);
@@ -320,24 +327,88 @@ dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m)
   const dvec3 diffuse_color = (1.0 - metallic) * base;
   const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
   if (variant == Brdf::blinn_phong)
-    return diffuse_color / kPi + f0 * blinn_phong_lobe(n_dot_h, alpha);
+    return {diffuse_color / kPi, f0 * blinn_phong_lobe(n_dot_h, alpha)};
   const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
   const double d = ggx_distribution(n_dot_h, alpha);
   if (variant == Brdf::filament) {
-    return diffuse_color / kPi +
-           d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel;
+    return {diffuse_color / kPi,
+            d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel};
   }
   const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
-  return (dvec3(1.0) - fresnel) * diffuse_color / kPi + d * g * fresnel / (4.0 * n_dot_l * n_dot_v);
+  return {(dvec3(1.0) - fresnel) * diffuse_color / kPi,
+          d * g * fresnel / (4.0 * n_dot_l * n_dot_v)};
+}
+
+}  // namespace
+
+dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
+  const Lobes lobes = brdf_lobes(variant, n, v, l, m);
+  return lobes.diffuse + lobes.specular;
+}
+
+double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
+  roughness = std::clamp(roughness, kMinPerceptualRoughness, 1.0);
+  n_dot_v = std::clamp(n_dot_v, kMinNoV, 1.0);
+  const double alpha = roughness * roughness;
+  const double sin_v = std::sqrt(1.0 - n_dot_v * n_dot_v);
+  const dvec3 v(sin_v, 0.0, n_dot_v);
+  constexpr int kSteps = 64;
+  // Half vectors steeper than theta_max = (theta_v + pi/2) / 2 reflect v below the horizon
+  // for every phi (at phi = 0, l's polar angle is 2 theta_h - theta_v), so u stops at the u of
+  // theta_max instead of spending most samples where the integrand is 0.
+  const double cos_h_min = std::cos((std::acos(n_dot_v) + kPi / 2.0) / 2.0);
+  const double c2 = cos_h_min * cos_h_min;
+  const double u_max = std::min(1.0, (1.0 - c2) / (1.0 + c2 * (alpha * alpha - 1.0)));
+  // u = 1 - t^2: the estimator's 1 / cos(theta_h) grows like 1 / sqrt(1 - u) near grazing half
+  // vectors, which the substitution's du = 2t dt cancels (midpoint sums then converge fast).
+  const double t_min = std::sqrt(std::max(0.0, 1.0 - u_max));
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = t_min + (1.0 - t_min) * (i + 0.5) / kSteps;
+    const double u = 1.0 - t * t;
+    const double jacobian = 2.0 * t * (1.0 - t_min);
+    // Half vectors distributed as D(h) cos(theta_h): cos^2 = (1 - u) / (1 + (alpha^2 - 1) u).
+    const double cos_h = std::sqrt((1.0 - u) / (1.0 + (alpha * alpha - 1.0) * u));
+    const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+    // l = 2 (v.h) h - v is above the horizon where cos(phi) > c: integrate phi over that arc
+    // only, so the integrand stays smooth (a cut-off integrand makes midpoint sums converge
+    // slowly: 1-2 % off at N.V = 0.05 with 64 steps).
+    const double denom = 2.0 * sin_v * sin_h * cos_h;
+    double phi_max = 0.0;
+    if (denom > 0.0) {
+      const double c = n_dot_v * (1.0 - 2.0 * cos_h * cos_h) / denom;
+      phi_max = c >= 1.0 ? 0.0 : c <= -1.0 ? kPi : std::acos(c);
+    } else {
+      phi_max = 2.0 * n_dot_v * cos_h * cos_h - n_dot_v > 0.0 ? kPi : 0.0;
+    }
+    for (int j = 0; j < kSteps; ++j) {
+      const double phi = phi_max * (2.0 * (j + 0.5) / kSteps - 1.0);
+      const dvec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+      const double v_dot_h = glm::dot(v, h);
+      const dvec3 l = 2.0 * v_dot_h * h - v;
+      if (l.z <= 0.0 || v_dot_h <= 0.0) continue;
+      // f cos / pdf with pdf = D cos_h / (4 v.h) and F = 1: 4 G/(4 n.l n.v) n.l v.h / cos_h.
+      const double visibility =
+          variant == Brdf::filament
+              ? smith_ggx_correlated_visibility(n_dot_v, l.z, alpha)
+              : smith_schlick_ggx(n_dot_v, l.z, roughness) / (4.0 * l.z * n_dot_v);
+      sum += jacobian * visibility * 4.0 * l.z * v_dot_h / cos_h *
+             (phi_max / kPi);  // arc share of 2 pi
+    }
+  }
+  return sum / (kSteps * kSteps);
 }
 
 namespace {
 
-// Reflected radiance towards v from light arriving along l with radiance `incident`.
-dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec3 incident) {
+// Reflected radiance towards v from light arriving along l with radiance `incident`; the
+// specular lobe scaled by `specular_scale` (energy compensation).
+dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec3 incident,
+                dvec3 specular_scale) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return dvec3(0.0);
-  return reference_brdf(variant, n, v, l, m) * incident * n_dot_l;
+  const Lobes lobes = brdf_lobes(variant, n, v, l, m);
+  return (lobes.diffuse + lobes.specular * specular_scale) * incident * n_dot_l;
 }
 
 // Incident radiance scale of a point or spot light at squared distance d2, arriving along l.
@@ -402,7 +473,7 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
 
 dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
                   const std::vector<Instance>& instances, uint64_t id, uint32_t x, uint32_t y,
-                  View view, Brdf brdf) {
+                  View view, Brdf brdf, bool energy_compensation) {
   const Instance& inst = instance_of(instances, id);
   const dvec3 dir = camera_ray(cam, x, y);
   const Surface s = surface_at(inst, id, cam.position, dir);
@@ -420,6 +491,14 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
   }
   const Material& m = *inst.material;
   const dvec3 v = -dir;
+  dvec3 specular_scale(1.0);
+  if (energy_compensation && brdf != Brdf::blinn_phong) {
+    // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
+    const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
+    const dvec3 f0 =
+        glm::mix(dvec3(0.04), dvec3(m.base_color), std::clamp(double(m.metallic), 0.0, 1.0));
+    specular_scale = 1.0 + f0 * (1.0 / e - 1.0);
+  }
   dvec3 color = dvec3(scene.ambient) * dvec3(m.base_color);
   for (const Light& light : scene.lights) {
     dvec3 l, incident;
@@ -433,7 +512,7 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
       l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
       incident = power * attenuation(light, d2, l);
     }
-    color += reflected(brdf, s.normal, v, l, m, incident);
+    color += reflected(brdf, s.normal, v, l, m, incident, specular_scale);
   }
   return glm::min(color, dvec3(kMaxHalf));
 }
@@ -511,9 +590,10 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        const dvec3 c = f.owner[i] == kNoTriangle ? dvec3(scene.background)
-                                                  : shade_pixel(scene, cam, instances, f.owner[i],
-                                                                x, y, settings.view, settings.brdf);
+        const dvec3 c = f.owner[i] == kNoTriangle
+                            ? dvec3(scene.background)
+                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view,
+                                          settings.brdf, settings.energy_compensation);
         f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {

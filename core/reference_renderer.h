@@ -27,6 +27,7 @@ struct ReferenceSettings {
   View view = View::shaded;
   CullMode cull = CullMode::back;
   Brdf brdf = Brdf::classic;
+  bool energy_compensation = false;  // scales specular by 1 + F0 (1/E - 1), E by quadrature
   unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread
 };
 
@@ -49,6 +50,11 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
 /// with the shading model's guards (roughness >= 0.045, N.V >= 1e-4); 0 for N.L <= 0.
 glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
                           const Material& m);
+
+/// Directional albedo E of the specular lobe of `variant` with F = 1, for view cosine n_dot_v
+/// and perceptual roughness (>= 0.045 applied): a 64 x 64 midpoint quadrature over half vectors
+/// distributed as GGX. The reference's independent counterpart of the GPU's DFG table.
+double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness);
 
 /// Geometry of one triangle instance as the reference sees it, for explaining differences:
 /// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge

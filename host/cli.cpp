@@ -103,6 +103,8 @@ std::string render_help() {
          "  --tonemap OP        aces (default), reinhard or clamp\n"
          "  --brdf B            classic (default: GGX, Schlick-GGX Smith, Schlick Fresnel),\n"
          "                      filament (height-correlated Smith) or blinn-phong\n"
+         "  --energy-compensation  multiple-scattering energy compensation of the specular\n"
+         "                      lobe (classic and filament), from a DFG table\n"
          "  --view V            shaded (default), or a debug view: normal, uv, triangle\n"
          "                      (a colour per triangle) or object (a colour per object)\n"
          "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
@@ -174,6 +176,7 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
   const std::map<std::string, std::function<void()>> flags = {
       {"--validate", [&] { out.validate = true; }},
       {"--quiet", [&] { out.quiet = true; }},
+      {"--energy-compensation", [&] { out.energy_compensation = true; }},
   };
   return parse_options(args, with_value, flags, "tessera render");
 }

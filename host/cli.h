@@ -23,6 +23,7 @@ struct RenderArgs {
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;
   Brdf brdf = Brdf::classic;
+  bool energy_compensation = false;
   uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;

@@ -35,6 +35,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   settings.tonemap = args.tonemap;
   settings.view = args.view;
   settings.brdf = args.brdf;
+  settings.energy_compensation = args.energy_compensation;
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < args.repeat; ++i) {
@@ -82,6 +83,7 @@ int run_render(const RenderArgs& args) {
   settings.tonemap = args.tonemap;
   settings.view = args.view;
   settings.brdf = args.brdf;
+  settings.energy_compensation = args.energy_compensation;
 
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));

@@ -66,8 +66,9 @@ layout(constant_id = TS_SPEC_BRDF) const uint BRDF_VARIANT = TS_BRDF_CLASSIC;
 
 // Outgoing radiance towards V from one light of incident radiance `radiance` arriving along L:
 // f(L, V) * radiance * N.L. N, V, L unit; NoV already clamped to >= MIN_N_DOT_V.
+// `specular_scale` multiplies the specular lobe: the energy compensation factor, or 1.
 vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float metallic,
-                      float roughness, vec3 radiance) {
+                      float roughness, vec3 radiance, vec3 specular_scale) {
   float NoL = dot(N, L);
   if (NoL <= 0.0) return vec3(0.0);  // light below the horizon contributes nothing
   // V + L vanishes only for a light exactly opposite the viewer, already excluded for
@@ -89,9 +90,10 @@ vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float 
     vec3 F = F_Schlick(VoH, f0);
     float D = D_GGX(NoH, alpha);
     if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
-      f = diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(NoV, NoL, alpha) * F;
+      f = diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(NoV, NoL, alpha) * F * specular_scale;
     } else {
-      f = (vec3(1.0) - F) * diffuse_color * Fd_Lambert() + D * V_SmithSchlickGGX(NoV, NoL, roughness) * F;
+      f = (vec3(1.0) - F) * diffuse_color * Fd_Lambert() +
+          D * V_SmithSchlickGGX(NoV, NoL, roughness) * F * specular_scale;
     }
   }
   return f * radiance * NoL;

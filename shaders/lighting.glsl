@@ -3,6 +3,24 @@
 // so both do the same work. Needs bindings.glsl (frame, lights, materials).
 #include "brdf.glsl"
 
+// Multiple-scattering energy compensation (Kulla & Conty 2017, in Filament's form): scales the
+// specular lobe by 1 + F0 (1 / E - 1), E the lobe's directional albedo with F = 1 from the DFG
+// table, so a white furnace keeps its energy at every roughness. Not for Blinn-Phong.
+layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION = false;
+
+// Bilinear lookup of the specular albedo E(N.V, roughness) in the DFG table of this variant.
+float specular_albedo(float NoV, float roughness) {
+  uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
+  vec2 p = clamp(vec2(NoV, roughness), 0.0, 1.0) * float(TS_DFG_SIZE - 1);
+  uvec2 i0 = uvec2(p);
+  uvec2 i1 = min(i0 + 1u, uvec2(TS_DFG_SIZE - 1));
+  vec2 t = p - vec2(i0);
+  uint base = table * TS_DFG_SIZE * TS_DFG_SIZE;
+  float e00 = dfg[base + i0.y * TS_DFG_SIZE + i0.x].y, e10 = dfg[base + i0.y * TS_DFG_SIZE + i1.x].y;
+  float e01 = dfg[base + i1.y * TS_DFG_SIZE + i0.x].y, e11 = dfg[base + i1.y * TS_DFG_SIZE + i1.x].y;
+  return mix(mix(e00, e10, t.x), mix(e01, e11, t.x), t.y);
+}
+
 // Radiance leaving surface point P (world) with unit normal N towards the unit direction V
 // (towards the viewer), for material `material`.
 vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
@@ -11,6 +29,13 @@ vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
   float metallic = clamp(m.metallic, 0.0, 1.0);
   float roughness = clamp(m.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   float NoV = max(dot(N, V), MIN_N_DOT_V);
+
+  vec3 specular_scale = vec3(1.0);
+  if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
+    // E is at least ~0.4 (alpha = 1), so the division is safe.
+    vec3 f0 = mix(vec3(0.04), base_color, metallic);
+    specular_scale = 1.0 + f0 * (1.0 / specular_albedo(NoV, roughness) - 1.0);
+  }
 
   vec3 color = frame.ambient.rgb * base_color;
   for (uint i = 0u; i < frame.scene_counts.y; ++i) {
@@ -43,7 +68,7 @@ vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
       }
       radiance = light.radiance.rgb * attenuation;
     }
-    color += surface_response(N, V, L, NoV, base_color, metallic, roughness, radiance);
+    color += surface_response(N, V, L, NoV, base_color, metallic, roughness, radiance, specular_scale);
   }
   return color;
 }

@@ -20,11 +20,12 @@ std::string parse_error(std::vector<std::string> args) {
 
 TEST(Cli, ParsesEveryOption) {
   RenderArgs a;
-  ASSERT_TRUE(parse_render_args({"--scene", "metals", "--size=640x360", "--out", "x.png",
-                                 "--hdr-out", "x.pfm", "--device", "lavapipe", "--exposure", "-1.5",
-                                 "--tonemap", "reinhard", "--repeat", "5", "--validate", "--quiet",
-                                 "--brdf", "filament"},
-                                a));
+  ASSERT_TRUE(parse_render_args(
+      {"--scene",    "metals",    "--size=640x360", "--out",    "x.png",
+       "--hdr-out",  "x.pfm",     "--device",       "lavapipe", "--exposure",
+       "-1.5",       "--tonemap", "reinhard",       "--repeat", "5",
+       "--validate", "--quiet",   "--brdf",         "filament", "--energy-compensation"},
+      a));
   EXPECT_EQ(a.scene, "metals");
   EXPECT_EQ(a.width, 640u);
   EXPECT_EQ(a.height, 360u);
@@ -37,6 +38,7 @@ TEST(Cli, ParsesEveryOption) {
   EXPECT_TRUE(a.validate);
   EXPECT_TRUE(a.quiet);
   EXPECT_EQ(a.brdf, Brdf::filament);
+  EXPECT_TRUE(a.energy_compensation);
   RenderArgs help;
   EXPECT_FALSE(parse_render_args({"--help"}, help));
 }

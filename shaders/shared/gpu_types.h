@@ -94,11 +94,17 @@ using glm::vec4;
 #define TS_BINDING_HDR_IMAGE 16
 #define TS_BINDING_LDR_IMAGE 17
 #define TS_BINDING_CLIP_LIST 18
-#define TS_BINDING_COUNT 19
+#define TS_BINDING_DFG 19
+#define TS_BINDING_COUNT 20
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
 #define TS_SPEC_BRDF 1
+#define TS_SPEC_ENERGY_COMPENSATION 2
+
+// Side of the DFG table: N.V and perceptual roughness from 0 to 1 inclusive (grid points
+// i / (TS_DFG_SIZE - 1)), one table per visibility term.
+#define TS_DFG_SIZE 64
 
 // One mesh vertex: position and normal in object space, uv split over the two w components.
 struct GpuVertex {

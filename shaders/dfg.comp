@@ -1,0 +1,50 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The DFG table, computed once at start-up: for N.V and perceptual roughness on a
+// TS_DFG_SIZE^2 grid, the directional albedo of the specular lobe with F = 1 (y) and its
+// Schlick-weighted part (x), by importance-sampling GGX (Karis 2013, "Real Shading in Unreal
+// Engine 4"). One table per visibility term: classic (Schlick-GGX) and filament (height-
+// correlated Smith), selected by the specialization constant TS_SPEC_BRDF.
+#include "bindings.glsl"
+#include "brdf.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+const uint SAMPLES = 4096u;
+
+// Hammersley point i of n (radical inverse in base 2).
+vec2 hammersley(uint i, uint n) {
+  return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10);
+}
+
+void main() {
+  uvec2 cell = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(cell, uvec2(TS_DFG_SIZE)))) return;
+  // Grid points from 0 to 1 inclusive, with the shading pass's own clamps.
+  float NoV = max(float(cell.x) / float(TS_DFG_SIZE - 1), MIN_N_DOT_V);
+  float roughness = max(float(cell.y) / float(TS_DFG_SIZE - 1), MIN_PERCEPTUAL_ROUGHNESS);
+  float alpha = roughness * roughness;
+  vec3 V = vec3(sqrt(1.0 - NoV * NoV), 0.0, NoV);
+  vec2 sum = vec2(0.0);
+  for (uint i = 0u; i < SAMPLES; ++i) {
+    vec2 u = hammersley(i, SAMPLES);
+    // GGX-distributed half vector: cos^2 theta = (1 - u) / (1 + (alpha^2 - 1) u).
+    float cos2 = (1.0 - u.y) / (1.0 + (alpha * alpha - 1.0) * u.y);
+    float cos_h = sqrt(cos2);
+    float sin_h = sqrt(1.0 - cos2);
+    float phi = 2.0 * PI * u.x;
+    vec3 H = vec3(sin_h * cos(phi), sin_h * sin(phi), cos_h);
+    vec3 L = 2.0 * dot(V, H) * H - V;
+    float NoL = L.z;
+    if (NoL <= 0.0) continue;
+    float VoH = clamp(dot(V, H), 0.0, 1.0);
+    float vis = BRDF_VARIANT == TS_BRDF_FILAMENT ? V_SmithGGXCorrelated(NoV, NoL, alpha)
+                                                  : V_SmithSchlickGGX(NoV, NoL, roughness);
+    // f cos / pdf for pdf = D N.H / (4 V.H): the D cancels.
+    float weight = vis * 4.0 * NoL * VoH / cos_h;
+    float fc = pow(1.0 - VoH, 5.0);
+    sum += vec2(weight * fc, weight);
+  }
+  uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
+  dfg[(table * TS_DFG_SIZE + cell.y) * TS_DFG_SIZE + cell.x] = sum / float(SAMPLES);
+}
