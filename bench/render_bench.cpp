@@ -54,9 +54,10 @@ void report_counters(benchmark::State& state, const std::vector<FrameStats>& fra
 }
 
 // The compute path on `scene` at width x height.
-void run_compute(benchmark::State& state, const Scene& scene, uint32_t width, uint32_t height) {
+void run_compute(benchmark::State& state, const Scene& scene, uint32_t width, uint32_t height,
+                 RendererOptions options = {}) {
   Context& ctx = bench_context();
-  Renderer renderer(ctx);
+  Renderer renderer(ctx, options);
   renderer.set_scene(scene);
   FrameSettings settings;
   settings.width = width;
@@ -96,6 +97,16 @@ void run_hardware(benchmark::State& state, const Scene& scene, uint32_t width, u
   state.SetLabel(ctx.properties.deviceName);
 }
 
+// A scene pays only for what it uses: the shading pass specialized to the scene's light counts
+// against the generic one (state.range(2): 1 specialized, 0 generic). Compare the shade_ms
+// counters of the two.
+void ShadingSpecialization(benchmark::State& state, const char* name) {
+  RendererOptions options;
+  options.specialize_lights = state.range(2) != 0;
+  run_compute(state, make_builtin_scene(name), uint32_t(state.range(0)), uint32_t(state.range(1)),
+              options);
+}
+
 void BuiltinScene(benchmark::State& state, const char* name) {
   run_compute(state, make_builtin_scene(name), uint32_t(state.range(0)), uint32_t(state.range(1)));
 }
@@ -122,6 +133,22 @@ BENCHMARK_CAPTURE(BuiltinScene, spheres, "spheres")
     ->MinTime(0.2);
 BENCHMARK_CAPTURE(BuiltinScene, metals, "metals")
     ->Args({512, 512})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK_CAPTURE(ShadingSpecialization, spheres, "spheres")
+    ->Args({512, 512, 0})
+    ->Args({512, 512, 1})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.2);
+BENCHMARK_CAPTURE(ShadingSpecialization, lights, "lights")
+    ->Args({512, 512, 0})
+    ->Args({512, 512, 1})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.2);

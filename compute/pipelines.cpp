@@ -25,6 +25,10 @@ struct Specialization {
   VkBool32 debug_coverage;
   uint32_t brdf;
   VkBool32 energy_compensation;
+  VkBool32 lights_specialized = VK_FALSE;
+  uint32_t point_lights = 0;
+  uint32_t spot_lights = 0;
+  uint32_t directional_lights = 0;
 };
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
@@ -60,6 +64,18 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
 }
 
 }  // namespace
+
+VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
+                                 const ShadeVariant& v) {
+  Specialization values{VK_FALSE,
+                        v.brdf,
+                        v.energy_compensation ? VK_TRUE : VK_FALSE,
+                        VK_TRUE,
+                        v.light_counts[0],
+                        v.light_counts[1],
+                        v.light_counts[2]};
+  return create_compute_pipeline(ctx, pipelines.layout, "shade", values);
+}
 
 Pipelines create_pipelines(const Context& ctx) {
   Pipelines p;

@@ -43,6 +43,19 @@ struct Pipelines {
   VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
 };
 
+/// A shading pipeline specialized to a scene: BRDF variant, energy compensation, and the
+/// number of point, spot and directional lights (lights sorted by kind).
+struct ShadeVariant {
+  uint32_t brdf;
+  bool energy_compensation;
+  std::array<uint32_t, 3> light_counts;
+  auto operator<=>(const ShadeVariant&) const = default;
+};
+
+/// Builds the shading pipeline for `variant` with the layout of `pipelines`.
+VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
+                                 const ShadeVariant& variant);
+
 /// Creates the layouts and every pipeline from the embedded SPIR-V.
 Pipelines create_pipelines(const Context& ctx);
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);

@@ -122,6 +122,8 @@ Renderer::~Renderer() {
     destroy_buffer(ctx, *b);
   }
   destroy_hardware_baseline(*s_);
+  for (auto& [variant, pipeline] : s_->shade_variants)
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
   destroy_image(ctx, s_->hdr);
   destroy_image(ctx, s_->ldr);
   if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
@@ -327,17 +329,25 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
 }
 
-Pipeline shade_pipeline(const FrameSettings& settings) {
-  const bool compensate = settings.energy_compensation;
+VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
+  const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+  if (s.options.specialize_lights) {
+    const ShadeVariant v{uint32_t(settings.brdf), compensate, s.uploaded.light_counts};
+    auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
+    if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
+    return it->second;
+  }
   switch (settings.brdf) {
     case Brdf::classic:
-      return compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic;
+      return s
+          .pipelines[compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic];
     case Brdf::filament:
-      return compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament;
+      return s
+          .pipelines[compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament];
     case Brdf::blinn_phong:
-      return Pipeline::shade_blinn_phong;  // nothing to compensate
+      return s.pipelines[Pipeline::shade_blinn_phong];
   }
-  return Pipeline::shade_classic;
+  return s.pipelines[Pipeline::shade_classic];
 }
 
 void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd) {
@@ -620,7 +630,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     mark(Pass::raster_small);
   }
 
-  bind(shade_pipeline(settings));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shade_pipeline(s, settings));
   vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
   compute_to_compute(cmd);
   mark(Pass::shade);

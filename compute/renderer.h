@@ -30,6 +30,9 @@ struct RendererOptions {
   /// Upper bound on each scratch buffer, in bytes, besides the device's maxStorageBufferRange.
   /// Past it the renderer splits the frame into more batches instead of growing.
   uint64_t max_scratch_buffer_bytes = 256ull << 20;
+  /// Specializes the shading pass to the scene's light counts (pipelines built on first use of
+  /// a combination, then cached); off, one generic pipeline decides per light at run time.
+  bool specialize_lights = true;
   /// Which faces setup culls. Back faces by default; tests of closed meshes use the others.
   CullMode cull = CullMode::back;
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is

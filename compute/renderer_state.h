@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 
 #include "compute/gpu_memory.h"
 #include "compute/graphics_util.h"
@@ -41,7 +42,8 @@ struct Renderer::State {
   Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
 
   Buffer frame_constants;
-  Buffer dfg;  // DFG tables, computed on the first frame
+  Buffer dfg;                                         // DFG tables, computed on the first frame
+  std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
   bool dfg_ready = false;
 
   // The graphics baseline (hardware_baseline.cpp), created on first use.
@@ -91,8 +93,9 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches);
 /// Records the DFG table computation if it has not run yet (the descriptor set must be bound).
 void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd);
 
-/// The shading pipeline for `settings` (BRDF variant and energy compensation).
-Pipeline shade_pipeline(const FrameSettings& settings);
+/// The shading pipeline for `settings` and the current scene: specialized to its lights (built
+/// and cached on first use) or the generic one.
+VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings);
 
 /// Releases what render_hardware created (hardware_baseline.cpp).
 void destroy_hardware_baseline(Renderer::State& s);

@@ -46,7 +46,18 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   for (const Material& m : scene.materials) {
     out.materials.push_back({glm::vec4(m.base_color, 1.0f), m.metallic, m.roughness, 0.0f, 0.0f});
   }
-  for (const Light& l : scene.lights) {
+  // Sorted by kind (stably), so a shading pipeline specialized to the counts of each kind can
+  // loop over each kind separately.
+  std::vector<const Light*> sorted;
+  for (LightKind kind : {LightKind::point, LightKind::spot, LightKind::directional}) {
+    for (const Light& l : scene.lights) {
+      if (l.kind != kind) continue;
+      sorted.push_back(&l);
+      out.light_counts[kind == LightKind::point ? 0 : kind == LightKind::spot ? 1 : 2]++;
+    }
+  }
+  for (const Light* light : sorted) {
+    const Light& l = *light;
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
     const glm::vec3 dir =

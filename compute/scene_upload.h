@@ -1,6 +1,7 @@
 #pragma once
 // Flattening a Scene into the arrays the GPU reads, in a canonical order.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -14,9 +15,10 @@ struct GpuSceneArrays {
   std::vector<uint32_t> indices;         // all meshes, relative to each mesh's first vertex
   std::vector<gpu::GpuObject> objects;   // canonical order (see flatten_scene)
   std::vector<gpu::GpuMaterial> materials;
-  std::vector<gpu::GpuLight> lights;
-  std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
-  uint64_t triangle_count = 0;           // triangle instances over all objects
+  std::vector<gpu::GpuLight> lights;       // sorted by kind: point, spot, directional
+  std::array<uint32_t, 3> light_counts{};  // point, spot, directional
+  std::vector<uint32_t> object_of_slot;    // GPU object slot -> index in Scene::objects
+  uint64_t triangle_count = 0;             // triangle instances over all objects
 };
 
 /// Flattens `scene` (which must have passed validate_scene). Objects are uploaded in the order

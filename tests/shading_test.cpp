@@ -172,6 +172,24 @@ TEST_F(Shading, VariantsAgreeWithTheReferenceAtRoughnessZeroAndOne) {
   }
 }
 
+TEST_F(Shading, SpecializedAndGenericShadingGiveTheSameImage) {
+  for (const char* name : {"spheres", "lights", "metals"}) {
+    RendererOptions generic;
+    generic.specialize_lights = false;
+    Frame a = render(make_builtin_scene(name), 160, 120);
+    Frame b = render(make_builtin_scene(name), 160, 120, generic);
+    EXPECT_EQ(a.ldr.pixels, b.ldr.pixels) << name;
+    double worst = 0.0;
+    for (size_t i = 0; i < a.hdr.pixels.size(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, double(std::abs(a.hdr.pixels[i][c] - b.hdr.pixels[i][c])) /
+                                    std::max(1e-3, double(std::abs(b.hdr.pixels[i][c]))));
+      }
+    }
+    EXPECT_LT(worst, 1e-3) << name << ": within one fp16 step";
+  }
+}
+
 // White furnace with compensation: a white metal's specular lobe scaled by 1 / E from the GPU's
 // DFG table (bilinear, as lighting.glsl reads it) keeps E_exact / E_table of the energy, where
 // E_exact is the reference's own quadrature. Within 1 % of 1 at every roughness and angle.

@@ -101,6 +101,10 @@ using glm::vec4;
 #define TS_SPEC_DEBUG_COVERAGE 0
 #define TS_SPEC_BRDF 1
 #define TS_SPEC_ENERGY_COMPENSATION 2
+#define TS_SPEC_LIGHTS_SPECIALIZED 3  // the light counts below are the scene's (lights sorted by kind)
+#define TS_SPEC_POINT_LIGHTS 4
+#define TS_SPEC_SPOT_LIGHTS 5
+#define TS_SPEC_DIRECTIONAL_LIGHTS 6
 
 // Side of the DFG table: N.V and perceptual roughness from 0 to 1 inclusive (grid points
 // i / (TS_DFG_SIZE - 1)), one table per visibility term.
