@@ -4,7 +4,9 @@
 //   build/bench/tessera_bench [--benchmark_filter=...]   (TESSERA_DEVICE=lavapipe|gpu|N)
 //
 // Each iteration renders kFrames frames and reports their median GPU time, so rare slow frames
-// (clock changes, other work) do not move the figure; counters are per-pass medians.
+// (clock changes, other work) do not move the figure; counters are per-pass medians. Runs use
+// a fixed number of iterations: with manual (GPU) time, a minimum time would need thousands of
+// sub-millisecond frames, each with its own submission and wait.
 // `tessera bench` runs the same measurements as a sweep with CSV, JSON and charts.
 #include <algorithm>
 #include <cstdlib>
@@ -130,12 +132,12 @@ BENCHMARK_CAPTURE(BuiltinScene, spheres, "spheres")
     ->Args({1920, 1080})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK_CAPTURE(BuiltinScene, metals, "metals")
     ->Args({512, 512})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK_CAPTURE(ShadingSpecialization, spheres, "spheres")
     ->Args({512, 512, 0})
     ->Args({512, 512, 1})
@@ -143,7 +145,7 @@ BENCHMARK_CAPTURE(ShadingSpecialization, spheres, "spheres")
     ->Args({1920, 1080, 1})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK_CAPTURE(ShadingSpecialization, lights, "lights")
     ->Args({512, 512, 0})
     ->Args({512, 512, 1})
@@ -151,32 +153,32 @@ BENCHMARK_CAPTURE(ShadingSpecialization, lights, "lights")
     ->Args({1920, 1080, 1})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK(ComputeGrid)
     ->RangeMultiplier(10)
     ->Range(1, 1000)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK(HardwareGrid)
     ->RangeMultiplier(10)
     ->Range(1, 1000)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK(ComputeScatter)
     ->RangeMultiplier(10)
     ->Range(10, 1000)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 BENCHMARK(ComputeHuge)
     ->Arg(1)
     ->Arg(4)
     ->Arg(16)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
-    ->MinTime(0.2);
+    ->Iterations(20);
 
 }  // namespace
 }  // namespace tessera

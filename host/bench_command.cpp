@@ -254,6 +254,8 @@ std::string bench_help() {
          "  --reference-max-triangles T   skip the reference above T triangles (default 2000000)\n"
          "  --small-triangle-area A   pixel-box area up to which a triangle is rasterized by one\n"
          "                      thread; larger ones are binned into tiles (default 64)\n"
+         "  --generic-shading   shade with the generic pipeline instead of one specialized to\n"
+         "                      the scene's light counts, to measure what specialization saves\n"
          "  --csv FILE          write every measurement as CSV\n"
          "  --json FILE         the same as JSON, with device, driver and command\n"
          "  --chart FILE        .svg or .png: time against objects (log-log, one line per "
@@ -329,6 +331,7 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
     ctx = create_context(options);
     RendererOptions options_r;
     options_r.small_triangle_max_area = a.small_triangle_area;
+    options_r.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options_r);
     device = ctx->properties.deviceName;
     driver = ctx->driver;
