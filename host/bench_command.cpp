@@ -304,7 +304,8 @@ bool parse_bench_args(const std::vector<std::string>& args, BenchArgs& out) {
       {"--chart", [&](const std::string& v) { out.chart = v; }},
   };
   const std::map<std::string, std::function<void()>> flags = {
-      {"--quiet", [&] { out.quiet = true; }}};
+      {"--quiet", [&] { out.quiet = true; }},
+      {"--generic-shading", [&] { out.generic_shading = true; }}};
   if (!parse_options(args, with_value, flags, "tessera bench")) return false;
   if (!is_builtin_scene(out.scene))
     make_bench_scene(out.scene, 1, out.segments, 1.0f);  // unknown: fails early
