@@ -44,7 +44,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   }
 
   for (const Material& m : scene.materials) {
-    out.materials.push_back({glm::vec4(m.base_color, 1.0f), m.metallic, m.roughness, 0.0f, 0.0f});
+    out.materials.push_back({glm::vec4(m.base_color, 1.0f), glm::vec4(m.emissive, m.occlusion),
+                             m.metallic, m.roughness, 0.0f, 0.0f});
   }
   // Sorted by kind (stably), so a shading pipeline specialized to the counts of each kind can
   // loop over each kind separately.

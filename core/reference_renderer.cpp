@@ -499,7 +499,8 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
         glm::mix(dvec3(0.04), dvec3(m.base_color), std::clamp(double(m.metallic), 0.0, 1.0));
     specular_scale = 1.0 + f0 * (1.0 / e - 1.0);
   }
-  dvec3 color = dvec3(scene.ambient) * dvec3(m.base_color);
+  dvec3 color =
+      dvec3(scene.ambient) * dvec3(m.base_color) * double(m.occlusion) + dvec3(m.emissive);
   for (const Light& light : scene.lights) {
     dvec3 l, incident;
     const dvec3 power = dvec3(light.color) * double(light.intensity);

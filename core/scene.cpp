@@ -105,8 +105,13 @@ void validate_scene(const Scene& scene) {
   for (size_t m = 0; m < scene.meshes.size(); ++m) validate_mesh(scene.meshes[m], m);
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
-    require(finite(mat.base_color) && finite(mat.metallic) && finite(mat.roughness),
+    require(finite(mat.base_color) && finite(mat.metallic) && finite(mat.roughness) &&
+                finite(mat.emissive) && finite(mat.occlusion),
             "material " + std::to_string(m) + " has a NaN or infinite value");
+    require(glm::all(glm::greaterThanEqual(mat.emissive, glm::vec3(0.0f))),
+            "material " + std::to_string(m) + " has a negative emissive colour");
+    require(mat.occlusion >= 0.0f && mat.occlusion <= 1.0f,
+            "material " + std::to_string(m) + " has an occlusion outside [0, 1]");
   }
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];

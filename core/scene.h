@@ -33,6 +33,8 @@ struct Material {
   glm::vec3 base_color{0.8f};
   float metallic = 0.0f;
   float roughness = 0.5f;
+  glm::vec3 emissive{0.0f};  // emitted radiance, linear RGB, >= 0 (added as it is)
+  float occlusion = 1.0f;    // ambient occlusion in [0, 1]: scales the ambient term only
 };
 
 enum class LightKind { point, directional, spot };

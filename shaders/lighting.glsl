@@ -90,7 +90,8 @@ vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
     s.specular_scale = 1.0 + f0 * (1.0 / specular_albedo(s.NoV, s.roughness) - 1.0);
   }
 
-  vec3 color = frame.ambient.rgb * s.base_color;
+  // Constant ambient, dimmed by the material's occlusion, plus what the surface emits.
+  vec3 color = frame.ambient.rgb * s.base_color * m.emissive_occlusion.a + m.emissive_occlusion.rgb;
   if (LIGHTS_SPECIALIZED) {
     for (uint i = 0u; i < POINT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_POINT);
     for (uint i = POINT_LIGHTS; i < POINT_LIGHTS + SPOT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_SPOT);

@@ -73,6 +73,12 @@ TEST(SceneValidation, NamesBadTransformCameraAndLights) {
   s.camera.near_plane = 0.0f;
   EXPECT_NE(error_of(s).find("near plane"), std::string::npos) << error_of(s);
   s = one_triangle_scene();
+  s.materials[0].occlusion = 1.5f;
+  EXPECT_NE(error_of(s).find("occlusion outside [0, 1]"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
+  s.materials[0].emissive = {0.0f, -1.0f, 0.0f};
+  EXPECT_NE(error_of(s).find("negative emissive"), std::string::npos) << error_of(s);
+  s = one_triangle_scene();
   s.lights.push_back({});
   s.lights[0].intensity = std::numeric_limits<float>::infinity();
   EXPECT_NE(error_of(s).find("light 0"), std::string::npos) << error_of(s);
@@ -107,14 +113,14 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   Scene scene = make_sphere_grid_scene();
   UploadStats first = renderer.set_scene(scene);
   uint64_t all_bytes =
-      scene.objects.size() * 160 + scene.materials.size() * 32 + scene.lights.size() * 96;
+      scene.objects.size() * 160 + scene.materials.size() * 48 + scene.lights.size() * 96;
   for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 32 + m.indices.size() * 4;
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
 
   scene.materials[10].roughness = 0.77f;
   UploadStats one_material = renderer.set_scene(scene);
-  EXPECT_EQ(one_material.bytes, 32u) << "one GpuMaterial";
+  EXPECT_EQ(one_material.bytes, 48u) << "one GpuMaterial";
   EXPECT_EQ(one_material.buffers_created, 0u);
 
   scene.lights[2].intensity = 10.0f;

@@ -172,6 +172,39 @@ TEST_F(Shading, VariantsAgreeWithTheReferenceAtRoughnessZeroAndOne) {
   }
 }
 
+TEST_F(Shading, EmissiveAndOcclusionAddAndDimByHand) {
+  // No lights: every covered pixel is ambient * base * occlusion + emissive.
+  Scene scene = make_sphere_grid_scene();
+  scene.lights.clear();
+  scene.ambient = glm::vec3(0.2f);
+  for (Material& m : scene.materials) {
+    m.base_color = glm::vec3(0.5f);
+    m.occlusion = 0.5f;
+    m.emissive = {1.0f, 2.0f, 3.0f};
+  }
+  Frame f = render(scene, 96, 96);
+  size_t covered = 0;
+  for (size_t i = 0; i < f.hdr.pixels.size(); ++i) {
+    if (f.visibility[i] == ~0ull) continue;
+    ++covered;
+    for (int c = 0; c < 3; ++c) {
+      const float expected = 0.2f * 0.5f * 0.5f + float(c + 1);
+      ASSERT_NEAR(f.hdr.pixels[i][c], expected, expected * 1e-3f) << "pixel " << i;  // fp16 storage
+    }
+  }
+  EXPECT_GT(covered, 1000u);
+}
+
+TEST_F(Shading, EmissiveAndOccludedMaterialsAgreeWithTheReference) {
+  Scene scene = make_lights_scene();
+  scene.materials[1].emissive = {0.6f, 0.1f, 0.0f};
+  scene.materials[2].occlusion = 0.2f;
+  scene.ambient = glm::vec3(0.3f);
+  test::AccuracyReport r =
+      test::compare_with_reference(context(), scene, 320, 200, "emissive_occlusion");
+  test::expect_meets_bars(r);
+}
+
 TEST_F(Shading, SpecializedAndGenericShadingGiveTheSameImage) {
   for (const char* name : {"spheres", "lights", "metals"}) {
     RendererOptions generic;

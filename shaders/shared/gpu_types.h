@@ -134,7 +134,8 @@ struct GpuObject {
 
 // Metallic-roughness material; roughness is perceptual (alpha = roughness^2).
 struct GpuMaterial {
-  vec4 base_color;  // linear RGB, a unused
+  vec4 base_color;          // linear RGB, a unused
+  vec4 emissive_occlusion;  // rgb: emitted radiance; a: ambient occlusion (scales ambient)
   float metallic;
   float roughness;
   float pad0;
@@ -206,8 +207,9 @@ static_assert(sizeof(GpuObject) == 160);
 static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
-static_assert(sizeof(GpuMaterial) == 32);
-static_assert(offsetof(GpuMaterial, metallic) == 16);
+static_assert(sizeof(GpuMaterial) == 48);
+static_assert(offsetof(GpuMaterial, emissive_occlusion) == 16);
+static_assert(offsetof(GpuMaterial, metallic) == 32);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(offsetof(GpuLight, falloff) == 48);
 static_assert(offsetof(GpuLight, kind) == 80);
