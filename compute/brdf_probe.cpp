@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "compute/gpu_memory.h"
+#include "compute/pipelines.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "shaders/shader_registry.h"
@@ -43,13 +44,7 @@ std::vector<glm::vec3> evaluate_brdf_on_gpu(const Context& ctx, Brdf variant,
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &layout));
 
-  std::span<const uint32_t> code = find_shader("brdf_probe");
-  TESSERA_CHECK(!code.empty());
-  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  module_info.codeSize = code.size_bytes();
-  module_info.pCode = code.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
+  VkShaderModule module = create_shader_module(ctx, "brdf_probe");
   const uint32_t brdf = uint32_t(variant);  // Brdf values are the TS_BRDF_* constants
   const VkSpecializationMapEntry entry{TS_SPEC_BRDF, 0, sizeof(uint32_t)};
   const VkSpecializationInfo spec{1, &entry, sizeof(brdf), &brdf};

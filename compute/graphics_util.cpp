@@ -5,26 +5,13 @@
 
 #include <glm/glm.hpp>
 
+#include "compute/pipelines.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "shaders/shader_registry.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
-namespace {
-
-VkShaderModule shader_module(const Context& ctx, const char* name) {
-  std::span<const uint32_t> code = find_shader(name);
-  TESSERA_CHECK(!code.empty());
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = code.size_bytes();
-  info.pCode = code.data();
-  VkShaderModule m = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &m));
-  return m;
-}
-
-}  // namespace
 
 void require_graphics_queue(const Context& ctx) {
   uint32_t count = 0;
@@ -39,8 +26,8 @@ void require_graphics_queue(const Context& ctx) {
 
 VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPipelineLayout layout,
                                     const GraphicsPipelineDesc& desc) {
-  VkShaderModule vert = shader_module(ctx, desc.vertex_shader);
-  VkShaderModule frag = shader_module(ctx, desc.fragment_shader);
+  VkShaderModule vert = create_shader_module(ctx, desc.vertex_shader);
+  VkShaderModule frag = create_shader_module(ctx, desc.fragment_shader);
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;

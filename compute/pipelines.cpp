@@ -20,6 +20,21 @@ VkDescriptorType binding_type(uint32_t binding) {
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
+}  // namespace
+
+VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
+  std::span<const uint32_t> code = find_shader(name);
+  TESSERA_CHECK(!code.empty());
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = code.size_bytes();
+  info.pCode = code.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &module));
+  return module;
+}
+
+namespace {
+
 // Values of the specialization constants (TS_SPEC_*); a shader ignores those it does not declare.
 struct Specialization {
   VkBool32 debug_coverage;
@@ -33,13 +48,7 @@ struct Specialization {
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                    std::string_view shader, Specialization values) {
-  std::span<const uint32_t> code = find_shader(shader);
-  TESSERA_CHECK(!code.empty());
-  VkShaderModuleCreateInfo module_info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  module_info.codeSize = code.size_bytes();
-  module_info.pCode = code.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(ctx.device, &module_info, nullptr, &module));
+  VkShaderModule module = create_shader_module(ctx, shader);
 
   const VkSpecializationMapEntry entries[] = {
       {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},

@@ -43,6 +43,10 @@ struct Pipelines {
   VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
 };
 
+/// A shader module from the embedded SPIR-V of `name` (shaders/shader_registry.h). The caller
+/// destroys it once its pipelines are built.
+VkShaderModule create_shader_module(const Context& ctx, std::string_view name);
+
 /// A shading pipeline specialized to a scene: BRDF variant, energy compensation, and the
 /// number of point, spot and directional lights (lights sorted by kind).
 struct ShadeVariant {

@@ -21,14 +21,9 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr) {
-  write_png(args.out, ldr);
-  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
-}
-
-// The CPU reference renderer (core/reference_renderer.h): same options, same files.
-int run_reference(const Scene& scene, const RenderArgs& args) {
-  ReferenceSettings settings;
+// What a frame looks like, from the command line (the same for every backend).
+FrameSettings settings_of(const RenderArgs& args) {
+  FrameSettings settings;
   settings.width = args.width;
   settings.height = args.height;
   settings.exposure_ev = args.exposure_ev;
@@ -36,6 +31,25 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   settings.view = args.view;
   settings.brdf = args.brdf;
   settings.energy_compensation = args.energy_compensation;
+  return settings;
+}
+
+void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr) {
+  write_png(args.out, ldr);
+  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
+}
+
+// The CPU reference renderer (core/reference_renderer.h): same options, same files.
+int run_reference(const Scene& scene, const RenderArgs& args) {
+  const FrameSettings frame_settings = settings_of(args);
+  ReferenceSettings settings;
+  settings.width = frame_settings.width;
+  settings.height = frame_settings.height;
+  settings.exposure_ev = frame_settings.exposure_ev;
+  settings.tonemap = frame_settings.tonemap;
+  settings.view = frame_settings.view;
+  settings.brdf = frame_settings.brdf;
+  settings.energy_compensation = frame_settings.energy_compensation;
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < args.repeat; ++i) {
@@ -76,14 +90,7 @@ int run_render(const RenderArgs& args) {
   Renderer renderer(*ctx);
   renderer.set_scene(scene);
 
-  FrameSettings settings;
-  settings.width = args.width;
-  settings.height = args.height;
-  settings.exposure_ev = args.exposure_ev;
-  settings.tonemap = args.tonemap;
-  settings.view = args.view;
-  settings.brdf = args.brdf;
-  settings.energy_compensation = args.energy_compensation;
+  const FrameSettings settings = settings_of(args);
 
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));
