@@ -261,6 +261,7 @@ std::string bench_help() {
          "  --chart FILE        .svg or .png: time against objects (log-log, one line per "
          "backend)\n"
          "                      and the compute path's per-pass breakdown\n"
+         "  --validate          enable the Khronos validation layer (exit status 3 on reports)\n"
          "  --quiet             no progress bar or table\n";
 }
 
@@ -305,7 +306,8 @@ bool parse_bench_args(const std::vector<std::string>& args, BenchArgs& out) {
   };
   const std::map<std::string, std::function<void()>> flags = {
       {"--quiet", [&] { out.quiet = true; }},
-      {"--generic-shading", [&] { out.generic_shading = true; }}};
+      {"--generic-shading", [&] { out.generic_shading = true; }},
+      {"--validate", [&] { out.validate = true; }}};
   if (!parse_options(args, with_value, flags, "tessera bench")) return false;
   if (!is_builtin_scene(out.scene))
     make_bench_scene(out.scene, 1, out.segments, 1.0f);  // unknown: fails early
@@ -329,6 +331,7 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   if (gpu_backends) {
     ContextOptions options;
     options.device = a.device;
+    options.validation = a.validate;
     ctx = create_context(options);
     RendererOptions options_r;
     options_r.small_triangle_max_area = a.small_triangle_area;
@@ -452,6 +455,11 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
     for (const std::string* p : {&a.csv, &a.json, &a.chart}) {
       if (!p->empty()) std::printf("wrote %s\n", p->c_str());
     }
+  }
+  if (ctx && ctx->validation && (ctx->validation->errors || ctx->validation->warnings)) {
+    std::fprintf(stderr, "validation reported %u errors and %u warnings\n",
+                 ctx->validation->errors.load(), ctx->validation->warnings.load());
+    return 3;
   }
   return 0;
 }

@@ -19,9 +19,10 @@ struct BenchArgs {
   uint32_t warmup = 2;   // untimed frames first
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
   uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
-  bool generic_shading = false;  // RendererOptions::specialize_lights off
+  bool generic_shading = false;                  // RendererOptions::specialize_lights off
   std::string csv, json, chart;
   bool quiet = false;
+  bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
 };
 
 /// Parses the arguments after `tessera bench`. Throws Error naming a bad argument; returns

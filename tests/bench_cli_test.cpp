@@ -24,7 +24,7 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
     const std::string base = test::output_path(std::string(family.name));
     std::string out;
     const std::string command =
-        std::string(TESSERA_BINARY) + " bench --device lavapipe --scene " +
+        std::string(TESSERA_BINARY) + " bench --device lavapipe --validate --scene " +
         std::string(family.name) +
         " --objects 1,3 --size 64x48 --segments 8 --backends compute,hardware,reference "
         "--repeat 2 --warmup 0 --csv " +
@@ -44,12 +44,12 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
   }
   const std::string png = test::output_path("grid.png");
   std::string out;
-  ASSERT_EQ(test::run_command(
-                std::string(TESSERA_BINARY) +
-                    " bench --device lavapipe --objects 1,2 --size 32x32 --segments 6 --repeat 1 "
-                    "--warmup 0 --quiet --chart " +
-                    png,
-                out),
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --validate --objects 1,2 --size 32x32 "
+                                  "--segments 6 --repeat 1 "
+                                  "--warmup 0 --quiet --chart " +
+                                  png,
+                              out),
             0)
       << out;
   Image8 chart = read_png(png);
