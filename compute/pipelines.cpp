@@ -54,8 +54,15 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
       {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},
       {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)},
       {TS_SPEC_ENERGY_COMPENSATION, offsetof(Specialization, energy_compensation),
-       sizeof(VkBool32)}};
-  VkSpecializationInfo spec{3, entries, sizeof(values), &values};
+       sizeof(VkBool32)},
+      {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
+      {TS_SPEC_POINT_LIGHTS, offsetof(Specialization, point_lights), sizeof(uint32_t)},
+      {TS_SPEC_SPOT_LIGHTS, offsetof(Specialization, spot_lights), sizeof(uint32_t)},
+      {TS_SPEC_DIRECTIONAL_LIGHTS, offsetof(Specialization, directional_lights), sizeof(uint32_t)}};
+  // Every member of Specialization (4 bytes each) has its entry: a member without one would be
+  // silently ignored by the driver.
+  static_assert(std::size(entries) * 4 == sizeof(Specialization));
+  VkSpecializationInfo spec{uint32_t(std::size(entries)), entries, sizeof(values), &values};
 
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
