@@ -76,16 +76,25 @@ void destroy_buffer(const Context& ctx, Buffer& b) {
 
 StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
                           VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+  return create_image(ctx, width, height, 1, false, format, usage, aspect);
+}
+
+StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, uint32_t levels,
+                          bool cube, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect) {
   StorageImage img;
   img.format = format;
   img.width = width;
   img.height = height;
+  img.levels = levels;
+  img.layers = cube ? 6 : 1;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
   info.extent = {width, height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.mipLevels = levels;
+  info.arrayLayers = img.layers;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = usage;
@@ -102,9 +111,9 @@ StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, V
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = img.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.viewType = cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D;
   view.format = format;
-  view.subresourceRange = {aspect, 0, 1, 0, 1};
+  view.subresourceRange = {aspect, 0, levels, 0, img.layers};
   VK_CHECK(vkCreateImageView(ctx.device, &view, nullptr, &img.view));
   return img;
 }

@@ -36,11 +36,18 @@ struct StorageImage {
   VkFormat format = VK_FORMAT_UNDEFINED;
   uint32_t width = 0;
   uint32_t height = 0;
+  uint32_t levels = 1;  // mip levels
+  uint32_t layers = 1;  // 6 for a cube
 };
 
 /// Creates a device-local 2D image of `usage` with a view on `aspect`, in layout UNDEFINED.
 StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
                           VkImageUsageFlags usage, VkImageAspectFlags aspect);
+
+/// The same with `levels` mip levels, and as a cube (6 layers, a cube view) if `cube`.
+StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, uint32_t levels,
+                          bool cube, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect);
 
 /// Creates a 2D image usable as a storage image and as a copy and blit source (so a window can
 /// present it), and leaves it in VK_IMAGE_LAYOUT_GENERAL, where it stays.

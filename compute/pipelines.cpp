@@ -12,15 +12,18 @@
 namespace tessera {
 namespace {
 
+}  // namespace
+
 VkDescriptorType binding_type(uint32_t binding) {
   if (binding == TS_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   if (binding == TS_BINDING_HDR_IMAGE || binding == TS_BINDING_LDR_IMAGE) {
     return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   }
+  if (binding == TS_BINDING_ENV_MAP || binding == TS_BINDING_ENV_SPECULAR) {
+    return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  }
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
-
-}  // namespace
 
 VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
   std::span<const uint32_t> code = find_shader(name);
@@ -44,6 +47,8 @@ struct Specialization {
   uint32_t point_lights = 0;
   uint32_t spot_lights = 0;
   uint32_t directional_lights = 0;
+  uint32_t texture_maps = TS_MAP_ALL;
+  uint32_t ibl = TS_IBL_RUNTIME;
 };
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
@@ -58,7 +63,9 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
       {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
       {TS_SPEC_POINT_LIGHTS, offsetof(Specialization, point_lights), sizeof(uint32_t)},
       {TS_SPEC_SPOT_LIGHTS, offsetof(Specialization, spot_lights), sizeof(uint32_t)},
-      {TS_SPEC_DIRECTIONAL_LIGHTS, offsetof(Specialization, directional_lights), sizeof(uint32_t)}};
+      {TS_SPEC_DIRECTIONAL_LIGHTS, offsetof(Specialization, directional_lights), sizeof(uint32_t)},
+      {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
+      {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)}};
   // Every member of Specialization (4 bytes each) has its entry: a member without one would be
   // silently ignored by the driver.
   static_assert(std::size(entries) * 4 == sizeof(Specialization));
@@ -89,7 +96,9 @@ VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                         VK_TRUE,
                         v.light_counts[0],
                         v.light_counts[1],
-                        v.light_counts[2]};
+                        v.light_counts[2],
+                        v.texture_maps,
+                        v.ibl ? TS_IBL_ON : TS_IBL_OFF};
   return create_compute_pipeline(ctx, pipelines.layout, "shade", values);
 }
 
@@ -134,6 +143,8 @@ Pipelines create_pipelines(const Context& ctx) {
       {Pipeline::shade_filament_compensated, "shade", {VK_FALSE, TS_BRDF_FILAMENT, VK_TRUE}},
       {Pipeline::dfg_classic, "dfg", {VK_FALSE, TS_BRDF_CLASSIC, VK_FALSE}},
       {Pipeline::dfg_filament, "dfg", {VK_FALSE, TS_BRDF_FILAMENT, VK_FALSE}},
+      {Pipeline::env_irradiance, "env_irradiance", {VK_FALSE, 0, VK_FALSE}},
+      {Pipeline::env_prefilter, "env_prefilter", {VK_FALSE, 0, VK_FALSE}},
       {Pipeline::resolve, "resolve", {VK_FALSE, 0, VK_FALSE}},
   };
 

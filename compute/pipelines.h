@@ -27,6 +27,8 @@ enum class Pipeline {
   shade_filament_compensated,
   dfg_classic,  // the DFG tables, per visibility term
   dfg_filament,
+  env_irradiance,  // the environment's irradiance coefficients
+  env_prefilter,   // one level of the prefiltered specular cube
   resolve,
   count
 };
@@ -43,16 +45,22 @@ struct Pipelines {
   VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
 };
 
+/// Descriptor type of binding `binding` (TS_BINDING_*) of the shared set.
+VkDescriptorType binding_type(uint32_t binding);
+
 /// A shader module from the embedded SPIR-V of `name` (shaders/shader_registry.h). The caller
 /// destroys it once its pipelines are built.
 VkShaderModule create_shader_module(const Context& ctx, std::string_view name);
 
-/// A shading pipeline specialized to a scene: BRDF variant, energy compensation, and the
-/// number of point, spot and directional lights (lights sorted by kind).
+/// A shading pipeline specialized to a scene: BRDF variant, energy compensation, the number
+/// of point, spot and directional lights (lights sorted by kind), the texture maps its
+/// materials use (TS_MAP_* bits) and whether an environment lights it.
 struct ShadeVariant {
   uint32_t brdf;
   bool energy_compensation;
   std::array<uint32_t, 3> light_counts;
+  uint32_t texture_maps;
+  bool ibl;
   auto operator<=>(const ShadeVariant&) const = default;
 };
 

@@ -80,8 +80,9 @@ uint32_t view_id(View v) {
 }  // namespace
 
 const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"clear", "setup",        "clip",         "count", "scan",
-                                       "fill",  "raster_tiles", "raster_small", "shade", "resolve"};
+  static const char* const kNames[] = {"environment",  "clear",        "setup", "clip",
+                                       "count",        "scan",         "fill",  "raster_tiles",
+                                       "raster_small", "shade",        "resolve"};
   static_assert(std::size(kNames) == kPassCount);
   return kNames[size_t(pass)];
 }
@@ -93,7 +94,8 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
 
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, TS_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pool_info.maxSets = 1;
   pool_info.poolSizeCount = uint32_t(std::size(sizes));
@@ -109,6 +111,8 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
                           MemoryKind::device);
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
+  validate_environment_options(options.environment);
+  create_environment_gpu(ctx, s_->env);
 }
 
 Renderer::~Renderer() {
@@ -118,10 +122,11 @@ Renderer::~Renderer() {
        {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights, &s_->visibility,
         &s_->coverage, &s_->tile_counts, &s_->tile_offsets, &s_->tile_cursors, &s_->raster_tris,
         &s_->small_list, &s_->big_list, &s_->clip_list, &s_->tile_entries, &s_->dfg, &s_->counters,
-        &s_->counters_readback, &s_->frame_constants}) {
+        &s_->counters_readback, &s_->frame_constants, &s_->texels, &s_->textures}) {
     destroy_buffer(ctx, *b);
   }
   destroy_hardware_baseline(*s_);
+  destroy_environment_gpu(ctx, s_->env);
   for (auto& [variant, pipeline] : s_->shade_variants)
     vkDestroyPipeline(ctx.device, pipeline, nullptr);
   destroy_image(ctx, s_->hdr);
@@ -187,6 +192,14 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   queue_array_upload(s.ctx, s.materials, prev.materials, next.materials, copies, stats,
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.lights, prev.lights, next.lights, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.texels, prev.texels, next.texels, copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.textures, prev.textures, next.textures, copies, stats,
+                     s.descriptors_dirty);
+  if (scene.environment != s.env.source) {
+    set_environment(s.ctx, s.env, scene.environment, s.options.environment);
+    s.descriptors_dirty = true;
+    stats.environment_changed = true;
+  }
 
   VkDeviceSize total = 0;
   for (const PendingCopy& c : copies) total += c.size;
@@ -332,7 +345,8 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf), compensate, s.uploaded.light_counts};
+    const ShadeVariant v{uint32_t(settings.brdf), compensate, s.uploaded.light_counts,
+                         s.uploaded.texture_maps, s.env.source != nullptr};
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;
@@ -371,6 +385,10 @@ FrameStats Renderer::render(const FrameSettings& settings) {
   if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
     throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
   }
+  if (settings.max_anisotropy < 1 || settings.max_anisotropy > 16) {
+    throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
+                " is outside 1..16");
+  }
 
   ensure_frame_resources(s, settings);
 
@@ -387,7 +405,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
     ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
-    const uint32_t queries_needed = 2 + 7 * batches + 2;
+    const uint32_t queries_needed = 3 + 7 * batches + 2;
     if (timestamps && s.query_capacity < queries_needed) {
       if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
       VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -490,6 +508,8 @@ void Renderer::update_descriptors() {
       {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
       {TS_BINDING_VISIBILITY, &s.visibility},     {TS_BINDING_COVERAGE, &s.coverage},
       {TS_BINDING_CLIP_LIST, &s.clip_list},       {TS_BINDING_DFG, &s.dfg},
+      {TS_BINDING_TEXELS, &s.texels},             {TS_BINDING_TEXTURES, &s.textures},
+      {TS_BINDING_ENV_LEVELS, &s.env.level_texels}, {TS_BINDING_ENV_IRRADIANCE, &s.env.irradiance},
   };
   std::vector<VkDescriptorBufferInfo> buffer_infos;
   buffer_infos.reserve(std::size(buffers));
@@ -515,6 +535,18 @@ void Renderer::update_descriptors() {
     w.descriptorCount = 1;
     w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     w.pImageInfo = &images[i];
+    writes.push_back(w);
+  }
+  const VkDescriptorImageInfo sampled[] = {
+      {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_GENERAL},
+      {s.env.cube_sampler, s.env.specular.view, VK_IMAGE_LAYOUT_GENERAL}};
+  for (uint32_t i = 0; i < 2; ++i) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = s.set;
+    w.dstBinding = i == 0 ? TS_BINDING_ENV_MAP : TS_BINDING_ENV_SPECULAR;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = &sampled[i];
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(s.ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
@@ -545,7 +577,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   f.flags = glm::uvec4(s.options.cull == CullMode::back    ? TS_CULL_BACK
                        : s.options.cull == CullMode::front ? TS_CULL_FRONT
                                                            : TS_CULL_NONE,
-                       0, 0, 0);
+                       s.env.source ? 1u : 0u, specular_levels(s.env), settings.max_anisotropy);
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 
@@ -570,7 +602,12 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
-  if (settings.energy_compensation) record_dfg_if_needed(s, cmd);
+  // Image-based lighting needs the DFG tables too (the split-sum's specular albedo).
+  const bool precompute = s.env.precompute_pending ||
+                          (!s.dfg_ready && (settings.energy_compensation || s.env.source));
+  if (settings.energy_compensation || s.env.source) record_dfg_if_needed(s, cmd);
+  record_environment_precompute(cmd, s.env, p);
+  if (precompute) mark(Pass::environment);
   vkCmdFillBuffer(cmd, s.visibility.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);  // TS_VIS_EMPTY
   if (s.options.debug_coverage) vkCmdFillBuffer(cmd, s.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, s.counters.buffer, 0, VK_WHOLE_SIZE, 0);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "compute/context.h"
+#include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
 #include "core/image.h"
 #include "core/scene.h"
@@ -38,6 +39,9 @@ struct RendererOptions {
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
   /// covered exactly once. Slower; for tests.
   bool debug_coverage = false;
+  /// Resolutions and sample counts of the image-based lighting, applied when a scene's
+  /// environment is set (set_scene throws Error for values out of range).
+  EnvironmentOptions environment;
 };
 
 struct FrameSettings {
@@ -49,9 +53,14 @@ struct FrameSettings {
   Brdf brdf = Brdf::classic;
   /// Multiple-scattering energy compensation of the specular lobe (classic and filament).
   bool energy_compensation = false;
+  /// Texture filtering: 1 is trilinear; 2 to 16 take up to that many trilinear probes along
+  /// the footprint's longer axis (anisotropic filtering).
+  uint32_t max_anisotropy = 1;
 };
 
 enum class Pass {
+  environment,  // the environment's irradiance and prefiltered cube, on the first frame after
+                // set_scene changed it (also the DFG tables when first needed)
   clear,
   setup,
   clip,
@@ -89,6 +98,7 @@ struct FrameStats {
 struct UploadStats {
   uint64_t bytes = 0;            // bytes copied to the GPU
   uint32_t buffers_created = 0;  // buffers (re)allocated because they were too small
+  bool environment_changed = false;  // the environment was uploaded and will be precomputed
 };
 
 class Renderer {

@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 
+#include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
 #include "compute/graphics_util.h"
 #include "compute/pipelines.h"
@@ -29,7 +30,8 @@ struct Renderer::State {
   Camera camera;
   glm::vec3 background{0.0f};
   glm::vec3 ambient{0.0f};
-  Buffer vertices, indices, objects, materials, lights;
+  Buffer vertices, indices, objects, materials, lights, texels, textures;
+  EnvironmentGpu env;
 
   // Sized by the image.
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;

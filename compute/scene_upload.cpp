@@ -4,20 +4,31 @@
 #include <cmath>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
 #include "core/check.h"
+#include "core/texture.h"
 
 namespace tessera {
 GpuSceneArrays flatten_scene(const Scene& scene) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
   std::vector<uint32_t> base_vertex(scene.meshes.size());
+  bool normal_maps = false;
+  for (const Material& m : scene.materials) normal_maps |= m.normal_map != kNoTexture;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     first_index[m] = uint32_t(out.indices.size());
     base_vertex[m] = uint32_t(out.vertices.size());
+    std::vector<glm::vec4> generated;
+    if (normal_maps && mesh.tangents.empty()) {
+      generated = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+    }
+    const std::vector<glm::vec4>& tangents = mesh.tangents.empty() ? generated : mesh.tangents;
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      out.vertices.push_back(
-          {glm::vec4(mesh.positions[v], mesh.uvs[v].x), glm::vec4(mesh.normals[v], mesh.uvs[v].y)});
+      out.vertices.push_back({glm::vec4(mesh.positions[v], mesh.uvs[v].x),
+                              glm::vec4(mesh.normals[v], mesh.uvs[v].y),
+                              tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
     }
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
@@ -44,8 +55,29 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   }
 
   for (const Material& m : scene.materials) {
+    const glm::uvec4 maps(m.base_color_map, m.metallic_roughness_map, m.normal_map,
+                          m.occlusion_map);
     out.materials.push_back({glm::vec4(m.base_color, 1.0f), glm::vec4(m.emissive, m.occlusion),
-                             m.metallic, m.roughness, 0.0f, 0.0f});
+                             m.metallic, m.roughness, m.normal_scale, 0.0f, maps});
+    for (int k = 0; k < 4; ++k) {
+      if (maps[k] != kNoTexture) out.texture_maps |= 1u << k;
+    }
+  }
+  for (const Texture& t : scene.textures) {
+    const MipChain chain = build_mip_chain(t);
+    gpu::GpuTexture g{};
+    g.size = glm::uvec4(t.width, t.height, uint32_t(chain.levels.size()), 0);
+    TESSERA_CHECK(chain.levels.size() <= TS_MAX_TEXTURE_LEVELS);
+    for (size_t l = 0; l < chain.levels.size(); ++l) {
+      if (out.texels.size() > 0xFFFFFFFFull - chain.levels[l].texels.size()) {
+        throw Error("the scene's textures have more than 2^32 texels with their mip levels");
+      }
+      g.level_offset[l / 4][l % 4] = uint32_t(out.texels.size());
+      for (const glm::vec4& c : chain.levels[l].texels) {
+        out.texels.push_back({glm::packHalf2x16({c.r, c.g}), glm::packHalf2x16({c.b, c.a})});
+      }
+    }
+    out.textures.push_back(g);
   }
   // Sorted by kind (stably), so a shading pipeline specialized to the counts of each kind can
   // loop over each kind separately.

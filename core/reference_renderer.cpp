@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/check.h"
+#include "core/reference_brdf.h"
+#include "core/texture.h"
 
 namespace tessera {
 namespace {
@@ -20,17 +22,9 @@ using glm::dvec2;
 using glm::dvec3;
 using glm::dvec4;
 
-constexpr double kPi = std::numbers::pi;
 constexpr int64_t kSubpixelOne = 256;  // 8 sub-pixel bits
 constexpr double kGuardBandPx = 32768.0;
 constexpr uint32_t kMaxSide = 16384;
-// The shading model's guards, the same constants as the compute path's (shaders/brdf.glsl
-// gives the reasons): they are part of the model, not of either implementation.
-constexpr double kMinPerceptualRoughness = 0.045;
-constexpr double kMinNoV = 1e-4;
-constexpr double kMinLightDistanceSquared = 1e-4;
-constexpr double kMinAttenuationDenominator = 1e-4;
-constexpr double kMinSpotCosineGap = 1e-4;
 constexpr double kMaxHalf = 65504.0;  // the HDR output is fp16
 
 struct CameraModel {
@@ -64,11 +58,16 @@ CameraModel make_camera(const Camera& c, uint32_t width, uint32_t height) {
   return m;
 }
 
+// Unit ray direction through the point (px, py) of the image, in pixels.
+dvec3 camera_ray_at(const CameraModel& cam, double px, double py) {
+  double ndc_x = px / cam.width * 2.0 - 1.0;
+  double ndc_y = py / cam.height * 2.0 - 1.0;
+  return glm::normalize(cam.forward + ndc_x * cam.tan_x * cam.right - ndc_y * cam.tan_y * cam.up);
+}
+
 // Unit ray direction through the centre of pixel (x, y).
 dvec3 camera_ray(const CameraModel& cam, uint32_t x, uint32_t y) {
-  double ndc_x = (x + 0.5) / cam.width * 2.0 - 1.0;
-  double ndc_y = (y + 0.5) / cam.height * 2.0 - 1.0;
-  return glm::normalize(cam.forward + ndc_x * cam.tan_x * cam.right - ndc_y * cam.tan_y * cam.up);
+  return camera_ray_at(cam, x + 0.5, y + 0.5);
 }
 
 struct Instance {
@@ -78,6 +77,7 @@ struct Instance {
   dmat3 normal_matrix;
   uint64_t first_triangle;
   uint32_t slot;
+  const std::vector<glm::vec4>* tangents = nullptr;  // the mesh's, or generated; null if unused
 };
 
 std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& numbering) {
@@ -267,138 +267,7 @@ void rasterize_rows(const std::vector<RasterTriangle>& tris, uint32_t width, int
   }
 }
 
-// --- Shading -------------------------------------------------------------------------------
-
-// GGX / Trowbridge-Reitz normal distribution (Walter et al. 2007), alpha = roughness^2.
-double ggx_distribution(double n_dot_h, double alpha) {
-  const double a2 = alpha * alpha;
-  const double denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
-  return a2 / (kPi * denom * denom);
-}
-
-// Smith's masking-shadowing as the product of two Schlick-GGX terms, k = (r + 1)^2 / 8
-// (Karis 2013).
-double smith_schlick_ggx(double n_dot_v, double n_dot_l, double roughness) {
-  const double k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
-  auto g1 = [k](double c) { return c / (c * (1.0 - k) + k); };
-  return g1(n_dot_v) * g1(n_dot_l);
-}
-
-// Schlick's approximation of the Fresnel reflectance (Schlick 1994).
-dvec3 schlick_fresnel(double cos_theta, dvec3 f0) {
-  return f0 + (dvec3(1.0) - f0) * std::pow(1.0 - cos_theta, 5.0);
-}
-
-// Height-correlated Smith masking-shadowing for GGX (Heitz 2014), as G / (4 N.L N.V).
-double smith_ggx_correlated_visibility(double n_dot_v, double n_dot_l, double alpha) {
-  const double a2 = alpha * alpha;
-  const double lambda_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
-  const double lambda_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
-  return 0.5 / (lambda_v + lambda_l);
-}
-
-// Normalized Blinn-Phong lobe (n + 8) / (8 pi) cos^n, n = 2 / alpha^2 - 2 (Walter et al. 2007).
-double blinn_phong_lobe(double n_dot_h, double alpha) {
-  const double n = 2.0 / (alpha * alpha) - 2.0;
-  return (n + 8.0) / (8.0 * kPi) * std::pow(n_dot_h, n);
-}
-
 }  // namespace
-
-namespace {
-
-struct Lobes {
-  dvec3 diffuse, specular;
-};
-
-// The BRDF's two lobes (see reference_brdf).
-Lobes brdf_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
-  const double n_dot_l = glm::dot(n, l);
-  if (n_dot_l <= 0.0) return {dvec3(0.0), dvec3(0.0)};
-  const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
-  const dvec3 half_vector = v + l;
-  const double length2 = glm::dot(half_vector, half_vector);
-  const dvec3 h = length2 > 0.0 ? half_vector / std::sqrt(length2) : n;
-  const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
-  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
-  const double alpha = roughness * roughness;
-  const dvec3 base(m.base_color);
-  const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
-  const dvec3 diffuse_color = (1.0 - metallic) * base;
-  const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
-  if (variant == Brdf::blinn_phong)
-    return {diffuse_color / kPi, f0 * blinn_phong_lobe(n_dot_h, alpha)};
-  const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
-  const double d = ggx_distribution(n_dot_h, alpha);
-  if (variant == Brdf::filament) {
-    return {diffuse_color / kPi,
-            d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel};
-  }
-  const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
-  return {(dvec3(1.0) - fresnel) * diffuse_color / kPi,
-          d * g * fresnel / (4.0 * n_dot_l * n_dot_v)};
-}
-
-}  // namespace
-
-dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
-  const Lobes lobes = brdf_lobes(variant, n, v, l, m);
-  return lobes.diffuse + lobes.specular;
-}
-
-double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
-  roughness = std::clamp(roughness, kMinPerceptualRoughness, 1.0);
-  n_dot_v = std::clamp(n_dot_v, kMinNoV, 1.0);
-  const double alpha = roughness * roughness;
-  const double sin_v = std::sqrt(1.0 - n_dot_v * n_dot_v);
-  const dvec3 v(sin_v, 0.0, n_dot_v);
-  constexpr int kSteps = 64;
-  // Half vectors steeper than theta_max = (theta_v + pi/2) / 2 reflect v below the horizon
-  // for every phi (at phi = 0, l's polar angle is 2 theta_h - theta_v), so u stops at the u of
-  // theta_max instead of spending most samples where the integrand is 0.
-  const double cos_h_min = std::cos((std::acos(n_dot_v) + kPi / 2.0) / 2.0);
-  const double c2 = cos_h_min * cos_h_min;
-  const double u_max = std::min(1.0, (1.0 - c2) / (1.0 + c2 * (alpha * alpha - 1.0)));
-  // u = 1 - t^2: the estimator's 1 / cos(theta_h) grows like 1 / sqrt(1 - u) near grazing half
-  // vectors, which the substitution's du = 2t dt cancels (midpoint sums then converge fast).
-  const double t_min = std::sqrt(std::max(0.0, 1.0 - u_max));
-  double sum = 0.0;
-  for (int i = 0; i < kSteps; ++i) {
-    const double t = t_min + (1.0 - t_min) * (i + 0.5) / kSteps;
-    const double u = 1.0 - t * t;
-    const double jacobian = 2.0 * t * (1.0 - t_min);
-    // Half vectors distributed as D(h) cos(theta_h): cos^2 = (1 - u) / (1 + (alpha^2 - 1) u).
-    const double cos_h = std::sqrt((1.0 - u) / (1.0 + (alpha * alpha - 1.0) * u));
-    const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-    // l = 2 (v.h) h - v is above the horizon where cos(phi) > c: integrate phi over that arc
-    // only, so the integrand stays smooth (a cut-off integrand makes midpoint sums converge
-    // slowly: 1-2 % off at N.V = 0.05 with 64 steps).
-    const double denom = 2.0 * sin_v * sin_h * cos_h;
-    double phi_max = 0.0;
-    if (denom > 0.0) {
-      const double c = n_dot_v * (1.0 - 2.0 * cos_h * cos_h) / denom;
-      phi_max = c >= 1.0 ? 0.0 : c <= -1.0 ? kPi : std::acos(c);
-    } else {
-      phi_max = 2.0 * n_dot_v * cos_h * cos_h - n_dot_v > 0.0 ? kPi : 0.0;
-    }
-    for (int j = 0; j < kSteps; ++j) {
-      const double phi = phi_max * (2.0 * (j + 0.5) / kSteps - 1.0);
-      const dvec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
-      const double v_dot_h = glm::dot(v, h);
-      const dvec3 l = 2.0 * v_dot_h * h - v;
-      if (l.z <= 0.0 || v_dot_h <= 0.0) continue;
-      // f cos / pdf with pdf = D cos_h / (4 v.h) and F = 1: 4 G/(4 n.l n.v) n.l v.h / cos_h.
-      const double visibility =
-          variant == Brdf::filament
-              ? smith_ggx_correlated_visibility(n_dot_v, l.z, alpha)
-              : smith_schlick_ggx(n_dot_v, l.z, roughness) / (4.0 * l.z * n_dot_v);
-      sum += jacobian * visibility * 4.0 * l.z * v_dot_h / cos_h *
-             (phi_max / kPi);  // arc share of 2 pi
-    }
-  }
-  return sum / (kSteps * kSteps);
-}
-
 namespace {
 
 // Reflected radiance towards v from light arriving along l with radiance `incident`; the
@@ -407,7 +276,7 @@ dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec
                 dvec3 specular_scale) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return dvec3(0.0);
-  const Lobes lobes = brdf_lobes(variant, n, v, l, m);
+  const BrdfLobes lobes = reference_brdf_lobes(variant, n, v, l, m);
   return (lobes.diffuse + lobes.specular * specular_scale) * incident * n_dot_l;
 }
 
@@ -439,11 +308,27 @@ double attenuation(const Light& light, double d2, dvec3 l) {
 struct Surface {
   dvec3 position, normal;
   dvec2 uv;
+  dvec2 duv_dx, duv_dy;  // uv change for one pixel step right and down (ray differentials)
+  glm::dvec4 tangent;    // world tangent (unnormalised) and handedness, if the mesh has them
 };
+
+// Unclamped barycentrics of the hit of the ray (origin, dir) on the plane of p0 p1 p2 by
+// Cramer's rule; false if the ray is parallel to the plane.
+bool plane_barycentrics(const dvec3 p[3], dvec3 origin, dvec3 dir, dvec3& b) {
+  const dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0], s = origin - p[0];
+  const dvec3 q = glm::cross(dir, e2);
+  const double det = glm::dot(e1, q);
+  if (det == 0.0 || !std::isfinite(1.0 / det)) return false;
+  const double u = glm::dot(s, q) / det;
+  const double v = glm::dot(dir, glm::cross(s, e1)) / det;
+  b = dvec3(1.0 - u - v, u, v);
+  return true;
+}
 
 // The point of the triangle seen through the pixel: barycentrics of the ray's hit on its plane
 // by Cramer's rule, clamped to the triangle (snapping can cover a centre just outside it).
-Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
+Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, dvec3 dir_dx,
+                   dvec3 dir_dy) {
   const auto idx = corner_indices(inst, id);
   dvec3 p[3], n[3];
   dvec2 uv[3];
@@ -468,16 +353,87 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir) {
   const double length2 = glm::dot(normal, normal);
   out.normal = length2 > 1e-20 ? normal / std::sqrt(length2) : glm::normalize(glm::cross(e1, e2));
   out.uv = b.x * uv[0] + b.y * uv[1] + b.z * uv[2];
+  // Texture footprint: where the neighbouring pixels' rays meet the triangle's plane. A ray
+  // parallel to the plane gives an infinite footprint (the coarsest mip level).
+  const double inf = std::numeric_limits<double>::infinity();
+  dvec3 bx, by;
+  out.duv_dx = plane_barycentrics(p, origin, dir_dx, bx)
+                   ? bx.x * uv[0] + bx.y * uv[1] + bx.z * uv[2] - out.uv
+                   : dvec2(inf);
+  out.duv_dy = plane_barycentrics(p, origin, dir_dy, by)
+                   ? by.x * uv[0] + by.y * uv[1] + by.z * uv[2] - out.uv
+                   : dvec2(inf);
+  out.tangent = glm::dvec4(0.0);
+  if (inst.tangents) {
+    const glm::dmat3 model3(inst.model);
+    dvec3 t(0.0);
+    for (int k = 0; k < 3; ++k) t += b[k] * (model3 * dvec3(glm::vec3((*inst.tangents)[idx[k]])));
+    // A mirroring transform flips the handedness of the tangent frame.
+    const double w = (*inst.tangents)[idx[0]].w * (glm::determinant(model3) < 0.0 ? -1.0 : 1.0);
+    out.tangent = glm::dvec4(t, w);
+  }
   return out;
 }
 
-dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
-                  const std::vector<Instance>& instances, uint64_t id, uint32_t x, uint32_t y,
-                  View view, Brdf brdf, bool energy_compensation) {
-  const Instance& inst = instance_of(instances, id);
-  const dvec3 dir = camera_ray(cam, x, y);
-  const Surface s = surface_at(inst, id, cam.position, dir);
-  switch (view) {
+// What a pixel's shading reads besides the scene.
+struct ShadeContext {
+  const Scene& scene;
+  const CameraModel& cam;
+  const std::vector<Instance>& instances;
+  const std::vector<MipChain>& chains;  // per Scene::textures
+  const ReferenceSettings& settings;
+};
+
+// Smallest N.V a normal map may leave: a mapped normal facing away from the viewer is bent
+// back towards it (the same constant and rule as shaders/material.glsl).
+constexpr double kMinMappedNoV = 0.01;
+
+// The material at the surface point with its texture maps applied, and the shading normal
+// (normal-mapped when the material has a normal map).
+Material resolve_material(const ShadeContext& c, const Material& base, Surface& s, dvec3 v) {
+  Material m = base;
+  auto sample = [&](uint32_t map) {
+    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.max_anisotropy);
+  };
+  if (m.base_color_map != kNoTexture) m.base_color *= glm::vec3(sample(m.base_color_map));
+  if (m.metallic_roughness_map != kNoTexture) {
+    const glm::dvec4 t = sample(m.metallic_roughness_map);
+    m.roughness = float(m.roughness * t.g);
+    m.metallic = float(m.metallic * t.b);
+  }
+  if (m.occlusion_map != kNoTexture) m.occlusion = float(m.occlusion * sample(m.occlusion_map).r);
+  if (m.normal_map != kNoTexture) {
+    const glm::dvec4 t = sample(m.normal_map);
+    const dvec3 local(dvec2(t) * 2.0 - 1.0, t.z * 2.0 - 1.0);
+    const dvec3 n = s.normal;
+    dvec3 tangent = dvec3(s.tangent) - n * glm::dot(n, dvec3(s.tangent));
+    const double t2 = glm::dot(tangent, tangent);
+    if (t2 > 1e-20) {
+      tangent /= std::sqrt(t2);
+      const dvec3 bitangent = s.tangent.w * glm::cross(n, tangent);
+      const dvec3 mapped = tangent * (local.x * base.normal_scale) +
+                           bitangent * (local.y * base.normal_scale) + n * local.z;
+      const double m2 = glm::dot(mapped, mapped);
+      if (m2 > 1e-20) {
+        dvec3 nm = mapped / std::sqrt(m2);
+        const double nv = glm::dot(nm, v);
+        if (nv < kMinMappedNoV) nm = glm::normalize(nm + v * (kMinMappedNoV - nv));
+        s.normal = nm;
+      }
+    }
+  }
+  return m;
+}
+
+dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
+  const Scene& scene = c.scene;
+  const Brdf brdf = c.settings.brdf;
+  const Instance& inst = instance_of(c.instances, id);
+  const dvec3 dir = camera_ray(c.cam, x, y);
+  Surface s = surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
+                         camera_ray_at(c.cam, x + 0.5, y + 1.5));
+  const Material m = resolve_material(c, *inst.material, s, -dir);
+  switch (c.settings.view) {
     case View::normal:
       return s.normal * 0.5 + 0.5;
     case View::uv:
@@ -489,10 +445,9 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
     case View::shaded:
       break;
   }
-  const Material& m = *inst.material;
   const dvec3 v = -dir;
   dvec3 specular_scale(1.0);
-  if (energy_compensation && brdf != Brdf::blinn_phong) {
+  if (c.settings.energy_compensation && brdf != Brdf::blinn_phong) {
     // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
     const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
     const dvec3 f0 =
@@ -514,6 +469,11 @@ dvec3 shade_pixel(const Scene& scene, const CameraModel& cam,
       incident = power * attenuation(light, d2, l);
     }
     color += reflected(brdf, s.normal, v, l, m, incident, specular_scale);
+  }
+  if (scene.environment) {
+    color += double(m.occlusion) *
+             reference_environment_light(*scene.environment, brdf, s.normal, v, m, specular_scale,
+                                         c.settings.environment_samples);
   }
   return glm::min(color, dvec3(kMaxHalf));
 }
@@ -565,7 +525,24 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
   const ObjectNumbering numbering = number_objects(scene);
-  const std::vector<Instance> instances = make_instances(scene, numbering);
+  std::vector<Instance> instances = make_instances(scene, numbering);
+  std::vector<MipChain> chains;
+  for (const Texture& t : scene.textures) chains.push_back(build_mip_chain(t));
+  std::vector<std::vector<glm::vec4>> generated(scene.meshes.size());
+  for (Instance& inst : instances) {
+    if (inst.material->normal_map == kNoTexture) continue;
+    const size_t mesh = size_t(inst.mesh - scene.meshes.data());
+    if (!inst.mesh->tangents.empty()) {
+      inst.tangents = &inst.mesh->tangents;
+      continue;
+    }
+    if (generated[mesh].empty()) {
+      generated[mesh] = generate_tangents(inst.mesh->positions, inst.mesh->normals,
+                                          inst.mesh->uvs, inst.mesh->indices);
+    }
+    inst.tangents = &generated[mesh];
+  }
+  const ShadeContext context{scene, cam, instances, chains, settings};
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
 
@@ -591,10 +568,15 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        const dvec3 c = f.owner[i] == kNoTriangle
-                            ? dvec3(scene.background)
-                            : shade_pixel(scene, cam, instances, f.owner[i], x, y, settings.view,
-                                          settings.brdf, settings.energy_compensation);
+        dvec3 c;
+        if (f.owner[i] != kNoTriangle) {
+          c = shade_pixel(context, f.owner[i], x, y);
+        } else if (scene.environment && settings.view == View::shaded) {
+          c = glm::min(environment_radiance(*scene.environment, camera_ray(cam, x, y)),
+                       dvec3(kMaxHalf));
+        } else {
+          c = dvec3(scene.background);
+        }
         f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {

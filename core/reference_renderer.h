@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/reference_brdf.h"
 #include "core/scene.h"
 
 namespace tessera {
@@ -28,6 +29,9 @@ struct ReferenceSettings {
   CullMode cull = CullMode::back;
   Brdf brdf = Brdf::classic;
   bool energy_compensation = false;  // scales specular by 1 + F0 (1/E - 1), E by quadrature
+  uint32_t max_anisotropy = 1;        // texture filtering, as FrameSettings::max_anisotropy
+  /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
+  uint32_t environment_samples = 1024;
   unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread
 };
 
@@ -45,16 +49,6 @@ struct ReferenceFrame {
 /// Renders `scene` (which must pass validate_scene; throws Error otherwise) at the settings'
 /// size. Sizes follow the compute path's limits: 1 to 16384 per side (throws Error otherwise).
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings);
-
-/// The BRDF f(l, v) of `variant` for unit normal n, view v and light l (without the cosine),
-/// with the shading model's guards (roughness >= 0.045, N.V >= 1e-4); 0 for N.L <= 0.
-glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
-                          const Material& m);
-
-/// Directional albedo E of the specular lobe of `variant` with F = 1, for view cosine n_dot_v
-/// and perceptual roughness (>= 0.045 applied): a 64 x 64 midpoint quadrature over half vectors
-/// distributed as GGX. The reference's independent counterpart of the GPU's DFG table.
-double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness);
 
 /// Geometry of one triangle instance as the reference sees it, for explaining differences:
 /// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge

@@ -42,6 +42,13 @@ void validate_mesh(const Mesh& mesh, size_t m) {
               std::to_string(mesh.positions.size()) + " positions");
   require(mesh.indices.size() % 3 == 0,
           name + " has " + std::to_string(mesh.indices.size()) + " indices, not a multiple of 3");
+  require(mesh.tangents.empty() || mesh.tangents.size() == mesh.positions.size(),
+          name + " has " + std::to_string(mesh.tangents.size()) + " tangents for " +
+              std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
+  for (size_t v = 0; v < mesh.tangents.size(); ++v) {
+    require(finite(mesh.tangents[v]),
+            name + " tangent " + std::to_string(v) + " has a NaN or infinite component");
+  }
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     require(finite(mesh.positions[v]) && finite(mesh.normals[v]) && finite(mesh.uvs[v]),
             name + " vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
@@ -112,6 +119,36 @@ void validate_scene(const Scene& scene) {
             "material " + std::to_string(m) + " has a negative emissive colour");
     require(mat.occlusion >= 0.0f && mat.occlusion <= 1.0f,
             "material " + std::to_string(m) + " has an occlusion outside [0, 1]");
+    require(finite(mat.normal_scale),
+            "material " + std::to_string(m) + " has a NaN or infinite normal scale");
+    const std::pair<const char*, uint32_t> maps[] = {
+        {"base colour", mat.base_color_map},
+        {"metallic-roughness", mat.metallic_roughness_map},
+        {"normal", mat.normal_map},
+        {"occlusion", mat.occlusion_map}};
+    for (const auto& [what, index] : maps) {
+      require(index == kNoTexture || index < scene.textures.size(),
+              "material " + std::to_string(m) + " uses texture " + std::to_string(index) +
+                  " as its " + what + " map, of " + std::to_string(scene.textures.size()));
+    }
+  }
+  for (size_t t = 0; t < scene.textures.size(); ++t) {
+    const Texture& tex = scene.textures[t];
+    require(tex.width > 0 && tex.height > 0 && tex.width <= kMaxTextureSide &&
+                tex.height <= kMaxTextureSide,
+            "texture " + std::to_string(t) + " is " + std::to_string(tex.width) + "x" +
+                std::to_string(tex.height) + ", outside 1.." + std::to_string(kMaxTextureSide) +
+                " per side");
+    require(tex.texels.size() == size_t(tex.width) * tex.height,
+            "texture " + std::to_string(t) + " has " + std::to_string(tex.texels.size()) +
+                " texels for " + std::to_string(tex.width) + "x" + std::to_string(tex.height));
+  }
+  if (scene.environment) {
+    try {
+      validate_environment(*scene.environment);
+    } catch (const Error& e) {
+      throw Error(std::string("invalid scene: ") + e.what());
+    }
   }
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];

@@ -3,10 +3,14 @@
 // colours are linear RGB.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "core/environment.h"
+#include "core/texture.h"
 
 namespace tessera {
 
@@ -25,16 +29,30 @@ struct Mesh {
   std::vector<glm::vec3> normals;  // unit length, same count as positions
   std::vector<glm::vec2> uvs;      // same count as positions
   std::vector<uint32_t> indices;   // 3 per triangle, each < positions.size()
+  /// Optional, for normal maps: xyz a unit tangent along +u orthogonal to the normal, w = +-1
+  /// the handedness (bitangent = w cross(normal, tangent)). Empty: generated from the uvs
+  /// (generate_tangents) when the scene is uploaded or rendered.
+  std::vector<glm::vec4> tangents;
   size_t triangle_count() const { return indices.size() / 3; }
 };
 
+/// Material::*_map value for "no texture".
+constexpr uint32_t kNoTexture = 0xFFFFFFFFu;
+
 /// Metallic-roughness material. roughness is perceptual (alpha = roughness^2), in [0, 1].
+/// Each factor may be multiplied by a texture map (indices into Scene::textures), with the
+/// channel layout of glTF 2.0.
 struct Material {
   glm::vec3 base_color{0.8f};
   float metallic = 0.0f;
   float roughness = 0.5f;
   glm::vec3 emissive{0.0f};  // emitted radiance, linear RGB, >= 0 (added as it is)
-  float occlusion = 1.0f;    // ambient occlusion in [0, 1]: scales the ambient term only
+  float occlusion = 1.0f;    // ambient occlusion in [0, 1]: scales ambient and environment light
+  uint32_t base_color_map = kNoTexture;          // RGB (sRGB texture) times base_color
+  uint32_t metallic_roughness_map = kNoTexture;  // G times roughness, B times metallic
+  uint32_t normal_map = kNoTexture;              // tangent-space normal, RGB * 2 - 1
+  uint32_t occlusion_map = kNoTexture;           // R times occlusion
+  float normal_scale = 1.0f;                     // scales the normal map's x and y
 };
 
 enum class LightKind { point, directional, spot };
@@ -94,6 +112,10 @@ struct Scene {
   std::vector<Light> lights;
   glm::vec3 background{0.0f};  // linear HDR colour of pixels no triangle covers
   glm::vec3 ambient{0.0f};     // constant ambient radiance, times the base colour
+  std::vector<Texture> textures;
+  /// Distant light from every direction (image-based lighting), also drawn as the background
+  /// instead of `background`. Shared, so copies of a scene do not copy the map.
+  std::shared_ptr<const Environment> environment;
 };
 
 /// Checks `scene` for bad input: out-of-range mesh, material or vertex indices, NaN or

@@ -1,12 +1,17 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Graphics baseline (benchmarks and tests only): the compute path's shading model per fragment.
+// Texture footprints come from the fragment shader's own derivatives of uv, where the compute
+// path intersects the neighbouring pixels' rays.
 #include "bindings.glsl"
+#include "material.glsl"
 #include "lighting.glsl"
 
 layout(location = 0) in vec3 world_position;
 layout(location = 1) in vec3 world_normal;
 layout(location = 2) flat in uint material;
+layout(location = 3) in vec4 world_tangent;
+layout(location = 4) in vec2 uv;
 layout(location = 0) out vec4 color;
 
 // Largest finite fp16 value: the HDR image is RGBA16F.
@@ -18,5 +23,13 @@ void main() {
   vec3 N = n2 > 1e-20 ? world_normal * inversesqrt(n2)
                       : normalize(cross(dFdx(world_position), dFdy(world_position)));
   vec3 V = normalize(frame.camera_position.xyz - world_position);
-  color = vec4(min(shade_surface(world_position, N, V, material), vec3(MAX_HALF)), 1.0);
+  SurfaceGeometry g;
+  g.P = world_position;
+  g.N = N;
+  g.T = world_tangent;
+  g.uv = uv;
+  g.duv_dx = dFdxFine(uv);
+  g.duv_dy = dFdyFine(uv);
+  MaterialSample ms = evaluate_material(material, g, V);
+  color = vec4(min(shade_surface(world_position, V, ms), vec3(MAX_HALF)), 1.0);
 }

@@ -7,6 +7,8 @@
 layout(location = 0) out vec3 world_position;
 layout(location = 1) out vec3 world_normal;
 layout(location = 2) flat out uint material;
+layout(location = 3) out vec4 world_tangent;
+layout(location = 4) out vec2 uv;
 
 void main() {
   GpuObject o = objects[gl_InstanceIndex];
@@ -15,6 +17,10 @@ void main() {
   world_position = world.xyz;
   world_normal = mat3(o.normal_matrix) * v.normal_v.xyz;
   material = o.material;
+  // A mirroring transform flips the handedness of the tangent frame.
+  world_tangent = vec4(mat3(o.model) * v.tangent.xyz,
+                       v.tangent.w * (determinant(mat3(o.model)) < 0.0 ? -1.0 : 1.0));
+  uv = vec2(v.position_u.w, v.normal_v.w);
   gl_Position = frame.view_proj * world;
   // Reverse depth as in the compute path: z / w = near / w, nearer is larger.
   gl_Position.z = frame.camera_position.w;

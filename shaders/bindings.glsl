@@ -26,8 +26,23 @@ layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint c
 layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec2 dfg[]; };
 layout(set = 0, binding = TS_BINDING_HDR_IMAGE, rgba16f) uniform image2D hdr_image;
 layout(set = 0, binding = TS_BINDING_LDR_IMAGE, rgba8) uniform image2D ldr_image;
+// Texture maps: mip chains packed as fp16 RGBA (two halves per uint), filtered by hand
+// (texture.glsl).
+layout(set = 0, binding = TS_BINDING_TEXELS, std430) readonly buffer Texels { uvec2 texels[]; };
+layout(set = 0, binding = TS_BINDING_TEXTURES, std430) readonly buffer Textures { GpuTexture textures[]; };
+// The environment (a 1x1 black placeholder when the scene has none).
+layout(set = 0, binding = TS_BINDING_ENV_MAP) uniform sampler2D env_map;
+layout(set = 0, binding = TS_BINDING_ENV_SPECULAR) uniform samplerCube env_specular;
+// Where env_prefilter.comp writes the cube's levels (fp16 RGBA, level after level, face after
+// face) before they are copied into env_specular: lavapipe cannot index storage-image arrays.
+layout(set = 0, binding = TS_BINDING_ENV_LEVELS, std430) buffer EnvTexels { uvec2 env_texels[]; };
+layout(set = 0, binding = TS_BINDING_ENV_IRRADIANCE, std430) buffer EnvIrradiance { vec4 env_irradiance[9]; };
 
+#ifdef TS_ENV_PASS
+layout(push_constant) uniform EnvPassBlock { GpuEnvPass env_pass; };
+#else
 layout(push_constant) uniform BatchBlock { GpuBatch batch; };
+#endif
 
 // Last object whose first triangle-instance id is <= `tri` (objects are sorted by it).
 uint find_object(uint tri) {
@@ -44,6 +59,14 @@ uint find_object(uint tri) {
 uvec3 triangle_vertices(GpuObject o, uint tri) {
   uint base = o.first_index + 3u * (tri - o.first_triangle);
   return uvec3(indices[base], indices[base + 1u], indices[base + 2u]) + o.base_vertex;
+}
+
+const float PI_BINDINGS = 3.14159265358979323846;
+
+// Equirectangular coordinates of unit direction d (core/environment.h has the convention):
+// u around y starting from -z, v from +y (0) down to -y (1).
+vec2 equirect_uv(vec3 d) {
+  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI_BINDINGS), acos(clamp(d.y, -1.0, 1.0)) / PI_BINDINGS);
 }
 
 // Row-major index of a pixel in the visibility and coverage buffers.

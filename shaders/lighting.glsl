@@ -1,6 +1,7 @@
-// The shading model of a surface point: constant ambient plus Cook-Torrance (brdf.glsl) for
-// every light. Shared by the compute shading pass and the graphics baseline's fragment shader,
-// so both do the same work. Needs bindings.glsl (frame, lights, materials).
+// The shading model of a surface point: constant ambient, the environment's light (split-sum
+// image-based lighting) and Cook-Torrance (brdf.glsl) for every light. Shared by the compute
+// shading pass and the graphics baseline's fragment shader, so both do the same work. Needs
+// bindings.glsl (frame, lights, environment) and material.glsl (MaterialSample).
 #include "brdf.glsl"
 
 // Multiple-scattering energy compensation (Kulla & Conty 2017, in Filament's form): scales the
@@ -8,17 +9,46 @@
 // table, so a white furnace keeps its energy at every roughness. Not for Blinn-Phong.
 layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION = false;
 
-// Bilinear lookup of the specular albedo E(N.V, roughness) in the DFG table of this variant.
-float specular_albedo(float NoV, float roughness) {
+// Image-based lighting: off, on, or decided per frame (the generic pipeline).
+layout(constant_id = TS_SPEC_IBL) const uint IBL_MODE = TS_IBL_RUNTIME;
+
+bool ibl_enabled() {
+  return IBL_MODE == TS_IBL_ON || (IBL_MODE == TS_IBL_RUNTIME && frame.flags.y != 0u);
+}
+
+// Bilinear lookup in the DFG table of this variant at (N.V, roughness): x the Schlick-weighted
+// part of the specular albedo, y the whole albedo with F = 1.
+vec2 dfg_lookup(float NoV, float roughness) {
   uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
   vec2 p = clamp(vec2(NoV, roughness), 0.0, 1.0) * float(TS_DFG_SIZE - 1);
   uvec2 i0 = uvec2(p);
   uvec2 i1 = min(i0 + 1u, uvec2(TS_DFG_SIZE - 1));
   vec2 t = p - vec2(i0);
   uint base = table * TS_DFG_SIZE * TS_DFG_SIZE;
-  float e00 = dfg[base + i0.y * TS_DFG_SIZE + i0.x].y, e10 = dfg[base + i0.y * TS_DFG_SIZE + i1.x].y;
-  float e01 = dfg[base + i1.y * TS_DFG_SIZE + i0.x].y, e11 = dfg[base + i1.y * TS_DFG_SIZE + i1.x].y;
+  vec2 e00 = dfg[base + i0.y * TS_DFG_SIZE + i0.x], e10 = dfg[base + i0.y * TS_DFG_SIZE + i1.x];
+  vec2 e01 = dfg[base + i1.y * TS_DFG_SIZE + i0.x], e11 = dfg[base + i1.y * TS_DFG_SIZE + i1.x];
   return mix(mix(e00, e10, t.x), mix(e01, e11, t.x), t.y);
+}
+
+float specular_albedo(float NoV, float roughness) {
+  return dfg_lookup(NoV, roughness).y;
+}
+
+// Irradiance / pi at normal n from the environment's 9 spherical-harmonic coefficients, the
+// cosine convolution already folded in (Ramamoorthi & Hanrahan 2001, "An Efficient
+// Representation for Irradiance Environment Maps"). Nine terms ring slightly below zero
+// opposite a bright source: clamped, as radiance cannot be negative.
+vec3 irradiance_sh(vec3 n) {
+  vec3 e = env_irradiance[0].rgb * 0.282095
+         + env_irradiance[1].rgb * (0.488603 * n.y)
+         + env_irradiance[2].rgb * (0.488603 * n.z)
+         + env_irradiance[3].rgb * (0.488603 * n.x)
+         + env_irradiance[4].rgb * (1.092548 * n.x * n.y)
+         + env_irradiance[5].rgb * (1.092548 * n.y * n.z)
+         + env_irradiance[6].rgb * (0.315392 * (3.0 * n.z * n.z - 1.0))
+         + env_irradiance[7].rgb * (1.092548 * n.x * n.z)
+         + env_irradiance[8].rgb * (0.546274 * (n.x * n.x - n.y * n.y));
+  return max(e, vec3(0.0));
 }
 
 // Specialization to the scene's lights: with LIGHTS_SPECIALIZED, the lights are sorted by kind
@@ -71,18 +101,38 @@ vec3 light_contribution(SurfacePoint s, uint i, uint kind) {
   return surface_response(s.N, s.V, L, s.NoV, s.base_color, s.metallic, s.roughness, radiance, s.specular_scale);
 }
 
-// Radiance leaving surface point P (world) with unit normal N towards the unit direction V
-// (towards the viewer), for material `material`.
-vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
-  GpuMaterial m = materials[material];
+// The environment's light reflected towards V with the split-sum approximation (Karis 2013):
+// the prefiltered radiance along the reflection at this roughness times the specular albedo
+// from the DFG table, plus the diffuse albedo times the irradiance.
+vec3 environment_light(SurfacePoint s) {
+  vec3 f0 = mix(vec3(0.04), s.base_color, s.metallic);
+  vec3 diffuse_color = (1.0 - s.metallic) * s.base_color;
+  vec3 R = reflect(-s.V, s.N);
+  // Level k of the cube was prefiltered for roughness k / (levels - 1).
+  float lod = s.roughness * float(frame.flags.z - 1u);
+  vec3 prefiltered = textureLod(env_specular, R, lod).rgb;
+  vec3 irradiance = irradiance_sh(s.N);
+  if (BRDF_VARIANT == TS_BRDF_BLINN_PHONG) return diffuse_color * irradiance + f0 * prefiltered;
+  vec2 dfg_terms = dfg_lookup(s.NoV, s.roughness);
+  // Integral of F_Schlick times the lobe: f0 (E - E_Fc) + E_Fc, with E_Fc the Schlick part.
+  vec3 specular = (f0 * (dfg_terms.y - dfg_terms.x) + dfg_terms.x) * prefiltered * s.specular_scale;
+  // The classic model weights diffuse by 1 - F; under an environment F is averaged over light
+  // directions, approximated by its value at N.V.
+  vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? vec3(1.0) - F_Schlick(s.NoV, f0) : vec3(1.0);
+  return kd * diffuse_color * irradiance + specular;
+}
+
+// Radiance leaving surface point P (world) towards the unit direction V (towards the viewer),
+// for the material sample `ms` (with its shading normal).
+vec3 shade_surface(vec3 P, vec3 V, MaterialSample ms) {
   SurfacePoint s;
   s.P = P;
-  s.N = N;
+  s.N = ms.N;
   s.V = V;
-  s.base_color = m.base_color.rgb;
-  s.metallic = clamp(m.metallic, 0.0, 1.0);
-  s.roughness = clamp(m.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
-  s.NoV = max(dot(N, V), MIN_N_DOT_V);
+  s.base_color = ms.base_color;
+  s.metallic = clamp(ms.metallic, 0.0, 1.0);
+  s.roughness = clamp(ms.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  s.NoV = max(dot(s.N, V), MIN_N_DOT_V);
   s.specular_scale = vec3(1.0);
   if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
     // E is at least ~0.07 (classic, grazing, alpha = 1), so the division is safe.
@@ -90,8 +140,10 @@ vec3 shade_surface(vec3 P, vec3 N, vec3 V, uint material) {
     s.specular_scale = 1.0 + f0 * (1.0 / specular_albedo(s.NoV, s.roughness) - 1.0);
   }
 
-  // Constant ambient, dimmed by the material's occlusion, plus what the surface emits.
-  vec3 color = frame.ambient.rgb * s.base_color * m.emissive_occlusion.a + m.emissive_occlusion.rgb;
+  // Constant ambient and the environment, dimmed by the material's occlusion, plus what the
+  // surface emits.
+  vec3 color = frame.ambient.rgb * s.base_color * ms.occlusion + ms.emissive;
+  if (ibl_enabled()) color += environment_light(s) * ms.occlusion;
   if (LIGHTS_SPECIALIZED) {
     for (uint i = 0u; i < POINT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_POINT);
     for (uint i = POINT_LIGHTS; i < POINT_LIGHTS + SPOT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_SPOT);

@@ -2,8 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // Shading: one thread per pixel. Reads the visibility buffer, rebuilds the visible triangle
 // in world space, intersects the pixel's camera ray with it for perspective-correct
-// barycentrics, and evaluates the Cook-Torrance BRDF for every light into linear HDR.
+// barycentrics and texture footprints, applies the material's texture maps, and evaluates the
+// shading model (lighting.glsl) into linear HDR. Empty pixels get the background: the
+// environment along the pixel's ray, or the scene's background colour.
 #include "bindings.glsl"
+#include "material.glsl"
 #include "lighting.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -11,10 +14,31 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // Largest finite fp16 value: the HDR image is RGBA16F and anything above would become Inf.
 const float MAX_HALF = 65504.0;
 
-vec3 camera_ray(ivec2 pixel) {
-  vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.image_size.xy) * 2.0 - 1.0;
+// Unit ray through the point `pixel_point` of the image, in pixels.
+vec3 camera_ray_at(vec2 pixel_point) {
+  vec2 ndc = pixel_point / vec2(frame.image_size.xy) * 2.0 - 1.0;
   vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
   return normalize(far_point.xyz / far_point.w - frame.camera_position.xyz);
+}
+
+vec3 camera_ray(ivec2 pixel) {
+  return camera_ray_at(vec2(pixel) + 0.5);
+}
+
+// Unclamped barycentrics of the ray's hit on the triangle's plane, for texture footprints;
+// false if the ray is parallel to the plane.
+bool plane_barycentrics(vec3 origin, vec3 dir, vec3 p0, vec3 p1, vec3 p2, out vec3 b) {
+  vec3 e1 = p1 - p0;
+  vec3 e2 = p2 - p0;
+  vec3 pv = cross(dir, e2);
+  float inv_det = 1.0 / dot(e1, pv);
+  b = vec3(0.0);
+  if (isinf(inv_det) || isnan(inv_det)) return false;
+  vec3 tv = origin - p0;
+  float u = dot(tv, pv) * inv_det;
+  float v = dot(dir, cross(tv, e1)) * inv_det;
+  b = vec3(1.0 - u - v, u, v);
+  return true;
 }
 
 // Barycentrics of the ray's hit on the triangle's plane (Moeller & Trumbore 1997).
@@ -50,11 +74,13 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   vec3 p[3];
   vec3 n[3];
   vec2 t[3];
+  vec3 tan[3];
   for (int k = 0; k < 3; ++k) {
     GpuVertex vert = vertices[vi[k]];
     p[k] = (o.model * vec4(vert.position_u.xyz, 1.0)).xyz;
     n[k] = mat3(o.normal_matrix) * vert.normal_v.xyz;
     t[k] = vec2(vert.position_u.w, vert.normal_v.w);
+    tan[k] = mat3(o.model) * vert.tangent.xyz;
   }
   vec3 origin = frame.camera_position.xyz;
   vec3 dir = camera_ray(pixel);
@@ -64,21 +90,44 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   float n2 = dot(N, N);
   // Opposite vertex normals can cancel; the face normal is then the only sensible choice.
   N = n2 > 1e-20 ? N * inversesqrt(n2) : normalize(cross(p[1] - p[0], p[2] - p[0]));
-  vec2 uv = b.x * t[0] + b.y * t[1] + b.z * t[2];
+  SurfaceGeometry g;
+  g.P = P;
+  g.N = N;
+  g.uv = b.x * t[0] + b.y * t[1] + b.z * t[2];
+  // Texture footprint by ray differentials (Igehy 1999): where the rays of the next pixel to the
+  // right and below meet the triangle's plane. Compute shaders have no implicit derivatives.
+  vec3 bx, by;
+  const float INF = uintBitsToFloat(0x7F800000u);
+  g.duv_dx = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(1.5, 0.5)), p[0], p[1], p[2], bx)
+                 ? bx.x * t[0] + bx.y * t[1] + bx.z * t[2] - g.uv : vec2(INF);
+  g.duv_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by)
+                 ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
+  // A mirroring transform flips the handedness of the tangent frame.
+  float handedness = vertices[vi[0]].tangent.w * (determinant(mat3(o.model)) < 0.0 ? -1.0 : 1.0);
+  g.T = vec4(b.x * tan[0] + b.y * tan[1] + b.z * tan[2], handedness);
+  MaterialSample ms = evaluate_material(o.material, g, -dir);
 
   uint view = frame.limits.w;
-  if (view == TS_VIEW_NORMAL) return N * 0.5 + 0.5;
-  if (view == TS_VIEW_UV) return vec3(uv, 0.0);
+  if (view == TS_VIEW_NORMAL) return ms.N * 0.5 + 0.5;
+  if (view == TS_VIEW_UV) return vec3(g.uv, 0.0);
   if (view == TS_VIEW_TRIANGLE) return id_colour(id);
   if (view == TS_VIEW_OBJECT) return id_colour(slot);
 
-  return shade_surface(P, N, -dir, o.material);
+  return shade_surface(P, -dir, ms);
+}
+
+// What pixels no triangle covers show.
+vec3 background(ivec2 pixel) {
+  if (ibl_enabled() && frame.limits.w == TS_VIEW_SHADED) {
+    return textureLod(env_map, equirect_uv(camera_ray(pixel)), 0.0).rgb;
+  }
+  return frame.background.rgb;
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size.xy)))) return;
   uint64_t key = visibility[pixel_index(pixel)];
-  vec3 color = key == TS_VIS_EMPTY ? frame.background.rgb : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
+  vec3 color = key == TS_VIS_EMPTY ? background(pixel) : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
   imageStore(hdr_image, pixel, vec4(min(color, vec3(MAX_HALF)), 1.0));
 }

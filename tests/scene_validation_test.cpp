@@ -120,7 +120,7 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
 
   scene.materials[10].roughness = 0.77f;
   UploadStats one_material = renderer.set_scene(scene);
-  EXPECT_EQ(one_material.bytes, 48u) << "one GpuMaterial";
+  EXPECT_EQ(one_material.bytes, sizeof(gpu::GpuMaterial)) << "one GpuMaterial";
   EXPECT_EQ(one_material.buffers_created, 0u);
 
   scene.lights[2].intensity = 10.0f;

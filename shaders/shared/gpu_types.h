@@ -95,7 +95,13 @@ using glm::vec4;
 #define TS_BINDING_LDR_IMAGE 17
 #define TS_BINDING_CLIP_LIST 18
 #define TS_BINDING_DFG 19
-#define TS_BINDING_COUNT 20
+#define TS_BINDING_TEXELS 20           // every texture's mip chain, fp16 RGBA
+#define TS_BINDING_TEXTURES 21         // GpuTexture per Scene::textures entry
+#define TS_BINDING_ENV_MAP 22          // equirectangular radiance with mips (sampler2D)
+#define TS_BINDING_ENV_SPECULAR 23     // prefiltered specular cube, one roughness per level
+#define TS_BINDING_ENV_LEVELS 24       // the same cube's levels as written by the prefilter
+#define TS_BINDING_ENV_IRRADIANCE 25   // 9 spherical-harmonic coefficients of irradiance / pi
+#define TS_BINDING_COUNT 26
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
@@ -105,15 +111,35 @@ using glm::vec4;
 #define TS_SPEC_POINT_LIGHTS 4
 #define TS_SPEC_SPOT_LIGHTS 5
 #define TS_SPEC_DIRECTIONAL_LIGHTS 6
+#define TS_SPEC_TEXTURE_MAPS 7  // maps the shader can sample (TS_MAP_* bits; all if generic)
+#define TS_SPEC_IBL 8           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
+
+#define TS_IBL_OFF 0u
+#define TS_IBL_ON 1u
+#define TS_IBL_RUNTIME 2u  // decided per frame by GpuFrame.flags.y
+
+// Texture maps of a material (bits of TS_SPEC_TEXTURE_MAPS; slots of GpuMaterial.maps).
+#define TS_MAP_BASE_COLOR 1u
+#define TS_MAP_METALLIC_ROUGHNESS 2u
+#define TS_MAP_NORMAL 4u
+#define TS_MAP_OCCLUSION 8u
+#define TS_MAP_ALL 15u
+#define TS_NO_TEXTURE 0xFFFFFFFFu
+// Mip levels a GpuTexture can describe: sides up to 2^15 (the largest accepted is 16384).
+#define TS_MAX_TEXTURE_LEVELS 16
+// Levels of the prefiltered specular cube: faces of up to 2^(TS_ENV_MAX_LEVELS - 1) texels.
+#define TS_ENV_MAX_LEVELS 10
 
 // Side of the DFG table: N.V and perceptual roughness from 0 to 1 inclusive (grid points
 // i / (TS_DFG_SIZE - 1)), one table per visibility term.
 #define TS_DFG_SIZE 64
 
-// One mesh vertex: position and normal in object space, uv split over the two w components.
+// One mesh vertex: position and normal in object space, uv split over the two w components,
+// and the tangent (xyz, object space) with its handedness (w, +-1) for normal maps.
 struct GpuVertex {
   vec4 position_u;
   vec4 normal_v;
+  vec4 tangent;
 };
 
 // One placed instance of a mesh. Objects are uploaded in a canonical order (see
@@ -135,11 +161,19 @@ struct GpuObject {
 // Metallic-roughness material; roughness is perceptual (alpha = roughness^2).
 struct GpuMaterial {
   vec4 base_color;          // linear RGB, a unused
-  vec4 emissive_occlusion;  // rgb: emitted radiance; a: ambient occlusion (scales ambient)
+  vec4 emissive_occlusion;  // rgb: emitted radiance; a: occlusion (scales ambient and IBL)
   float metallic;
   float roughness;
-  float pad0;
+  float normal_scale;
   float pad1;
+  uvec4 maps;  // textures: base colour, metallic-roughness, normal, occlusion (TS_NO_TEXTURE)
+};
+
+// One texture: its mip chain in the texel buffer, level l being max(1, size >> l) texels per
+// side, rows top to bottom, starting at texel level_offset[l / 4][l % 4].
+struct GpuTexture {
+  uvec4 size;  // width, height, levels, unused
+  uvec4 level_offset[TS_MAX_TEXTURE_LEVELS / 4];
 };
 
 struct GpuLight {
@@ -163,7 +197,17 @@ struct GpuFrame {
   uvec4 scene_counts;    // objects, lights, triangle instances, tone-mapping operator
   uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box
                          // area, view (TS_VIEW_*)
-  uvec4 flags;           // x: culling (TS_CULL_*)
+  uvec4 flags;           // x: culling (TS_CULL_*); y: 1 if an environment lights the scene;
+                         // z: levels of the prefiltered cube; w: texture anisotropy (>= 1)
+};
+
+// Push constants of the environment passes (env_irradiance.comp, env_prefilter.comp), in the
+// same 16 bytes as GpuBatch.
+struct GpuEnvPass {
+  uint level;    // prefilter: cube level written; irradiance: env_map level read
+  uint size;     // texels per side of that level
+  uint samples;  // importance samples per texel (prefilter)
+  uint levels;   // levels of the cube
 };
 
 // Push constants: the range of triangle instances one batch of the rasterizer handles.
@@ -201,15 +245,20 @@ struct GpuCounters {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GpuVertex) == 32);
+static_assert(sizeof(GpuVertex) == 48);
 static_assert(offsetof(GpuVertex, normal_v) == 16);
+static_assert(offsetof(GpuVertex, tangent) == 32);
 static_assert(sizeof(GpuObject) == 160);
 static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
-static_assert(sizeof(GpuMaterial) == 48);
+static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, emissive_occlusion) == 16);
 static_assert(offsetof(GpuMaterial, metallic) == 32);
+static_assert(offsetof(GpuMaterial, normal_scale) == 40);
+static_assert(offsetof(GpuMaterial, maps) == 48);
+static_assert(sizeof(GpuTexture) == 80);
+static_assert(offsetof(GpuTexture, level_offset) == 16);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(offsetof(GpuLight, falloff) == 48);
 static_assert(offsetof(GpuLight, kind) == 80);
@@ -220,6 +269,7 @@ static_assert(offsetof(GpuFrame, image_size) == 192);
 static_assert(offsetof(GpuFrame, limits) == 224);
 static_assert(offsetof(GpuFrame, flags) == 240);
 static_assert(sizeof(GpuBatch) == 16);
+static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
 static_assert(sizeof(GpuCounters) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);

@@ -1,0 +1,133 @@
+#include "core/reference_brdf.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera {
+
+using glm::dvec3;
+
+namespace {
+
+// GGX / Trowbridge-Reitz normal distribution (Walter et al. 2007), alpha = roughness^2.
+double ggx_distribution(double n_dot_h, double alpha) {
+  const double a2 = alpha * alpha;
+  const double denom = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * denom * denom);
+}
+
+// Smith's masking-shadowing as the product of two Schlick-GGX terms, k = (r + 1)^2 / 8
+// (Karis 2013).
+double smith_schlick_ggx(double n_dot_v, double n_dot_l, double roughness) {
+  const double k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+  auto g1 = [k](double c) { return c / (c * (1.0 - k) + k); };
+  return g1(n_dot_v) * g1(n_dot_l);
+}
+
+// Schlick's approximation of the Fresnel reflectance (Schlick 1994).
+dvec3 schlick_fresnel(double cos_theta, dvec3 f0) {
+  return f0 + (dvec3(1.0) - f0) * std::pow(1.0 - cos_theta, 5.0);
+}
+
+// Height-correlated Smith masking-shadowing for GGX (Heitz 2014), as G / (4 N.L N.V).
+double smith_ggx_correlated_visibility(double n_dot_v, double n_dot_l, double alpha) {
+  const double a2 = alpha * alpha;
+  const double lambda_v = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+  const double lambda_l = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+  return 0.5 / (lambda_v + lambda_l);
+}
+
+// Normalized Blinn-Phong lobe (n + 8) / (8 pi) cos^n, n = 2 / alpha^2 - 2 (Walter et al. 2007).
+double blinn_phong_lobe(double n_dot_h, double alpha) {
+  const double n = 2.0 / (alpha * alpha) - 2.0;
+  return (n + 8.0) / (8.0 * kPi) * std::pow(n_dot_h, n);
+}
+
+}  // namespace
+
+BrdfLobes reference_brdf_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
+  const double n_dot_l = glm::dot(n, l);
+  if (n_dot_l <= 0.0) return {dvec3(0.0), dvec3(0.0)};
+  const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
+  const dvec3 half_vector = v + l;
+  const double length2 = glm::dot(half_vector, half_vector);
+  const dvec3 h = length2 > 0.0 ? half_vector / std::sqrt(length2) : n;
+  const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
+  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
+  const double alpha = roughness * roughness;
+  const dvec3 base(m.base_color);
+  const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
+  const dvec3 diffuse_color = (1.0 - metallic) * base;
+  const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
+  if (variant == Brdf::blinn_phong)
+    return {diffuse_color / kPi, f0 * blinn_phong_lobe(n_dot_h, alpha)};
+  const dvec3 fresnel = schlick_fresnel(std::clamp(glm::dot(v, h), 0.0, 1.0), f0);
+  const double d = ggx_distribution(n_dot_h, alpha);
+  if (variant == Brdf::filament) {
+    return {diffuse_color / kPi,
+            d * smith_ggx_correlated_visibility(n_dot_v, n_dot_l, alpha) * fresnel};
+  }
+  const double g = smith_schlick_ggx(n_dot_v, n_dot_l, roughness);
+  return {(dvec3(1.0) - fresnel) * diffuse_color / kPi,
+          d * g * fresnel / (4.0 * n_dot_l * n_dot_v)};
+}
+
+dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
+  const BrdfLobes lobes = reference_brdf_lobes(variant, n, v, l, m);
+  return lobes.diffuse + lobes.specular;
+}
+
+double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
+  roughness = std::clamp(roughness, kMinPerceptualRoughness, 1.0);
+  n_dot_v = std::clamp(n_dot_v, kMinNoV, 1.0);
+  const double alpha = roughness * roughness;
+  const double sin_v = std::sqrt(1.0 - n_dot_v * n_dot_v);
+  const dvec3 v(sin_v, 0.0, n_dot_v);
+  constexpr int kSteps = 64;
+  // Half vectors steeper than theta_max = (theta_v + pi/2) / 2 reflect v below the horizon
+  // for every phi (at phi = 0, l's polar angle is 2 theta_h - theta_v), so u stops at the u of
+  // theta_max instead of spending most samples where the integrand is 0.
+  const double cos_h_min = std::cos((std::acos(n_dot_v) + kPi / 2.0) / 2.0);
+  const double c2 = cos_h_min * cos_h_min;
+  const double u_max = std::min(1.0, (1.0 - c2) / (1.0 + c2 * (alpha * alpha - 1.0)));
+  // u = 1 - t^2: the estimator's 1 / cos(theta_h) grows like 1 / sqrt(1 - u) near grazing half
+  // vectors, which the substitution's du = 2t dt cancels (midpoint sums then converge fast).
+  const double t_min = std::sqrt(std::max(0.0, 1.0 - u_max));
+  double sum = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double t = t_min + (1.0 - t_min) * (i + 0.5) / kSteps;
+    const double u = 1.0 - t * t;
+    const double jacobian = 2.0 * t * (1.0 - t_min);
+    // Half vectors distributed as D(h) cos(theta_h): cos^2 = (1 - u) / (1 + (alpha^2 - 1) u).
+    const double cos_h = std::sqrt((1.0 - u) / (1.0 + (alpha * alpha - 1.0) * u));
+    const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
+    // l = 2 (v.h) h - v is above the horizon where cos(phi) > c: integrate phi over that arc
+    // only, so the integrand stays smooth (a cut-off integrand makes midpoint sums converge
+    // slowly: 1-2 % off at N.V = 0.05 with 64 steps).
+    const double denom = 2.0 * sin_v * sin_h * cos_h;
+    double phi_max = 0.0;
+    if (denom > 0.0) {
+      const double c = n_dot_v * (1.0 - 2.0 * cos_h * cos_h) / denom;
+      phi_max = c >= 1.0 ? 0.0 : c <= -1.0 ? kPi : std::acos(c);
+    } else {
+      phi_max = 2.0 * n_dot_v * cos_h * cos_h - n_dot_v > 0.0 ? kPi : 0.0;
+    }
+    for (int j = 0; j < kSteps; ++j) {
+      const double phi = phi_max * (2.0 * (j + 0.5) / kSteps - 1.0);
+      const dvec3 h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+      const double v_dot_h = glm::dot(v, h);
+      const dvec3 l = 2.0 * v_dot_h * h - v;
+      if (l.z <= 0.0 || v_dot_h <= 0.0) continue;
+      // f cos / pdf with pdf = D cos_h / (4 v.h) and F = 1: 4 G/(4 n.l n.v) n.l v.h / cos_h.
+      const double visibility =
+          variant == Brdf::filament
+              ? smith_ggx_correlated_visibility(n_dot_v, l.z, alpha)
+              : smith_schlick_ggx(n_dot_v, l.z, roughness) / (4.0 * l.z * n_dot_v);
+      sum += jacobian * visibility * 4.0 * l.z * v_dot_h / cos_h *
+             (phi_max / kPi);  // arc share of 2 pi
+    }
+  }
+  return sum / (kSteps * kSteps);
+}
+
+}  // namespace tessera

@@ -1,0 +1,50 @@
+#pragma once
+// The shading model's BRDF in double precision, written from its formulas for the reference
+// renderer (never sharing code with shaders/brdf.glsl), and the reference's image-based
+// lighting by Monte Carlo integration.
+
+#include <cstdint>
+#include <numbers>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+
+namespace tessera {
+
+// The shading model's guards, the same constants as the compute path's (shaders/brdf.glsl
+// gives the reasons): they are part of the model, not of either implementation.
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kMinPerceptualRoughness = 0.045;
+inline constexpr double kMinNoV = 1e-4;
+inline constexpr double kMinLightDistanceSquared = 1e-4;
+inline constexpr double kMinAttenuationDenominator = 1e-4;
+inline constexpr double kMinSpotCosineGap = 1e-4;
+
+/// The two lobes of f(l, v) (without the cosine): diffuse and specular, each 0 for N.L <= 0.
+struct BrdfLobes {
+  glm::dvec3 diffuse, specular;
+};
+BrdfLobes reference_brdf_lobes(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
+                               const Material& m);
+
+/// The BRDF f(l, v) of `variant` for unit normal n, view v and light l (without the cosine),
+/// with the shading model's guards (roughness >= 0.045, N.V >= 1e-4); 0 for N.L <= 0.
+glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
+                          const Material& m);
+
+/// Directional albedo E of the specular lobe of `variant` with F = 1, for view cosine n_dot_v
+/// and perceptual roughness (>= 0.045 applied): a 64 x 64 midpoint quadrature over half vectors
+/// distributed as GGX. The reference's independent counterpart of the GPU's DFG table.
+double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness);
+
+/// Radiance reflected towards unit v by a surface with unit normal n and material m lit by
+/// `environment` alone: the integral of f(l, v) L(l) (n.l) over the hemisphere, estimated with
+/// `samples` stratified (Hammersley) directions per lobe: cosine-distributed for the diffuse
+/// lobe, GGX-distributed half vectors for the specular lobe (times `specular_scale`). No
+/// split-sum, no prefiltering: the yardstick for the GPU's image-based lighting.
+glm::dvec3 reference_environment_light(const Environment& environment, Brdf variant,
+                                       glm::dvec3 n, glm::dvec3 v, const Material& m,
+                                       glm::dvec3 specular_scale, uint32_t samples);
+
+}  // namespace tessera

@@ -1,0 +1,160 @@
+#include "core/texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <stb/stb_image.h>
+
+#include "core/check.h"
+
+namespace tessera {
+
+Texture load_texture(const std::string& path, bool srgb) {
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4),
+                                                 stbi_image_free);
+  if (!data) throw Error("cannot read texture '" + path + "': " + stbi_failure_reason());
+  if (uint32_t(w) > kMaxTextureSide || uint32_t(h) > kMaxTextureSide) {
+    throw Error("texture '" + path + "' is " + std::to_string(w) + "x" + std::to_string(h) +
+                ", over the largest side of " + std::to_string(kMaxTextureSide));
+  }
+  Texture t;
+  t.width = uint32_t(w);
+  t.height = uint32_t(h);
+  t.srgb = srgb;
+  const auto* texels = reinterpret_cast<const glm::u8vec4*>(data.get());
+  t.texels.assign(texels, texels + size_t(w) * h);
+  return t;
+}
+
+double srgb_to_linear(uint8_t value) {
+  const double c = value / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+MipChain build_mip_chain(const Texture& texture) {
+  TESSERA_CHECK(texture.width > 0 && texture.height > 0 &&
+                texture.texels.size() == size_t(texture.width) * texture.height);
+  MipChain chain;
+  MipChain::Level base{texture.width, texture.height, {}};
+  base.texels.reserve(texture.texels.size());
+  for (const glm::u8vec4& t : texture.texels) {
+    glm::vec4 c = glm::vec4(t) / 255.0f;
+    if (texture.srgb) {
+      for (int k = 0; k < 3; ++k) c[k] = float(srgb_to_linear(t[k]));
+    }
+    base.texels.push_back(c);
+  }
+  chain.levels.push_back(std::move(base));
+  while (chain.levels.back().width > 1 || chain.levels.back().height > 1) {
+    const MipChain::Level& src = chain.levels.back();
+    MipChain::Level dst{std::max(1u, src.width / 2), std::max(1u, src.height / 2), {}};
+    dst.texels.resize(size_t(dst.width) * dst.height);
+    for (uint32_t y = 0; y < dst.height; ++y) {
+      for (uint32_t x = 0; x < dst.width; ++x) {
+        glm::dvec4 sum(0.0);
+        int count = 0;
+        // A side of 1 keeps its single row or column; odd sides drop their last one.
+        for (uint32_t dy = 0; dy < (src.height > 1 ? 2u : 1u); ++dy) {
+          for (uint32_t dx = 0; dx < (src.width > 1 ? 2u : 1u); ++dx) {
+            sum += glm::dvec4(src.texels[size_t(2 * y + dy) * src.width + (2 * x + dx)]);
+            ++count;
+          }
+        }
+        dst.texels[size_t(y) * dst.width + x] = glm::vec4(sum / double(count));
+      }
+    }
+    chain.levels.push_back(std::move(dst));
+  }
+  return chain;
+}
+
+namespace {
+
+int64_t wrap(int64_t i, int64_t n) {
+  const int64_t r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+glm::dvec4 bilinear(const MipChain::Level& level, glm::dvec2 uv) {
+  const double x = uv.x * level.width - 0.5, y = uv.y * level.height - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const double fx = x - x0, fy = y - y0;
+  auto at = [&](double xi, double yi) {
+    const int64_t ix = wrap(int64_t(xi), level.width), iy = wrap(int64_t(yi), level.height);
+    return glm::dvec4(level.texels[size_t(iy) * level.width + size_t(ix)]);
+  };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                  glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+}
+
+glm::dvec4 trilinear(const MipChain& chain, glm::dvec2 uv, double lod) {
+  const double top = double(chain.levels.size() - 1);
+  lod = std::clamp(lod, 0.0, top);
+  const double l0 = std::floor(lod);
+  const size_t i0 = size_t(l0), i1 = std::min(i0 + 1, chain.levels.size() - 1);
+  return glm::mix(bilinear(chain.levels[i0], uv), bilinear(chain.levels[i1], uv), lod - l0);
+}
+
+}  // namespace
+
+glm::dvec4 sample_texture(const MipChain& chain, glm::dvec2 uv, glm::dvec2 duv_dx,
+                          glm::dvec2 duv_dy, uint32_t max_anisotropy) {
+  // uv far outside [0, 1] lose their fraction in float on the GPU; wrap first, like it does.
+  uv -= glm::floor(uv);
+  const glm::dvec2 size(chain.levels[0].width, chain.levels[0].height);
+  const double lx = glm::length(duv_dx * size), ly = glm::length(duv_dy * size);
+  const double major = std::max(lx, ly), minor = std::min(lx, ly);
+  if (!std::isfinite(major)) return trilinear(chain, uv, double(chain.levels.size() - 1));
+  double probes = 1.0;
+  if (max_anisotropy > 1 && major > minor) {
+    probes = std::min(std::ceil(major / std::max(minor, 1e-20)), double(max_anisotropy));
+  }
+  const double lod = std::log2(major / probes);  // -inf for a zero footprint: clamped to 0
+  const glm::dvec2 axis = lx >= ly ? duv_dx : duv_dy;
+  glm::dvec4 sum(0.0);
+  for (int i = 0; i < int(probes); ++i) {
+    sum += trilinear(chain, uv + axis * ((i + 0.5) / probes - 0.5), lod);
+  }
+  return sum / probes;
+}
+
+std::vector<glm::vec4> generate_tangents(const std::vector<glm::vec3>& positions,
+                                         const std::vector<glm::vec3>& normals,
+                                         const std::vector<glm::vec2>& uvs,
+                                         const std::vector<uint32_t>& indices) {
+  std::vector<glm::dvec3> tan(positions.size(), glm::dvec3(0.0)), bit(positions.size(), glm::dvec3(0.0));
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const uint32_t i[3] = {indices[t], indices[t + 1], indices[t + 2]};
+    const glm::dvec3 e1 = glm::dvec3(positions[i[1]]) - glm::dvec3(positions[i[0]]);
+    const glm::dvec3 e2 = glm::dvec3(positions[i[2]]) - glm::dvec3(positions[i[0]]);
+    const glm::dvec2 d1 = glm::dvec2(uvs[i[1]]) - glm::dvec2(uvs[i[0]]);
+    const glm::dvec2 d2 = glm::dvec2(uvs[i[2]]) - glm::dvec2(uvs[i[0]]);
+    const double det = d1.x * d2.y - d2.x * d1.y;
+    if (det == 0.0 || !std::isfinite(1.0 / det)) continue;  // no uv gradient on this triangle
+    // Area-weighted: unnormalised, so larger triangles count more.
+    const glm::dvec3 s = (e1 * d2.y - e2 * d1.y) / det;
+    const glm::dvec3 b = (e2 * d1.x - e1 * d2.x) / det;
+    for (uint32_t k : i) {
+      tan[k] += s;
+      bit[k] += b;
+    }
+  }
+  std::vector<glm::vec4> out(positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(normals[v]));
+    glm::dvec3 t = tan[v] - n * glm::dot(n, tan[v]);  // Gram-Schmidt
+    if (glm::dot(t, t) < 1e-24) {
+      // Any unit vector orthogonal to n: cross with the axis least aligned with it.
+      const glm::dvec3 axis = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+      t = glm::cross(n, axis);
+    }
+    t = glm::normalize(t);
+    const double w = glm::dot(glm::cross(n, t), bit[v]) < 0.0 ? -1.0 : 1.0;
+    out[v] = glm::vec4(glm::vec3(t), float(w));
+  }
+  return out;
+}
+
+}  // namespace tessera
