@@ -21,24 +21,44 @@ uint32_t mip_levels(uint32_t width, uint32_t height) {
   return uint32_t(std::bit_width(std::max(width, height)));
 }
 
-void image_to_general(VkCommandBuffer cmd, const StorageImage& image) {
+constexpr VkPipelineStageFlags kShaderStagesRead =
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+
+// Layout transition of `count` levels from `first` of every layer of `image`.
+void transition(VkCommandBuffer cmd, const StorageImage& image, uint32_t first, uint32_t count,
+                VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
+                VkAccessFlags src_access, VkPipelineStageFlags dst_stage,
+                VkAccessFlags dst_access) {
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.srcAccessMask = 0;
-  b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT;
-  b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+  b.srcAccessMask = src_access;
+  b.dstAccessMask = dst_access;
+  b.oldLayout = from;
+  b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image.image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, image.levels, 0, image.layers};
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                       nullptr, 0, nullptr, 1, &b);
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, first, count, 0, image.layers};
+  vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+// A fresh image, every level, ready to be written by transfers.
+void to_transfer_dst(VkCommandBuffer cmd, const StorageImage& image) {
+  transition(cmd, image, 0, image.levels, VK_IMAGE_LAYOUT_UNDEFINED,
+             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+}
+
+// Levels written by transfers, ready for the shaders to sample.
+void to_shader_read(VkCommandBuffer cmd, const StorageImage& image, uint32_t first, uint32_t count,
+                    VkImageLayout from) {
+  transition(cmd, image, first, count, from, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, kShaderStagesRead,
+             VK_ACCESS_SHADER_READ_BIT);
 }
 
 // Writes of transfers visible to shader reads (compute and the baseline's fragments).
 void transfer_to_shaders(VkCommandBuffer cmd) {
   memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                 VK_ACCESS_SHADER_READ_BIT);
+                 kShaderStagesRead, VK_ACCESS_SHADER_READ_BIT);
 }
 
 void release(const Context& ctx, EnvironmentGpu& env) {
@@ -60,15 +80,18 @@ void create_placeholders(const Context& ctx, EnvironmentGpu& env) {
                                  MemoryKind::device);
   env.level_texels = create_buffer(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::device);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-    image_to_general(cmd, env.map);
-    image_to_general(cmd, env.specular);
+    to_transfer_dst(cmd, env.map);
+    to_transfer_dst(cmd, env.specular);
     const VkClearColorValue black{};
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 6};
     VkImageSubresourceRange one = all;
     one.layerCount = 1;
-    vkCmdClearColorImage(cmd, env.map.image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &one);
-    vkCmdClearColorImage(cmd, env.specular.image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &all);
+    vkCmdClearColorImage(cmd, env.map.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &one);
+    vkCmdClearColorImage(cmd, env.specular.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
+                         &all);
     vkCmdFillBuffer(cmd, env.irradiance.buffer, 0, VK_WHOLE_SIZE, 0);
+    to_shader_read(cmd, env.map, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    to_shader_read(cmd, env.specular, 0, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     transfer_to_shaders(cmd);
   });
 }
@@ -144,25 +167,37 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
     }
   }
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-    image_to_general(cmd, env.map);
-    image_to_general(cmd, env.specular);
+    to_transfer_dst(cmd, env.map);
+    // The cube is written by record_environment_precompute; until then it reads as black.
+    to_transfer_dst(cmd, env.specular);
+    const VkClearColorValue black{};
+    const VkImageSubresourceRange cube_all{VK_IMAGE_ASPECT_COLOR_BIT, 0, cube_levels, 0, 6};
+    vkCmdClearColorImage(cmd, env.specular.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1,
+                         &cube_all);
+    to_shader_read(cmd, env.specular, 0, cube_levels, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {w, h, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, env.map.image, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, env.map.image,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     // The mip chain by linear 2:1 blits, each level from the one before.
     for (uint32_t l = 1; l < map_levels; ++l) {
-      memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+      transition(cmd, env.map, l - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_READ_BIT);
       VkImageBlit blit{};
       blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l - 1, 0, 1};
       blit.srcOffsets[1] = {int32_t(std::max(w >> (l - 1), 1u)), int32_t(std::max(h >> (l - 1), 1u)), 1};
       blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
       blit.dstOffsets[1] = {int32_t(std::max(w >> l, 1u)), int32_t(std::max(h >> l, 1u)), 1};
-      vkCmdBlitImage(cmd, env.map.image, VK_IMAGE_LAYOUT_GENERAL, env.map.image,
-                     VK_IMAGE_LAYOUT_GENERAL, 1, &blit, VK_FILTER_LINEAR);
+      vkCmdBlitImage(cmd, env.map.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, env.map.image,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
     }
-    transfer_to_shaders(cmd);
+    if (map_levels > 1) {
+      to_shader_read(cmd, env.map, 0, map_levels - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    }
+    to_shader_read(cmd, env.map, map_levels - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   });
   destroy_buffer(ctx, staging);
   env.precompute_pending = true;
@@ -199,9 +234,13 @@ void record_environment_precompute(VkCommandBuffer cmd, EnvironmentGpu& env,
     regions.push_back(r);
     offset += 6ull * size * size * 8;
   }
-  vkCmdCopyBufferToImage(cmd, env.level_texels.buffer, env.specular.image, VK_IMAGE_LAYOUT_GENERAL,
-                         uint32_t(regions.size()), regions.data());
-  transfer_to_shaders(cmd);
+  transition(cmd, env.specular, 0, levels, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kShaderStagesRead, VK_ACCESS_SHADER_READ_BIT,
+             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  vkCmdCopyBufferToImage(cmd, env.level_texels.buffer, env.specular.image,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()),
+                         regions.data());
+  to_shader_read(cmd, env.specular, 0, levels, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   env.precompute_pending = false;
 }
 

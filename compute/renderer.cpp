@@ -538,8 +538,8 @@ void Renderer::update_descriptors() {
     writes.push_back(w);
   }
   const VkDescriptorImageInfo sampled[] = {
-      {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_GENERAL},
-      {s.env.cube_sampler, s.env.specular.view, VK_IMAGE_LAYOUT_GENERAL}};
+      {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+      {s.env.cube_sampler, s.env.specular.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
   for (uint32_t i = 0; i < 2; ++i) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = s.set;

@@ -36,4 +36,13 @@ Scene make_metals_scene();
 /// a directional light, over three spheres on a floor.
 Scene make_lights_scene();
 
+/// Texture maps: a far-reaching checkered floor (mip-mapping and anisotropic filtering show at
+/// its horizon) and three spheres: tiles with all four maps (base colour, metallic-roughness,
+/// normal, occlusion) on a dielectric and on gold, and a checkered copper.
+Scene make_textured_scene();
+
+/// Image-based lighting: two rows of five spheres (gold above, white dielectric below),
+/// roughness 0 to 1 left to right, lit only by a procedural sky (make_sky_environment).
+Scene make_environment_scene();
+
 }  // namespace tessera

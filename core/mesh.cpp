@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/check.h"
+#include "core/texture.h"
 
 namespace tessera {
 namespace {
@@ -59,6 +60,7 @@ Mesh make_uv_sphere(uint32_t segments, uint32_t rings) {
       if (r != rings - 1) add_triangle(mesh, d, b, c);
     }
   }
+  mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }
 
@@ -101,6 +103,7 @@ Mesh make_icosphere(uint32_t level) {
     add_vertex(mesh, n, n, glm::vec2(float(u), float(v)));
   }
   for (auto [a, b, c] : faces) add_triangle(mesh, a, b, c);
+  mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }
 
@@ -121,6 +124,7 @@ Mesh make_cube() {
     add_triangle(mesh, first, first + 1, first + 2);
     add_triangle(mesh, first, first + 2, first + 3);
   }
+  mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }
 
@@ -145,6 +149,7 @@ Mesh make_plane(uint32_t nx, uint32_t ny) {
       add_triangle(mesh, a, c + 1, c);
     }
   }
+  mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }
 

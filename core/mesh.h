@@ -2,7 +2,8 @@
 // Procedural meshes. Every mesh is closed where its shape is (spheres, cube), winds its
 // triangles counter-clockwise seen from outside, and has unit normals and uvs. Vertices that
 // meet at a seam are bit-identical copies, so shared edges snap to the same fixed-point
-// coordinates and the rasterizer leaves no cracks.
+// coordinates and the rasterizer leaves no cracks. Tangents for normal maps are generated
+// from the uvs (generate_tangents).
 
 #include <cstdint>
 

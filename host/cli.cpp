@@ -105,6 +105,18 @@ std::string render_help() {
          "                      filament (height-correlated Smith) or blinn-phong\n"
          "  --energy-compensation  multiple-scattering energy compensation of the specular\n"
          "                      lobe (classic and filament), from a DFG table\n"
+         "  --env E             light the scene with an environment, also drawn behind it:\n"
+         "                      FILE.hdr (Radiance) or FILE.pfm, equirectangular; sky (a\n"
+         "                      procedural sky); none (the scene's lights only). Default:\n"
+         "                      the scene's own (only `environment` has one)\n"
+         "  --env-size N        side of the prefiltered specular cube, a power of two\n"
+         "                      1..512 (default 128)\n"
+         "  --env-samples N     GGX samples per cube texel when prefiltering (default 128)\n"
+         "  --env-irradiance-size N  width of the map level the irradiance is projected\n"
+         "                      from (default 64)\n"
+         "  --env-reference-samples N  Monte Carlo directions per lobe and pixel with\n"
+         "                      --device reference (default 1024)\n"
+         "  --anisotropy N      texture filtering: 1 trilinear (default), 2..16 anisotropic\n"
          "  --view V            shaded (default), or a debug view: normal, uv, triangle\n"
          "                      (a colour per triangle) or object (a colour per object)\n"
          "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
@@ -172,6 +184,32 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
            throw Error("--brdf expects classic, filament or blinn-phong, got '" + v + "'");
        }},
       {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
+      {"--env",
+       [&](const std::string& v) {
+         if (v != "sky" && v != "none" && !ends_with(v, ".hdr") && !ends_with(v, ".pfm")) {
+           throw Error("--env expects a .hdr or .pfm file, sky or none, got '" + v + "'");
+         }
+         out.env = v;
+       }},
+      {"--env-size",
+       [&](const std::string& v) {
+         out.env_options.specular_size = parse_uint("--env-size", v, 1, 512);
+         validate_environment_options(out.env_options);
+       }},
+      {"--env-samples",
+       [&](const std::string& v) {
+         out.env_options.specular_samples = parse_uint("--env-samples", v, 1, 65536);
+       }},
+      {"--env-irradiance-size",
+       [&](const std::string& v) {
+         out.env_options.irradiance_size = parse_uint("--env-irradiance-size", v, 1, 16384);
+       }},
+      {"--env-reference-samples",
+       [&](const std::string& v) {
+         out.env_reference_samples = parse_uint("--env-reference-samples", v, 1, 1u << 20);
+       }},
+      {"--anisotropy",
+       [&](const std::string& v) { out.anisotropy = parse_uint("--anisotropy", v, 1, 16); }},
   };
   const std::map<std::string, std::function<void()>> flags = {
       {"--validate", [&] { out.validate = true; }},

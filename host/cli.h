@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "compute/environment_gpu.h"
 #include "core/scene.h"
 
 namespace tessera {
@@ -24,6 +25,10 @@ struct RenderArgs {
   View view = View::shaded;
   Brdf brdf = Brdf::classic;
   bool energy_compensation = false;
+  std::string env;              // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
+  EnvironmentOptions env_options;
+  uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
+  uint32_t anisotropy = 1;
   uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;

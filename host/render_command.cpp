@@ -31,7 +31,21 @@ FrameSettings settings_of(const RenderArgs& args) {
   settings.view = args.view;
   settings.brdf = args.brdf;
   settings.energy_compensation = args.energy_compensation;
+  settings.max_anisotropy = args.anisotropy;
   return settings;
+}
+
+// The scene with the environment --env asks for.
+Scene scene_of(const RenderArgs& args) {
+  Scene scene = make_builtin_scene(args.scene);
+  if (args.env == "none") {
+    scene.environment.reset();
+  } else if (args.env == "sky") {
+    scene.environment = std::make_shared<const Environment>(make_sky_environment(1024));
+  } else if (!args.env.empty()) {
+    scene.environment = std::make_shared<const Environment>(load_environment(args.env));
+  }
+  return scene;
 }
 
 void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr) {
@@ -50,6 +64,8 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   settings.view = frame_settings.view;
   settings.brdf = frame_settings.brdf;
   settings.energy_compensation = frame_settings.energy_compensation;
+  settings.max_anisotropy = frame_settings.max_anisotropy;
+  settings.environment_samples = args.env_reference_samples;
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < args.repeat; ++i) {
@@ -74,7 +90,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
 }  // namespace
 
 int run_render(const RenderArgs& args) {
-  Scene scene = make_builtin_scene(args.scene);
+  const Scene scene = scene_of(args);
   // Check outputs before spending time on a render.
   if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");
   if (!args.hdr_out.empty() && !can_write_file(args.hdr_out)) {
@@ -87,7 +103,9 @@ int run_render(const RenderArgs& args) {
   options.device = args.device;
   options.validation = args.validate;
   std::unique_ptr<Context> ctx = create_context(options);
-  Renderer renderer(*ctx);
+  RendererOptions renderer_options;
+  renderer_options.environment = args.env_options;
+  Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 
   const FrameSettings settings = settings_of(args);

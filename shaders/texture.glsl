@@ -1,10 +1,9 @@
 // Texture filtering by hand from the texel buffer: the same lookups as core/texture.cpp (the
 // reference), so the two agree to float rounding. Needs bindings.glsl.
 
-// Texel (x, y) of mip `level` of texture t, as linear RGBA.
-vec4 texel_at(GpuTexture t, uint level, uint x, uint y) {
-  uint width = max(t.size.x >> level, 1u);
-  uvec2 raw = texels[t.level_offset[level >> 2u][level & 3u] + y * width + x];
+// Texel (x, y) of the level starting at texel `offset`, `width` texels wide, as linear RGBA.
+vec4 texel_at(uint offset, uint width, uint x, uint y) {
+  uvec2 raw = texels[offset + y * width + x];
   return vec4(unpackHalf2x16(raw.x), unpackHalf2x16(raw.y));
 }
 
@@ -13,27 +12,33 @@ uint wrap_once(int i, int n) {
   return uint(i < 0 ? i + n : (i >= n ? i - n : i));
 }
 
-// Bilinear lookup of one level with repeat wrapping.
-vec4 bilinear(GpuTexture t, uint level, vec2 uv) {
+// Bilinear lookup of one level of texture `tex` with repeat wrapping. Reads the descriptor's
+// fields from the buffer where needed: copying the whole GpuTexture into a local costs a lot
+// on CPU implementations (its offset array becomes an indexed local array).
+vec4 bilinear(uint tex, uint level, vec2 uv) {
   uv -= floor(uv);  // into [0, 1], so the corner indices below are within one period
-  ivec2 size = ivec2(max(t.size.xy >> level, uvec2(1u)));
+  ivec2 size = ivec2(max(textures[tex].size.xy >> level, uvec2(1u)));
+  uint offset = textures[tex].level_offset[level >> 2u][level & 3u];
   vec2 xy = uv * vec2(size) - 0.5;
   vec2 corner = floor(xy);
   vec2 f = xy - corner;
   ivec2 i0 = ivec2(corner);
   uint x0 = wrap_once(i0.x, size.x), x1 = wrap_once(i0.x + 1, size.x);
   uint y0 = wrap_once(i0.y, size.y), y1 = wrap_once(i0.y + 1, size.y);
-  return mix(mix(texel_at(t, level, x0, y0), texel_at(t, level, x1, y0), f.x),
-             mix(texel_at(t, level, x0, y1), texel_at(t, level, x1, y1), f.x), f.y);
+  uint w = uint(size.x);
+  return mix(mix(texel_at(offset, w, x0, y0), texel_at(offset, w, x1, y0), f.x),
+             mix(texel_at(offset, w, x0, y1), texel_at(offset, w, x1, y1), f.x), f.y);
 }
 
-vec4 trilinear(GpuTexture t, vec2 uv, float lod) {
-  float top = float(t.size.z - 1u);
+vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
+  float top = float(levels - 1u);
   lod = clamp(lod, 0.0, top);  // also maps the -inf of a zero footprint to level 0
   float l0 = floor(lod);
   uint i0 = uint(l0);
-  uint i1 = min(i0 + 1u, t.size.z - 1u);
-  return mix(bilinear(t, i0, uv), bilinear(t, i1, uv), lod - l0);
+  float f = lod - l0;
+  vec4 a = bilinear(tex, i0, uv);
+  // The finer level alone when the blend weight is 0 (level 0 up close, the coarsest far).
+  return f > 0.0 ? mix(a, bilinear(tex, min(i0 + 1u, levels - 1u), uv), f) : a;
 }
 
 // Filtered lookup of texture `index` at uv with the screen-space derivatives of one pixel step
@@ -41,22 +46,24 @@ vec4 trilinear(GpuTexture t, vec2 uv, float lod) {
 // texels, or, with anisotropy > 1 (GpuFrame.flags.w), up to that many trilinear probes along
 // the longer axis at a finer level.
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
-  GpuTexture t = textures[index];
-  vec2 size = vec2(t.size.xy);
+  uvec3 info = textures[index].size.xyz;
+  vec2 size = vec2(info.xy);
+  uint levels = info.z;
   float lx = length(duv_dx * size);
   float ly = length(duv_dy * size);
   float major = max(lx, ly);
   float minor = min(lx, ly);
   // An infinite or NaN footprint (a triangle seen edge-on): the coarsest level.
-  if (!(major <= 3.0e38)) return trilinear(t, uv, float(t.size.z - 1u));
+  if (!(major <= 3.0e38)) return trilinear(index, levels, uv, float(levels - 1u));
   float probes = 1.0;
   uint anisotropy = frame.flags.w;
   if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
   float lod = log2(major / probes);
+  if (probes == 1.0) return trilinear(index, levels, uv, lod);
   vec2 axis = lx >= ly ? duv_dx : duv_dy;
   vec4 sum = vec4(0.0);
   for (int i = 0; i < int(probes); ++i) {
-    sum += trilinear(t, uv + axis * ((float(i) + 0.5) / probes - 0.5), lod);
+    sum += trilinear(index, levels, uv + axis * ((float(i) + 0.5) / probes - 0.5), lod);
   }
   return sum / probes;
 }

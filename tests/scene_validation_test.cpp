@@ -7,6 +7,7 @@
 #include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/mesh.h"
+#include "shaders/shared/gpu_types.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -120,7 +121,7 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
 
   scene.materials[10].roughness = 0.77f;
   UploadStats one_material = renderer.set_scene(scene);
-  EXPECT_EQ(one_material.bytes, sizeof(gpu::GpuMaterial)) << "one GpuMaterial";
+  EXPECT_EQ(one_material.bytes, sizeof(tessera::gpu::GpuMaterial)) << "one GpuMaterial";
   EXPECT_EQ(one_material.buffers_created, 0u);
 
   scene.lights[2].intensity = 10.0f;
