@@ -13,13 +13,15 @@ namespace tessera::test {
 
 AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
                                       uint32_t height, const std::string& name,
-                                      RendererOptions options, Brdf brdf) {
+                                      RendererOptions options, Brdf brdf, uint32_t anisotropy,
+                                      uint32_t environment_samples) {
   Renderer renderer(ctx, options);
   renderer.set_scene(scene);
   FrameSettings fs;
   fs.width = width;
   fs.height = height;
   fs.brdf = brdf;
+  fs.max_anisotropy = anisotropy;
   renderer.render(fs);
   const ImageF hdr = renderer.read_hdr();
   const Image8 ldr = renderer.read_ldr();
@@ -30,6 +32,8 @@ AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t
   rs.height = height;
   rs.cull = options.cull;
   rs.brdf = brdf;
+  rs.max_anisotropy = anisotropy;
+  rs.environment_samples = environment_samples;
   const ReferenceFrame ref = render_reference(scene, rs);
 
   AccuracyReport r;

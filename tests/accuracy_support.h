@@ -42,7 +42,8 @@ struct AccuracyReport {
 AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
                                       uint32_t height, const std::string& name,
                                       RendererOptions options = {},
-                                      Brdf brdf = Brdf::classic);
+                                      Brdf brdf = Brdf::classic, uint32_t anisotropy = 1,
+                                      uint32_t environment_samples = 1024);
 
 /// The bars: no unexplained ownership mismatch, finite HDR, 8-bit output within 1 level on at
 /// least 99.99 % of pixels and within kMaxLevelError on all.
