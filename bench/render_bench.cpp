@@ -99,8 +99,9 @@ void run_hardware(benchmark::State& state, const Scene& scene, uint32_t width, u
   state.SetLabel(ctx.properties.deviceName);
 }
 
-// A scene pays only for what it uses: the shading pass specialized to the scene's light counts
-// against the generic one (state.range(2): 1 specialized, 0 generic). Compare the shade_ms
+// A scene pays only for what it uses: the shading pass specialized to the scene (light counts,
+// texture maps used, environment or not) against the generic one with every feature enabled
+// and decided at run time (state.range(2): 1 specialized, 0 generic). Compare the shade_ms
 // counters of the two.
 void ShadingSpecialization(benchmark::State& state, const char* name) {
   RendererOptions options;
@@ -147,6 +148,22 @@ BENCHMARK_CAPTURE(ShadingSpecialization, spheres, "spheres")
     ->Unit(benchmark::kMillisecond)
     ->Iterations(20);
 BENCHMARK_CAPTURE(ShadingSpecialization, lights, "lights")
+    ->Args({512, 512, 0})
+    ->Args({512, 512, 1})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20);
+BENCHMARK_CAPTURE(ShadingSpecialization, textured, "textured")
+    ->Args({512, 512, 0})
+    ->Args({512, 512, 1})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20);
+BENCHMARK_CAPTURE(ShadingSpecialization, environment, "environment")
     ->Args({512, 512, 0})
     ->Args({512, 512, 1})
     ->Args({1920, 1080, 0})

@@ -107,7 +107,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
-  s_->dfg = create_buffer(ctx, 2 * TS_DFG_SIZE * TS_DFG_SIZE * sizeof(glm::vec2), kStorageUsage,
+  s_->dfg = create_buffer(ctx, 2 * TS_DFG_SIZE * TS_DFG_SIZE * sizeof(glm::vec4), kStorageUsage,
                           MemoryKind::device);
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
@@ -712,10 +712,10 @@ std::vector<uint32_t> Renderer::read_coverage() const {
   return download_buffer<uint32_t>(s_->ctx, s_->coverage, uint64_t(s_->width) * s_->height);
 }
 
-std::vector<glm::vec2> Renderer::read_dfg_table() const {
+std::vector<glm::vec4> Renderer::read_dfg_table() const {
   if (!s_->dfg_ready)
     throw Error("the DFG table is computed by the first frame with energy compensation");
-  return download_buffer<glm::vec2>(s_->ctx, s_->dfg, 2 * TS_DFG_SIZE * TS_DFG_SIZE);
+  return download_buffer<glm::vec4>(s_->ctx, s_->dfg, 2 * TS_DFG_SIZE * TS_DFG_SIZE);
 }
 
 const StorageImage& Renderer::output_image() const {

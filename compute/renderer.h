@@ -31,8 +31,10 @@ struct RendererOptions {
   /// Upper bound on each scratch buffer, in bytes, besides the device's maxStorageBufferRange.
   /// Past it the renderer splits the frame into more batches instead of growing.
   uint64_t max_scratch_buffer_bytes = 256ull << 20;
-  /// Specializes the shading pass to the scene's light counts (pipelines built on first use of
-  /// a combination, then cached); off, one generic pipeline decides per light at run time.
+  /// Specializes the shading pass to the scene: its light counts, the texture maps its
+  /// materials use and whether it has an environment (pipelines built on first use of a
+  /// combination, then cached). Off, one generic pipeline with every feature decides at run
+  /// time, per light, per material map and per frame.
   bool specialize_lights = true;
   /// Which faces setup culls. Back faces by default; tests of closed meshes use the others.
   CullMode cull = CullMode::back;
@@ -124,10 +126,12 @@ class Renderer {
   std::vector<uint32_t> read_coverage() const;
 
   /// The DFG tables (classic, then filament; TS_DFG_SIZE^2 each, rows by roughness): x the
-  /// Schlick-weighted, y the whole specular albedo with F = 1, at N.V and roughness
+  /// Schlick-weighted, y the whole specular albedo with F = 1, z the cosine-weighted mean of
+  /// the Schlick factor (1 - V.H)^5 over light directions (the classic diffuse term under a
+  /// uniform environment), at N.V and roughness
   /// i / (TS_DFG_SIZE - 1). Computed by the first frame with energy compensation; throws
   /// Error before that.
-  std::vector<glm::vec2> read_dfg_table() const;
+  std::vector<glm::vec4> read_dfg_table() const;
 
   /// The display image (RGBA8, VK_IMAGE_LAYOUT_GENERAL, usable as a copy or blit source).
   const StorageImage& output_image() const;

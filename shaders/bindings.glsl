@@ -23,7 +23,7 @@ layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) buffer Visibility { uin
 layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint coverage[]; };
 layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint clip_list[]; };
 // DFG tables (shaders/dfg.comp): classic then filament, each TS_DFG_SIZE^2, row = roughness.
-layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec2 dfg[]; };
+layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec4 dfg[]; };
 layout(set = 0, binding = TS_BINDING_HDR_IMAGE, rgba16f) uniform image2D hdr_image;
 layout(set = 0, binding = TS_BINDING_LDR_IMAGE, rgba8) uniform image2D ldr_image;
 // Texture maps: mip chains packed as fp16 RGBA (two halves per uint), filtered by hand

@@ -4,7 +4,9 @@
 // TS_DFG_SIZE^2 grid, the directional albedo of the specular lobe with F = 1 (y) and its
 // Schlick-weighted part (x), by importance-sampling GGX (Karis 2013, "Real Shading in Unreal
 // Engine 4"). One table per visibility term: classic (Schlick-GGX) and filament (height-
-// correlated Smith), selected by the specialization constant TS_SPEC_BRDF.
+// correlated Smith), selected by the specialization constant TS_SPEC_BRDF. z: the mean of the
+// Schlick factor (1 - V.H)^5 over cosine-distributed light directions, which weights the
+// classic model's (1 - F) Lambert lobe under a uniform environment.
 #include "bindings.glsl"
 #include "brdf.glsl"
 
@@ -45,6 +47,16 @@ void main() {
     float fc = pow(1.0 - VoH, 5.0);
     sum += vec2(weight * fc, weight);
   }
+  float diffuse_fc = 0.0;
+  for (uint i = 0u; i < SAMPLES; ++i) {
+    vec2 u = hammersley(i, SAMPLES);
+    float r = sqrt(u.x);
+    float phi = 2.0 * PI * u.y;
+    vec3 L = vec3(r * cos(phi), r * sin(phi), sqrt(1.0 - u.x));
+    vec3 H = normalize(V + L);
+    diffuse_fc += pow(1.0 - clamp(dot(V, H), 0.0, 1.0), 5.0);
+  }
   uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
-  dfg[(table * TS_DFG_SIZE + cell.y) * TS_DFG_SIZE + cell.x] = sum / float(SAMPLES);
+  dfg[(table * TS_DFG_SIZE + cell.y) * TS_DFG_SIZE + cell.x] =
+      vec4(sum / float(SAMPLES), diffuse_fc / float(SAMPLES), 0.0);
 }

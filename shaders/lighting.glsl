@@ -17,16 +17,17 @@ bool ibl_enabled() {
 }
 
 // Bilinear lookup in the DFG table of this variant at (N.V, roughness): x the Schlick-weighted
-// part of the specular albedo, y the whole albedo with F = 1.
-vec2 dfg_lookup(float NoV, float roughness) {
+// part of the specular albedo, y the whole albedo with F = 1, z the mean Schlick factor seen
+// by a Lambert lobe (dfg.comp).
+vec3 dfg_lookup(float NoV, float roughness) {
   uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
   vec2 p = clamp(vec2(NoV, roughness), 0.0, 1.0) * float(TS_DFG_SIZE - 1);
   uvec2 i0 = uvec2(p);
   uvec2 i1 = min(i0 + 1u, uvec2(TS_DFG_SIZE - 1));
   vec2 t = p - vec2(i0);
   uint base = table * TS_DFG_SIZE * TS_DFG_SIZE;
-  vec2 e00 = dfg[base + i0.y * TS_DFG_SIZE + i0.x], e10 = dfg[base + i0.y * TS_DFG_SIZE + i1.x];
-  vec2 e01 = dfg[base + i1.y * TS_DFG_SIZE + i0.x], e11 = dfg[base + i1.y * TS_DFG_SIZE + i1.x];
+  vec3 e00 = dfg[base + i0.y * TS_DFG_SIZE + i0.x].xyz, e10 = dfg[base + i0.y * TS_DFG_SIZE + i1.x].xyz;
+  vec3 e01 = dfg[base + i1.y * TS_DFG_SIZE + i0.x].xyz, e11 = dfg[base + i1.y * TS_DFG_SIZE + i1.x].xyz;
   return mix(mix(e00, e10, t.x), mix(e01, e11, t.x), t.y);
 }
 
@@ -108,17 +109,23 @@ vec3 environment_light(SurfacePoint s) {
   vec3 f0 = mix(vec3(0.04), s.base_color, s.metallic);
   vec3 diffuse_color = (1.0 - s.metallic) * s.base_color;
   vec3 R = reflect(-s.V, s.N);
+  // A rough lobe leans from R towards N, more so at grazing angles (off-specular peak): look
+  // the prefiltered map up along the lobe's dominant direction (Lagarde & de Rousiers 2014,
+  // "Moving Frostbite to Physically Based Rendering", listing 22).
+  float alpha = s.roughness * s.roughness;
+  float smooth_factor = 1.0 - alpha;
+  vec3 dominant = normalize(mix(s.N, R, smooth_factor * (sqrt(smooth_factor) + alpha)));
   // Level k of the cube was prefiltered for roughness k / (levels - 1).
   float lod = s.roughness * float(frame.flags.z - 1u);
-  vec3 prefiltered = textureLod(env_specular, R, lod).rgb;
+  vec3 prefiltered = textureLod(env_specular, dominant, lod).rgb;
   vec3 irradiance = irradiance_sh(s.N);
   if (BRDF_VARIANT == TS_BRDF_BLINN_PHONG) return diffuse_color * irradiance + f0 * prefiltered;
-  vec2 dfg_terms = dfg_lookup(s.NoV, s.roughness);
+  vec3 dfg_terms = dfg_lookup(s.NoV, s.roughness);
   // Integral of F_Schlick times the lobe: f0 (E - E_Fc) + E_Fc, with E_Fc the Schlick part.
   vec3 specular = (f0 * (dfg_terms.y - dfg_terms.x) + dfg_terms.x) * prefiltered * s.specular_scale;
-  // The classic model weights diffuse by 1 - F; under an environment F is averaged over light
-  // directions, approximated by its value at N.V.
-  vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? vec3(1.0) - F_Schlick(s.NoV, f0) : vec3(1.0);
+  // The classic model weights diffuse by 1 - F(V.H), F averaged over the cosine lobe:
+  // 1 - (f0 + (1 - f0) mean(Fc)) = (1 - f0) (1 - mean(Fc)).
+  vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? (vec3(1.0) - f0) * (1.0 - dfg_terms.z) : vec3(1.0);
   return kd * diffuse_color * irradiance + specular;
 }
 

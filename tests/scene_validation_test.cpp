@@ -114,8 +114,8 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   Scene scene = make_sphere_grid_scene();
   UploadStats first = renderer.set_scene(scene);
   uint64_t all_bytes =
-      scene.objects.size() * 160 + scene.materials.size() * 48 + scene.lights.size() * 96;
-  for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 32 + m.indices.size() * 4;
+      scene.objects.size() * 160 + scene.materials.size() * 64 + scene.lights.size() * 96;
+  for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 48 + m.indices.size() * 4;
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
 

@@ -206,7 +206,7 @@ TEST_F(Shading, EmissiveAndOccludedMaterialsAgreeWithTheReference) {
 }
 
 TEST_F(Shading, SpecializedAndGenericShadingGiveTheSameImage) {
-  for (const char* name : {"spheres", "lights", "metals"}) {
+  for (const char* name : {"spheres", "lights", "metals", "textured", "environment"}) {
     RendererOptions generic;
     generic.specialize_lights = false;
     Frame a = render(make_builtin_scene(name), 160, 120);
@@ -233,7 +233,7 @@ TEST_F(Shading, EnergyCompensationRestoresTheFurnaceWithinOnePercent) {
   fs.width = fs.height = 16;
   fs.energy_compensation = true;
   renderer.render(fs);  // computes the tables
-  const std::vector<glm::vec2> table = renderer.read_dfg_table();
+  const std::vector<glm::vec4> table = renderer.read_dfg_table();
   const int n = 64;  // TS_DFG_SIZE
   ASSERT_EQ(table.size(), size_t(2 * n * n));
   auto lookup = [&](int variant, double n_dot_v, double roughness) {
