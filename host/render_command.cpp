@@ -137,6 +137,12 @@ int run_render(const RenderArgs& args) {
       std::vector<double> totals;
       for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
       std::printf(" | total %.3f\n", median(totals));
+      const double precompute = frames.front().pass_ms[size_t(Pass::environment)];
+      if (precompute > 0.0) {
+        std::printf("environment precomputation (DFG tables, irradiance, prefiltered cube), first "
+                    "frame only: %.3f ms\n",
+                    precompute);
+      }
     } else {
       std::printf("GPU timings unavailable: the queue has no timestamp support\n");
     }
