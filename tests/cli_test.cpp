@@ -1,6 +1,8 @@
 // The command-line tool: help, bad arguments give a clear message and a non-zero exit.
 #include <gtest/gtest.h>
 
+#include "core/image.h"
+
 #include "core/check.h"
 #include "host/cli.h"
 #include "tests/vulkan_fixture.h"
@@ -73,6 +75,10 @@ TEST(Cli, ToolExitsNonZeroWithAMessage) {
       {"render --device warp-drive", "unknown device 'warp-drive'"},
       {"render --bogus", "unknown option"},
       {"explode", "unknown command 'explode'"},
+      {"render --env /nonexistent/sky.hdr --out /tmp/x.png", "cannot read environment '/nonexistent/sky.hdr'"},
+      {"render --env sky.exr", "--env expects a .hdr or .pfm file"},
+      {"render --env-size 3", "not a power of two"},
+      {"render --anisotropy 17", "--anisotropy expects a whole number from 1 to 16"},
   };
   for (const ToolCase& c : cases) {
     std::string out;
@@ -81,6 +87,25 @@ TEST(Cli, ToolExitsNonZeroWithAMessage) {
     EXPECT_NE(out.find(c.message), std::string::npos) << c.args << " printed: " << out;
     EXPECT_EQ(out.find("Segmentation"), std::string::npos) << out;
   }
+}
+
+// An environment file round trip: a .hdr written by Tessera lights a scene under validation.
+TEST(Cli, RendersWithAnEnvironmentFile) {
+  ImageF sky{8, 4, std::vector<glm::vec4>(32, glm::vec4(0.5f, 0.6f, 0.9f, 1.0f))};
+  const std::string hdr = test::output_path("sky.hdr");
+  write_hdr_image(hdr, sky);
+  const std::string png = test::output_path("env.png");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --validate --scene spheres --size 64x64 "
+                                  "--env " + hdr + " --env-size 8 --env-samples 8 --out " + png,
+                              out),
+            0)
+      << out;
+  EXPECT_NE(out.find("environment precomputation"), std::string::npos) << out;
+  // The background is the map's radiance: tone-mapped, not the scene's dark background.
+  const Image8 image = read_png(png);
+  EXPECT_GT(image.at(0, 0).b, 150) << "corner pixel shows the sky";
 }
 
 TEST(Cli, RendersAndSaysWhereItWrote) {
