@@ -68,17 +68,17 @@ void release(const Context& ctx, EnvironmentGpu& env) {
   destroy_buffer(ctx, env.level_texels);
 }
 
-constexpr VkImageUsageFlags kUsage = VK_IMAGE_USAGE_SAMPLED_BIT |
-                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+constexpr VkImageUsageFlags kUsage =
+    VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 void create_placeholders(const Context& ctx, EnvironmentGpu& env) {
   env.map = create_image(ctx, 1, 1, 1, false, kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT);
   env.specular = create_image(ctx, 1, 1, 1, true, kFormat, kUsage, VK_IMAGE_ASPECT_COLOR_BIT);
-  env.irradiance = create_buffer(ctx, 9 * sizeof(glm::vec4),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 MemoryKind::device);
-  env.level_texels = create_buffer(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::device);
+  env.irradiance = create_buffer(
+      ctx, 9 * sizeof(glm::vec4),
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::device);
+  env.level_texels =
+      create_buffer(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::device);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     to_transfer_dst(cmd, env.map);
     to_transfer_dst(cmd, env.specular);
@@ -102,7 +102,8 @@ void validate_environment_options(const EnvironmentOptions& o) {
   if (o.specular_size < 1 || o.specular_size > (1u << (TS_ENV_MAX_LEVELS - 1)) ||
       !std::has_single_bit(o.specular_size)) {
     throw Error("environment specular size " + std::to_string(o.specular_size) +
-                " is not a power of two from 1 to " + std::to_string(1u << (TS_ENV_MAX_LEVELS - 1)));
+                " is not a power of two from 1 to " +
+                std::to_string(1u << (TS_ENV_MAX_LEVELS - 1)));
   }
   if (o.specular_samples < 1 || o.specular_samples > 65536) {
     throw Error("environment specular samples " + std::to_string(o.specular_samples) +
@@ -149,11 +150,12 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
                                  MemoryKind::device);
   VkDeviceSize texels = 0;
   for (uint32_t l = 0; l < cube_levels; ++l) texels += 6ull * (side >> l) * (side >> l);
-  env.level_texels = create_buffer(ctx, texels * 8,
-                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                   MemoryKind::device);
+  env.level_texels = create_buffer(
+      ctx, texels * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+      MemoryKind::device);
   env.irradiance_level = 0;
-  while (env.irradiance_level + 1 < map_levels && (w >> env.irradiance_level) > options.irradiance_size)
+  while (env.irradiance_level + 1 < map_levels &&
+         (w >> env.irradiance_level) > options.irradiance_size)
     ++env.irradiance_level;
 
   // Level 0 from the file's float radiance, as fp16 (values above 65504 saturate to it).
@@ -178,8 +180,8 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {w, h, 1};
-    vkCmdCopyBufferToImage(cmd, staging.buffer, env.map.image,
-                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, env.map.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           1, &region);
     // The mip chain by linear 2:1 blits, each level from the one before.
     for (uint32_t l = 1; l < map_levels; ++l) {
       transition(cmd, env.map, l - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
@@ -188,7 +190,8 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
                  VK_ACCESS_TRANSFER_READ_BIT);
       VkImageBlit blit{};
       blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l - 1, 0, 1};
-      blit.srcOffsets[1] = {int32_t(std::max(w >> (l - 1), 1u)), int32_t(std::max(h >> (l - 1), 1u)), 1};
+      blit.srcOffsets[1] = {int32_t(std::max(w >> (l - 1), 1u)),
+                            int32_t(std::max(h >> (l - 1), 1u)), 1};
       blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
       blit.dstOffsets[1] = {int32_t(std::max(w >> l, 1u)), int32_t(std::max(h >> l, 1u)), 1};
       vkCmdBlitImage(cmd, env.map.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, env.map.image,

@@ -28,12 +28,12 @@ struct EnvironmentOptions {
 void validate_environment_options(const EnvironmentOptions& options);
 
 struct EnvironmentGpu {
-  StorageImage map;       // equirectangular radiance, RGBA16F, full mip chain
-  StorageImage specular;  // prefiltered cube, RGBA16F, levels by roughness
-  Buffer irradiance;      // 9 vec4: SH coefficients of irradiance / pi
-  Buffer level_texels;    // the prefilter's output, copied into `specular`
-  VkSampler map_sampler = VK_NULL_HANDLE;   // linear, mip-mapped, repeat in u, clamp in v
-  VkSampler cube_sampler = VK_NULL_HANDLE;  // linear, mip-mapped (cube sampling is seamless)
+  StorageImage map;                           // equirectangular radiance, RGBA16F, full mip chain
+  StorageImage specular;                      // prefiltered cube, RGBA16F, levels by roughness
+  Buffer irradiance;                          // 9 vec4: SH coefficients of irradiance / pi
+  Buffer level_texels;                        // the prefilter's output, copied into `specular`
+  VkSampler map_sampler = VK_NULL_HANDLE;     // linear, mip-mapped, repeat in u, clamp in v
+  VkSampler cube_sampler = VK_NULL_HANDLE;    // linear, mip-mapped (cube sampling is seamless)
   std::shared_ptr<const Environment> source;  // what the images hold; null: black placeholders
   EnvironmentOptions options;
   uint32_t irradiance_level = 0;  // map level the irradiance is projected from

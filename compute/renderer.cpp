@@ -80,9 +80,9 @@ uint32_t view_id(View v) {
 }  // namespace
 
 const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"environment",  "clear",        "setup", "clip",
-                                       "count",        "scan",         "fill",  "raster_tiles",
-                                       "raster_small", "shade",        "resolve"};
+  static const char* const kNames[] = {"environment",  "clear", "setup",  "clip",
+                                       "count",        "scan",  "fill",   "raster_tiles",
+                                       "raster_small", "shade", "resolve"};
   static_assert(std::size(kNames) == kPassCount);
   return kNames[size_t(pass)];
 }
@@ -119,10 +119,12 @@ Renderer::~Renderer() {
   Context& ctx = s_->ctx;
   vkDeviceWaitIdle(ctx.device);
   for (Buffer* b :
-       {&s_->vertices, &s_->indices, &s_->objects, &s_->materials, &s_->lights, &s_->visibility,
-        &s_->coverage, &s_->tile_counts, &s_->tile_offsets, &s_->tile_cursors, &s_->raster_tris,
-        &s_->small_list, &s_->big_list, &s_->clip_list, &s_->tile_entries, &s_->dfg, &s_->counters,
-        &s_->counters_readback, &s_->frame_constants, &s_->texels, &s_->textures}) {
+       {&s_->vertices,     &s_->indices,           &s_->objects,         &s_->materials,
+        &s_->lights,       &s_->visibility,        &s_->coverage,        &s_->tile_counts,
+        &s_->tile_offsets, &s_->tile_cursors,      &s_->raster_tris,     &s_->small_list,
+        &s_->big_list,     &s_->clip_list,         &s_->tile_entries,    &s_->dfg,
+        &s_->counters,     &s_->counters_readback, &s_->frame_constants, &s_->texels,
+        &s_->textures}) {
     destroy_buffer(ctx, *b);
   }
   destroy_hardware_baseline(*s_);
@@ -499,17 +501,28 @@ void Renderer::update_descriptors() {
     const Buffer* buffer;
   };
   const BufferBinding buffers[] = {
-      {TS_BINDING_FRAME, &s.frame_constants},     {TS_BINDING_VERTICES, &s.vertices},
-      {TS_BINDING_INDICES, &s.indices},           {TS_BINDING_OBJECTS, &s.objects},
-      {TS_BINDING_MATERIALS, &s.materials},       {TS_BINDING_LIGHTS, &s.lights},
-      {TS_BINDING_RASTER_TRIS, &s.raster_tris},   {TS_BINDING_SMALL_LIST, &s.small_list},
-      {TS_BINDING_BIG_LIST, &s.big_list},         {TS_BINDING_TILE_COUNTS, &s.tile_counts},
-      {TS_BINDING_TILE_OFFSETS, &s.tile_offsets}, {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
-      {TS_BINDING_TILE_ENTRIES, &s.tile_entries}, {TS_BINDING_COUNTERS, &s.counters},
-      {TS_BINDING_VISIBILITY, &s.visibility},     {TS_BINDING_COVERAGE, &s.coverage},
-      {TS_BINDING_CLIP_LIST, &s.clip_list},       {TS_BINDING_DFG, &s.dfg},
-      {TS_BINDING_TEXELS, &s.texels},             {TS_BINDING_TEXTURES, &s.textures},
-      {TS_BINDING_ENV_LEVELS, &s.env.level_texels}, {TS_BINDING_ENV_IRRADIANCE, &s.env.irradiance},
+      {TS_BINDING_FRAME, &s.frame_constants},
+      {TS_BINDING_VERTICES, &s.vertices},
+      {TS_BINDING_INDICES, &s.indices},
+      {TS_BINDING_OBJECTS, &s.objects},
+      {TS_BINDING_MATERIALS, &s.materials},
+      {TS_BINDING_LIGHTS, &s.lights},
+      {TS_BINDING_RASTER_TRIS, &s.raster_tris},
+      {TS_BINDING_SMALL_LIST, &s.small_list},
+      {TS_BINDING_BIG_LIST, &s.big_list},
+      {TS_BINDING_TILE_COUNTS, &s.tile_counts},
+      {TS_BINDING_TILE_OFFSETS, &s.tile_offsets},
+      {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
+      {TS_BINDING_TILE_ENTRIES, &s.tile_entries},
+      {TS_BINDING_COUNTERS, &s.counters},
+      {TS_BINDING_VISIBILITY, &s.visibility},
+      {TS_BINDING_COVERAGE, &s.coverage},
+      {TS_BINDING_CLIP_LIST, &s.clip_list},
+      {TS_BINDING_DFG, &s.dfg},
+      {TS_BINDING_TEXELS, &s.texels},
+      {TS_BINDING_TEXTURES, &s.textures},
+      {TS_BINDING_ENV_LEVELS, &s.env.level_texels},
+      {TS_BINDING_ENV_IRRADIANCE, &s.env.irradiance},
   };
   std::vector<VkDescriptorBufferInfo> buffer_infos;
   buffer_infos.reserve(std::size(buffers));
@@ -603,8 +616,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
   // Image-based lighting needs the DFG tables too (the split-sum's specular albedo).
-  const bool precompute = s.env.precompute_pending ||
-                          (!s.dfg_ready && (settings.energy_compensation || s.env.source));
+  const bool precompute =
+      s.env.precompute_pending || (!s.dfg_ready && (settings.energy_compensation || s.env.source));
   if (settings.energy_compensation || s.env.source) record_dfg_if_needed(s, cmd);
   record_environment_precompute(cmd, s.env, p);
   if (precompute) mark(Pass::environment);

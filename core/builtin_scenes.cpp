@@ -187,10 +187,10 @@ Scene make_textured_scene() {
   // 0: fine checkerboard for the floor (aliases at the horizon without mip-mapping).
   scene.textures.push_back(make_checker_texture(1024, 64, glm::vec3(0.8f), glm::vec3(0.05f)));
   TileMaps tiles = make_tile_maps(512, 8, glm::vec3(0.75f, 0.45f, 0.3f), 1.5f);
-  scene.textures.push_back(std::move(tiles.base_color));          // 1
-  scene.textures.push_back(std::move(tiles.metallic_roughness));  // 2
-  scene.textures.push_back(std::move(tiles.normal));              // 3
-  scene.textures.push_back(std::move(tiles.occlusion));           // 4
+  scene.textures.push_back(std::move(tiles.base_color));                                     // 1
+  scene.textures.push_back(std::move(tiles.metallic_roughness));                             // 2
+  scene.textures.push_back(std::move(tiles.normal));                                         // 3
+  scene.textures.push_back(std::move(tiles.occlusion));                                      // 4
   scene.textures.push_back(make_checker_texture(256, 8, glm::vec3(1.0f), glm::vec3(0.3f)));  // 5
 
   Material floor{glm::vec3(1.0f), 0.0f, 0.7f};
@@ -208,9 +208,8 @@ Scene make_textured_scene() {
   checker_metal.base_color_map = 5;
   scene.materials = {floor, tiled, tiled_metal, checker_metal};
 
-  const glm::mat4 floor_xf =
-      glm::scale(glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)),
-                 glm::vec3(40.0f));
+  const glm::mat4 floor_xf = glm::scale(
+      glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)), glm::vec3(40.0f));
   scene.objects.push_back({0, 0, floor_xf});
   scene.objects.push_back({1, 1, place({-2.2f, 1.0f, 0.0f}, 1.0f)});
   scene.objects.push_back({1, 2, place({0.0f, 1.0f, -0.5f}, 1.0f)});

@@ -17,7 +17,8 @@ constexpr double kPi = std::numbers::pi;
 bool ends_with(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   std::string tail = s.substr(s.size() - suffix.size());
-  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return tail == suffix;
 }
 
@@ -102,7 +103,8 @@ glm::dvec3 environment_radiance(const Environment& env, glm::dvec3 d) {
 }
 
 Environment make_sky_environment(uint32_t width) {
-  if (width < 4 || width > 16384) throw Error("sky width " + std::to_string(width) + " is outside 4..16384");
+  if (width < 4 || width > 16384)
+    throw Error("sky width " + std::to_string(width) + " is outside 4..16384");
   Environment env;
   ImageF& r = env.radiance;
   r.width = width;

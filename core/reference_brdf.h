@@ -43,8 +43,8 @@ double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness)
 /// `samples` stratified (Hammersley) directions per lobe: cosine-distributed for the diffuse
 /// lobe, GGX-distributed half vectors for the specular lobe (times `specular_scale`). No
 /// split-sum, no prefiltering: the yardstick for the GPU's image-based lighting.
-glm::dvec3 reference_environment_light(const Environment& environment, Brdf variant,
-                                       glm::dvec3 n, glm::dvec3 v, const Material& m,
-                                       glm::dvec3 specular_scale, uint32_t samples);
+glm::dvec3 reference_environment_light(const Environment& environment, Brdf variant, glm::dvec3 n,
+                                       glm::dvec3 v, const Material& m, glm::dvec3 specular_scale,
+                                       uint32_t samples);
 
 }  // namespace tessera

@@ -471,9 +471,9 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
     color += reflected(brdf, s.normal, v, l, m, incident, specular_scale);
   }
   if (scene.environment) {
-    color += double(m.occlusion) *
-             reference_environment_light(*scene.environment, brdf, s.normal, v, m, specular_scale,
-                                         c.settings.environment_samples);
+    color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
+                                                               v, m, specular_scale,
+                                                               c.settings.environment_samples);
   }
   return glm::min(color, dvec3(kMaxHalf));
 }
@@ -537,8 +537,8 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
       continue;
     }
     if (generated[mesh].empty()) {
-      generated[mesh] = generate_tangents(inst.mesh->positions, inst.mesh->normals,
-                                          inst.mesh->uvs, inst.mesh->indices);
+      generated[mesh] = generate_tangents(inst.mesh->positions, inst.mesh->normals, inst.mesh->uvs,
+                                          inst.mesh->indices);
     }
     inst.tangents = &generated[mesh];
   }

@@ -139,9 +139,10 @@ int run_render(const RenderArgs& args) {
       std::printf(" | total %.3f\n", median(totals));
       const double precompute = frames.front().pass_ms[size_t(Pass::environment)];
       if (precompute > 0.0) {
-        std::printf("environment precomputation (DFG tables, irradiance, prefiltered cube), first "
-                    "frame only: %.3f ms\n",
-                    precompute);
+        std::printf(
+            "environment precomputation (DFG tables, irradiance, prefiltered cube), first "
+            "frame only: %.3f ms\n",
+            precompute);
       }
     } else {
       std::printf("GPU timings unavailable: the queue has no timestamp support\n");

@@ -75,7 +75,8 @@ TEST(Cli, ToolExitsNonZeroWithAMessage) {
       {"render --device warp-drive", "unknown device 'warp-drive'"},
       {"render --bogus", "unknown option"},
       {"explode", "unknown command 'explode'"},
-      {"render --env /nonexistent/sky.hdr --out /tmp/x.png", "cannot read environment '/nonexistent/sky.hdr'"},
+      {"render --env /nonexistent/sky.hdr --out /tmp/x.png",
+       "cannot read environment '/nonexistent/sky.hdr'"},
       {"render --env sky.exr", "--env expects a .hdr or .pfm file"},
       {"render --env-size 3", "not a power of two"},
       {"render --anisotropy 17", "--anisotropy expects a whole number from 1 to 16"},
@@ -96,11 +97,13 @@ TEST(Cli, RendersWithAnEnvironmentFile) {
   write_hdr_image(hdr, sky);
   const std::string png = test::output_path("env.png");
   std::string out;
-  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
-                                  " render --device lavapipe --validate --scene spheres --size 64x64 "
-                                  "--env " + hdr + " --env-size 8 --env-samples 8 --out " + png,
-                              out),
-            0)
+  ASSERT_EQ(
+      test::run_command(std::string(TESSERA_BINARY) +
+                            " render --device lavapipe --validate --scene spheres --size 64x64 "
+                            "--env " +
+                            hdr + " --env-size 8 --env-samples 8 --out " + png,
+                        out),
+      0)
       << out;
   EXPECT_NE(out.find("environment precomputation"), std::string::npos) << out;
   // The background is the map's radiance: tone-mapped, not the scene's dark background.

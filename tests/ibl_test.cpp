@@ -79,10 +79,12 @@ TEST_F(ImageBasedLighting, WhiteFurnace) {
       scene.meshes.push_back(make_icosphere(4));
       scene.materials.push_back({glm::vec3(1.0f), 1.0f, float(roughness)});
       scene.objects.push_back({0, 0, glm::mat4(1.0f)});
-      scene.environment = std::make_shared<const Environment>(make_uniform_environment(glm::vec3(1.0f)));
+      scene.environment =
+          std::make_shared<const Environment>(make_uniform_environment(glm::vec3(1.0f)));
       // Albedo on a grid of N.V, interpolated linearly.
       std::vector<double> table;
-      for (int i = 0; i <= 32; ++i) table.push_back(albedo_by_quadrature(variant, std::max(i / 32.0, 0.02), roughness));
+      for (int i = 0; i <= 32; ++i)
+        table.push_back(albedo_by_quadrature(variant, std::max(i / 32.0, 0.02), roughness));
       auto albedo = [&](double nv) {
         const double p = std::clamp(nv, 0.0, 1.0) * 32.0;
         const int i = std::min(int(p), 31);
@@ -122,10 +124,11 @@ TEST_F(ImageBasedLighting, WhiteFurnace) {
         }
       }
       ASSERT_GT(n, size * size / 4);
-      std::printf("%s roughness %.2f: uncompensated within %.2f %% of E(N.V) (mean loss %.1f %%), "
-                  "compensated within %.2f %% of 1\n",
-                  variant == Brdf::classic ? "classic" : "filament", roughness, worst_plain * 100.0,
-                  loss_sum / n * 100.0, worst_comp * 100.0);
+      std::printf(
+          "%s roughness %.2f: uncompensated within %.2f %% of E(N.V) (mean loss %.1f %%), "
+          "compensated within %.2f %% of 1\n",
+          variant == Brdf::classic ? "classic" : "filament", roughness, worst_plain * 100.0,
+          loss_sum / n * 100.0, worst_comp * 100.0);
       EXPECT_LT(worst_plain, 0.02);
       EXPECT_LT(worst_comp, 0.01);
     }

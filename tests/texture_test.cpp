@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/builtin_scenes.h"
 #include "core/check.h"
@@ -54,8 +54,8 @@ TEST(TextureMaps, MipLevelsAverageInLinearSpace) {
 TEST(TextureMaps, FilteringByHand) {
   // 2x1 texture: red 0 and 1. At u = 0.25 (texel 0's centre) bilinear gives texel 0; at
   // u = 0.5, halfway between the centres, 0.5; at u = 0 the repeat wrap mixes texels 1 and 0.
-  const MipChain chain = build_mip_chain(
-      texture_of(2, 1, {glm::u8vec4(0, 0, 0, 255), glm::u8vec4(255, 0, 0, 255)}));
+  const MipChain chain =
+      build_mip_chain(texture_of(2, 1, {glm::u8vec4(0, 0, 0, 255), glm::u8vec4(255, 0, 0, 255)}));
   const glm::dvec2 tiny(1e-6, 0.0);  // footprint far below a texel: level 0
   EXPECT_NEAR(sample_texture(chain, {0.25, 0.5}, tiny, glm::dvec2(0.0, 1e-6), 1).r, 0.0, 1e-12);
   EXPECT_NEAR(sample_texture(chain, {0.5, 0.5}, tiny, glm::dvec2(0.0, 1e-6), 1).r, 0.5, 1e-12);
@@ -132,10 +132,9 @@ class TexturedRendering : public test::VulkanTest {};
 
 TEST_F(TexturedRendering, TexturedSceneAgreesWithTheReference) {
   for (uint32_t anisotropy : {1u, 8u}) {
-    const test::AccuracyReport r =
-        test::compare_with_reference(context(), make_builtin_scene("textured"), 200, 150,
-                                     "textured_aniso" + std::to_string(anisotropy), {},
-                                     Brdf::classic, anisotropy);
+    const test::AccuracyReport r = test::compare_with_reference(
+        context(), make_builtin_scene("textured"), 200, 150,
+        "textured_aniso" + std::to_string(anisotropy), {}, Brdf::classic, anisotropy);
     std::printf("%s\n", test::describe(r).c_str());
     test::expect_meets_bars(r);
   }
@@ -157,8 +156,9 @@ TEST_F(TexturedRendering, AnisotropicFilteringIsCloserToTheSupersampledTruth) {
   m.base_color_map = 0;
   scene.materials.push_back(m);
   scene.objects.push_back(
-      {0, 0, glm::scale(glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)),
-                        glm::vec3(8.0f))});
+      {0, 0,
+       glm::scale(glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)),
+                  glm::vec3(8.0f))});
   const uint32_t w = 96, h = 64, ss = 16;
   ReferenceSettings truth_settings;
   truth_settings.width = w * ss;
@@ -168,8 +168,7 @@ TEST_F(TexturedRendering, AnisotropicFilteringIsCloserToTheSupersampledTruth) {
   std::vector<glm::dvec3> truth(size_t(w) * h, glm::dvec3(0.0));
   for (uint32_t y = 0; y < h * ss; ++y) {
     for (uint32_t x = 0; x < w * ss; ++x) {
-      truth[size_t(y / ss) * w + x / ss] +=
-          glm::dvec3(fine.hdr.at(x, y)) / double(ss * ss);
+      truth[size_t(y / ss) * w + x / ss] += glm::dvec3(fine.hdr.at(x, y)) / double(ss * ss);
     }
   }
   std::vector<double> errors;
