@@ -185,8 +185,7 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
                    VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
                             0, nullptr);
-    if (settings.energy_compensation || s.env.source) record_dfg_if_needed(s, cmd);
-    record_environment_precompute(cmd, s.env, s.pipelines);
+    record_precomputation(s, cmd, settings);
     if (timestamps) {
       vkCmdResetQueryPool(cmd, s.queries, 0, 3);
       vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);

@@ -366,8 +366,9 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   return s.pipelines[Pipeline::shade_classic];
 }
 
-void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd) {
-  if (s.dfg_ready) return;
+namespace {
+
+void record_dfg(Renderer::State& s, VkCommandBuffer cmd) {
   const uint32_t groups = (TS_DFG_SIZE + 7) / 8;
   for (Pipeline p : {Pipeline::dfg_classic, Pipeline::dfg_filament}) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[p]);
@@ -378,6 +379,17 @@ void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd) {
                      VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
   s.dfg_ready = true;  // the frame it is recorded in always runs to completion or throws
+}
+
+}  // namespace
+
+bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameSettings& settings) {
+  // Image-based lighting needs the DFG tables too (the split-sum's specular albedo).
+  const bool dfg = !s.dfg_ready && (settings.energy_compensation || s.env.source);
+  const bool environment = s.env.precompute_pending;
+  if (dfg) record_dfg(s, cmd);
+  record_environment_precompute(cmd, s.env, s.pipelines);
+  return dfg || environment;
 }
 
 FrameStats Renderer::render(const FrameSettings& settings) {
@@ -615,12 +627,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
-  // Image-based lighting needs the DFG tables too (the split-sum's specular albedo).
-  const bool precompute =
-      s.env.precompute_pending || (!s.dfg_ready && (settings.energy_compensation || s.env.source));
-  if (settings.energy_compensation || s.env.source) record_dfg_if_needed(s, cmd);
-  record_environment_precompute(cmd, s.env, p);
-  if (precompute) mark(Pass::environment);
+  if (record_precomputation(s, cmd, settings)) mark(Pass::environment);
   vkCmdFillBuffer(cmd, s.visibility.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);  // TS_VIS_EMPTY
   if (s.options.debug_coverage) vkCmdFillBuffer(cmd, s.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, s.counters.buffer, 0, VK_WHOLE_SIZE, 0);

@@ -92,8 +92,10 @@ void init_capacities(Renderer::State& s);
 /// Allocates the scratch buffers for the current capacities and `batches` counter slots.
 void ensure_scratch_buffers(Renderer::State& s, uint32_t batches);
 
-/// Records the DFG table computation if it has not run yet (the descriptor set must be bound).
-void record_dfg_if_needed(Renderer::State& s, VkCommandBuffer cmd);
+/// Records what a frame with `settings` needs computed once, if it has not run yet: the DFG
+/// tables (for energy compensation or image-based lighting) and the environment's irradiance
+/// and prefiltered cube. The descriptor set must be bound. Returns true if it recorded anything.
+bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameSettings& settings);
 
 /// The shading pipeline for `settings` and the current scene: specialized to its lights (built
 /// and cached on first use) or the generic one.
