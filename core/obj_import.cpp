@@ -39,7 +39,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
+std::string quoted(const std::string& path) {
+  return "'" + path + "'";
+}
 
 std::string place(const std::string& file, size_t line, size_t column = 0) {
   std::string s = quoted(file) + " line " + std::to_string(line);
@@ -131,6 +133,7 @@ float parse_number(const std::string& file, size_t line, const Token& t) {
 
 enum Attribute { kPosition = 0, kTexcoord = 1, kNormal = 2 };
 const char* const kAttributeName[3] = {"vertex", "texture coordinate", "normal"};
+const char* const kAttributePlural[3] = {"vertices", "texture coordinates", "normals"};
 
 struct ObjScan {
   int64_t count[3] = {0, 0, 0};
@@ -142,6 +145,8 @@ struct ObjScan {
   std::vector<std::pair<size_t, std::string>> usemtl;  // line, material name
   std::map<std::string, size_t> mtllib_line;           // library name -> line naming it
   uint64_t faces = 0;
+  uint64_t zero_normals = 0;  // `vn 0 0 0` (exporters write them for degenerate faces)
+  size_t first_zero_normal_line = 0;
 };
 
 /// One corner of `f`: v, v/vt, v//vn or v/vt/vn (1-based, or negative: relative to the end).
@@ -169,8 +174,8 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
     if (index == 0) fail(file, line, column, name + " index 0 is invalid (OBJ counts from 1)");
     if (index < 0 && scan.count[k] + index < 0) {
       fail(file, line, column,
-           name + " index " + std::to_string(index) + " reaches before the first " + name +
-               " (" + std::to_string(scan.count[k]) + " defined above)");
+           name + " index " + std::to_string(index) + " reaches before the first " + name + " (" +
+               std::to_string(scan.count[k]) + " defined above)");
     }
     if (index > scan.largest[k]) {
       scan.largest[k] = index;
@@ -199,16 +204,18 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
         ++n;
       }
       // v: x y z [w] or x y z r g b; vt: u [v [w]]; vn: x y z.
-      const bool ok = a == kPosition ? (n == 3 || n == 4 || n == 6)
+      const bool ok = a == kPosition   ? (n == 3 || n == 4 || n == 6)
                       : a == kTexcoord ? (n >= 1 && n <= 3)
                                        : n == 3;
       if (!ok) {
         fail(file, line, key->column,
              "'" + std::string(k) + "' has " + std::to_string(n) + " numbers, expected " +
-                 (a == kPosition ? "3 (x y z), 4 or 6" : a == kTexcoord ? "1 to 3" : "3"));
+                 (a == kPosition   ? "3 (x y z), 4 or 6"
+                  : a == kTexcoord ? "1 to 3"
+                                   : "3"));
       }
       if (a == kNormal && values[0] == 0 && values[1] == 0 && values[2] == 0) {
-        fail(file, line, key->column, "normal (0, 0, 0) has no direction");
+        if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
       }
       ++scan.count[a];
     } else if (k == "f") {
@@ -244,8 +251,14 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
       const std::string name = kAttributeName[a];
       fail(file, scan.largest_line[a], scan.largest_column[a],
            name + " index " + std::to_string(scan.largest[a]) + " is out of range: the file has " +
-               std::to_string(scan.count[a]) + " " + name + (scan.count[a] == 1 ? "" : "s"));
+               std::to_string(scan.count[a]) + " " +
+               (scan.count[a] == 1 ? kAttributeName[a] : kAttributePlural[a]));
     }
+  }
+  if (scan.zero_normals > 0) {
+    warnings.push_back(place(file, scan.first_zero_normal_line) + ": normal (0, 0, 0) has no " +
+                       "direction (" + std::to_string(scan.zero_normals) +
+                       " such in the file); corners using it get generated normals");
   }
   for (const auto& [keyword, line] : ignored) {
     warnings.push_back(place(file, line) + ": '" + keyword +
@@ -261,14 +274,14 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
 // MTL
 
 struct MtlInfo {
-  std::string file;  // the library's path
+  std::string file;                     // the library's path
   std::map<std::string, size_t> lines;  // keyword -> line of its last use ("newmtl" included)
 };
 
 /// Checks the numbers of an MTL file and records where each material's statements are.
 void scan_mtl(const std::string& file, std::string_view text,
               std::map<std::string, MtlInfo>& materials) {
-  static const char* const kNumeric[] = {"Ka", "Kd", "Ks", "Ke", "Ns", "Ni", "d",    "Tr",
+  static const char* const kNumeric[] = {"Ka", "Kd", "Ks", "Ke", "Ns",  "Ni",    "d",     "Tr",
                                          "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
   MtlInfo* current = nullptr;
   for_each_line(text, [&](size_t line, std::string_view s) {
@@ -385,14 +398,13 @@ struct Importer {
     }
     int w = 0, h = 0, channels = 0;
     if (!stbi_info(file.c_str(), &w, &h, &channels)) {
-      throw Error(where(info, keyword, material) + ": cannot read texture " + quoted(file) +
-                  ": " + stbi_failure_reason());
+      throw Error(where(info, keyword, material) + ": cannot read texture " + quoted(file) + ": " +
+                  stbi_failure_reason());
     }
     if (uint32_t(w) > options.max_texture_side || uint32_t(h) > options.max_texture_side) {
       throw Error(where(info, keyword, material) + ": texture " + quoted(file) + " is " +
                   std::to_string(w) + "x" + std::to_string(h) + ", over the largest side of " +
-                  std::to_string(options.max_texture_side) +
-                  " (ImportOptions::max_texture_side)");
+                  std::to_string(options.max_texture_side) + " (ImportOptions::max_texture_side)");
     }
     if (option.scale[0] != 1 || option.scale[1] != 1 || option.origin_offset[0] != 0 ||
         option.origin_offset[1] != 0 || option.clamp) {
@@ -427,7 +439,8 @@ struct Importer {
   /// map_Pr and map_Pm packed as glTF's metallic-roughness texture (G roughness, B metallic),
   /// at the larger of the two sizes (nearest texel of the smaller); a missing one reads 1.
   uint32_t metallic_roughness_map(const MtlInfo& info, const tinyobj::material_t& m) {
-    const std::string key = "mr|" + info.file + "|" + m.roughness_texname + "|" + m.metallic_texname;
+    const std::string key =
+        "mr|" + info.file + "|" + m.roughness_texname + "|" + m.metallic_texname;
     if (const uint32_t index = cached(key); index != kNoTexture) return index;
     std::optional<Texture> rough, metal;
     if (!m.roughness_texname.empty()) {
@@ -455,16 +468,14 @@ struct Importer {
     return add_texture(key, std::move(packed));
   }
 
-  uint32_t plain_map(const MtlInfo& info, const std::string& keyword,
-                     const tinyobj::material_t& m, const std::string& name,
-                     const tinyobj::texture_option_t& option, bool srgb) {
+  uint32_t plain_map(const MtlInfo& info, const std::string& keyword, const tinyobj::material_t& m,
+                     const std::string& name, const tinyobj::texture_option_t& option, bool srgb) {
     const std::string key = (srgb ? "srgb|" : "linear|") + info.file + "|" + name;
     if (const uint32_t index = cached(key); index != kNoTexture) return index;
     std::optional<Texture> t = load_map(info, keyword, m.name, name, option, srgb);
     if (!t) return kNoTexture;
-    if (keyword != "norm" && std::all_of(t->texels.begin(), t->texels.end(), [](glm::u8vec4 c) {
-          return c.r == c.g && c.g == c.b;
-        })) {
+    if (keyword != "norm" && std::all_of(t->texels.begin(), t->texels.end(),
+                                         [](glm::u8vec4 c) { return c.r == c.g && c.g == c.b; })) {
       warn(where(info, keyword, m.name) +
            ": the bump map is grayscale, so a height map, not a normal map; it was ignored");
       return kNoTexture;
@@ -520,8 +531,8 @@ struct Importer {
            ": transparency is not supported; the material is rendered opaque");
     }
     const std::pair<const char*, const std::string*> ignored[] = {
-        {"map_Ke", &m.emissive_texname}, {"map_d", &m.alpha_texname},
-        {"map_Ks", &m.specular_texname}, {"map_Ns", &m.specular_highlight_texname},
+        {"map_Ke", &m.emissive_texname},   {"map_d", &m.alpha_texname},
+        {"map_Ks", &m.specular_texname},   {"map_Ns", &m.specular_highlight_texname},
         {"disp", &m.displacement_texname}, {"map_Ka", &m.ambient_texname}};
     for (const auto& [keyword, name] : ignored) {
       if (!name->empty()) warn(where(info, keyword, m.name) + ": not supported, ignored");
@@ -555,7 +566,8 @@ bool triangulate(const std::vector<glm::vec3>& corners, glm::vec3 normal,
   const bool flip = normal[axis] < 0.0f;
   std::vector<glm::dvec2> p(n);
   for (size_t i = 0; i < n; ++i) {
-    p[i] = flip ? glm::dvec2(corners[i][v], corners[i][u]) : glm::dvec2(corners[i][u], corners[i][v]);
+    p[i] =
+        flip ? glm::dvec2(corners[i][v], corners[i][u]) : glm::dvec2(corners[i][u], corners[i][v]);
   }
   bool convex = true;
   for (size_t i = 0; i < n && convex; ++i) {
@@ -624,7 +636,8 @@ constexpr int64_t kFlat = INT64_MIN / 2;
 struct VertexKeyHash {
   size_t operator()(const VertexKey& k) const {
     // splitmix64 finalizer over the packed fields
-    uint64_t x = (uint64_t(uint32_t(k.v)) << 32 | uint32_t(k.vt)) ^ (uint64_t(k.normal) * 0x9E3779B97F4A7C15ull);
+    uint64_t x = (uint64_t(uint32_t(k.v)) << 32 | uint32_t(k.vt)) ^
+                 (uint64_t(k.normal) * 0x9E3779B97F4A7C15ull);
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
     return size_t(x ^ (x >> 31));
@@ -656,8 +669,9 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
   std::string tiny_warn, tiny_err;
   MtlReader reader(path, scan, options.max_file_bytes);
   std::istringstream in(*text);
-  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in,
-                                   &reader, /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  const bool ok =
+      tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in, &reader,
+                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (reader.error) throw Error(*reader.error);
   if (!ok || !tiny_err.empty()) throw Error(quoted(path) + ": tinyobjloader: " + tiny_err);
   for (const std::string& w : reader.warnings) im.warn(w);
@@ -669,9 +683,8 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
     const char* const known[] = {"material [", "Failed to load material", "Empty group name"};
     while (std::getline(lines, line)) {
       if (line.empty() || line == ".") continue;
-      const bool repeat = std::any_of(std::begin(known), std::end(known), [&](const char* k) {
-        return line.rfind(k, 0) == 0;
-      });
+      const bool repeat = std::any_of(std::begin(known), std::end(known),
+                                      [&](const char* k) { return line.rfind(k, 0) == 0; });
       if (!repeat) im.warn(quoted(path) + ": tinyobjloader: " + line);
     }
   }
@@ -703,6 +716,13 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
     return default_material;
   };
 
+  // A corner's file normal, unless it has none or a zero one (see scan_obj).
+  const auto file_normal = [&](const tinyobj::index_t& index) -> std::optional<glm::vec3> {
+    if (index.normal_index < 0) return std::nullopt;
+    const float* vn = &attrib.normals[3 * size_t(index.normal_index)];
+    if (vn[0] == 0.0f && vn[1] == 0.0f && vn[2] == 0.0f) return std::nullopt;
+    return glm::vec3(vn[0], vn[1], vn[2]);
+  };
   const auto position = [&](int i) {
     return glm::vec3(attrib.vertices[3 * size_t(i)], attrib.vertices[3 * size_t(i) + 1],
                      attrib.vertices[3 * size_t(i) + 2]);
@@ -725,7 +745,7 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
         const glm::vec3 normal = newell_normal(corners);
         for (size_t c = 0; c < n; ++c) {
           const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-          if (index.normal_index < 0) {
+          if (!file_normal(index)) {
             smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)] += normal;
           }
         }
@@ -755,19 +775,18 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
       corner_vertex.resize(n);
       for (size_t c = 0; c < n; ++c) {
         const tinyobj::index_t& index = shape.mesh.indices[offset + c];
+        const std::optional<glm::vec3> given = file_normal(index);
         VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index};
-        if (index.normal_index < 0) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
-        const auto [it, inserted] =
-            b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
+        if (!given) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
+        const auto [it, inserted] = b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
         if (inserted) {
           if (b->mesh.positions.size() == UINT32_MAX) {
             throw Error(quoted(path) + ": a mesh has more than 2^32 - 1 vertices");
           }
           b->mesh.positions.push_back(corners[c]);
           glm::vec3 normal;
-          if (index.normal_index >= 0) {
-            const float* vn = &attrib.normals[3 * size_t(index.normal_index)];
-            normal = glm::vec3(vn[0], vn[1], vn[2]);
+          if (given) {
+            normal = *given;
           } else if (group > 0) {
             normal = smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)];
           } else {
