@@ -33,6 +33,18 @@ std::string write_file(const std::string& name, const std::string& text) {
   return path;
 }
 
+/// Imports `text` written to `name` in the test's output folder.
+ImportedModel import_text(const std::string& name, const std::string& text) {
+  return import_obj(write_file(name, text));
+}
+
+/// The one mesh of `text` imported (as import_text does).
+Mesh only_mesh(const std::string& name, const std::string& text) {
+  ImportedModel model = import_text(name, text);
+  EXPECT_EQ(model.scene.meshes.size(), 1u) << name;
+  return model.scene.meshes.at(0);
+}
+
 std::string error_of(const std::string& path, const ImportOptions& options = {}) {
   try {
     import_obj(path, options);
@@ -112,11 +124,10 @@ TEST(ObjImportLimits, MissingFileNamesIt) {
 
 // A unit quad with uvs: fanned from its first corner, (0 1 2) (0 2 3); OBJ's v flipped.
 TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
-  const std::string path = write_file("quad.obj",
-                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                      "f 1/1 2/2 3/3 4/4\n");
-  const ImportedModel model = import_obj(path);
+  const Mesh m = only_mesh("quad.obj",
+                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                           "f 1/1 2/2 3/3 4/4\n");
   ASSERT_EQ(model.scene.meshes.size(), 1u);
   const Mesh& m = model.scene.meshes[0];
   EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
@@ -132,17 +143,16 @@ TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
 }
 
 TEST(ObjImportGeometry, ConvexPentagonIsAFan) {
-  const std::string path =
-      write_file("pentagon.obj",
-                 "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
-                 "f 1 2 3 4 5\n");
-  const ImportedModel model = import_obj(path);
-  const Mesh& m = model.scene.meshes.at(0);
+  const ImportedModel model =
+      import_text("pentagon.obj",
+                  "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
+                  "f 1 2 3 4 5\n");
   EXPECT_EQ(m.positions.size(), 5u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
 }
 
-// Twice the signed area of triangle t of `m` seen along -axis_sign * z (> 0: counter-clockwise).
+// Twice the signed area of triangle t of `m` in the xy plane (> 0: counter-clockwise seen
+// from +z).
 double signed_area_xy(const Mesh& m, size_t t) {
   const glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
                    c = m.positions[m.indices[3 * t + 2]];
@@ -167,42 +177,40 @@ void expect_l_shape(const Mesh& m, double facing) {
 }
 
 TEST(ObjImportGeometry, ConcavePolygonIsEarClipped) {
-  const std::string front = write_file(
-      "l_front.obj", "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4 5 6\n");
-  expect_l_shape(import_obj(front).scene.meshes.at(0), 1.0);  // the temporary lives to the ;
+  expect_l_shape(
+      import_text("l_front.obj",
+                  "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4 5 6\n")
+          .scene.meshes.at(0),
+      1.0);
   // The same L wound the other way faces -z: the projection must keep its winding too.
-  const std::string back = write_file(
-      "l_back.obj", "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 6 5 4 3 2 1\n");
-  expect_l_shape(import_obj(back).scene.meshes.at(0), -1.0);
+  expect_l_shape(
+      import_text("l_back.obj",
+                  "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 6 5 4 3 2 1\n")
+          .scene.meshes.at(0),
+      -1.0);
 }
 
 TEST(ObjImportGeometry, VerticesAreSharedByIndexTriple) {
-  const std::string shared =
-      write_file("shared.obj",
-                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
-                 "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n");
-  const ImportedModel ma = import_obj(shared);
-  const Mesh& a = ma.scene.meshes.at(0);
+  const Mesh a =
+      only_mesh("shared.obj",
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n");
   EXPECT_EQ(a.positions.size(), 4u);
   EXPECT_EQ(a.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
   // Corner 3 of the second face has another uv: one more vertex.
-  const std::string split =
-      write_file("split.obj",
-                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
-                 "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/5/1 4/4/1\n");
-  const ImportedModel mb = import_obj(split);
-  const Mesh& b = mb.scene.meshes.at(0);
+  const Mesh b =
+      only_mesh("split.obj",
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/5/1 4/4/1\n");
   EXPECT_EQ(b.positions.size(), 5u);
   EXPECT_EQ(b.uvs[3], glm::vec2(0.5f, 0.5f));
   EXPECT_EQ(b.indices, (std::vector<uint32_t>{0, 1, 2, 0, 3, 4}));
 }
 
 TEST(ObjImportGeometry, FileNormalsAreNormalized) {
-  const std::string path = write_file("normals.obj",
-                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 3 0 4\nvn 0 -5 0\n"
-                                      "f 1//1 2//2 3//3\n");
-  const ImportedModel model = import_obj(path);
-  const Mesh& m = model.scene.meshes.at(0);
+  const Mesh m = only_mesh("normals.obj",
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 3 0 4\nvn 0 -5 0\n"
+                           "f 1//1 2//2 3//3\n");
   EXPECT_EQ(m.normals, (std::vector<glm::vec3>{{0, 0, 1}, {0.6f, 0, 0.8f}, {0, -1, 0}}));
 }
 
@@ -212,8 +220,7 @@ const char* const kTent =
     "f 3 1 2\nf 1 4 2\n";
 
 TEST(ObjImportGeometry, SmoothingGroupsShareNormals) {
-  const ImportedModel smooth = import_obj(write_file("smooth.obj", std::string("s 1\n") + kTent));
-  const Mesh& m = smooth.scene.meshes.at(0);
+  const Mesh m = only_mesh("smooth.obj", std::string("s 1\n") + kTent);
   ASSERT_EQ(m.positions.size(), 4u);
   const float h = float(std::sqrt(0.5));
   // Vertices in first-use order: (-1,0,0), (0,0,0), (0,1,0), (0,0,-1).
@@ -222,9 +229,7 @@ TEST(ObjImportGeometry, SmoothingGroupsShareNormals) {
   for (size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(glm::distance(m.normals[i], expected[i]), 0.0f, 1e-6f) << i;
   }
-  const ImportedModel flat_model =
-      import_obj(write_file("flat.obj", std::string("s off\n") + kTent));
-  const Mesh& flat = flat_model.scene.meshes.at(0);
+  const Mesh flat = only_mesh("flat.obj", std::string("s off\n") + kTent);
   ASSERT_EQ(flat.positions.size(), 6u);
   EXPECT_EQ(flat.normals, (std::vector<glm::vec3>{
                               {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}));
@@ -239,12 +244,11 @@ TEST(ObjImportMaterials, MtlValuesAndOneMeshPerMaterial) {
              "newmtl c\nNs 0\n"
              "newmtl d\nNs 30\nPr 0.125\n"
              "newmtl e\nKd 1 1 1\n");
-  const std::string path =
-      write_file("mat.obj",
-                 "mtllib mat.mtl\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                 "f 1 2 3\nusemtl c\nf 1 2 3\nusemtl a\nf 1 2 3\nusemtl c\nf 2 3 1\n"
-                 "usemtl b\nf 1 2 3\nusemtl d\nf 1 2 3\nusemtl e\nf 1 2 3\n");
-  const ImportedModel model = import_obj(path);
+  const ImportedModel model =
+      import_text("mat.obj",
+                  "mtllib mat.mtl\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                  "f 1 2 3\nusemtl c\nf 1 2 3\nusemtl a\nf 1 2 3\nusemtl c\nf 2 3 1\n"
+                  "usemtl b\nf 1 2 3\nusemtl d\nf 1 2 3\nusemtl e\nf 1 2 3\n");
   EXPECT_TRUE(model.warnings.empty()) << all_warnings(model);
   const std::vector<Material>& mats = model.scene.materials;
   ASSERT_EQ(mats.size(), 6u) << "a to e, then the default for the face before any usemtl";
@@ -285,11 +289,10 @@ TEST(ObjImportMaterials, TextureMaps) {
              "newmtl a\nmap_Kd base.png\nmap_Pr rough.png\nmap_Pm metal.png\n"
              "norm -bm 0.5 normal.png\n"
              "newmtl b\nKd 0.5 0.5 0.5\nmap_Kd base.png\nmap_bump height.png\n");
-  const std::string path =
-      write_file("tex.obj",
-                 "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
-                 "usemtl b\nf 1 2 3\n");
-  const ImportedModel model = import_obj(path);
+  const ImportedModel model =
+      import_text("tex.obj",
+                  "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
+                  "usemtl b\nf 1 2 3\n");
   const Scene& s = model.scene;
   ASSERT_EQ(s.textures.size(), 3u) << "base (shared by a and b), packed metal-roughness, normal";
   const Material& a = s.materials.at(0);
