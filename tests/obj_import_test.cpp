@@ -124,10 +124,10 @@ TEST(ObjImportLimits, MissingFileNamesIt) {
 
 // A unit quad with uvs: fanned from its first corner, (0 1 2) (0 2 3); OBJ's v flipped.
 TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
-  const Mesh m = only_mesh("quad.obj",
-                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                           "f 1/1 2/2 3/3 4/4\n");
+  const ImportedModel model = import_text("quad.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                          "f 1/1 2/2 3/3 4/4\n");
   ASSERT_EQ(model.scene.meshes.size(), 1u);
   const Mesh& m = model.scene.meshes[0];
   EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
@@ -143,10 +143,9 @@ TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
 }
 
 TEST(ObjImportGeometry, ConvexPentagonIsAFan) {
-  const ImportedModel model =
-      import_text("pentagon.obj",
-                  "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
-                  "f 1 2 3 4 5\n");
+  const Mesh m = only_mesh("pentagon.obj",
+                           "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
+                           "f 1 2 3 4 5\n");
   EXPECT_EQ(m.positions.size(), 5u);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
 }
