@@ -290,8 +290,9 @@ void scan_mtl(const std::string& file, std::string_view text,
     if (!key || key->text[0] == '#') return;
     const std::string keyword(key->text);
     if (keyword == "newmtl") {
-      const std::optional<Token> name = tokens.next();
-      current = &materials[name ? std::string(name->text) : std::string()];
+      // As tinyobjloader names it: the rest of the line after "newmtl" and one separator.
+      const size_t start = key->column - 1 + 7;
+      current = &materials[start < s.size() ? std::string(s.substr(start)) : std::string()];
       current->file = file;
     }
     if (current) current->lines[keyword] = line;
@@ -339,7 +340,12 @@ class MtlReader : public tinyobj::MaterialReader {
       }
       scan_mtl(path, *text, info);
       std::istringstream in(*text);
+      const size_t first = materials->size();
       tinyobj::LoadMtl(material_map, materials, &in, warn, err);
+      // tinyobjloader also keeps statements before any newmtl, as a material named "".
+      for (size_t m = first; m < materials->size(); ++m) {
+        info.try_emplace((*materials)[m].name, MtlInfo{path, {}});
+      }
       return true;
     } catch (const Error& e) {
       if (!error) error = e.what();

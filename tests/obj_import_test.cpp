@@ -272,6 +272,18 @@ TEST(ObjImportMaterials, MtlValuesAndOneMeshPerMaterial) {
       << "f 2 3 1 reuses f 1 2 3's vertices (same smoothing group)";
 }
 
+// tinyobjloader keeps statements before any `newmtl` as a material named "", and names a
+// material by the rest of its line, spaces included.
+TEST(ObjImportMaterials, UnnamedAndSpacedMaterialNames) {
+  write_file("names.mtl", "Kd 1 0 0\nnewmtl two words\nKd 0 1 0\n");
+  const ImportedModel model = import_text(
+      "names.obj", "mtllib names.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl two\nf 1 2 3\n");
+  ASSERT_GE(model.scene.materials.size(), 2u);
+  EXPECT_EQ(model.scene.materials[0].base_color, glm::vec3(1, 0, 0));
+  EXPECT_EQ(model.scene.materials[1].base_color, glm::vec3(0, 1, 0));
+  EXPECT_NO_THROW(validate_scene(model.scene));
+}
+
 TEST(ObjImportMaterials, TextureMaps) {
   const auto gray = [](std::initializer_list<uint8_t> values) {
     std::vector<glm::u8vec4> texels;
