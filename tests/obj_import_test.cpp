@@ -272,16 +272,21 @@ TEST(ObjImportMaterials, MtlValuesAndOneMeshPerMaterial) {
       << "f 2 3 1 reuses f 1 2 3's vertices (same smoothing group)";
 }
 
-// tinyobjloader keeps statements before any `newmtl` as a material named "", and names a
-// material by the rest of its line, spaces included.
+// tinyobjloader drops statements before the first `newmtl` unless there is none (then they
+// make a material named ""), and names a material by the rest of its line, spaces included.
 TEST(ObjImportMaterials, UnnamedAndSpacedMaterialNames) {
-  write_file("names.mtl", "Kd 1 0 0\nnewmtl two words\nKd 0 1 0\n");
-  const ImportedModel model = import_text(
-      "names.obj", "mtllib names.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl two\nf 1 2 3\n");
-  ASSERT_GE(model.scene.materials.size(), 2u);
-  EXPECT_EQ(model.scene.materials[0].base_color, glm::vec3(1, 0, 0));
-  EXPECT_EQ(model.scene.materials[1].base_color, glm::vec3(0, 1, 0));
-  EXPECT_NO_THROW(validate_scene(model.scene));
+  write_file("unnamed.mtl", "Kd 1 0 0\n");
+  const ImportedModel unnamed =
+      import_text("unnamed.obj", "mtllib unnamed.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  ASSERT_EQ(unnamed.scene.materials.size(), 2u) << "the unnamed one, then the default";
+  EXPECT_EQ(unnamed.scene.materials[0].base_color, glm::vec3(1, 0, 0));
+  EXPECT_EQ(unnamed.scene.objects.at(0).material, 1u);
+  write_file("spaced.mtl", "Kd 1 0 0\nnewmtl two words\nKd 0 1 0\n");
+  const ImportedModel spaced =
+      import_text("spaced.obj", "mtllib spaced.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  ASSERT_GE(spaced.scene.materials.size(), 1u);
+  EXPECT_EQ(spaced.scene.materials[0].base_color, glm::vec3(0, 1, 0));
+  EXPECT_NO_THROW(validate_scene(spaced.scene));
 }
 
 TEST(ObjImportMaterials, TextureMaps) {
