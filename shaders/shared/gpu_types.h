@@ -1,11 +1,13 @@
 // GPU-visible data layouts, shared by the GLSL compute shaders and the C++ host.
 //
 // This is the one definition of every struct that crosses the host/GPU boundary. Members come
-// in 16-byte groups: a mat4, a vec4 or uvec4, a vec3 followed by one 32-bit scalar, two
-// vec2/uvec2, or four 32-bit scalars. So std430 (buffers) and std140 (the frame uniform block)
-// give the same offsets as C++ with glm (whose vec3 is 12 bytes, 4-aligned); the
-// static_asserts at the end check size and offsets on the C++ side. Every field has a name:
-// no component of a vector holds an unrelated value.
+// in 16-byte groups: a mat4; a vec4 or uvec4; a vec3 and one 32-bit scalar; a vec2 or uvec2
+// and another, or two 32-bit scalars; or four 32-bit scalars. So std430 (buffers) and std140
+// (the frame uniform block) give the same offsets as C++ with glm (whose vec3 is 12 bytes,
+// 4-aligned); the static_asserts at the end check size and offsets on the C++ side. Every
+// field has a name: no component of a vector holds an unrelated value, except in
+// GpuRasterTri, packed into three 16-byte stores for the rasterizer's bandwidth
+// (raster_common.glsl unpacks it), and the VkDispatchIndirectCommand vectors of GpuCounters.
 #ifndef TESSERA_GPU_TYPES_H
 #define TESSERA_GPU_TYPES_H
 
