@@ -130,8 +130,7 @@ Row measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
 Row measure_reference(const Scene& scene, const FrameSettings& fs, const BenchArgs& a) {
   Row row;
   ReferenceSettings rs;
-  rs.width = fs.width;
-  rs.height = fs.height;
+  rs.frame = fs;
   const uint32_t frames =
       std::min<uint32_t>(a.repeat, 3);  // it is slow; 3 frames suffice for a median
   std::vector<double> wall;

@@ -55,16 +55,8 @@ void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr)
 
 // The CPU reference renderer (core/reference_renderer.h): same options, same files.
 int run_reference(const Scene& scene, const RenderArgs& args) {
-  const FrameSettings frame_settings = settings_of(args);
   ReferenceSettings settings;
-  settings.width = frame_settings.width;
-  settings.height = frame_settings.height;
-  settings.exposure_ev = frame_settings.exposure_ev;
-  settings.tonemap = frame_settings.tonemap;
-  settings.view = frame_settings.view;
-  settings.brdf = frame_settings.brdf;
-  settings.energy_compensation = frame_settings.energy_compensation;
-  settings.max_anisotropy = frame_settings.max_anisotropy;
+  settings.frame = settings_of(args);
   settings.environment_samples = args.env_reference_samples;
   std::vector<double> times;
   ReferenceFrame frame;

@@ -161,7 +161,7 @@ TEST_F(ImageBasedLighting, SplitSumAgainstMonteCarloByRoughnessAndViewAngle) {
     ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
   }
   ReferenceSettings rs;
-  rs.width = rs.height = size;
+  rs.frame.width = rs.frame.height = size;
   rs.environment_samples = 1024;
   const ReferenceFrame ref = render_reference(scene, rs);
 
@@ -223,7 +223,7 @@ TEST_F(ImageBasedLighting, PrecomputationSettingsAgainstMonteCarlo) {
   const Scene scene = make_builtin_scene("environment");
   const uint32_t size = 128;
   ReferenceSettings rs;
-  rs.width = rs.height = size;
+  rs.frame.width = rs.frame.height = size;
   const ReferenceFrame ref = render_reference(scene, rs);
   std::vector<double> medians;
   std::printf("cube size / samples: median relative luminance error over the spheres\n");
