@@ -1,6 +1,9 @@
 // The command-line tool: parsing, --help, and bad arguments giving a message that names the
 // option and the exit statuses of host/cli.h (2 for a bad command line, 1 for a failure while
 // running).
+#include <fstream>
+#include <iterator>
+
 #include <gtest/gtest.h>
 
 #include "core/check.h"
@@ -139,6 +142,21 @@ TEST(Cli, HelpOfTheToolAndOfEachCommandListsItsOptions) {
   for (const char* command : {"devices", "scenes"}) {
     const std::string help = help_of({command, "--help"});
     EXPECT_NE(help.find(std::string("Usage: tessera ") + command), std::string::npos) << help;
+  }
+}
+
+// README.md quotes the help texts; a changed option must change them there too.
+TEST(Cli, ReadmeQuotesTheHelpTexts) {
+  std::ifstream file(TESSERA_README);
+  ASSERT_TRUE(file) << TESSERA_README;
+  const std::string readme(std::istreambuf_iterator<char>(file), {});
+  for (const auto& args :
+       {std::vector<std::string>{"--help"}, {"render", "--help"}, {"bench", "--help"}}) {
+    std::string command = "$ tessera";
+    for (const std::string& arg : args) command += " " + arg;
+    EXPECT_NE(readme.find(command + "\n" + help_of(args)), std::string::npos)
+        << "README.md lacks the output of `" << command << "`:\n"
+        << help_of(args);
   }
 }
 
