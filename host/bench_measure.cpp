@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "core/reference_renderer.h"
@@ -61,21 +62,17 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& 
   return row;
 }
 
-// One frame of the hardware baseline: (render-pass GPU ms, CPU record-and-submit ms).
-std::pair<double, double> render_baseline_frame(Renderer& r, const FrameSettings& fs) {
-  const Renderer::BaselineStats s = r.render_hardware(fs);
-  return {s.render_pass_ms, s.cpu_record_submit_ms};
-}
-
+// The hardware baseline (compute/baselines/): timestamps around its render pass (clear, draws,
+// shading) are the yardstick.
 BenchRow measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
-  for (uint32_t i = 0; i < a.warmup; ++i) render_baseline_frame(r, fs);
+  HardwareBaseline hardware(r);
+  for (uint32_t i = 0; i < a.warmup; ++i) hardware.render(fs);
   std::vector<double> pass, cpu;
   for (uint32_t i = 0; i < a.repeat; ++i) {
-    const auto [pass_ms, cpu_ms] = render_baseline_frame(r, fs);
-    pass.push_back(pass_ms);
-    cpu.push_back(cpu_ms);
+    const BaselineStats s = hardware.render(fs);
+    pass.push_back(s.render_pass_ms);
+    cpu.push_back(s.cpu_record_submit_ms);
   }
-  // The yardstick: timestamps around the render pass (clear, draws, shading).
   BenchRow row;
   row.total_ms = median(pass);
   row.cpu_record_ms = median(cpu);
