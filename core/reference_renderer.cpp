@@ -400,7 +400,7 @@ struct ShadeContext {
 Material resolve_material(const ShadeContext& c, const Material& base, Surface& s, dvec3 v) {
   Material m = base;
   auto sample = [&](uint32_t map) {
-    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.max_anisotropy);
+    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.frame.max_anisotropy);
   };
   if (m.base_color_map != kNoTexture) m.base_color *= glm::vec3(sample(m.base_color_map));
   if (m.metallic_roughness_map != kNoTexture) {
@@ -434,13 +434,13 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
 
 dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   const Scene& scene = c.scene;
-  const Brdf brdf = c.settings.brdf;
+  const Brdf brdf = c.settings.frame.brdf;
   const Instance& inst = instance_of(c.instances, id);
   const dvec3 dir = camera_ray(c.cam, x, y);
   Surface s = surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
                          camera_ray_at(c.cam, x + 0.5, y + 1.5));
   const Material m = resolve_material(c, *inst.material, s, -dir);
-  switch (c.settings.view) {
+  switch (c.settings.frame.view) {
     case View::normal:
       return s.normal * 0.5 + 0.5;
     case View::uv:
@@ -454,7 +454,7 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   }
   const dvec3 v = -dir;
   dvec3 specular_scale(1.0);
-  if (c.settings.energy_compensation && brdf != Brdf::blinn_phong) {
+  if (c.settings.frame.energy_compensation && brdf != Brdf::blinn_phong) {
     // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
     const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
     specular_scale = 1.0 + reference_shading_params(m).f0 * (1.0 / e - 1.0);
@@ -504,10 +504,10 @@ void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
 }
 
 void check_size(const ReferenceSettings& settings) {
-  if (settings.width == 0 || settings.height == 0 || settings.width > TS_MAX_IMAGE_SIDE ||
-      settings.height > TS_MAX_IMAGE_SIDE) {
-    throw Error("image size " + std::to_string(settings.width) + "x" +
-                std::to_string(settings.height) + " is outside 1.." +
+  if (settings.frame.width == 0 || settings.frame.height == 0 ||
+      settings.frame.width > TS_MAX_IMAGE_SIDE || settings.frame.height > TS_MAX_IMAGE_SIDE) {
+    throw Error("image size " + std::to_string(settings.frame.width) + "x" +
+                std::to_string(settings.frame.height) + " is outside 1.." +
                 std::to_string(TS_MAX_IMAGE_SIDE) + " per side");
   }
 }
@@ -517,7 +517,7 @@ void check_size(const ReferenceSettings& settings) {
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings) {
   validate_scene(scene);
   check_size(settings);
-  const uint32_t w = settings.width, h = settings.height;
+  const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
   const ObjectNumbering numbering = number_objects(scene);
@@ -558,16 +558,16 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   f.ldr = {w, h, std::vector<glm::u8vec4>(pixels)};
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
     rasterize_rows(tris, w, y0, y1, f);
-    const bool shaded = settings.view == View::shaded;
-    const double exposure = shaded ? std::exp2(double(settings.exposure_ev)) : 1.0;
-    const ToneMap op = shaded ? settings.tonemap : ToneMap::clamp;
+    const bool shaded = settings.frame.view == View::shaded;
+    const double exposure = shaded ? std::exp2(double(settings.frame.exposure_ev)) : 1.0;
+    const ToneMap op = shaded ? settings.frame.tonemap : ToneMap::clamp;
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
         dvec3 c;
         if (f.owner[i] != kNoTriangle) {
           c = shade_pixel(context, f.owner[i], x, y);
-        } else if (scene.environment && settings.view == View::shaded) {
+        } else if (scene.environment && settings.frame.view == View::shaded) {
           c = glm::min(environment_radiance(*scene.environment, camera_ray(cam, x, y)),
                        dvec3(TS_MAX_HALF));
         } else {
@@ -589,7 +589,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
 ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,
                                uint32_t triangle_id, uint32_t x, uint32_t y) {
   check_size(settings);
-  const CameraModel cam = make_camera(scene.camera, settings.width, settings.height);
+  const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
   const ObjectNumbering numbering = number_objects(scene);
   const std::vector<Instance> instances = make_instances(scene, numbering);
   TESSERA_CHECK(triangle_id < numbering.triangle_count);
