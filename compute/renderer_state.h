@@ -50,8 +50,8 @@ struct Renderer::State {
 
   // The graphics baseline (hardware_baseline.cpp), created on first use.
   VkRenderPass baseline_pass = VK_NULL_HANDLE;
-  std::array<VkPipeline, 6>
-      baseline_pipelines{};  // per Brdf variant, with and without compensation
+  // Per Brdf variant, with and without compensation, for objects with and without mirroring.
+  std::array<VkPipeline, 12> baseline_pipelines{};
   Attachment depth;
   VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
   uint32_t baseline_width = 0, baseline_height = 0;

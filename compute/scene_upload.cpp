@@ -51,6 +51,7 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     g.triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count());
     g.material = o.material;
     g.first_triangle = uint32_t(numbering.first_triangle[slot]);
+    g.mirrored = is_mirroring(o.transform) ? 1u : 0u;
     out.objects.push_back(g);
   }
 
