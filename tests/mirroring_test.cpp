@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "core/mesh.h"
 #include "core/procedural_textures.h"
 #include "core/reference_renderer.h"
@@ -47,7 +48,7 @@ Images render_both(Renderer& renderer, const Scene& scene, uint32_t w, uint32_t 
   out.culled_backface = renderer.render(fs).culled_backface;
   out.hdr = renderer.read_hdr();
   out.visibility = renderer.read_visibility();
-  renderer.render_hardware(fs);
+  HardwareBaseline(renderer).render(fs);
   out.hardware_hdr = renderer.read_hdr();
   return out;
 }
@@ -64,20 +65,26 @@ const char* cull_name(CullMode c) {
   return c == CullMode::back ? "cull back" : c == CullMode::front ? "cull front" : "cull none";
 }
 
-// The scene: the cube from -1 to 1, seen from (2.5, 1.8, 3.2), one point light.
-Scene cube_scene(glm::mat4 transform) {
+// One object looked at from `eye` towards the origin, lit by one point light.
+Scene lit_object(Mesh mesh, const glm::mat4& transform, glm::vec3 eye, float fov_degrees,
+                 glm::vec3 light, float intensity) {
   Scene s;
-  s.camera.position = {2.5f, 1.8f, 3.2f};
+  s.camera.position = eye;
   s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.camera.vertical_fov = glm::radians(40.0f);
-  s.meshes.push_back(make_cube());
+  s.camera.vertical_fov = glm::radians(fov_degrees);
+  s.meshes.push_back(std::move(mesh));
   s.materials.push_back({});
   s.objects.push_back({0, 0, transform});
   Light l;
-  l.position = {3.0f, 4.0f, 2.0f};
-  l.intensity = 30.0f;
+  l.position = light;
+  l.intensity = intensity;
   s.lights.push_back(l);
   return s;
+}
+
+// The scene: the cube from -1 to 1, seen from (2.5, 1.8, 3.2), one point light.
+Scene cube_scene(const glm::mat4& transform) {
+  return lit_object(make_cube(), transform, {2.5f, 1.8f, 3.2f}, 40.0f, {3.0f, 4.0f, 2.0f}, 30.0f);
 }
 
 glm::mat4 axis_mirror(int axis) {
@@ -179,18 +186,8 @@ TEST_F(Mirroring, MirroredCubeLooksLikeTheCubeOnEveryPathAndAxis) {
 // A non-symmetric closed mesh placed by rotation * non-uniform scale * mirror, against the
 // CPU-mirrored mesh placed by rotation * scale: the same surface, the same triangle ids.
 Scene bumpy_scene(const Mesh& mesh, const glm::mat4& transform) {
-  Scene s;
-  s.camera.position = {0.4f, 0.9f, 3.6f};
-  s.camera.target = {0.0f, 0.0f, 0.0f};
-  s.camera.vertical_fov = glm::radians(45.0f);
-  s.meshes.push_back(mesh);
-  s.materials.push_back({});
+  Scene s = lit_object(mesh, transform, {0.4f, 0.9f, 3.6f}, 45.0f, {2.0f, 3.0f, 2.5f}, 40.0f);
   s.materials[0].roughness = 0.4f;
-  s.objects.push_back({0, 0, transform});
-  Light l;
-  l.position = {2.0f, 3.0f, 2.5f};
-  l.intensity = 40.0f;
-  s.lights.push_back(l);
   return s;
 }
 
