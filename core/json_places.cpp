@@ -68,11 +68,21 @@ struct Scanner {
       const char e = text[pos + 1];
       pos += 2;
       switch (e) {
-        case 'b': s += '\b'; break;
-        case 'f': s += '\f'; break;
-        case 'n': s += '\n'; break;
-        case 'r': s += '\r'; break;
-        case 't': s += '\t'; break;
+        case 'b':
+          s += '\b';
+          break;
+        case 'f':
+          s += '\f';
+          break;
+        case 'n':
+          s += '\n';
+          break;
+        case 'r':
+          s += '\r';
+          break;
+        case 't':
+          s += '\t';
+          break;
         case 'u': {
           uint32_t c = hex4();
           if (c >= 0xD800 && c < 0xDC00 && text.substr(pos, 2) == "\\u") {
@@ -82,7 +92,8 @@ struct Scanner {
           append_utf8(s, c);
           break;
         }
-        default: s += e;  // " \ /
+        default:
+          s += e;  // " \ /
       }
     }
     ++pos;  // closing quote
@@ -125,8 +136,8 @@ struct Scanner {
       string();
     } else if (c == '-' || (c >= '0' && c <= '9')) {
       const size_t start = pos;
-      while (pos < text.size() && std::string_view("+-.eE0123456789").find(text[pos]) !=
-                                      std::string_view::npos)
+      while (pos < text.size() &&
+             std::string_view("+-.eE0123456789").find(text[pos]) != std::string_view::npos)
         ++pos;
       const std::string number(text.substr(start, pos - start));
       if (!std::isfinite(std::strtod(number.c_str(), nullptr)))

@@ -1,5 +1,7 @@
 #include "core/scene_file.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -46,15 +48,23 @@ std::string format_number(double v) {
 
 const char* type_name(const Json& j) {
   switch (j.type()) {
-    case Json::value_t::null: return "null";
-    case Json::value_t::object: return "an object";
-    case Json::value_t::array: return "an array";
-    case Json::value_t::string: return "a string";
-    case Json::value_t::boolean: return "a boolean";
+    case Json::value_t::null:
+      return "null";
+    case Json::value_t::object:
+      return "an object";
+    case Json::value_t::array:
+      return "an array";
+    case Json::value_t::string:
+      return "a string";
+    case Json::value_t::boolean:
+      return "a boolean";
     case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned: return "an integer";
-    case Json::value_t::number_float: return "a number";
-    default: return "something else";
+    case Json::value_t::number_unsigned:
+      return "an integer";
+    case Json::value_t::number_float:
+      return "a number";
+    default:
+      return "something else";
   }
 }
 
@@ -85,8 +95,10 @@ struct Reader {
     const auto it = index.find(n.pointer);
     std::string s = file;
     if (it != index.end())
-      s.append(":").append(std::to_string(it->second.line)).append(":").append(
-          std::to_string(it->second.column));
+      s.append(":")
+          .append(std::to_string(it->second.line))
+          .append(":")
+          .append(std::to_string(it->second.column));
     s.append(": ").append(n.path.empty() ? std::string_view("(top level)") : n.path).append(": ");
     return s;
   }
@@ -137,8 +149,7 @@ struct Reader {
     const bool below = open_lo ? !(d > lo) : !(d >= lo);
     if (below || d > hi) {
       const std::string v = format_number(d);
-      if (hi == kUnbounded)
-        fail(n, v + " must be " + (open_lo ? "> " : ">= ") + format_number(lo));
+      if (hi == kUnbounded) fail(n, v + " must be " + (open_lo ? "> " : ">= ") + format_number(lo));
       fail(n, v + " is outside " + (open_lo ? "(" : "[") + format_number(lo) + ", " +
                   format_number(hi) + "]");
     }
@@ -180,7 +191,9 @@ struct Reader {
   template <size_t N>
   glm::vec<N, float> vector(const Node& n, double lo = -kUnbounded, double hi = kUnbounded) const {
     expect(n, n.json->is_array() && n.json->size() == N,
-           N == 2 ? "an array of 2 numbers" : N == 3 ? "an array of 3 numbers" : "an array");
+           N == 2   ? "an array of 2 numbers"
+           : N == 3 ? "an array of 3 numbers"
+                    : "an array");
     glm::vec<N, float> v;
     for (size_t i = 0; i < N; ++i) v[i] = real(element(n, i), lo, hi);
     return v;
@@ -308,8 +321,7 @@ void Reader::read_light(const Node& n) {
     l.inner_angle = glm::radians(real(child(n, "inner_angle_degrees"), 0.0, 89.9));
   if (has(n, "outer_angle_degrees"))
     l.outer_angle = glm::radians(real(child(n, "outer_angle_degrees"), 0.0, 89.9));
-  if (l.inner_angle > l.outer_angle)
-    fail(n, "the inner angle is larger than the outer angle");
+  if (l.inner_angle > l.outer_angle) fail(n, "the inner angle is larger than the outer angle");
   out.scene.lights.push_back(l);
 }
 
@@ -331,8 +343,8 @@ void Reader::read_texture(const Node& n) {
   } else if (kind == 1) {
     const uint32_t size = integer_or(n, "size", 256, 1, side);
     const uint32_t cells = integer_or(n, "cells", 8, 1, size);
-    out.scene.textures.push_back(make_checker_texture(size, cells, vec3_or(n, "color_a", {1, 1, 1}, 0.0),
-                                                      vec3_or(n, "color_b", {0, 0, 0}, 0.0)));
+    out.scene.textures.push_back(make_checker_texture(
+        size, cells, vec3_or(n, "color_a", {1, 1, 1}, 0.0), vec3_or(n, "color_b", {0, 0, 0}, 0.0)));
     texture_decls.push_back({n, "", true});
   } else {
     const uint32_t size = integer_or(n, "size", 512, 1, side);
@@ -411,9 +423,11 @@ void Reader::read_mesh(const Node& n) {
   object(n, {"name", "type", "segments", "rings", "level", "nx", "ny", "positions", "normals",
              "uvs", "indices"});
   declare(n, mesh_names, uint32_t(out.scene.meshes.size()), "mesh");
-  if (!has(n, "type")) fail(n, "a mesh needs a \"type\": sphere, icosphere, cube, plane or triangles");
-  const int kind = choice(child(n, "type"), {std::pair{"sphere", 0}, {"icosphere", 1}, {"cube", 2},
-                                             {"plane", 3}, {"triangles", 4}});
+  if (!has(n, "type"))
+    fail(n, "a mesh needs a \"type\": sphere, icosphere, cube, plane or triangles");
+  const int kind = choice(
+      child(n, "type"),
+      {std::pair{"sphere", 0}, {"icosphere", 1}, {"cube", 2}, {"plane", 3}, {"triangles", 4}});
   const uint64_t max_vertices = options.max_mesh_vertices;
   auto check_vertices = [&](uint64_t vertices) {
     if (vertices > max_vertices)
@@ -431,7 +445,8 @@ void Reader::read_mesh(const Node& n) {
   } else if (kind == 2) {
     mesh = make_cube();
   } else if (kind == 3) {
-    const uint32_t nx = integer_or(n, "nx", 1, 1, 1u << 20), ny = integer_or(n, "ny", 1, 1, 1u << 20);
+    const uint32_t nx = integer_or(n, "nx", 1, 1, 1u << 20),
+                   ny = integer_or(n, "ny", 1, 1, 1u << 20);
     check_vertices(uint64_t(nx + 1) * (ny + 1));
     mesh = make_plane(nx, ny);
   } else {
@@ -458,7 +473,8 @@ void Reader::read_mesh(const Node& n) {
         pos[k] = real(element(p, 3 * i + k));
         nor[k] = real(element(nn, 3 * i + k));
       }
-      if (glm::dot(nor, nor) == 0.0f) fail(element(nn, 3 * i), "normal " + std::to_string(i) + " is zero");
+      if (glm::dot(nor, nor) == 0.0f)
+        fail(element(nn, 3 * i), "normal " + std::to_string(i) + " is zero");
       mesh.positions.push_back(pos);
       mesh.normals.push_back(glm::normalize(nor));
       mesh.uvs.push_back({real(element(uv, 2 * i)), real(element(uv, 2 * i + 1))});
@@ -497,8 +513,8 @@ void Reader::read_model(const Node& n) {
   const uint32_t meshes = uint32_t(s.meshes.size()), materials = uint32_t(s.materials.size()),
                  textures = uint32_t(s.textures.size());
   for (Material m : model.scene.materials) {
-    for (uint32_t* map : {&m.base_color_map, &m.metallic_roughness_map, &m.normal_map,
-                          &m.occlusion_map})
+    for (uint32_t* map :
+         {&m.base_color_map, &m.metallic_roughness_map, &m.normal_map, &m.occlusion_map})
       if (*map != kNoTexture) *map += textures;
     s.materials.push_back(m);
   }
@@ -549,8 +565,6 @@ glm::mat4 Reader::read_transform(const Node& n) const {
   return t;
 }
 
-
-
 void Reader::read_objects(const Node& list) {
   for (const Node& n : array(list)) {
     object(n, {"name", "mesh", "model", "material", "materials", "tile_columns", "translation",
@@ -577,8 +591,8 @@ void Reader::read_objects(const Node& list) {
       fail(child(n, has(n, "material") ? "material" : "materials"),
            "a model brings its own materials");
     const glm::mat4 placement = read_transform(n);
-    const bool moved = has(n, "translation") || has(n, "rotation") || has(n, "scale") ||
-                       has(n, "matrix");
+    const bool moved =
+        has(n, "translation") || has(n, "rotation") || has(n, "scale") || has(n, "matrix");
 
     // Adds one instance at `local` (inside the entry's placement) with palette entry `pick`.
     auto add = [&](const glm::mat4& local, uint32_t pick) {
@@ -658,8 +672,7 @@ void Reader::read_objects(const Node& list) {
       bool scaled = false;
       if (has(r, "scale")) {
         const Node s = child(r, "scale");
-        scale = s.json->is_number() ? glm::vec2(real(s, 0.0, kUnbounded, true))
-                                    : vector<2>(s, 0.0);
+        scale = s.json->is_number() ? glm::vec2(real(s, 0.0, kUnbounded, true)) : vector<2>(s, 0.0);
         if (!(scale.x > 0.0f) || scale.x > scale.y) fail(s, "needs 0 < low <= high");
         scaled = true;
       }
@@ -668,7 +681,8 @@ void Reader::read_objects(const Node& list) {
         for (int k = 0; k < 3; ++k) p[k] = lo[k] + (hi[k] - lo[k]) * uniform_float(rng());
         glm::mat4 local = glm::translate(glm::mat4(1.0f), p);
         if (scaled)
-          local = glm::scale(local, glm::vec3(scale.x + (scale.y - scale.x) * uniform_float(rng())));
+          local =
+              glm::scale(local, glm::vec3(scale.x + (scale.y - scale.x) * uniform_float(rng())));
         add(local, materials.size() > 1 ? uint32_t(rng() % materials.size()) : 0);
       }
     } else {
@@ -758,15 +772,23 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   try {
     root = Json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ...":
+    // the parser stops at the end of the token it could not take; point at the token's start.
     const std::string what = e.what();
-    size_t line = 0, column = 0;
-    const size_t at = what.find("at line ");
-    if (at != std::string::npos) std::sscanf(what.c_str() + at, "at line %zu, column %zu", &line, &column);
-    const size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
-    throw Error(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                ": JSON syntax error: " +
-                (colon == std::string::npos ? what : what.substr(colon + 2)));
+    const size_t at = what.find(": ", what.find("column "));
+    const std::string reason = at == std::string::npos ? what : what.substr(at + 2);
+    size_t end = e.byte == 0 ? 0 : std::min<size_t>(e.byte - 1, text.size());
+    if (end < text.size() && text[end] == '"') {
+      while (end > 0 && !(text[end - 1] == '"' && (end < 2 || text[end - 2] != '\\'))) --end;
+      if (end > 0) --end;
+    } else {
+      while (end > 0 && end < text.size() &&
+             std::isalnum(static_cast<unsigned char>(text[end - 1])))
+        --end;
+    }
+    const JsonPlace p = place_of_offset(text, end);
+    throw Error(name + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) +
+                ": JSON syntax error: " + reason);
   } catch (const nlohmann::json::out_of_range&) {
     // A number beyond double's range (1e999): the place index below finds and names it.
   }

@@ -14,10 +14,10 @@
 namespace tessera {
 
 struct SceneFileOptions {
-  bool strict = false;                  // unknown keys (and importer warnings) become errors
-  uint64_t max_file_bytes = 64u << 20;  // the scene file itself; larger files are refused
+  bool strict = false;                    // unknown keys (and importer warnings) become errors
+  uint64_t max_file_bytes = 64u << 20;    // the scene file itself; larger files are refused
   uint64_t max_model_bytes = 2ull << 30;  // each model, texture or environment file it names
-  uint64_t max_objects = 1u << 24;      // objects after instancing and model expansion
+  uint64_t max_objects = 1u << 24;        // objects after instancing and model expansion
   uint64_t max_mesh_vertices = 1u << 26;  // per mesh (built-in shapes and inline meshes)
   uint32_t max_texture_side = kMaxTextureSide;
 };
