@@ -809,6 +809,14 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   return out;
 }
 
+std::string read_scene_description(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const Json j = Json::parse(in, nullptr, false);
+  if (j.is_object() && j.contains("description") && j["description"].is_string())
+    return j["description"].get<std::string>();
+  return "";
+}
+
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options) {
   std::error_code ec;
   const uint64_t bytes = std::filesystem::file_size(path, ec);

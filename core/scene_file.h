@@ -49,6 +49,10 @@ SceneFile load_scene_file(const std::string& path, const SceneFileOptions& optio
 SceneFile load_scene_text(const std::string& text, const std::string& name,
                           const std::string& base_dir, const SceneFileOptions& options = {});
 
+/// The "description" of the scene file at `path` without loading the scene ("" if it has
+/// none, or if the file cannot be read or parsed: for listings).
+std::string read_scene_description(const std::string& path);
+
 /// The random numbers of the "random" generator, reproducible on every platform: the 32-bit
 /// outputs x of std::mt19937 (whose sequence the C++ standard fixes), mapped to [0, 1) as
 /// float(x) * 2^-32, rounded to nearest, and 1 replaced by the largest float below 1.

@@ -21,6 +21,7 @@
 #include "core/reference_renderer.h"
 #include "host/chart.h"
 #include "host/cli.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
@@ -244,7 +245,8 @@ std::string bench_help() {
          "the hardware baseline; wall time for the CPU reference).\n"
          "\n"
          "  --scene NAME        grid (default), scatter or huge; or a built-in scene of\n"
-         "                      `tessera scenes` (one point: its own object count)\n"
+         "                      `tessera scenes`, or a scene file (one point: its own\n"
+         "                      object count)\n"
          "  --objects LIST      object counts, e.g. 1,10,100,1000 (default 1,10,100)\n"
          "  --size WxH          image size (default 512x512)\n"
          "  --segments S        sphere slices; S/2 stacks (default 32: 960 triangles)\n"
@@ -311,7 +313,7 @@ bool parse_bench_args(const std::vector<std::string>& args, BenchArgs& out) {
       {"--generic-shading", [&] { out.generic_shading = true; }},
       {"--validate", [&] { out.validate = true; }}};
   if (!parse_options(args, with_value, flags, "tessera bench")) return false;
-  if (!is_builtin_scene(out.scene))
+  if (!is_builtin_scene(out.scene) && !is_scene_path(out.scene))
     make_bench_scene(out.scene, 1, out.segments, 1.0f);  // unknown: fails early
   for (const std::string* path : {&out.csv, &out.json, &out.chart}) {
     if (!path->empty() && !can_write_file(*path))
@@ -348,15 +350,14 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   const float aspect = float(a.width) / float(a.height);
 
   std::vector<Row> rows;
-  // A built-in scene has a fixed object count: it is one point of the sweep.
-  const bool builtin = is_builtin_scene(a.scene);
+  // A built-in scene or a scene file has a fixed object count: it is one point of the sweep.
+  const bool builtin = is_builtin_scene(a.scene) || is_scene_path(a.scene);
+  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene : Scene{};
   const std::vector<uint32_t> counts =
-      builtin ? std::vector<uint32_t>{uint32_t(make_builtin_scene(a.scene).objects.size())}
-              : a.objects;
+      builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
   Progress progress(counts.size() * a.backends.size(), !a.quiet);
   for (uint32_t n : counts) {
-    const Scene scene =
-        builtin ? make_builtin_scene(a.scene) : make_bench_scene(a.scene, n, a.segments, aspect);
+    const Scene scene = builtin ? fixed : make_bench_scene(a.scene, n, a.segments, aspect);
     uint64_t triangles = 0;
     for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
     uint64_t pixels_shaded = 0;

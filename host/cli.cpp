@@ -92,7 +92,10 @@ std::string main_help() {
 std::string render_help() {
   return "usage: tessera render [options]\n"
          "\n"
-         "  --scene NAME        built-in scene (default spheres; see `tessera scenes`)\n"
+         "  --scene NAME|FILE   built-in scene (default spheres; see `tessera scenes`) or a\n"
+         "                      scene file (docs/scene-format.md); its \"render\" block sets\n"
+         "                      size, exposure, tone map and BRDF unless given here\n"
+         "  --strict            unknown keys in a scene file are errors, not warnings\n"
          "  --size WxH          image size in pixels, each side 1..16384 (default 512x512)\n"
          "  --out FILE.png      display image, sRGB (default tessera.png)\n"
          "  --hdr-out FILE      linear HDR image too, .pfm (exact floats) or .hdr (RGBE)\n"
@@ -128,7 +131,11 @@ std::string render_help() {
 bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
   const std::map<std::string, ValueHandler> with_value = {
       {"--scene", [&](const std::string& v) { out.scene = v; }},
-      {"--size", [&](const std::string& v) { parse_size(v, out.width, out.height); }},
+      {"--size",
+       [&](const std::string& v) {
+         parse_size(v, out.width, out.height);
+         out.size_given = true;
+       }},
       {"--out",
        [&](const std::string& v) {
          if (!ends_with(v, ".png")) throw Error("--out must name a .png file, got '" + v + "'");
@@ -145,11 +152,13 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
       {"--exposure",
        [&](const std::string& v) {
          out.exposure_ev = parse_float("--exposure", v);
+         out.exposure_given = true;
          if (std::abs(out.exposure_ev) > 64.0f)
            throw Error("--exposure must be within [-64, 64] EV");
        }},
       {"--tonemap",
        [&](const std::string& v) {
+         out.tonemap_given = true;
          if (v == "aces")
            out.tonemap = ToneMap::aces;
          else if (v == "reinhard")
@@ -174,6 +183,7 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
        }},
       {"--brdf",
        [&](const std::string& v) {
+         out.brdf_given = true;
          if (v == "classic")
            out.brdf = Brdf::classic;
          else if (v == "filament")
@@ -214,6 +224,7 @@ bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
   const std::map<std::string, std::function<void()>> flags = {
       {"--validate", [&] { out.validate = true; }},
       {"--quiet", [&] { out.quiet = true; }},
+      {"--strict", [&] { out.strict = true; }},
       {"--energy-compensation", [&] { out.energy_compensation = true; }},
   };
   return parse_options(args, with_value, flags, "tessera render");

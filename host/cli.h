@@ -25,13 +25,17 @@ struct RenderArgs {
   View view = View::shaded;
   Brdf brdf = Brdf::classic;
   bool energy_compensation = false;
-  std::string env;              // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
+  std::string env;  // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
   EnvironmentOptions env_options;
   uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
   uint32_t anisotropy = 1;
   uint32_t repeat = 1;  // frames rendered; timings are the median over them
   bool validate = false;
   bool quiet = false;
+  bool strict = false;  // --strict: unknown keys in a scene file are errors
+  // Which frame options the command line gave: the others come from the scene file's
+  // "render" block when it has them.
+  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false;
 };
 
 /// Parses the arguments after `tessera render`. Throws tessera::Error naming the bad

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/image.h"
 #include "core/reference_renderer.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
@@ -35,9 +36,19 @@ FrameSettings settings_of(const RenderArgs& args) {
   return settings;
 }
 
-// The scene with the environment --env asks for.
-Scene scene_of(const RenderArgs& args) {
-  Scene scene = make_builtin_scene(args.scene);
+// The scene with the environment --env asks for; the file's render defaults fill in what the
+// command line left unset.
+Scene scene_of(RenderArgs& args) {
+  SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
+  const RenderDefaults& r = file.render;
+  if (!args.size_given) {
+    args.width = r.width.value_or(args.width);
+    args.height = r.height.value_or(args.height);
+  }
+  if (!args.exposure_given) args.exposure_ev = r.exposure_ev.value_or(args.exposure_ev);
+  if (!args.tonemap_given) args.tonemap = r.tonemap.value_or(args.tonemap);
+  if (!args.brdf_given) args.brdf = r.brdf.value_or(args.brdf);
+  Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();
   } else if (args.env == "sky") {
@@ -89,7 +100,8 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
 
 }  // namespace
 
-int run_render(const RenderArgs& args) {
+int run_render(const RenderArgs& given) {
+  RenderArgs args = given;
   const Scene scene = scene_of(args);
   // Check outputs before spending time on a render.
   if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");

@@ -2,6 +2,7 @@
 // files against make_builtin_scene (every field, exact floats) and against the golden images,
 // the benchmark grid file against make_bench_scene, and the bad-file corpus of tests/data/bad/.
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "core/check.h"
+#include "core/image.h"
 #include "core/model_import.h"
 #include "core/scene_file.h"
 #include "tests/golden.h"
@@ -254,6 +256,39 @@ TEST(SceneFile, BadFilesGiveTheirExpectedErrors) {
     return "";
   };
   EXPECT_GE(testing::expect_bad_corpus(kData + "/bad", "scene_", ".json", error_of), 20);
+}
+
+// `tessera render --scene FILE` takes the file's render defaults unless the command line sets
+// them; a bad file exits with status 1 and the place; `tessera scenes` lists the files.
+TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
+  const std::string scene = test::output_path("small.json");
+  std::ofstream(scene)
+      << R"({"materials": [{"name": "m"}], "meshes": [{"name": "c", "type": "cube"}],
+    "objects": [{"mesh": "c", "material": "m"}], "render": {"width": 40, "height": 30}})";
+  const std::string png = test::output_path("small.png");
+  std::string out;
+  ASSERT_EQ(
+      test::run_command(
+          std::string(TESSERA_BINARY) + " render --quiet --scene " + scene + " --out " + png, out),
+      0)
+      << out;
+  EXPECT_EQ(read_png(png).width, 40u);
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --quiet --size 20x10 --scene " + scene + " --out " + png,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(read_png(png).width, 20u);
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --scene " + kData +
+                                  "/bad/scene_range.json --out " + png,
+                              out),
+            1);
+  EXPECT_NE(out.find("scene_range.json:4:19: materials.gold.roughness: 1.5 is outside [0, 1]"),
+            std::string::npos)
+      << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " scenes", out), 0);
+  for (const BuiltinSceneInfo& info : builtin_scenes())
+    EXPECT_NE(out.find(std::string(info.name) + " "), std::string::npos) << out;
 }
 
 class SceneFileRender : public test::VulkanTest {};
