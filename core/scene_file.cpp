@@ -505,7 +505,7 @@ void Reader::read_model(const Node& n) {
   io.max_texture_side = options.max_texture_side;
   ImportedModel model = loading(f, [&] {
     if (ext == ".gltf" || ext == ".glb") return import_gltf(path, io);
-    if (ext == ".obj") throw Error(path + ": OBJ import is not available in this build yet");
+    if (ext == ".obj") return import_obj(path, io);
     throw Error(path + ": unknown model format '" + ext + "' (.gltf, .glb or .obj)");
   });
   for (const std::string& w : model.warnings) out.warnings.push_back(where(f) + w);
