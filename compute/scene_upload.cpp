@@ -19,6 +19,8 @@ gpu::GpuMaterial gpu_material(const Material& m) {
           .roughness = m.roughness,
           .occlusion = m.occlusion,
           .normal_scale = m.normal_scale,
+          .double_sided = m.double_sided ? 1u : 0u,
+          .emissive_map = m.emissive_map,
           .base_color_map = m.base_color_map,
           .metallic_roughness_map = m.metallic_roughness_map,
           .normal_map = m.normal_map,
@@ -86,7 +88,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
         .triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count()),
         .material = o.material,
         .first_triangle = uint32_t(numbering.first_triangle[slot]),
-        .mirrored = is_mirroring(o.transform) ? 1u : 0u};
+        .mirrored = is_mirroring(o.transform) ? 1u : 0u,
+        .double_sided = scene.materials[o.material].double_sided ? 1u : 0u};
     out.objects.push_back(g);
   }
 
@@ -96,7 +99,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
         {m.base_color_map, TS_MAP_BASE_COLOR},
         {m.metallic_roughness_map, TS_MAP_METALLIC_ROUGHNESS},
         {m.normal_map, TS_MAP_NORMAL},
-        {m.occlusion_map, TS_MAP_OCCLUSION}};
+        {m.occlusion_map, TS_MAP_OCCLUSION},
+        {m.emissive_map, TS_MAP_EMISSIVE}};
     for (const auto& [map, bit] : maps) {
       if (map != kNoTexture) out.texture_maps |= bit;
     }

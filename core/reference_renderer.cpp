@@ -231,20 +231,21 @@ std::array<dvec4, 3> clip_coords(const CameraModel& cam, const Instance& inst, u
 void setup_triangle(const CameraModel& cam, CullMode cull, const Instance& inst, uint64_t id,
                     std::vector<RasterTriangle>& out) {
   const std::array<dvec4, 3> c = clip_coords(cam, inst, id);
+  const CullMode facing_cull = inst.material->double_sided ? CullMode::none : cull;
   RasterTriangle t;
   bool inside = true;
   for (const dvec4& v : c) {
     for (int plane = 0; plane < 5; ++plane) inside = inside && plane_distance(cam, v, plane) >= 0;
   }
   if (inside) {
-    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, t))
+    if (make_raster_triangle(cam, facing_cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, t))
       out.push_back(t);
     return;
   }
   std::vector<dvec4> poly = clipped_polygon(cam, c);
   for (size_t k = 1; k + 1 < poly.size(); ++k) {
-    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), inst.mirrored,
-                             t))
+    if (make_raster_triangle(cam, facing_cull, poly[0], poly[k], poly[k + 1], uint32_t(id),
+                             inst.mirrored, t))
       out.push_back(t);
   }
 }
@@ -398,6 +399,14 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
     const double w = (*inst.tangents)[idx[0]].w * (inst.mirrored ? -1.0 : 1.0);
     out.tangent = glm::dvec4(t, w);
   }
+  // A double-sided material's back face is shaded as a front face turned toward the viewer
+  // (glTF 2.0 3.9.5): normal and tangent frame flipped, the bitangent too through w. Front
+  // faces wind counter-clockwise seen from the camera, clockwise if mirrored.
+  const bool back = (glm::dot(glm::cross(e1, e2), dir) > 0.0) != inst.mirrored;
+  if (back && inst.material->double_sided) {
+    out.normal = -out.normal;
+    out.tangent = -out.tangent;
+  }
   return out;
 }
 
@@ -424,6 +433,7 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
     m.metallic = float(m.metallic * t.b);
   }
   if (m.occlusion_map != kNoTexture) m.occlusion = float(m.occlusion * sample(m.occlusion_map).r);
+  if (m.emissive_map != kNoTexture) m.emissive *= glm::vec3(sample(m.emissive_map));
   if (m.normal_map != kNoTexture) {
     const glm::dvec4 t = sample(m.normal_map);
     const dvec3 local(dvec2(t) * 2.0 - 1.0, t.z * 2.0 - 1.0);

@@ -134,7 +134,8 @@ void validate_scene(const Scene& scene) {
         {"base colour", mat.base_color_map},
         {"metallic-roughness", mat.metallic_roughness_map},
         {"normal", mat.normal_map},
-        {"occlusion", mat.occlusion_map}};
+        {"occlusion", mat.occlusion_map},
+        {"emissive", mat.emissive_map}};
     for (const auto& [what, index] : maps) {
       require(index == kNoTexture || index < scene.textures.size(),
               name + " uses texture " + std::to_string(index) + " as its " + what + " map, of " +

@@ -55,6 +55,10 @@ struct Material {
   uint32_t normal_map = kNoTexture;              // tangent-space normal, RGB * 2 - 1
   uint32_t occlusion_map = kNoTexture;           // R times occlusion
   float normal_scale = 1.0f;                     // scales the normal map's x and y
+  uint32_t emissive_map = kNoTexture;            // RGB (sRGB texture) times emissive
+  // Never culled by facing (whatever FrameSettings::cull says); back faces are shaded with the
+  // normal and tangent frame flipped toward the viewer (glTF 2.0 doubleSided).
+  bool double_sided = false;
 };
 
 /// A scalar parameter of Material and the values validate_scene accepts for it (inclusive;

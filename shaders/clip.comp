@@ -11,9 +11,9 @@ layout(local_size_x = TS_GROUP_SIZE) in;
 
 #include "setup_common.glsl"
 
-void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored) {
+void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) {
   RasterTri t;
-  uint outcome = prepare_triangle(c0, c1, c2, id, mirrored, t);
+  uint outcome = prepare_triangle(c0, c1, c2, id, mirrored, double_sided, t);
   if (outcome == OUTCOME_FACING) {
     atomicAdd(counters[batch.index].culled_backface, 1u);
     return;
@@ -72,6 +72,7 @@ void main() {
       for (int k = 0; k < n; ++k) poly[k] = next_poly[k];
     }
     bool mirrored = objects[slot].mirrored != 0u;
-    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id, mirrored);
+    bool double_sided = objects[slot].double_sided != 0u;
+    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id, mirrored, double_sided);
   }
 }

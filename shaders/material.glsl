@@ -51,6 +51,17 @@ vec3 apply_normal_map(SurfaceGeometry g, vec3 local, float scale, vec3 V) {
   return n;
 }
 
+// A double-sided material's back face is shaded as the front face of a surface turned toward
+// the viewer (glTF 2.0 3.9.5): normal and tangent frame flipped (negating the handedness too
+// flips the bitangent, w * cross(N, T)). `back`: the pixel sees the triangle's back face.
+SurfaceGeometry face_viewer(uint index, SurfaceGeometry g, bool back) {
+  if (back && materials[index].double_sided != 0u) {
+    g.N = -g.N;
+    g.T = -g.T;
+  }
+  return g;
+}
+
 MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   GpuMaterial m = materials[index];
   MaterialSample s;
@@ -70,6 +81,9 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   }
   if (has_map(TS_MAP_OCCLUSION, m.occlusion_map)) {
     s.occlusion *= sample_texture(m.occlusion_map, g.uv, g.duv_dx, g.duv_dy).r;
+  }
+  if (has_map(TS_MAP_EMISSIVE, m.emissive_map)) {
+    s.emissive *= sample_texture(m.emissive_map, g.uv, g.duv_dx, g.duv_dy).rgb;
   }
   if (has_map(TS_MAP_NORMAL, m.normal_map)) {
     vec3 local = sample_texture(m.normal_map, g.uv, g.duv_dx, g.duv_dy).rgb * 2.0 - 1.0;

@@ -36,9 +36,11 @@ float plane_distance(vec4 c, int plane) {
 
 // Snaps a triangle whose corners are in front of the near plane and inside the guard band,
 // culls it by facing and by what it covers, and fills `t`. `mirrored`: its object's transform
-// has a negative determinant (GpuObject.mirrored). Returns OUTCOME_FACING, _EMPTY, _SMALL or
+// has a negative determinant (GpuObject.mirrored); `double_sided`: its material is never culled
+// by facing (GpuObject.double_sided). Returns OUTCOME_FACING, _EMPTY, _SMALL or
 // _BIG.
-uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, out RasterTri t) {
+uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided,
+                      out RasterTri t) {
   vec2 size = vec2(frame.image_size);
   float near_plane = frame.near_plane;
   vec4 c[3] = vec4[3](c0, c1, c2);
@@ -56,7 +58,8 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, out Ras
   // the winding of its object's triangles once more (glTF 2.0: front faces are then clockwise).
   bool clockwise = area < 0;
   bool front = clockwise != mirrored;
-  if ((front && frame.cull == TS_CULL_FRONT) || (!front && frame.cull == TS_CULL_BACK)) {
+  if (!double_sided &&
+      ((front && frame.cull == TS_CULL_FRONT) || (!front && frame.cull == TS_CULL_BACK))) {
     return OUTCOME_FACING;
   }
   // Order the vertices so the area is positive: every edge function is then >= 0 inside.

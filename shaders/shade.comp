@@ -102,6 +102,10 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   // A mirroring transform flips the handedness of the tangent frame.
   float handedness = vertices[vi[0]].tangent.w * (o.mirrored != 0u ? -1.0 : 1.0);
   g.T = vec4(b.x * tan[0] + b.y * tan[1] + b.z * tan[2], handedness);
+  // Front faces wind counter-clockwise seen from the camera, clockwise if mirrored (as setup
+  // decides facing).
+  bool back = (dot(cross(p[1] - p[0], p[2] - p[0]), dir) > 0.0) != (o.mirrored != 0u);
+  g = face_viewer(o.material, g, back);
   MaterialSample ms = evaluate_material(o.material, g, -dir);
 
   uint view = frame.view;

@@ -119,17 +119,20 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   require_graphics_queue(ctx);
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
-  // Mirrored objects need the opposite front face: Vulkan 1.2 has no dynamic state for it.
-  VkPipeline pipelines[2];
-  for (int mirrored = 0; mirrored < 2; ++mirrored) {
+  // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2
+  // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided.
+  VkPipeline pipelines[4];
+  for (int v = 0; v < 4; ++v) {
+    const int mirrored = v & 1, double_sided = v >> 1;
     VkPipeline& pipeline =
-        pipelines_[size_t(settings.brdf) * 4 + (settings.energy_compensation ? 2 : 0) + mirrored];
+        pipelines_[size_t(settings.brdf) * 8 + (settings.energy_compensation ? 4 : 0) + v];
     if (!pipeline) {
       const GraphicsPipelineDesc desc{
           "baseline_shade_vert",
           "baseline_shade_frag",
           false,
-          VkCullModeFlags(frame.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
+          VkCullModeFlags(double_sided                    ? VK_CULL_MODE_NONE
+                          : frame.cull == CullMode::back  ? VK_CULL_MODE_BACK_BIT
                           : frame.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
                                                           : VK_CULL_MODE_NONE),
           VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
@@ -140,7 +143,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
           mirrored == 1};
       pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
     }
-    pipelines[mirrored] = pipeline;
+    pipelines[v] = pipeline;
   }
   ensure_targets(frame.hdr_view, frame.images_generation, frame.width, frame.height);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
@@ -151,22 +154,23 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &queries_));
   }
 
-  // One instanced draw per run of consecutive object slots that share a mesh and mirroring
-  // (the canonical order sorts by mesh first, so each mesh is one run unless some of its
-  // objects are mirrored).
+  // One instanced draw per run of consecutive object slots that share a mesh, mirroring and
+  // double-sidedness (the canonical order sorts by mesh first, so each mesh is one run unless
+  // some of its objects are mirrored or differ in material sidedness).
   struct Draw {
-    uint32_t first_index, index_count, base_vertex, first_instance, instances, mirrored;
+    uint32_t first_index, index_count, base_vertex, first_instance, instances, variant;
   };
   std::vector<Draw> draws;
   const auto& objects = frame.objects;
   for (uint32_t slot = 0; slot < objects.size(); ++slot) {
     const gpu::GpuObject& o = objects[slot];
+    const uint32_t variant = o.mirrored | o.double_sided << 1;
     if (!draws.empty() && draws.back().first_index == o.first_index &&
-        draws.back().base_vertex == o.base_vertex && draws.back().mirrored == o.mirrored &&
+        draws.back().base_vertex == o.base_vertex && draws.back().variant == variant &&
         draws.back().first_instance + draws.back().instances == slot) {
       draws.back().instances++;
     } else {
-      draws.push_back({o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, o.mirrored});
+      draws.push_back({o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, variant});
     }
   }
 
@@ -203,8 +207,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     if (!draws.empty()) vkCmdBindIndexBuffer(cmd, frame.indices, 0, VK_INDEX_TYPE_UINT32);
     VkPipeline bound = VK_NULL_HANDLE;
     for (const Draw& d : draws) {
-      if (pipelines[d.mirrored] != bound) {
-        bound = pipelines[d.mirrored];
+      if (pipelines[d.variant] != bound) {
+        bound = pipelines[d.variant];
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
       }
       vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),

@@ -44,7 +44,7 @@ class HardwareBaseline {
   const Context& ctx_;
   VkRenderPass pass_ = VK_NULL_HANDLE;
   // Per Brdf variant, with and without compensation, for objects with and without mirroring.
-  std::array<VkPipeline, 12> pipelines_{};
+  std::array<VkPipeline, 24> pipelines_{};
   Attachment depth_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
   uint64_t images_generation_ = 0;  // of the renderer's images the framebuffer holds

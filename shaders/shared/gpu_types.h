@@ -101,7 +101,8 @@ using glm::vec4;
 #define TS_MAP_METALLIC_ROUGHNESS 2u
 #define TS_MAP_NORMAL 4u
 #define TS_MAP_OCCLUSION 8u
-#define TS_MAP_ALL 15u
+#define TS_MAP_EMISSIVE 16u
+#define TS_MAP_ALL 31u
 #define TS_NO_TEXTURE 0xFFFFFFFFu
 // Mip levels a GpuTexture can describe: sides up to 2^15 (the largest accepted is 16384).
 #define TS_MAX_TEXTURE_LEVELS 16
@@ -131,8 +132,8 @@ struct GpuObject {
   uint triangle_count;
   uint material;
   uint first_triangle;
-  uint mirrored;  // 1 if model's upper 3x3 has a negative determinant (is_mirroring, scene.h)
-  uint pad1;
+  uint mirrored;      // 1 if model's upper 3x3 has a negative determinant (is_mirroring, scene.h)
+  uint double_sided;  // 1 if its material is double-sided: never culled by facing
   uint pad2;
 };
 
@@ -145,8 +146,8 @@ struct GpuMaterial {
   float roughness;
   float occlusion;  // scales ambient and environment light
   float normal_scale;
-  float pad0;
-  float pad1;
+  uint double_sided;  // 1: back faces shaded with the frame flipped toward the viewer
+  uint emissive_map;
   uint base_color_map;
   uint metallic_roughness_map;
   uint normal_map;
@@ -271,11 +272,14 @@ static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
 static_assert(offsetof(GpuObject, mirrored) == 148);
+static_assert(offsetof(GpuObject, double_sided) == 152);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, metallic) == 12);
 static_assert(offsetof(GpuMaterial, emissive) == 16);
 static_assert(offsetof(GpuMaterial, roughness) == 28);
 static_assert(offsetof(GpuMaterial, occlusion) == 32);
+static_assert(offsetof(GpuMaterial, double_sided) == 40);
+static_assert(offsetof(GpuMaterial, emissive_map) == 44);
 static_assert(offsetof(GpuMaterial, base_color_map) == 48);
 static_assert(offsetof(GpuMaterial, occlusion_map) == 60);
 static_assert(sizeof(GpuTexture) == 80);

@@ -27,6 +27,8 @@ void main() {
   g.uv = uv;
   g.duv_dx = dFdxFine(uv);
   g.duv_dy = dFdyFine(uv);
+  // The pipeline's front face accounts for mirroring.
+  g = face_viewer(material, g, !gl_FrontFacing);
   MaterialSample ms = evaluate_material(material, g, V);
   color = vec4(min(shade_surface(world_position, V, ms), vec3(TS_MAX_HALF)), 1.0);
 }
