@@ -129,14 +129,6 @@ float factor(const Context& ctx, const json& object, const char* key, double fal
   return float(v);
 }
 
-glm::vec3 mean_linear_colour(const Texture& t) {
-  glm::dvec3 sum(0.0);
-  for (const glm::u8vec4& texel : t.texels) {
-    sum += glm::dvec3(srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b));
-  }
-  return glm::vec3(sum / double(t.texels.size()));
-}
-
 }  // namespace
 
 uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Model& model,
@@ -185,10 +177,7 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     } else if (alpha != "OPAQUE") {
       ctx.fail(where + ".alphaMode", "is '" + alpha + "', not OPAQUE, MASK or BLEND");
     }
-    if (m.value("doubleSided", false)) {
-      ctx.warn(where + ".doubleSided",
-               "is true; Tessera culls back faces, so surfaces seen from behind are missing");
-    }
+    mat.double_sided = m.value("doubleSided", false);
 
     // Each texture, its uv set and its uv transform.
     struct Slot {
@@ -232,12 +221,8 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     }
     const int emissive_map = slot(m, "emissiveTexture", where);
     if (emissive_map >= 0) {
-      // Material has no emissive map: emission is the factor times the map's mean colour.
-      const int source = texture_source(ctx, doc, model, emissive_map, slots.back().where);
-      mat.emissive *= mean_linear_colour(decoded_image(ctx, model, source, table));
-      ctx.warn(slots.back().where,
-               "is not supported (Tessera's material has no emissive map); emission is "
-               "emissiveFactor times the map's mean colour, uniform over the surface");
+      mat.emissive_map = texture_index(ctx, doc, model, emissive_map, slots.back().where, true,
+                                       1.0f, table, scene);
     }
 
     // Tessera meshes carry one uv set: use the one all textures share, else TEXCOORD_0.

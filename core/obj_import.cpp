@@ -518,6 +518,10 @@ struct Importer {
       out.base_color_map =
           plain_map(info, "map_Kd", m, m.diffuse_texname, m.diffuse_texopt, /*srgb=*/true);
     }
+    if (!m.emissive_texname.empty()) {
+      out.emissive_map =
+          plain_map(info, "map_Ke", m, m.emissive_texname, m.emissive_texopt, /*srgb=*/true);
+    }
     out.metallic_roughness_map = metallic_roughness_map(info, m);
     // `norm` is the PBR extension's normal map; `bump` is, strictly, a height map, but many
     // exporters write normal maps there (grayscale ones are refused in plain_map).
@@ -537,9 +541,11 @@ struct Importer {
            ": transparency is not supported; the material is rendered opaque");
     }
     const std::pair<const char*, const std::string*> ignored[] = {
-        {"map_Ke", &m.emissive_texname},   {"map_d", &m.alpha_texname},
-        {"map_Ks", &m.specular_texname},   {"map_Ns", &m.specular_highlight_texname},
-        {"disp", &m.displacement_texname}, {"map_Ka", &m.ambient_texname}};
+        {"map_d", &m.alpha_texname},
+        {"map_Ks", &m.specular_texname},
+        {"map_Ns", &m.specular_highlight_texname},
+        {"disp", &m.displacement_texname},
+        {"map_Ka", &m.ambient_texname}};
     for (const auto& [keyword, name] : ignored) {
       if (!name->empty()) warn(where(info, keyword, m.name) + ": not supported, ignored");
     }

@@ -364,12 +364,14 @@ void Reader::read_texture(const Node& n) {
   }
 }
 
-// File textures are sRGB where a material uses them as base colour, linear (data) otherwise,
+// File textures are sRGB where a material uses them as colour (base colour or emission),
+// linear (data) otherwise,
 // unless the file says "srgb".
 void Reader::load_textures() {
   std::vector<bool> colour(out.scene.textures.size(), false);
   for (const Material& m : out.scene.materials)
-    if (m.base_color_map != kNoTexture) colour[m.base_color_map] = true;
+    for (uint32_t map : {m.base_color_map, m.emissive_map})
+      if (map != kNoTexture) colour[map] = true;
   for (size_t i = 0; i < texture_decls.size(); ++i) {
     const TextureDecl& d = texture_decls[i];
     if (d.file.empty()) continue;
@@ -387,7 +389,7 @@ void Reader::load_textures() {
 void Reader::read_material(const Node& n) {
   object(n, {"name", "preset", "base_color", "metallic", "roughness", "emissive", "occlusion",
              "normal_scale", "base_color_map", "metallic_roughness_map", "normal_map",
-             "occlusion_map"});
+             "occlusion_map", "emissive_map", "double_sided"});
   declare(n, material_names, uint32_t(out.scene.materials.size()), "material");
   Material m;
   if (has(n, "preset")) {
@@ -413,9 +415,11 @@ void Reader::read_material(const Node& n) {
       {"base_color_map", &m.base_color_map},
       {"metallic_roughness_map", &m.metallic_roughness_map},
       {"normal_map", &m.normal_map},
-      {"occlusion_map", &m.occlusion_map}};
+      {"occlusion_map", &m.occlusion_map},
+      {"emissive_map", &m.emissive_map}};
   for (const auto& [key, slot] : maps)
     if (has(n, key)) *slot = lookup(child(n, key), texture_names, "texture");
+  if (has(n, "double_sided")) m.double_sided = boolean(child(n, "double_sided"));
   out.scene.materials.push_back(m);
 }
 
@@ -513,8 +517,8 @@ void Reader::read_model(const Node& n) {
   const uint32_t meshes = uint32_t(s.meshes.size()), materials = uint32_t(s.materials.size()),
                  textures = uint32_t(s.textures.size());
   for (Material m : model.scene.materials) {
-    for (uint32_t* map :
-         {&m.base_color_map, &m.metallic_roughness_map, &m.normal_map, &m.occlusion_map})
+    for (uint32_t* map : {&m.base_color_map, &m.metallic_roughness_map, &m.normal_map,
+                          &m.occlusion_map, &m.emissive_map})
       if (*map != kNoTexture) *map += textures;
     s.materials.push_back(m);
   }

@@ -269,8 +269,9 @@ TEST(GltfImport, HandMadeFeaturesFile) {
   world_bounds(s, lo, hi);
   EXPECT_EQ(lo, glm::vec3(1, 2, 3));
   EXPECT_EQ(hi, glm::vec3(5, 6, 3));
-  // Material: factors as written, emission 4 x (0.1, 0.2, 0.3); base colour and occlusion
-  // share a texture, but occlusion strength 0.5 gives a copy with R' = 1 + 0.5 (R - 1).
+  // Material: factors as written, emission 4 x (0.1, 0.2, 0.3) times the emissive map; base
+  // colour and occlusion share a texture, but occlusion strength 0.5 gives a copy with R' = 1 + 0.5
+  // (R - 1).
   const Material& mat = s.materials[s.objects[0].material];
   EXPECT_EQ(mat.base_color, glm::vec3(0.5f, 0.25f, 1.0f));
   EXPECT_FLOAT_EQ(mat.metallic, 0.3f);
@@ -285,6 +286,9 @@ TEST(GltfImport, HandMadeFeaturesFile) {
   EXPECT_EQ(base.texels[0], glm::u8vec4(0, 64, 128, 255));
   EXPECT_EQ(occlusion.texels[0].r, 128);  // 255 * (1 + 0.5 * (0 - 1)) = 127.5, rounded
   EXPECT_EQ(occlusion.texels[1].r, 255);  // R = 255 stays
+  // The emissive texture is the base colour's image read as sRGB: the same Scene texture.
+  EXPECT_EQ(mat.emissive_map, mat.base_color_map);
+  EXPECT_TRUE(mat.double_sided);
   // Camera at (0, 0, 10) looking down -z; yfov 0.5, znear 0.05.
   ASSERT_EQ(m.cameras.size(), 1u);
   EXPECT_EQ(m.cameras[0].position, glm::vec3(0, 0, 10));

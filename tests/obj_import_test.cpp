@@ -303,7 +303,7 @@ TEST(ObjImportMaterials, TextureMaps) {
   write_png(test::output_path("height.png"), Image8{1, 1, gray({77})});
   write_file("tex.mtl",
              "newmtl a\nmap_Kd base.png\nmap_Pr rough.png\nmap_Pm metal.png\n"
-             "norm -bm 0.5 normal.png\n"
+             "norm -bm 0.5 normal.png\nmap_Ke base.png\n"
              "newmtl b\nKd 0.5 0.5 0.5\nmap_Kd base.png\nmap_bump height.png\n");
   const ImportedModel model =
       import_text("tex.obj",
@@ -330,10 +330,11 @@ TEST(ObjImportMaterials, TextureMaps) {
   ASSERT_EQ(a.normal_map, 2u);
   EXPECT_FALSE(s.textures[2].srgb);
   EXPECT_EQ(a.normal_scale, 0.5f);
+  EXPECT_EQ(a.emissive_map, 0u) << "map_Ke reads base.png as sRGB too: the same texture";
   const Material& b = s.materials.at(1);
   EXPECT_EQ(b.base_color_map, 0u);
   EXPECT_EQ(b.normal_map, kNoTexture) << "a grayscale bump map is a height map";
-  EXPECT_NE(all_warnings(model).find("tex.mtl' line 9 ('map_bump' of material 'b'): the bump "
+  EXPECT_NE(all_warnings(model).find("tex.mtl' line 10 ('map_bump' of material 'b'): the bump "
                                      "map is grayscale"),
             std::string::npos)
       << all_warnings(model);

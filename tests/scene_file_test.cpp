@@ -66,6 +66,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.normal_map, y.normal_map) << "material " << i;
     EXPECT_EQ(x.occlusion_map, y.occlusion_map) << "material " << i;
     EXPECT_EQ(x.normal_scale, y.normal_scale) << "material " << i;
+    EXPECT_EQ(x.emissive_map, y.emissive_map) << "material " << i;
+    EXPECT_EQ(x.double_sided, y.double_sided) << "material " << i;
   }
   ASSERT_EQ(a.objects.size(), b.objects.size());
   for (size_t i = 0; i < a.objects.size(); ++i) {
@@ -122,7 +124,9 @@ TEST(SceneFile, ValuesReadByHand) {
   const SceneFile f = load(R"({
     "camera": {"position": [0, 0, 10], "vertical_fov_degrees": 90, "near": 0.5},
     "materials": [{"name": "gold", "preset": "gold", "roughness": 0.25},
-                  {"name": "glow", "base_color": [0.1, 0.2, 0.3], "emissive": [2, 0, 0]}],
+                  {"name": "glow", "base_color": [0.1, 0.2, 0.3], "emissive": [2, 0, 0],
+                   "emissive_map": "squares", "double_sided": true}],
+    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2}],
     "meshes": [{"name": "box", "type": "cube"}],
     "objects": [{"mesh": "box", "material": "gold", "translation": [1, 2, 3],
                  "rotation": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2},
@@ -140,6 +144,10 @@ TEST(SceneFile, ValuesReadByHand) {
   EXPECT_EQ(f.scene.materials[0].roughness, 0.25f);
   EXPECT_EQ(f.scene.materials[1].emissive, glm::vec3(2, 0, 0));
   EXPECT_EQ(f.scene.materials[1].roughness, 0.5f);  // the default
+  EXPECT_EQ(f.scene.materials[1].emissive_map, 0u);
+  EXPECT_TRUE(f.scene.materials[1].double_sided);
+  EXPECT_FALSE(f.scene.materials[0].double_sided);
+  EXPECT_TRUE(f.scene.textures[0].srgb);
   // T R S: (1, 0, 0) scaled to (2, 0, 0), turned to (0, 2, 0), moved to (1, 4, 3).
   const glm::vec4 p = f.scene.objects[0].transform * glm::vec4(1, 0, 0, 1);
   EXPECT_NEAR(p.x, 1.0f, 1e-6f);
