@@ -14,6 +14,8 @@ set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/Tessera)
 # Tessera::tessera: everything a program that renders needs.
 add_library(tessera_library INTERFACE)
 target_link_libraries(tessera_library INTERFACE tessera_compute)
+# The public headers use C++20 (designated initializers, std::span).
+target_compile_features(tessera_library INTERFACE cxx_std_20)
 add_library(Tessera::tessera ALIAS tessera_library)
 set_target_properties(tessera_library PROPERTIES EXPORT_NAME tessera)
 set_target_properties(tessera_core PROPERTIES EXPORT_NAME core)
@@ -44,6 +46,7 @@ install(EXPORT TesseraTargets NAMESPACE Tessera:: DESTINATION ${config_dir})
 if(TARGET tessera_test_support)
   add_library(Tessera::test_support ALIAS tessera_test_support)
   set_target_properties(tessera_test_support PROPERTIES EXPORT_NAME test_support)
+  target_compile_features(tessera_test_support INTERFACE cxx_std_20)
   install(TARGETS tessera_test_support
           EXPORT TesseraTestSupportTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
