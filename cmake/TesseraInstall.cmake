@@ -36,6 +36,7 @@ install(FILES
           ${PROJECT_SOURCE_DIR}/compute/context.h
           ${PROJECT_SOURCE_DIR}/compute/environment_gpu.h
           ${PROJECT_SOURCE_DIR}/compute/gpu_memory.h
+          ${PROJECT_SOURCE_DIR}/compute/passes.h
           ${PROJECT_SOURCE_DIR}/compute/pipelines.h
           ${PROJECT_SOURCE_DIR}/compute/renderer.h
           ${PROJECT_SOURCE_DIR}/compute/vk_check.h
