@@ -9,14 +9,14 @@
 
 TEST(RenderSpheres, MatchesTheReferenceRenderer) {
   const tessera::Scene scene = tessera::make_sphere_grid_scene();
+  const tessera::FrameSettings frame{.width = 128, .height = 128};
   auto ctx = tessera::create_context({.device = "lavapipe"});
   tessera::Renderer renderer(*ctx);
   renderer.set_scene(scene);
-  renderer.render({.width = 128, .height = 128});
+  renderer.render(frame);
   const tessera::Image8 gpu = renderer.read_ldr();
 
-  const tessera::ReferenceFrame reference =
-      tessera::render_reference(scene, {.width = 128, .height = 128});
+  const tessera::ReferenceFrame reference = tessera::render_reference(scene, {.frame = frame});
   // docs/accuracy.md: at most 3 levels, and only on ill-conditioned silhouette pixels.
   EXPECT_IMAGES_NEAR(gpu, reference.ldr, 3);
 }
