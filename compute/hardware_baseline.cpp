@@ -191,7 +191,9 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
       vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
     }
     VkClearValue clears[2];
-    clears[0].color = {{s.background.r, s.background.g, s.background.b, 1.0f}};
+    // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
+    const glm::vec3 clear = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
+    clears[0].color = {{clear.r, clear.g, clear.b, 1.0f}};
     clears[1].depthStencil = {0.0f, 0};  // reverse depth: 0 is infinitely far
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = s.baseline_pass;

@@ -107,7 +107,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
-  s_->dfg = create_buffer(ctx, 2 * TS_DFG_SIZE * TS_DFG_SIZE * sizeof(glm::vec4), kStorageUsage,
+  s_->dfg = create_buffer(ctx, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4), kStorageUsage,
                           MemoryKind::device);
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
@@ -369,10 +369,9 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
 namespace {
 
 void record_dfg(Renderer::State& s, VkCommandBuffer cmd) {
-  const uint32_t groups = (TS_DFG_SIZE + 7) / 8;
   for (Pipeline p : {Pipeline::dfg_classic, Pipeline::dfg_filament}) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[p]);
-    vkCmdDispatch(cmd, groups, groups, 1);
+    vkCmdDispatch(cmd, 1, TS_DFG_SIZE, 1);  // a workgroup per roughness row
   }
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
@@ -593,6 +592,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   f.raster_params = glm::vec4(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
                               float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0),
                               std::exp2(settings.exposure_ev), 0.0f);
+  s.hdr_pre_exposure = settings.view == View::shaded ? f.raster_params.z : 1.0f;
   f.image_size = glm::uvec4(s.width, s.height, s.tiles_x, s.tiles_y);
   f.scene_counts =
       glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
@@ -709,8 +709,11 @@ ImageF Renderer::read_hdr() const {
   TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE);
   std::vector<uint16_t> halves = download_image<uint16_t>(s.ctx, s.hdr, 4);
   ImageF out{s.width, s.height, std::vector<glm::vec4>(size_t(s.width) * s.height)};
+  // The image holds radiance times the pre-exposure: divided back out (alpha excepted), a
+  // stored 65504 reads as 65504 / 2^EV, the largest radiance the frame can carry.
   for (size_t i = 0; i < out.pixels.size(); ++i) {
     for (int c = 0; c < 4; ++c) out.pixels[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+    out.pixels[i] /= glm::vec4(glm::vec3(s.hdr_pre_exposure), 1.0f);
   }
   return out;
 }
@@ -735,7 +738,7 @@ std::vector<uint32_t> Renderer::read_coverage() const {
 std::vector<glm::vec4> Renderer::read_dfg_table() const {
   if (!s_->dfg_ready)
     throw Error("the DFG table is computed by the first frame with energy compensation");
-  return download_buffer<glm::vec4>(s_->ctx, s_->dfg, 2 * TS_DFG_SIZE * TS_DFG_SIZE);
+  return download_buffer<glm::vec4>(s_->ctx, s_->dfg, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE);
 }
 
 const StorageImage& Renderer::output_image() const {

@@ -37,6 +37,9 @@ struct Renderer::State {
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   Buffer visibility, coverage, tile_counts, tile_offsets, tile_cursors;
   StorageImage hdr, ldr;
+  // What the last frame multiplied the HDR image by (pre-exposure, shaders/bindings.glsl):
+  // 2^EV for shaded frames, 1 for debug views. read_hdr divides it back out.
+  float hdr_pre_exposure = 1.0f;
 
   // Scratch, sized by capacities that grow on demand.
   uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;

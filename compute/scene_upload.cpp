@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -10,6 +11,18 @@
 #include "core/texture.h"
 
 namespace tessera {
+namespace {
+
+// `d` (non-zero, finite) normalised. Where |d|^2 is not a normal float (|d| below 1e-19 or
+// above 1e19) float arithmetic would give 0, Inf or NaN: double then.
+glm::vec3 unit_direction(glm::vec3 d) {
+  const float length2 = glm::dot(d, d);
+  if (length2 >= std::numeric_limits<float>::min() && length2 <= std::numeric_limits<float>::max())
+    return glm::normalize(d);
+  return glm::vec3(glm::normalize(glm::dvec3(d)));
+}
+
+}  // namespace
 GpuSceneArrays flatten_scene(const Scene& scene) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
@@ -93,8 +106,7 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     const Light& l = *light;
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
-    const glm::vec3 dir =
-        l.kind == LightKind::point ? glm::vec3(0.0f) : glm::normalize(l.direction);
+    const glm::vec3 dir = l.kind == LightKind::point ? glm::vec3(0.0f) : unit_direction(l.direction);
     g.direction = glm::vec4(dir, 0.0f);
     g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
     const float inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f;

@@ -25,7 +25,7 @@ using glm::dvec4;
 constexpr int64_t kSubpixelOne = 256;  // 8 sub-pixel bits
 constexpr double kGuardBandPx = 32768.0;
 constexpr uint32_t kMaxSide = 16384;
-constexpr double kMaxHalf = 65504.0;  // the HDR output is fp16
+constexpr double kMaxHalf = 65504.0;  // the HDR image is fp16 (holding exposed radiance)
 
 struct CameraModel {
   dmat4 view_proj;
@@ -270,14 +270,15 @@ void rasterize_rows(const std::vector<RasterTriangle>& tris, uint32_t width, int
 }  // namespace
 namespace {
 
-// Reflected radiance towards v from light arriving along l with radiance `incident`; the
-// specular lobe scaled by `specular_scale` (energy compensation).
+// Reflected radiance towards v from light arriving along l with radiance `incident`, with or
+// without energy compensation.
 dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec3 incident,
-                dvec3 specular_scale) {
+                bool energy_compensation) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return dvec3(0.0);
-  const BrdfLobes lobes = reference_brdf_lobes(variant, n, v, l, m);
-  return (lobes.diffuse + lobes.specular * specular_scale) * incident * n_dot_l;
+  const BrdfLobes lobes = energy_compensation ? reference_compensated_lobes(variant, n, v, l, m)
+                                              : reference_brdf_lobes(variant, n, v, l, m);
+  return (lobes.diffuse + lobes.specular) * incident * n_dot_l;
 }
 
 // Incident radiance scale of a point or spot light at squared distance d2, arriving along l.
@@ -446,14 +447,6 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
       break;
   }
   const dvec3 v = -dir;
-  dvec3 specular_scale(1.0);
-  if (c.settings.energy_compensation && brdf != Brdf::blinn_phong) {
-    // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
-    const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
-    const dvec3 f0 =
-        glm::mix(dvec3(0.04), dvec3(m.base_color), std::clamp(double(m.metallic), 0.0, 1.0));
-    specular_scale = 1.0 + f0 * (1.0 / e - 1.0);
-  }
   dvec3 color =
       dvec3(scene.ambient) * dvec3(m.base_color) * double(m.occlusion) + dvec3(m.emissive);
   for (const Light& light : scene.lights) {
@@ -468,14 +461,15 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
       l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
       incident = power * attenuation(light, d2, l);
     }
-    color += reflected(brdf, s.normal, v, l, m, incident, specular_scale);
+    color += reflected(brdf, s.normal, v, l, m, incident, c.settings.energy_compensation);
   }
   if (scene.environment) {
     color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
-                                                               v, m, specular_scale,
-                                                               c.settings.environment_samples);
+                                                               v, m, dvec3(1.0),
+                                                               c.settings.environment_samples,
+                                                               c.settings.energy_compensation);
   }
-  return glm::min(color, dvec3(kMaxHalf));
+  return color;
 }
 
 // --- Resolve -------------------------------------------------------------------------------
@@ -572,15 +566,17 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
         if (f.owner[i] != kNoTriangle) {
           c = shade_pixel(context, f.owner[i], x, y);
         } else if (scene.environment && settings.view == View::shaded) {
-          c = glm::min(environment_radiance(*scene.environment, camera_ray(cam, x, y)),
-                       dvec3(kMaxHalf));
+          c = environment_radiance(*scene.environment, camera_ray(cam, x, y));
         } else {
           c = dvec3(scene.background);
         }
-        f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
+        // Pre-exposure, as the compute path: the exposed value meets the fp16 clamp, and the
+        // HDR output divides the exposure back out.
+        const dvec3 exposed = glm::min(c * exposure, dvec3(kMaxHalf));
+        f.hdr.pixels[i] = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {
-          const double display = srgb_encode(tone_curve(std::max(c[ch], 0.0) * exposure, op));
+          const double display = srgb_encode(tone_curve(std::max(exposed[ch], 0.0), op));
           out[ch] = uint8_t(std::floor(std::clamp(display, 0.0, 1.0) * 255.0 + 0.5));
         }
         f.ldr.pixels[i] = out;

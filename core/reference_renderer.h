@@ -28,7 +28,7 @@ struct ReferenceSettings {
   View view = View::shaded;
   CullMode cull = CullMode::back;
   Brdf brdf = Brdf::classic;
-  bool energy_compensation = false;  // scales specular by 1 + F0 (1/E - 1), E by quadrature
+  bool energy_compensation = false;  // reference_compensated_lobes (Kulla & Conty layering)
   uint32_t max_anisotropy = 1;        // texture filtering, as FrameSettings::max_anisotropy
   /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
   uint32_t environment_samples = 1024;
@@ -38,7 +38,9 @@ struct ReferenceSettings {
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 struct ReferenceFrame {
-  ImageF hdr;  // linear HDR in the model of the compute path (clamped to 65504), as float
+  /// Linear HDR radiance in the model of the compute path: pre-exposed, clamped to 65504 (the
+  /// fp16 maximum), divided by the exposure again; as float.
+  ImageF hdr;
   Image8 ldr;  // exposure, tone curve, sRGB, rounded to nearest
   std::vector<uint32_t> owner;     // triangle-instance id per pixel, kNoTriangle where empty
   std::vector<double> depth;       // the owner's near / w at the pixel centre, 0 where empty

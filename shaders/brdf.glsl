@@ -64,11 +64,18 @@ float Fd_Lambert() {
 // The BRDF variant, chosen when the pipeline is built (TS_BRDF_*).
 layout(constant_id = TS_SPEC_BRDF) const uint BRDF_VARIANT = TS_BRDF_CLASSIC;
 
+// Energy-conserving layering (--energy-compensation): the specular lobe is scaled up for its
+// lost multiple scattering and the diffuse layer takes only the energy the specular layer
+// leaves (lighting.glsl computes both factors from the DFG table). Not for Blinn-Phong.
+layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION = false;
+
 // Outgoing radiance towards V from one light of incident radiance `radiance` arriving along L:
 // f(L, V) * radiance * N.L. N, V, L unit; NoV already clamped to >= MIN_N_DOT_V.
 // `specular_scale` multiplies the specular lobe: the energy compensation factor, or 1.
+// `diffuse_layer` replaces the diffuse lobe's Fresnel weight when ENERGY_COMPENSATION is on
+// (Kulla & Conty's (1 - E(mu_o))(1 - E(mu_i)) / (1 - E_avg), for both variants); else unused.
 vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float metallic,
-                      float roughness, vec3 radiance, vec3 specular_scale) {
+                      float roughness, vec3 radiance, vec3 specular_scale, vec3 diffuse_layer) {
   float NoL = dot(N, L);
   if (NoL <= 0.0) return vec3(0.0);  // light below the horizon contributes nothing
   // V + L vanishes only for a light exactly opposite the viewer, already excluded for
@@ -89,7 +96,11 @@ vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float 
   } else {
     vec3 F = F_Schlick(VoH, f0);
     float D = D_GGX(NoH, alpha);
-    if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
+    if (ENERGY_COMPENSATION) {
+      float vis = BRDF_VARIANT == TS_BRDF_FILAMENT ? V_SmithGGXCorrelated(NoV, NoL, alpha)
+                                                   : V_SmithSchlickGGX(NoV, NoL, roughness);
+      f = diffuse_layer * diffuse_color * Fd_Lambert() + D * vis * F * specular_scale;
+    } else if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
       f = diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(NoV, NoL, alpha) * F * specular_scale;
     } else {
       f = (vec3(1.0) - F) * diffuse_color * Fd_Lambert() +

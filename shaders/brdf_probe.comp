@@ -22,5 +22,5 @@ void main() {
   float roughness = clamp(samples[i * 5 + 4].x, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   float NoV = max(dot(n, v), MIN_N_DOT_V);
   // f(l, v) * N.L for unit incident radiance, as the shading pass computes it.
-  results[i] = vec4(surface_response(n, v, l, NoV, material.rgb, clamp(material.a, 0.0, 1.0), roughness, vec3(1.0), vec3(1.0)), 0.0);
+  results[i] = vec4(surface_response(n, v, l, NoV, material.rgb, clamp(material.a, 0.0, 1.0), roughness, vec3(1.0), vec3(1.0), vec3(1.0)), 0.0);
 }

@@ -11,9 +11,6 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// Largest finite fp16 value: the HDR image is RGBA16F and anything above would become Inf.
-const float MAX_HALF = 65504.0;
-
 // Unit ray through the point `pixel_point` of the image, in pixels.
 vec3 camera_ray_at(vec2 pixel_point) {
   vec2 ndc = pixel_point / vec2(frame.image_size.xy) * 2.0 - 1.0;
@@ -129,5 +126,5 @@ void main() {
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size.xy)))) return;
   uint64_t key = visibility[pixel_index(pixel)];
   vec3 color = key == TS_VIS_EMPTY ? background(pixel) : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
-  imageStore(hdr_image, pixel, vec4(min(color, vec3(MAX_HALF)), 1.0));
+  imageStore(hdr_image, pixel, vec4(min(color * pre_exposure(), vec3(MAX_HALF)), 1.0));
 }
