@@ -107,8 +107,8 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
-  s_->dfg = create_buffer(ctx, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4), kStorageUsage,
-                          MemoryKind::device);
+  s_->dfg = create_buffer(ctx, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4),
+                          kStorageUsage, MemoryKind::device);
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
   validate_environment_options(options.environment);

@@ -106,7 +106,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     const Light& l = *light;
     gpu::GpuLight g{};
     g.position = glm::vec4(l.position, 1.0f);
-    const glm::vec3 dir = l.kind == LightKind::point ? glm::vec3(0.0f) : unit_direction(l.direction);
+    const glm::vec3 dir =
+        l.kind == LightKind::point ? glm::vec3(0.0f) : unit_direction(l.direction);
     g.direction = glm::vec4(dir, 0.0f);
     g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
     const float inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f;

@@ -148,10 +148,11 @@ const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double 
   auto table = std::make_unique<SpecularAlbedoTable>();
   constexpr int kPoints = SpecularAlbedoTable::kPoints;
   for (int i = 0; i < kPoints; ++i) {
-    table->terms[i] = reference_specular_albedo_terms(variant, double(i) / (kPoints - 1), roughness);
+    const double t = double(i) / (kPoints - 1);
+    table->terms[i] = reference_specular_albedo_terms(variant, t * t, roughness);
   }
-  // Means 2 int g(mu) mu dmu by a 64-point Gauss-Legendre-free midpoint rule on the exact
-  // quadrature (not on the table), so they do not inherit its interpolation.
+  // Means 2 int g(mu) mu dmu by a 64-point midpoint rule on the quadrature itself (not on the
+  // table), so they do not inherit its interpolation.
   constexpr int kMeanSteps = 64;
   for (int i = 0; i < kMeanSteps; ++i) {
     const double mu = (i + 0.5) / kMeanSteps;
@@ -163,7 +164,7 @@ const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double 
 }
 
 glm::dvec2 SpecularAlbedoTable::at(double n_dot_v) const {
-  const double p = std::clamp(n_dot_v, 0.0, 1.0) * (kPoints - 1);
+  const double p = std::sqrt(std::clamp(n_dot_v, 0.0, 1.0)) * (kPoints - 1);
   const int i = std::min(int(p), kPoints - 2);
   return glm::mix(terms[i], terms[i + 1], p - i);
 }
@@ -180,7 +181,8 @@ dvec3 specular_layer_albedo(glm::dvec2 terms, dvec3 f0) {
 
 BrdfLobes reference_compensated_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
   const double n_dot_l = glm::dot(n, l);
-  if (n_dot_l <= 0.0 || variant == Brdf::blinn_phong) return reference_brdf_lobes(variant, n, v, l, m);
+  if (n_dot_l <= 0.0 || variant == Brdf::blinn_phong)
+    return reference_brdf_lobes(variant, n, v, l, m);
   const SpecularAlbedoTable& table = reference_specular_albedo_table(variant, m.roughness);
   const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
   const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
@@ -194,7 +196,8 @@ BrdfLobes reference_compensated_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, c
   lobes.specular *= 1.0 + f0 * (1.0 / terms_v.y - 1.0);
   // (f0 E + (1 - f0) E_Fc)(1 - f0 + f0 / E), averaged term by term.
   const dvec3 g = 1.0 - f0;
-  const dvec3 average = f0 * g * table.means.x + f0 * f0 + g * g * table.means.y + f0 * g * table.means.z;
+  const dvec3 average =
+      f0 * g * table.means.x + f0 * f0 + g * g * table.means.y + f0 * g * table.means.z;
   lobes.diffuse *= (1.0 - specular_layer_albedo(terms_v, f0)) *
                    (1.0 - specular_layer_albedo(table.at(n_dot_l), f0)) /
                    glm::max(1.0 - average, dvec3(1e-12));

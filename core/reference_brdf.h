@@ -41,9 +41,10 @@ double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness)
 /// The same quadrature, also weighted by the Schlick factor (1 - v.h)^5: (E_Fc, E).
 glm::dvec2 reference_specular_albedo_terms(Brdf variant, double n_dot_v, double roughness);
 
-/// (E_Fc, E) of one variant and roughness at kPoints cosines i / (kPoints - 1), read with linear
-/// interpolation, and the cosine-weighted means 2 int g(mu) mu dmu of E, E_Fc and E_Fc / E
-/// (a 64-point midpoint rule over mu of the quadrature itself).
+/// (E_Fc, E) of one variant and roughness at kPoints cosines (i / (kPoints - 1))^2, denser at
+/// grazing angles where E bends most, read with linear interpolation in sqrt(cosine), and the
+/// cosine-weighted means 2 int g(mu) mu dmu of E, E_Fc and E_Fc / E (a 64-point midpoint rule over
+/// mu of the quadrature itself).
 struct SpecularAlbedoTable {
   static constexpr int kPoints = 129;
   glm::dvec2 terms[kPoints];

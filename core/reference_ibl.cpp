@@ -50,8 +50,7 @@ dvec3 reference_environment_light(const Environment& environment, Brdf variant, 
     {
       const double r = std::sqrt(u.x);
       const dvec3 l = to_world({r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u.x)});
-      diffuse += lobes(l).diffuse * kPi *
-                 environment_radiance(environment, l);
+      diffuse += lobes(l).diffuse * kPi * environment_radiance(environment, l);
     }
     // Specular lobe: half vectors distributed as D(h) (n.h), pdf_l = D (n.h) / (4 v.h).
     {
@@ -66,8 +65,7 @@ dvec3 reference_environment_light(const Environment& environment, Brdf variant, 
       const double a2 = alpha * alpha;
       const double denom = cos2 * (a2 - 1.0) + 1.0;
       const double pdf = a2 / (kPi * denom * denom) * cos_h / (4.0 * v_dot_h);
-      specular += lobes(l).specular * n_dot_l / pdf *
-                  environment_radiance(environment, l);
+      specular += lobes(l).specular * n_dot_l / pdf * environment_radiance(environment, l);
     }
   }
   return (diffuse + specular * specular_scale) / double(samples);

@@ -99,16 +99,15 @@ void validate_light(const Light& light, size_t l) {
   require(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))) && light.intensity >= 0.0f,
           name + " has a negative color or intensity");
   const float brightest = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
-  require(brightest <= kMaxLightIntensity,
-          name + " intensity times color is " + number(brightest) + ", above " +
-              number(kMaxLightIntensity) + (positioned ? " W/sr" : " W/m^2"));
-  require(finite(light.range) && (light.range == 0.0f || (light.range >= kMinLightRange &&
-                                                          light.range <= kMaxLightRange)),
+  require(brightest <= kMaxLightIntensity, name + " intensity times color is " + number(brightest) +
+                                               ", above " + number(kMaxLightIntensity) +
+                                               (positioned ? " W/sr" : " W/m^2"));
+  require(finite(light.range) && (light.range == 0.0f ||
+                                  (light.range >= kMinLightRange && light.range <= kMaxLightRange)),
           name + " range is " + number(light.range) + " m; it must be 0 (no fade) or within [" +
               number(kMinLightRange) + ", " + number(kMaxLightRange) + "] m");
-  require(finite(light.attenuation) && light.attenuation.x >= 0.0f &&
-              light.attenuation.y >= 0.0f && light.attenuation.z >= 0.0f &&
-              light.attenuation != glm::vec3(0.0f),
+  require(finite(light.attenuation) && light.attenuation.x >= 0.0f && light.attenuation.y >= 0.0f &&
+              light.attenuation.z >= 0.0f && light.attenuation != glm::vec3(0.0f),
           name + " needs attenuation Kc, Kl, Kq >= 0 and not all zero");
   require(glm::all(glm::lessThanEqual(light.attenuation, glm::vec3(kMaxAttenuation))),
           name + " attenuation Kc, Kl, Kq must each be at most " + number(kMaxAttenuation));
