@@ -15,6 +15,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "compute/context.h"
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
@@ -84,13 +85,13 @@ void run_hardware(benchmark::State& state, const Scene& scene, uint32_t width, u
   FrameSettings settings;
   settings.width = width;
   settings.height = height;
-  renderer.render_hardware(settings);
+  HardwareBaseline hardware(renderer);
+  hardware.render(settings);
   uint64_t triangles = 0;
   for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
   for (auto _ : state) {
     std::vector<double> pass;
-    for (int i = 0; i < kFrames; ++i)
-      pass.push_back(renderer.render_hardware(settings).render_pass_ms);
+    for (int i = 0; i < kFrames; ++i) pass.push_back(hardware.render(settings).render_pass_ms);
     state.SetIterationTime(median(pass) * 1e-3);
   }
   state.counters["tris_submitted"] = double(triangles);

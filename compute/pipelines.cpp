@@ -10,23 +10,8 @@
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
-namespace {
 
-}  // namespace
-
-VkDescriptorType binding_type(uint32_t binding) {
-  if (binding == TS_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  if (binding == TS_BINDING_HDR_IMAGE || binding == TS_BINDING_LDR_IMAGE) {
-    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  }
-  if (binding == TS_BINDING_ENV_MAP || binding == TS_BINDING_ENV_SPECULAR) {
-    return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  }
-  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-}
-
-VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
-  std::span<const uint32_t> code = find_shader(name);
+VkShaderModule create_shader_module(const Context& ctx, std::span<const uint32_t> code) {
   TESSERA_CHECK(!code.empty());
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = code.size_bytes();
@@ -36,20 +21,11 @@ VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
   return module;
 }
 
-namespace {
+VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
+  return create_shader_module(ctx, find_shader(name));
+}
 
-// Values of the specialization constants (TS_SPEC_*); a shader ignores those it does not declare.
-struct Specialization {
-  VkBool32 debug_coverage;
-  uint32_t brdf;
-  VkBool32 energy_compensation;
-  VkBool32 lights_specialized = VK_FALSE;
-  uint32_t point_lights = 0;
-  uint32_t spot_lights = 0;
-  uint32_t directional_lights = 0;
-  uint32_t texture_maps = TS_MAP_ALL;
-  uint32_t ibl = TS_IBL_RUNTIME;
-};
+namespace {
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                    std::string_view shader, Specialization values) {
@@ -121,42 +97,28 @@ Pipelines create_pipelines(const Context& ctx) {
   layout_info.pPushConstantRanges = &push;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &p.layout));
 
-  struct Variant {
-    Pipeline id;
-    const char* shader;
-    Specialization values;
-  };
-  const Variant variants[] = {
-      {Pipeline::setup, "setup", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::clip, "clip", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::bin_count, "count", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::scan, "scan", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::fill, "fill", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::raster_small, "raster_small", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::raster_tiles, "raster_tiles", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::raster_small_coverage, "raster_small", {VK_TRUE, 0, VK_FALSE}},
-      {Pipeline::raster_tiles_coverage, "raster_tiles", {VK_TRUE, 0, VK_FALSE}},
-      {Pipeline::shade_classic, "shade", {VK_FALSE, TS_BRDF_CLASSIC, VK_FALSE}},
-      {Pipeline::shade_filament, "shade", {VK_FALSE, TS_BRDF_FILAMENT, VK_FALSE}},
-      {Pipeline::shade_blinn_phong, "shade", {VK_FALSE, TS_BRDF_BLINN_PHONG, VK_FALSE}},
-      {Pipeline::shade_classic_compensated, "shade", {VK_FALSE, TS_BRDF_CLASSIC, VK_TRUE}},
-      {Pipeline::shade_filament_compensated, "shade", {VK_FALSE, TS_BRDF_FILAMENT, VK_TRUE}},
-      {Pipeline::dfg_classic, "dfg", {VK_FALSE, TS_BRDF_CLASSIC, VK_FALSE}},
-      {Pipeline::dfg_filament, "dfg", {VK_FALSE, TS_BRDF_FILAMENT, VK_FALSE}},
-      {Pipeline::env_irradiance, "env_irradiance", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::env_prefilter, "env_prefilter", {VK_FALSE, 0, VK_FALSE}},
-      {Pipeline::resolve, "resolve", {VK_FALSE, 0, VK_FALSE}},
-  };
-
-  for (const Variant& v : variants) {
-    p.pipelines[size_t(v.id)] = create_compute_pipeline(ctx, p.layout, v.shader, v.values);
+  for (const PassInfo& pass : kPasses) {
+    if (pass.shader == nullptr || pass.variants == Variants::shading) continue;
+    p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, pass.spec);
+    if (pass.variants == Variants::debug_coverage) {
+      Specialization coverage = pass.spec;
+      coverage.debug_coverage = VK_TRUE;
+      p.coverage[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, coverage);
+    }
+  }
+  for (const PipelineInfo& info : kPipelines) {
+    p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, p.layout, info.shader, info.spec);
   }
   return p;
 }
 
 void destroy_pipelines(const Context& ctx, Pipelines& p) {
-  for (VkPipeline& pipeline : p.pipelines) {
-    if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  for (std::span<VkPipeline> list :
+       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage),
+        std::span<VkPipeline>(p.pipelines)}) {
+    for (VkPipeline pipeline : list) {
+      if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    }
   }
   if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
   if (p.set_layout) vkDestroyDescriptorSetLayout(ctx.device, p.set_layout, nullptr);

@@ -10,6 +10,7 @@
 
 #include "compute/pipelines.h"
 #include "compute/readback.h"
+#include "compute/renderer_internal.h"
 #include "compute/renderer_state.h"
 #include "compute/scene_upload.h"
 #include "compute/vk_check.h"
@@ -79,27 +80,26 @@ uint32_t view_id(View v) {
 
 }  // namespace
 
-const char* pass_name(Pass pass) {
-  static const char* const kNames[] = {"environment",  "clear", "setup",  "clip",
-                                       "count",        "scan",  "fill",   "raster_tiles",
-                                       "raster_small", "shade", "resolve"};
-  static_assert(std::size(kNames) == kPassCount);
-  return kNames[size_t(pass)];
-}
-
 Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
   s_->pipelines = create_pipelines(ctx);
 
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, TS_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
-                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+  constexpr VkDescriptorType kTypes[] = {
+      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  static_assert(bindings_of_type(kTypes[0]) + bindings_of_type(kTypes[1]) +
+                        bindings_of_type(kTypes[2]) + bindings_of_type(kTypes[3]) ==
+                    TS_BINDING_COUNT,
+                "the pool has room for every descriptor type of kBindings");
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (VkDescriptorType type : kTypes) {
+    if (bindings_of_type(type)) sizes.push_back({type, bindings_of_type(type)});
+  }
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pool_info.maxSets = 1;
-  pool_info.poolSizeCount = uint32_t(std::size(sizes));
-  pool_info.pPoolSizes = sizes;
+  pool_info.poolSizeCount = uint32_t(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
   VK_CHECK(vkCreateDescriptorPool(ctx.device, &pool_info, nullptr, &s_->descriptor_pool));
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = s_->descriptor_pool;
@@ -107,8 +107,12 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   alloc.pSetLayouts = &s_->pipelines.set_layout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &s_->set));
 
-  s_->dfg = create_buffer(ctx, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4),
-                          kStorageUsage, MemoryKind::device);
+  for (const BindingInfo& b : kBindings) {
+    if (b.source == Source::sized && b.scale == Scale::fixed) {
+      s_->buffer(b.binding) = create_buffer(ctx, binding_size(*s_, b),
+                                            kStorageUsage | b.extra_usage, MemoryKind::device);
+    }
+  }
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryKind::upload);
   validate_environment_options(options.environment);
@@ -118,16 +122,9 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
 Renderer::~Renderer() {
   Context& ctx = s_->ctx;
   vkDeviceWaitIdle(ctx.device);
-  for (Buffer* b :
-       {&s_->vertices,     &s_->indices,           &s_->objects,         &s_->materials,
-        &s_->lights,       &s_->visibility,        &s_->coverage,        &s_->tile_counts,
-        &s_->tile_offsets, &s_->tile_cursors,      &s_->raster_tris,     &s_->small_list,
-        &s_->big_list,     &s_->clip_list,         &s_->tile_entries,    &s_->dfg,
-        &s_->counters,     &s_->counters_readback, &s_->frame_constants, &s_->texels,
-        &s_->textures}) {
-    destroy_buffer(ctx, *b);
-  }
-  destroy_hardware_baseline(*s_);
+  for (Buffer& b : s_->buffers) destroy_buffer(ctx, b);
+  destroy_buffer(ctx, s_->counters_readback);
+  destroy_buffer(ctx, s_->frame_constants);
   destroy_environment_gpu(ctx, s_->env);
   for (auto& [variant, pipeline] : s_->shade_variants)
     vkDestroyPipeline(ctx.device, pipeline, nullptr);
@@ -185,18 +182,20 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   UploadStats stats;
   std::vector<PendingCopy> copies;
   const GpuSceneArrays& prev = s.uploaded;
-  queue_array_upload(s.ctx, s.vertices, prev.vertices, next.vertices, copies, stats,
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), prev.vertices, next.vertices, copies,
+                     stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_INDICES), prev.indices, next.indices, copies, stats,
                      s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.indices, prev.indices, next.indices, copies, stats,
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_OBJECTS), prev.objects, next.objects, copies, stats,
                      s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.objects, prev.objects, next.objects, copies, stats,
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_MATERIALS), prev.materials, next.materials, copies,
+                     stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_LIGHTS), prev.lights, next.lights, copies, stats,
                      s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.materials, prev.materials, next.materials, copies, stats,
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXELS), prev.texels, next.texels, copies, stats,
                      s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.lights, prev.lights, next.lights, copies, stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.texels, prev.texels, next.texels, copies, stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.textures, prev.textures, next.textures, copies, stats,
-                     s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXTURES), prev.textures, next.textures, copies,
+                     stats, s.descriptors_dirty);
   if (scene.environment != s.env.source) {
     set_environment(s.ctx, s.env, scene.environment, s.options.environment);
     s.descriptors_dirty = true;
@@ -260,34 +259,87 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
 
 }  // namespace
 
-void ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
+uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
+  uint64_t count = 1;
+  switch (b.scale) {
+    case Scale::fixed:
+      break;
+    case Scale::pixels:
+      count = uint64_t(s.width) * s.height;
+      break;
+    case Scale::pixels_if_coverage:
+      if (!s.options.debug_coverage) return 4;
+      count = uint64_t(s.width) * s.height;
+      break;
+    case Scale::tiles:
+      count = uint64_t(s.tiles_x) * s.tiles_y;
+      break;
+    case Scale::raster_capacity:
+      count = s.raster_capacity;
+      break;
+    case Scale::tile_entry_capacity:
+      count = s.tile_entry_capacity;
+      break;
+    case Scale::batches:
+      count = s.counter_slots;
+      break;
+  }
+  return std::max<uint64_t>((count + b.extra) * b.bytes, 4);  // Vulkan forbids size 0
+}
+
+namespace {
+
+bool sized_by_frame(Scale scale) {
+  return scale == Scale::pixels || scale == Scale::pixels_if_coverage || scale == Scale::tiles;
+}
+
+// Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
+bool in_use(const Renderer::State& s, const BindingInfo& b) {
+  return b.scale != Scale::pixels_if_coverage || s.options.debug_coverage;
+}
+
+// Fills the sized buffers cleared `when` (kBindings) with their clear value.
+void clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
+  for (const BindingInfo& b : kBindings) {
+    if (b.clear == when && in_use(s, b)) {
+      vkCmdFillBuffer(cmd, s.buffer(b.binding).buffer, 0, VK_WHOLE_SIZE, b.clear_value);
+    }
+  }
+}
+
+constexpr bool has_clear(Clear when) {
+  for (const BindingInfo& b : kBindings) {
+    if (b.clear == when) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
   check_frame_size(ctx, settings.width, settings.height);
-  if (settings.width != s.width || settings.height != s.height) {
-    for (Buffer* b :
-         {&s.visibility, &s.coverage, &s.tile_counts, &s.tile_offsets, &s.tile_cursors}) {
-      destroy_buffer(ctx, *b);
-    }
-    destroy_image(ctx, s.hdr);
-    destroy_image(ctx, s.ldr);
-    s.width = settings.width;
-    s.height = settings.height;
-    s.tiles_x = div_up(s.width, TS_TILE_SIZE);
-    s.tiles_y = div_up(s.height, TS_TILE_SIZE);
-    const uint64_t pixels = uint64_t(s.width) * s.height;
-    const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
-    s.visibility = create_buffer(ctx, pixels * 8, kStorageUsage, MemoryKind::device);
-    s.coverage = create_buffer(ctx, s.options.debug_coverage ? pixels * 4 : 4, kStorageUsage,
-                               MemoryKind::device);
-    s.tile_counts = create_buffer(ctx, tiles * 4, kStorageUsage, MemoryKind::device);
-    s.tile_offsets = create_buffer(ctx, (tiles + 1) * 4, kStorageUsage, MemoryKind::device);
-    s.tile_cursors = create_buffer(ctx, tiles * 4, kStorageUsage, MemoryKind::device);
-    // A colour attachment too, for the graphics baseline.
-    s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-    s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
-    s.descriptors_dirty = true;
+  if (settings.width == s.width && settings.height == s.height) return false;
+  s.width = settings.width;
+  s.height = settings.height;
+  s.tiles_x = div_up(s.width, TS_TILE_SIZE);
+  s.tiles_y = div_up(s.height, TS_TILE_SIZE);
+  for (const BindingInfo& b : kBindings) {
+    if (b.source != Source::sized || !sized_by_frame(b.scale)) continue;
+    Buffer& buffer = s.buffer(b.binding);
+    destroy_buffer(ctx, buffer);
+    buffer =
+        create_buffer(ctx, binding_size(s, b), kStorageUsage | b.extra_usage, MemoryKind::device);
   }
+  destroy_image(ctx, s.hdr);
+  destroy_image(ctx, s.ldr);
+  // A colour attachment too, for graphics pipelines drawing into it (the hardware baseline).
+  s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+  s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
+  s.images_generation++;
+  s.descriptors_dirty = true;
+  return true;
 }
 
 void init_capacities(Renderer::State& s) {
@@ -311,36 +363,21 @@ void init_capacities(Renderer::State& s) {
 
 void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   Context& ctx = s.ctx;
-  if (!s.raster_tris.buffer ||
-      s.raster_tris.size < uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri)) {
-    for (Buffer* b : {&s.raster_tris, &s.small_list, &s.big_list, &s.clip_list})
-      destroy_buffer(ctx, *b);
-    s.raster_tris = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(gpu::GpuRasterTri),
-                                  kStorageUsage, MemoryKind::device);
-    s.small_list =
-        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
-    s.big_list = create_buffer(ctx, uint64_t(s.raster_capacity) * sizeof(glm::uvec2), kStorageUsage,
-                               MemoryKind::device);  // (raster triangle, tile block) bin entries
-    s.clip_list =
-        create_buffer(ctx, uint64_t(s.raster_capacity) * 4, kStorageUsage, MemoryKind::device);
+  s.counter_slots = std::max({s.counter_slots, batches, 1u});
+  for (const BindingInfo& b : kBindings) {
+    if (b.source != Source::sized || b.scale == Scale::fixed || sized_by_frame(b.scale)) continue;
+    Buffer& buffer = s.buffer(b.binding);
+    const uint64_t bytes = binding_size(s, b);
+    if (buffer.buffer && buffer.size >= bytes) continue;
+    destroy_buffer(ctx, buffer);
+    buffer = create_buffer(ctx, bytes, kStorageUsage | b.extra_usage, MemoryKind::device);
     s.descriptors_dirty = true;
   }
-  if (!s.tile_entries.buffer || s.tile_entries.size < uint64_t(s.tile_entry_capacity) * 4) {
-    destroy_buffer(ctx, s.tile_entries);
-    s.tile_entries =
-        create_buffer(ctx, uint64_t(s.tile_entry_capacity) * 4, kStorageUsage, MemoryKind::device);
-    s.descriptors_dirty = true;
-  }
-  if (s.counter_slots < std::max(batches, 1u)) {
-    destroy_buffer(ctx, s.counters);
+  const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
+  if (s.counters_readback.size != counters.size) {
     destroy_buffer(ctx, s.counters_readback);
-    s.counter_slots = std::max(batches, 1u);
-    const VkDeviceSize bytes = VkDeviceSize(s.counter_slots) * sizeof(gpu::GpuCounters);
-    s.counters = create_buffer(ctx, bytes, kStorageUsage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                               MemoryKind::device);
     s.counters_readback =
-        create_buffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
-    s.descriptors_dirty = true;
+        create_buffer(ctx, counters.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
   }
 }
 
@@ -391,10 +428,11 @@ bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameS
   return dfg || environment;
 }
 
-FrameStats Renderer::render(const FrameSettings& settings) {
-  State& s = *s_;
-  Context& ctx = s.ctx;
-  if (!s.has_scene) throw Error("render() was called before set_scene()");
+namespace {
+
+// Throws Error for a frame that cannot be rendered: no scene yet, or settings out of range.
+void check_frame(const Renderer::State& s, const FrameSettings& settings, const char* caller) {
+  if (!s.has_scene) throw Error(std::string(caller) + " was called before set_scene()");
   if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
     throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
   }
@@ -402,7 +440,14 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
   }
+}
 
+}  // namespace
+
+FrameStats Renderer::render(const FrameSettings& settings) {
+  State& s = *s_;
+  Context& ctx = s.ctx;
+  check_frame(s, settings, "render()");
   ensure_frame_resources(s, settings);
 
   const uint64_t total = s.uploaded.triangle_count;
@@ -418,7 +463,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
     ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
-    const uint32_t queries_needed = 3 + 7 * batches + 2;
+    const uint32_t queries_needed = timestamps_needed(batches);
     if (timestamps && s.query_capacity < queries_needed) {
       if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
       VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -507,70 +552,41 @@ FrameStats Renderer::render(const FrameSettings& settings) {
 
 void Renderer::update_descriptors() {
   State& s = *s_;
-  struct BufferBinding {
-    uint32_t binding;
-    const Buffer* buffer;
-  };
-  const BufferBinding buffers[] = {
-      {TS_BINDING_FRAME, &s.frame_constants},
-      {TS_BINDING_VERTICES, &s.vertices},
-      {TS_BINDING_INDICES, &s.indices},
-      {TS_BINDING_OBJECTS, &s.objects},
-      {TS_BINDING_MATERIALS, &s.materials},
-      {TS_BINDING_LIGHTS, &s.lights},
-      {TS_BINDING_RASTER_TRIS, &s.raster_tris},
-      {TS_BINDING_SMALL_LIST, &s.small_list},
-      {TS_BINDING_BIG_LIST, &s.big_list},
-      {TS_BINDING_TILE_COUNTS, &s.tile_counts},
-      {TS_BINDING_TILE_OFFSETS, &s.tile_offsets},
-      {TS_BINDING_TILE_CURSORS, &s.tile_cursors},
-      {TS_BINDING_TILE_ENTRIES, &s.tile_entries},
-      {TS_BINDING_COUNTERS, &s.counters},
-      {TS_BINDING_VISIBILITY, &s.visibility},
-      {TS_BINDING_COVERAGE, &s.coverage},
-      {TS_BINDING_CLIP_LIST, &s.clip_list},
-      {TS_BINDING_DFG, &s.dfg},
-      {TS_BINDING_TEXELS, &s.texels},
-      {TS_BINDING_TEXTURES, &s.textures},
-      {TS_BINDING_ENV_LEVELS, &s.env.level_texels},
-      {TS_BINDING_ENV_IRRADIANCE, &s.env.irradiance},
-  };
+  // Reserved up front: the writes point into these.
   std::vector<VkDescriptorBufferInfo> buffer_infos;
-  buffer_infos.reserve(std::size(buffers));
+  std::vector<VkDescriptorImageInfo> image_infos;
+  buffer_infos.reserve(TS_BINDING_COUNT);
+  image_infos.reserve(TS_BINDING_COUNT);
   std::vector<VkWriteDescriptorSet> writes;
-  for (const BufferBinding& b : buffers) {
-    TESSERA_CHECK(b.buffer->buffer != VK_NULL_HANDLE);
-    buffer_infos.push_back({b.buffer->buffer, 0, VK_WHOLE_SIZE});
+  for (const BindingInfo& b : kBindings) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = s.set;
     w.dstBinding = b.binding;
     w.descriptorCount = 1;
-    w.descriptorType = b.binding == TS_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                                     : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &buffer_infos.back();
-    writes.push_back(w);
-  }
-  const VkDescriptorImageInfo images[] = {{VK_NULL_HANDLE, s.hdr.view, VK_IMAGE_LAYOUT_GENERAL},
-                                          {VK_NULL_HANDLE, s.ldr.view, VK_IMAGE_LAYOUT_GENERAL}};
-  for (uint32_t i = 0; i < 2; ++i) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = s.set;
-    w.dstBinding = i == 0 ? TS_BINDING_HDR_IMAGE : TS_BINDING_LDR_IMAGE;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    w.pImageInfo = &images[i];
-    writes.push_back(w);
-  }
-  const VkDescriptorImageInfo sampled[] = {
-      {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-      {s.env.cube_sampler, s.env.specular.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-  for (uint32_t i = 0; i < 2; ++i) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = s.set;
-    w.dstBinding = i == 0 ? TS_BINDING_ENV_MAP : TS_BINDING_ENV_SPECULAR;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    w.pImageInfo = &sampled[i];
+    w.descriptorType = b.type;
+    if (b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ||
+        b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+      VkDescriptorImageInfo image{VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
+      if (b.binding == TS_BINDING_HDR_IMAGE) image.imageView = s.hdr.view;
+      if (b.binding == TS_BINDING_LDR_IMAGE) image.imageView = s.ldr.view;
+      if (b.binding == TS_BINDING_ENV_MAP) {
+        image = {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      }
+      if (b.binding == TS_BINDING_ENV_SPECULAR) {
+        image = {s.env.cube_sampler, s.env.specular.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      }
+      TESSERA_CHECK(image.imageView != VK_NULL_HANDLE);
+      image_infos.push_back(image);
+      w.pImageInfo = &image_infos.back();
+    } else {
+      const Buffer* buffer = &s.buffer(b.binding);
+      if (b.source == Source::frame_constants) buffer = &s.frame_constants;
+      if (b.binding == TS_BINDING_ENV_LEVELS) buffer = &s.env.level_texels;
+      if (b.binding == TS_BINDING_ENV_IRRADIANCE) buffer = &s.env.irradiance;
+      TESSERA_CHECK(buffer->buffer != VK_NULL_HANDLE);
+      buffer_infos.push_back({buffer->buffer, 0, VK_WHOLE_SIZE});
+      w.pBufferInfo = &buffer_infos.back();
+    }
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(s.ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
@@ -606,6 +622,65 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 
+namespace {
+
+// The pipeline `pass` binds this frame.
+VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
+  switch (pass.variants) {
+    case Variants::plain:
+      break;
+    case Variants::debug_coverage:
+      if (s.options.debug_coverage) return s.pipelines.coverage[size_t(pass.pass)];
+      break;
+    case Variants::shading:
+      return shade_pipeline(s, settings);
+  }
+  return s.pipelines[pass.pass];
+}
+
+// Binds and dispatches one pass of Stage::batch or Stage::frame (`batch`: the batch being
+// recorded; batch 0's counters for a frame pass).
+void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pass,
+                     const gpu::GpuBatch& batch, const FrameSettings& settings) {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass_pipeline(s, pass, settings));
+  switch (pass.dispatch) {
+    case Dispatch::none:
+      TESSERA_CHECK(false);
+      break;
+    case Dispatch::fixed:
+      vkCmdDispatch(cmd, pass.groups, 1, 1);
+      break;
+    case Dispatch::per_batch_triangle:
+      vkCmdDispatch(cmd, div_up(batch.triangle_count, pass.group_size), 1, 1);
+      break;
+    case Dispatch::per_pixel:
+      vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
+      break;
+    case Dispatch::per_tile:
+      vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
+      break;
+    case Dispatch::indirect:
+      vkCmdDispatchIndirect(
+          cmd, s.buffer(TS_BINDING_COUNTERS).buffer,
+          VkDeviceSize(batch.index) * sizeof(gpu::GpuCounters) + pass.counter_offset);
+      break;
+  }
+}
+
+// The last pass's writes (the display image, the counters) are read by transfers: the copies
+// after the frame and read-backs. Every other pass feeds the next compute pass.
+static_assert(std::size(kPasses) > 0 && std::data(kPasses)[kPassCount - 1].stage == Stage::frame);
+void barrier_after(VkCommandBuffer cmd, const PassInfo& pass) {
+  if (size_t(pass.pass) + 1 < kPassCount) {
+    compute_to_compute(cmd);
+  } else {
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  }
+}
+
+}  // namespace
+
 void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
                             std::vector<Pass>& query_passes, const FrameSettings& settings) {
   State& s = *s_;
@@ -617,9 +692,6 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries,
                         uint32_t(query_passes.size()));
   };
-  auto bind = [&](Pipeline pipeline) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p[pipeline]);
-  };
 
   full_barrier(cmd);  // earlier submissions (uploads, read-backs, the last frame) are done
   if (timestamps) {
@@ -627,79 +699,58 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
-  if (record_precomputation(s, cmd, settings)) mark(Pass::environment);
-  vkCmdFillBuffer(cmd, s.visibility.buffer, 0, VK_WHOLE_SIZE, 0xFFFFFFFFu);  // TS_VIS_EMPTY
-  if (s.options.debug_coverage) vkCmdFillBuffer(cmd, s.coverage.buffer, 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(cmd, s.counters.buffer, 0, VK_WHOLE_SIZE, 0);
-  transfer_to_compute(cmd);
-  mark(Pass::clear);
 
   const uint64_t total = s.uploaded.triangle_count;
-  for (uint32_t b = 0; b < batches; ++b) {
-    const uint64_t first = uint64_t(b) * s.batch_triangles;
-    gpu::GpuBatch batch{uint32_t(first),
-                        uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
-    vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
-
-    // The tile counts of the previous batch were read by its tile passes.
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdFillBuffer(cmd, s.tile_counts.buffer, 0, VK_WHOLE_SIZE, 0);
-    transfer_to_compute(cmd);
-
-    bind(Pipeline::setup);
-    vkCmdDispatch(cmd, div_up(batch.triangle_count, TS_SETUP_GROUP_SIZE), 1, 1);
-    compute_to_compute(cmd);
-    mark(Pass::setup);
-
-    bind(Pipeline::clip);
-    vkCmdDispatch(cmd, TS_CLIP_GROUPS, 1, 1);
-    compute_to_compute(cmd);
-    mark(Pass::clip);
-
-    bind(Pipeline::bin_count);
-    vkCmdDispatch(cmd, TS_COUNT_GROUPS, 1, 1);
-    compute_to_compute(cmd);
-    mark(Pass::bin_count);
-
-    bind(Pipeline::scan);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    compute_to_compute(cmd);
-    mark(Pass::scan);
-
-    const VkDeviceSize slot = VkDeviceSize(b) * sizeof(gpu::GpuCounters);
-    bind(Pipeline::fill);
-    vkCmdDispatchIndirect(cmd, s.counters.buffer, slot + offsetof(gpu::GpuCounters, big_dispatch));
-    compute_to_compute(cmd);
-    mark(Pass::fill);
-
-    bind(s.options.debug_coverage ? Pipeline::raster_tiles_coverage : Pipeline::raster_tiles);
-    vkCmdDispatchIndirect(cmd, s.counters.buffer,
-                          slot + offsetof(gpu::GpuCounters, tiles_dispatch));
-    compute_to_compute(cmd);
-    mark(Pass::raster_tiles);
-
-    bind(s.options.debug_coverage ? Pipeline::raster_small_coverage : Pipeline::raster_small);
-    vkCmdDispatchIndirect(cmd, s.counters.buffer,
-                          slot + offsetof(gpu::GpuCounters, small_dispatch));
-    compute_to_compute(cmd);
-    mark(Pass::raster_small);
+  for (size_t i = 0; i < kPassCount;) {
+    const PassInfo& pass = kPasses[i];
+    switch (pass.stage) {
+      case Stage::precompute:
+        if (record_precomputation(s, cmd, settings)) mark(pass.pass);
+        ++i;
+        break;
+      case Stage::clear:
+        clear_buffers(s, cmd, Clear::per_frame);
+        transfer_to_compute(cmd);
+        mark(pass.pass);
+        ++i;
+        break;
+      case Stage::batch: {
+        size_t end = i;
+        while (end < kPassCount && kPasses[end].stage == Stage::batch) ++end;
+        for (uint32_t b = 0; b < batches; ++b) {
+          const uint64_t first = uint64_t(b) * s.batch_triangles;
+          gpu::GpuBatch batch{uint32_t(first),
+                              uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
+          vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
+          if constexpr (has_clear(Clear::per_batch)) {
+            // The previous batch's passes read and wrote what is cleared.
+            memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+            clear_buffers(s, cmd, Clear::per_batch);
+            transfer_to_compute(cmd);
+          }
+          for (size_t j = i; j < end; ++j) {
+            record_dispatch(s, cmd, kPasses[j], batch, settings);
+            barrier_after(cmd, kPasses[j]);
+            mark(kPasses[j].pass);
+          }
+        }
+        i = end;
+        break;
+      }
+      case Stage::frame:
+        record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
+        barrier_after(cmd, pass);
+        mark(pass.pass);
+        ++i;
+        break;
+    }
   }
 
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shade_pipeline(s, settings));
-  vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
-  compute_to_compute(cmd);
-  mark(Pass::shade);
-
-  bind(Pipeline::resolve);
-  vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
-  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  mark(Pass::resolve);
-
-  VkBufferCopy region{0, 0, s.counters.size};
-  vkCmdCopyBuffer(cmd, s.counters.buffer, s.counters_readback.buffer, 1, &region);
+  const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
+  VkBufferCopy region{0, 0, counters.size};
+  vkCmdCopyBuffer(cmd, counters.buffer, s.counters_readback.buffer, 1, &region);
   memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                  VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
@@ -726,19 +777,22 @@ Image8 Renderer::read_ldr() const {
 }
 
 std::vector<uint64_t> Renderer::read_visibility() const {
-  TESSERA_CHECK(s_->visibility.buffer != VK_NULL_HANDLE);
-  return download_buffer<uint64_t>(s_->ctx, s_->visibility, uint64_t(s_->width) * s_->height);
+  const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
+  TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE);
+  return download_buffer<uint64_t>(s_->ctx, visibility, uint64_t(s_->width) * s_->height);
 }
 
 std::vector<uint32_t> Renderer::read_coverage() const {
-  TESSERA_CHECK(s_->options.debug_coverage && s_->coverage.buffer != VK_NULL_HANDLE);
-  return download_buffer<uint32_t>(s_->ctx, s_->coverage, uint64_t(s_->width) * s_->height);
+  const Buffer& coverage = s_->buffer(TS_BINDING_COVERAGE);
+  TESSERA_CHECK(s_->options.debug_coverage && coverage.buffer != VK_NULL_HANDLE);
+  return download_buffer<uint32_t>(s_->ctx, coverage, uint64_t(s_->width) * s_->height);
 }
 
 std::vector<glm::vec4> Renderer::read_dfg_table() const {
   if (!s_->dfg_ready)
     throw Error("the DFG table is computed by the first frame with energy compensation");
-  return download_buffer<glm::vec4>(s_->ctx, s_->dfg, 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE);
+  return download_buffer<glm::vec4>(s_->ctx, s_->buffer(TS_BINDING_DFG),
+                                    2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE);
 }
 
 const StorageImage& Renderer::output_image() const {
@@ -754,6 +808,56 @@ uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
   const size_t slot = size_t(it - objects.begin()) - 1;
   TESSERA_CHECK(triangle_id - objects[slot].first_triangle < objects[slot].triangle_count);
   return s_->uploaded.object_of_slot[slot];
+}
+
+RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
+                                                        const FrameSettings& settings) {
+  Renderer::State& s = *renderer.s_;
+  check_frame(s, settings, "a frame outside render()");
+  ensure_frame_resources(s, settings);
+  init_capacities(s);
+  ensure_scratch_buffers(s, 1);
+  if (s.descriptors_dirty) {
+    renderer.update_descriptors();
+    s.descriptors_dirty = false;
+  }
+  renderer.write_frame_constants(settings);
+  Frame f;
+  f.set = s.set;
+  f.layout = s.pipelines.layout;
+  f.hdr_view = s.hdr.view;
+  f.images_generation = s.images_generation;
+  f.width = s.width;
+  f.height = s.height;
+  f.indices = s.buffer(TS_BINDING_INDICES).buffer;
+  f.objects = s.uploaded.objects;
+  // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
+  f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
+  f.cull = s.options.cull;
+  return f;
+}
+
+void RendererInternal::record_precomputation(Renderer& renderer, VkCommandBuffer cmd,
+                                             const FrameSettings& settings) {
+  tessera::record_precomputation(*renderer.s_, cmd, settings);
+}
+
+void RendererInternal::record_resolve(Renderer& renderer, VkCommandBuffer cmd) {
+  Renderer::State& s = *renderer.s_;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set, 0,
+                          nullptr);
+  record_dispatch(s, cmd, kPasses[size_t(Pass::resolve)], gpu::GpuBatch{}, FrameSettings{});
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+const Buffer& RendererInternal::buffer(const Renderer& renderer, uint32_t binding) {
+  TESSERA_CHECK(binding < TS_BINDING_COUNT);
+  return renderer.s_->buffer(binding);
+}
+
+Context& RendererInternal::context(const Renderer& renderer) {
+  return renderer.s_->ctx;
 }
 
 }  // namespace tessera

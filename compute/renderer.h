@@ -1,8 +1,9 @@
 #pragma once
 // The compute rasterizer: created once per device, renders many frames of many scenes.
 //
-// Per frame: setup -> clip -> count -> scan -> fill -> raster_tiles -> raster_small -> shade ->
-// resolve, over one or more batches of triangle instances (see docs/architecture.md). The output
+// Per frame: the passes of compute/passes.h (setup -> clip -> count -> scan -> fill ->
+// raster_tiles -> raster_small per batch of triangle instances, then shade -> resolve; see
+// docs/architecture.md). The output
 // stays on the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
 
 #include <array>
@@ -13,6 +14,7 @@
 #include "compute/context.h"
 #include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
+#include "compute/passes.h"
 #include "core/image.h"
 #include "core/scene.h"
 
@@ -60,27 +62,9 @@ struct FrameSettings {
   uint32_t max_anisotropy = 1;
 };
 
-enum class Pass {
-  environment,  // the environment's irradiance and prefiltered cube, on the first frame after
-                // set_scene changed it (also the DFG tables when first needed)
-  clear,
-  setup,
-  clip,
-  bin_count,
-  scan,
-  fill,
-  raster_tiles,
-  raster_small,
-  shade,
-  resolve,
-  count
-};
-constexpr size_t kPassCount = size_t(Pass::count);
-const char* pass_name(Pass pass);
-
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
-  std::array<double, kPassCount> pass_ms{};  // GPU time per pass, summed over batches
+  std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;  // recording and submitting the final attempt
   uint64_t triangles_submitted = 0;   // triangle instances in the scene
@@ -98,8 +82,8 @@ struct FrameStats {
 };
 
 struct UploadStats {
-  uint64_t bytes = 0;            // bytes copied to the GPU
-  uint32_t buffers_created = 0;  // buffers (re)allocated because they were too small
+  uint64_t bytes = 0;                // bytes copied to the GPU
+  uint32_t buffers_created = 0;      // buffers (re)allocated because they were too small
   bool environment_changed = false;  // the environment was uploaded and will be precomputed
 };
 
@@ -140,24 +124,11 @@ class Renderer {
   /// Maps a triangle-instance id from read_visibility to its index in Scene::objects.
   uint32_t object_of_triangle(uint32_t triangle_id) const;
 
-  /// The hardware baseline, for benchmarks and tests only (never the product path): renders
-  /// the current scene with the device's graphics pipeline (vertex and fragment shaders with
-  /// the same BRDF code, reverse depth, the same face culling) into the same HDR image, then
-  /// runs the same resolve pass. read_hdr() / read_ldr() then return its images.
-  /// Throws Error if the queue has no graphics support. Defined in hardware_baseline.cpp.
-  struct BaselineStats {
-    bool has_timestamps = false;
-    double render_pass_ms = 0.0;  // GPU time of the render pass (clear, draws)
-    double resolve_ms = 0.0;
-    double gpu_total_ms = 0.0;
-    double cpu_record_submit_ms = 0.0;
-    uint32_t draws = 0;  // one instanced draw per mesh
-  };
-  BaselineStats render_hardware(const FrameSettings& settings);
-
   struct State;  // internal (compute/renderer_state.h)
 
  private:
+  friend class RendererInternal;  // the internal interface (compute/renderer_internal.h)
+
   void update_descriptors();
   void write_frame_constants(const FrameSettings& settings);
   void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,

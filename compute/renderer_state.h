@@ -1,6 +1,6 @@
 #pragma once
-// The renderer's private state, shared by renderer.cpp (the compute path) and
-// hardware_baseline.cpp (the graphics-pipeline baseline). Not part of the public interface.
+// The renderer's private state (renderer.cpp). Not part of the public interface: other
+// libraries reach the renderer through compute/renderer_internal.h.
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,6 @@
 
 #include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
-#include "compute/graphics_util.h"
 #include "compute/pipelines.h"
 #include "compute/renderer.h"
 #include "compute/scene_upload.h"
@@ -30,34 +29,31 @@ struct Renderer::State {
   Camera camera;
   glm::vec3 background{0.0f};
   glm::vec3 ambient{0.0f};
-  Buffer vertices, indices, objects, materials, lights, texels, textures;
   EnvironmentGpu env;
+
+  // Every buffer of the shared set that the renderer owns (kBindings' Source::scene, ::sized
+  // and ::frame_constants), by binding (TS_BINDING_*); the others stay empty.
+  std::array<Buffer, TS_BINDING_COUNT> buffers{};
+  Buffer& buffer(uint32_t binding) { return buffers[binding]; }
+  const Buffer& buffer(uint32_t binding) const { return buffers[binding]; }
 
   // Sized by the image.
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
-  Buffer visibility, coverage, tile_counts, tile_offsets, tile_cursors;
   StorageImage hdr, ldr;
   // What the last frame multiplied the HDR image by (pre-exposure, shaders/bindings.glsl):
   // 2^EV for shaded frames, 1 for debug views. read_hdr divides it back out.
   float hdr_pre_exposure = 1.0f;
+  uint64_t images_generation = 0;  // counts the times hdr and ldr were (re)created
 
   // Scratch, sized by capacities that grow on demand.
   uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
-  uint32_t counter_slots = 0;
-  Buffer raster_tris, small_list, big_list, clip_list, tile_entries, counters, counters_readback;
+  uint32_t counter_slots = 0;  // batches the GpuCounters buffer holds
+  Buffer counters_readback;    // the counters, copied back after each frame
 
-  Buffer frame_constants;
-  Buffer dfg;                                         // DFG tables, computed on the first frame
+  Buffer frame_constants;  // GpuFrame (TS_BINDING_FRAME), written before each frame
+
   std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
-  bool dfg_ready = false;
-
-  // The graphics baseline (hardware_baseline.cpp), created on first use.
-  VkRenderPass baseline_pass = VK_NULL_HANDLE;
-  std::array<VkPipeline, 6>
-      baseline_pipelines{};  // per Brdf variant, with and without compensation
-  Attachment depth;
-  VkFramebuffer baseline_framebuffer = VK_NULL_HANDLE;
-  uint32_t baseline_width = 0, baseline_height = 0;
+  bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
   VkQueryPool queries = VK_NULL_HANDLE;
   uint32_t query_capacity = 0;
 
@@ -86,8 +82,9 @@ struct Renderer::State {
   }
 };
 
-/// Allocates the image-sized buffers and images for `settings` if the size changed.
-void ensure_frame_resources(Renderer::State& s, const FrameSettings& settings);
+/// Allocates the image-sized buffers and images for `settings` if the size changed. Returns true
+/// if it did.
+bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings);
 
 /// Sets the scratch capacities and batch size from the scene and options, if not yet set.
 void init_capacities(Renderer::State& s);
@@ -104,11 +101,11 @@ bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameS
 /// and cached on first use) or the generic one.
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings);
 
-/// Releases what render_hardware created (hardware_baseline.cpp).
-void destroy_hardware_baseline(Renderer::State& s);
+/// Size in bytes that Source::sized binding `info` needs now (at least 4).
+uint64_t binding_size(const Renderer::State& s, const BindingInfo& info);
 
 /// Usage of every storage buffer: read and written by shaders, filled and copied by transfers,
-/// and indices drawn from by the graphics baseline.
+/// and indices drawn from by a graphics pipeline (the hardware baseline).
 constexpr VkBufferUsageFlags kStorageUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
     VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT;

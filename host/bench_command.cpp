@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "compute/context.h"
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
@@ -113,10 +114,11 @@ Row measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
 
 Row measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
   Row row;
-  for (uint32_t i = 0; i < a.warmup; ++i) r.render_hardware(fs);
+  HardwareBaseline hardware(r);
+  for (uint32_t i = 0; i < a.warmup; ++i) hardware.render(fs);
   std::vector<double> pass, cpu;
   for (uint32_t i = 0; i < a.repeat; ++i) {
-    Renderer::BaselineStats s = r.render_hardware(fs);
+    BaselineStats s = hardware.render(fs);
     pass.push_back(s.render_pass_ms);
     cpu.push_back(s.cpu_record_submit_ms);
   }

@@ -1,5 +1,6 @@
 #pragma once
-// Embedded SPIR-V of every compute shader, compiled at build time from shaders/*.comp.
+// Embedded SPIR-V of every compute shader of the renderer, compiled at build time from
+// shaders/*.comp (all of them: shaders/CMakeLists.txt finds them without a list).
 
 #include <cstdint>
 #include <span>

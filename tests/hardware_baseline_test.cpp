@@ -2,6 +2,7 @@
 // compare the same work), within the bars of docs/performance.md.
 #include <gtest/gtest.h>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "core/image_metrics.h"
@@ -29,7 +30,9 @@ Compared compare_paths(Context& ctx, const Scene& scene, uint32_t w, uint32_t h,
   renderer.render(fs);
   const Image8 compute = renderer.read_ldr();
   const ImageF compute_hdr = renderer.read_hdr();
-  Renderer::BaselineStats stats = renderer.render_hardware(fs);
+  // Qualified: this file's test fixture has the same name.
+  ::tessera::HardwareBaseline baseline(renderer);
+  BaselineStats stats = baseline.render(fs);
   EXPECT_GE(stats.draws, 1u);
   const Image8 hardware = renderer.read_ldr();
   const ImageF hardware_hdr = renderer.read_hdr();

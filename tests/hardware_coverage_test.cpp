@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "compute/graphics_baseline.h"
+#include "compute/baselines/graphics_baseline.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {

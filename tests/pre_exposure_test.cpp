@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "compute/baselines/hardware_baseline.h"
 #include "core/environment.h"
 #include "core/mesh.h"
 #include "core/reference_renderer.h"
@@ -61,7 +62,7 @@ Result render_centre(test::VulkanTest& t, const Scene& scene, float ev, bool har
   renderer.set_scene(scene);
   const FrameSettings fs{.width = kSize, .height = kSize, .exposure_ev = ev};
   if (hardware) {
-    renderer.render_hardware(fs);
+    HardwareBaseline(renderer).render(fs);
   } else {
     renderer.render(fs);
   }

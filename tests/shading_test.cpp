@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "compute/brdf_probe.h"
+#include "compute/baselines/brdf_probe.h"
 #include "core/builtin_scenes.h"
 #include "core/image_metrics.h"
 #include "core/reference_renderer.h"

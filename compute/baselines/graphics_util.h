@@ -15,7 +15,7 @@ using Attachment = StorageImage;
 void require_graphics_queue(const Context& ctx);
 
 struct GraphicsPipelineDesc {
-  const char* vertex_shader;  // embedded shader names (shaders/shader_registry.h)
+  const char* vertex_shader;  // embedded names (baseline_shaders.h)
   const char* fragment_shader;
   bool clip_space_positions;  // one vec4 vertex attribute at binding 0; else vertices pulled
   VkCullModeFlags cull;       // front faces wind counter-clockwise

@@ -1,10 +1,10 @@
-#include "compute/graphics_baseline.h"
+#include "compute/baselines/graphics_baseline.h"
 
 #include <cstring>
 #include <string>
 
+#include "compute/baselines/graphics_util.h"
 #include "compute/gpu_memory.h"
-#include "compute/graphics_util.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 

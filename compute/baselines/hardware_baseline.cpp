@@ -1,13 +1,17 @@
-// The graphics-pipeline baseline (Renderer::render_hardware): benchmarks and tests only.
-// It draws the scene the compute path renders, from the same buffers, with the same shading
-// code (shaders/lighting.glsl), into the same HDR image, then runs the same resolve pass.
+// The graphics-pipeline baseline: benchmarks and tests only. It draws the scene the compute
+// path renders, from the same buffers, with the same shading code (shaders/lighting.glsl),
+// into the same HDR image, then runs the same resolve pass, all through the renderer's
+// internal interface (compute/renderer_internal.h).
+#include "compute/baselines/hardware_baseline.h"
+
 #include <chrono>
 #include <string>
+#include <vector>
 
-#include "compute/graphics_util.h"
-#include "compute/renderer_state.h"
+#include "compute/renderer_internal.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "shaders/shared/gpu_types.h"
 
 namespace tessera {
 namespace {
@@ -69,94 +73,77 @@ VkRenderPass create_pass(const Context& ctx) {
   return pass;
 }
 
-void destroy_size_dependent(Renderer::State& s) {
-  if (s.baseline_framebuffer) vkDestroyFramebuffer(s.ctx.device, s.baseline_framebuffer, nullptr);
-  s.baseline_framebuffer = VK_NULL_HANDLE;
-  destroy_image(s.ctx, s.depth);
-  s.baseline_width = s.baseline_height = 0;
-}
-
-// Depth image and framebuffer for the current image size (the HDR image may have been
-// recreated since: the framebuffer is rebuilt whenever the size changed).
-void ensure_targets(Renderer::State& s) {
-  const Context& ctx = s.ctx;
-  if (s.baseline_width == s.width && s.baseline_height == s.height && s.baseline_framebuffer)
-    return;
-  destroy_size_dependent(s);
-  s.depth = create_image(ctx, s.width, s.height, kDepthFormat,
-                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  VkImageView views[2] = {s.hdr.view, s.depth.view};
-  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fb.renderPass = s.baseline_pass;
-  fb.attachmentCount = 2;
-  fb.pAttachments = views;
-  fb.width = s.width;
-  fb.height = s.height;
-  fb.layers = 1;
-  VK_CHECK(vkCreateFramebuffer(ctx.device, &fb, nullptr, &s.baseline_framebuffer));
-  s.baseline_width = s.width;
-  s.baseline_height = s.height;
-}
-
-uint32_t div_up(uint32_t a, uint32_t b) {
-  return (a + b - 1) / b;
-}
-
 }  // namespace
 
-void destroy_hardware_baseline(Renderer::State& s) {
-  destroy_size_dependent(s);
-  for (VkPipeline& p : s.baseline_pipelines) {
-    if (p) vkDestroyPipeline(s.ctx.device, p, nullptr);
-    p = VK_NULL_HANDLE;
+HardwareBaseline::HardwareBaseline(Renderer& renderer)
+    : renderer_(renderer), ctx_(RendererInternal::context(renderer)) {}
+
+HardwareBaseline::~HardwareBaseline() {
+  vkDeviceWaitIdle(ctx_.device);
+  destroy_targets();
+  for (VkPipeline p : pipelines_) {
+    if (p) vkDestroyPipeline(ctx_.device, p, nullptr);
   }
-  if (s.baseline_pass) vkDestroyRenderPass(s.ctx.device, s.baseline_pass, nullptr);
-  s.baseline_pass = VK_NULL_HANDLE;
+  if (pass_) vkDestroyRenderPass(ctx_.device, pass_, nullptr);
+  if (queries_) vkDestroyQueryPool(ctx_.device, queries_, nullptr);
 }
 
-Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings) {
-  State& s = *s_;
-  Context& ctx = s.ctx;
-  if (!s.has_scene) throw Error("render_hardware() was called before set_scene()");
+void HardwareBaseline::destroy_targets() {
+  if (framebuffer_) vkDestroyFramebuffer(ctx_.device, framebuffer_, nullptr);
+  framebuffer_ = VK_NULL_HANDLE;
+  destroy_image(ctx_, depth_);
+}
+
+// Depth image and framebuffer for the renderer's current HDR image, rebuilt whenever the
+// renderer recreated its images (a new size).
+void HardwareBaseline::ensure_targets(VkImageView hdr_view, uint64_t generation, uint32_t width,
+                                      uint32_t height) {
+  if (framebuffer_ && images_generation_ == generation) return;
+  destroy_targets();
+  depth_ = create_image(ctx_, width, height, kDepthFormat,
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+  VkImageView views[2] = {hdr_view, depth_.view};
+  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fb.renderPass = pass_;
+  fb.attachmentCount = 2;
+  fb.pAttachments = views;
+  fb.width = width;
+  fb.height = height;
+  fb.layers = 1;
+  VK_CHECK(vkCreateFramebuffer(ctx_.device, &fb, nullptr, &framebuffer_));
+  images_generation_ = generation;
+}
+
+BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
+  const Context& ctx = ctx_;
   require_graphics_queue(ctx);
-  const uint32_t old_width = s.width, old_height = s.height;
-  ensure_frame_resources(s, settings);
-  if (s.width != old_width || s.height != old_height) destroy_size_dependent(s);
-  init_capacities(s);
-  ensure_scratch_buffers(s, 1);
-  if (!s.baseline_pass) s.baseline_pass = create_pass(ctx);
+  const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
+  if (!pass_) pass_ = create_pass(ctx);
   VkPipeline& pipeline =
-      s.baseline_pipelines[size_t(settings.brdf) * 2 + (settings.energy_compensation ? 1 : 0)];
+      pipelines_[size_t(settings.brdf) * 2 + (settings.energy_compensation ? 1 : 0)];
   if (!pipeline) {
     const GraphicsPipelineDesc desc{
         "baseline_shade_vert",
         "baseline_shade_frag",
         false,
-        VkCullModeFlags(s.options.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
-                        : s.options.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
-                                                            : VK_CULL_MODE_NONE),
+        VkCullModeFlags(frame.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
+                        : frame.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
+                                                        : VK_CULL_MODE_NONE),
         VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
         VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
             VK_COLOR_COMPONENT_A_BIT,
         uint32_t(settings.brdf),
         settings.energy_compensation ? VK_TRUE : VK_FALSE};
-    pipeline = create_graphics_pipeline(ctx, s.baseline_pass, s.pipelines.layout, desc);
+    pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
   }
-  ensure_targets(s);
+  ensure_targets(frame.hdr_view, frame.images_generation, frame.width, frame.height);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
-  if (timestamps && s.query_capacity < 3) {
-    if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
+  if (timestamps && !queries_) {
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
     info.queryCount = 3;
-    VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &s.queries));
-    s.query_capacity = 3;
+    VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &queries_));
   }
-  if (s.descriptors_dirty) {
-    update_descriptors();
-    s.descriptors_dirty = false;
-  }
-  write_frame_constants(settings);
 
   // One instanced draw per run of consecutive object slots that share a mesh (the canonical
   // order sorts by mesh first, so each mesh is one run).
@@ -164,7 +151,7 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
     uint32_t first_index, index_count, base_vertex, first_instance, instances;
   };
   std::vector<Draw> draws;
-  const auto& objects = s.uploaded.objects;
+  const auto& objects = frame.objects;
   for (uint32_t slot = 0; slot < objects.size(); ++slot) {
     const gpu::GpuObject& o = objects[slot];
     if (!draws.empty() && draws.back().first_index == o.first_index &&
@@ -183,52 +170,45 @@ Renderer::BaselineStats Renderer::render_hardware(const FrameSettings& settings)
     memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                    VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
-                            0, nullptr);
-    record_precomputation(s, cmd, settings);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, frame.layout, 0, 1, &frame.set, 0,
+                            nullptr);
+    RendererInternal::record_precomputation(renderer_, cmd, settings);
     if (timestamps) {
-      vkCmdResetQueryPool(cmd, s.queries, 0, 3);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
+      vkCmdResetQueryPool(cmd, queries_, 0, 3);
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
     }
     VkClearValue clears[2];
-    // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
-    const glm::vec3 clear = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
-    clears[0].color = {{clear.r, clear.g, clear.b, 1.0f}};
+    clears[0].color = {{frame.background.r, frame.background.g, frame.background.b, 1.0f}};
     clears[1].depthStencil = {0.0f, 0};  // reverse depth: 0 is infinitely far
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = s.baseline_pass;
-    begin.framebuffer = s.baseline_framebuffer;
-    begin.renderArea = {{0, 0}, {s.width, s.height}};
+    begin.renderPass = pass_;
+    begin.framebuffer = framebuffer_;
+    begin.renderArea = {{0, 0}, {frame.width, frame.height}};
     begin.clearValueCount = 2;
     begin.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.pipelines.layout, 0, 1, &s.set,
-                            0, nullptr);
-    const VkViewport viewport{0, 0, float(s.width), float(s.height), 0, 1};
-    const VkRect2D scissor{{0, 0}, {s.width, s.height}};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frame.layout, 0, 1, &frame.set, 0,
+                            nullptr);
+    const VkViewport viewport{0, 0, float(frame.width), float(frame.height), 0, 1};
+    const VkRect2D scissor{{0, 0}, {frame.width, frame.height}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-    if (!draws.empty()) vkCmdBindIndexBuffer(cmd, s.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    if (!draws.empty()) vkCmdBindIndexBuffer(cmd, frame.indices, 0, VK_INDEX_TYPE_UINT32);
     for (const Draw& d : draws) {
       vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),
                        d.first_instance);
     }
     vkCmdEndRenderPass(cmd);
-    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries, 1);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[Pipeline::resolve]);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
-                            0, nullptr);
-    vkCmdDispatch(cmd, div_up(s.width, 8), div_up(s.height, 8), 1);
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries, 2);
+    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+    RendererInternal::record_resolve(renderer_, cmd);
+    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
     stats.cpu_record_submit_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   });
   if (timestamps) {
     uint64_t ticks[3];
-    VK_CHECK(vkGetQueryPoolResults(ctx.device, s.queries, 0, 3, sizeof(ticks), ticks,
+    VK_CHECK(vkGetQueryPoolResults(ctx.device, queries_, 0, 3, sizeof(ticks), ticks,
                                    sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     const uint64_t mask =

@@ -1,5 +1,6 @@
 #pragma once
-// Tests only: the GPU's BRDF evaluated for given directions (shaders/brdf_probe.comp).
+// Tests only: the GPU's BRDF evaluated for given directions
+// (compute/baselines/shaders/brdf_probe.comp).
 
 #include <vector>
 

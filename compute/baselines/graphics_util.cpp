@@ -1,14 +1,14 @@
-#include "compute/graphics_util.h"
+#include "compute/baselines/graphics_util.h"
 
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "compute/baselines/baseline_shaders.h"
 #include "compute/pipelines.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
-#include "shaders/shader_registry.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -26,8 +26,8 @@ void require_graphics_queue(const Context& ctx) {
 
 VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPipelineLayout layout,
                                     const GraphicsPipelineDesc& desc) {
-  VkShaderModule vert = create_shader_module(ctx, desc.vertex_shader);
-  VkShaderModule frag = create_shader_module(ctx, desc.fragment_shader);
+  VkShaderModule vert = create_shader_module(ctx, find_baseline_shader(desc.vertex_shader));
+  VkShaderModule frag = create_shader_module(ctx, find_baseline_shader(desc.fragment_shader));
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;

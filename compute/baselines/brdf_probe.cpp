@@ -1,12 +1,12 @@
-#include "compute/brdf_probe.h"
+#include "compute/baselines/brdf_probe.h"
 
 #include <cstring>
 
+#include "compute/baselines/baseline_shaders.h"
 #include "compute/gpu_memory.h"
 #include "compute/pipelines.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
-#include "shaders/shader_registry.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -44,7 +44,7 @@ std::vector<glm::vec3> evaluate_brdf_on_gpu(const Context& ctx, Brdf variant,
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &layout));
 
-  VkShaderModule module = create_shader_module(ctx, "brdf_probe");
+  VkShaderModule module = create_shader_module(ctx, find_baseline_shader("brdf_probe"));
   const uint32_t brdf = uint32_t(variant);  // Brdf values are the TS_BRDF_* constants
   const VkSpecializationMapEntry entry{TS_SPEC_BRDF, 0, sizeof(uint32_t)};
   const VkSpecializationInfo spec{1, &entry, sizeof(brdf), &brdf};

@@ -1,0 +1,305 @@
+#pragma once
+// The one description of the renderer's frame: which passes run, in which order, with which
+// shader, how each is dispatched and timed (kPasses), the pipelines outside that sequence
+// (kPipelines), and what every binding of the shared descriptor set holds (kBindings).
+// compute/pipelines.cpp builds the pipelines from these tables and compute/renderer.cpp
+// records the frame, allocates, clears, binds and destroys the buffers from them, so a new
+// pass with one buffer is: its .comp file (found by shaders/CMakeLists.txt), its binding in
+// shaders/shared/gpu_types.h, and a row in kPasses and in kBindings here.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+
+/// The passes of a frame, in recording order, as FrameStats::pass_ms reports them.
+enum class Pass {
+  environment,  // the environment's irradiance and prefiltered cube, on the first frame after
+                // set_scene changed it (also the DFG tables when first needed)
+  clear,
+  setup,
+  clip,
+  bin_count,
+  scan,
+  fill,
+  raster_tiles,
+  raster_small,
+  shade,
+  resolve,
+  count
+};
+constexpr size_t kPassCount = size_t(Pass::count);
+
+/// Values of the specialization constants (TS_SPEC_*); a shader ignores those it does not
+/// declare. Every member is 4 bytes (pipelines.cpp maps each to its constant id).
+struct Specialization {
+  VkBool32 debug_coverage = VK_FALSE;
+  uint32_t brdf = 0;
+  VkBool32 energy_compensation = VK_FALSE;
+  VkBool32 lights_specialized = VK_FALSE;
+  uint32_t point_lights = 0;
+  uint32_t spot_lights = 0;
+  uint32_t directional_lights = 0;
+  uint32_t texture_maps = TS_MAP_ALL;
+  uint32_t ibl = TS_IBL_RUNTIME;
+};
+
+/// When a pass is recorded.
+enum class Stage {
+  precompute,  // record_precomputation: timed only on frames that computed something
+  clear,       // the buffers of kBindings with Clear::per_frame are filled
+  batch,       // once per batch of triangles (these rows are contiguous), after the buffers
+               // with Clear::per_batch are filled; the GpuBatch push constant is set
+  frame,       // once per frame, after the batches
+};
+
+/// How a pass of Stage::batch or Stage::frame is dispatched.
+enum class Dispatch {
+  none,                // Stage::precompute and Stage::clear record no dispatch of their own
+  fixed,               // `groups` workgroups
+  per_batch_triangle,  // one thread per triangle of the batch, `group_size` per workgroup
+  per_pixel,           // `group_size` x `group_size` pixels per workgroup
+  per_tile,            // one workgroup per TS_TILE_SIZE^2 screen tile
+  indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
+};
+
+/// Which pipeline a pass binds.
+enum class Variants {
+  plain,           // the one built from `shader` and `spec`
+  debug_coverage,  // that, or with TS_SPEC_DEBUG_COVERAGE on under RendererOptions::debug_coverage
+  shading,  // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
+};
+
+struct PassInfo {
+  Pass pass;
+  const char* name;    // in FrameStats, `tessera render` and `tessera bench` columns
+  const char* shader;  // embedded name (shaders/<shader>.comp); null for Dispatch::none
+  Stage stage;
+  Dispatch dispatch;
+  uint32_t groups = 0;          // Dispatch::fixed
+  uint32_t group_size = 0;      // Dispatch::per_batch_triangle, ::per_pixel
+  uint32_t counter_offset = 0;  // Dispatch::indirect: byte offset in GpuCounters
+  Variants variants = Variants::plain;
+  Specialization spec{};
+};
+
+constexpr PassInfo kPasses[] = {
+    {Pass::environment, "environment", nullptr, Stage::precompute, Dispatch::none},
+    {Pass::clear, "clear", nullptr, Stage::clear, Dispatch::none},
+    {Pass::setup, "setup", "setup", Stage::batch, Dispatch::per_batch_triangle, 0,
+     TS_SETUP_GROUP_SIZE},
+    {Pass::clip, "clip", "clip", Stage::batch, Dispatch::fixed, TS_CLIP_GROUPS},
+    {Pass::bin_count, "count", "count", Stage::batch, Dispatch::fixed, TS_COUNT_GROUPS},
+    {Pass::scan, "scan", "scan", Stage::batch, Dispatch::fixed, 1},
+    {Pass::fill, "fill", "fill", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, big_dispatch)},
+    {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
+    {Pass::raster_small, "raster_small", "raster_small", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
+    {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},
+    {Pass::resolve, "resolve", "resolve", Stage::frame, Dispatch::per_pixel, 0, 8},
+};
+
+constexpr bool pass_row_is_filled(const PassInfo& p) {
+  if (p.name == nullptr || p.name[0] == '\0') return false;
+  const bool dispatches = p.dispatch != Dispatch::none;
+  if (dispatches != (p.stage == Stage::batch || p.stage == Stage::frame)) return false;
+  if (dispatches != (p.shader != nullptr)) return false;
+  switch (p.dispatch) {
+    case Dispatch::fixed:
+      return p.groups > 0;
+    case Dispatch::per_batch_triangle:
+    case Dispatch::per_pixel:
+      return p.group_size > 0;
+    case Dispatch::indirect:  // a whole VkDispatchIndirectCommand inside GpuCounters
+      return p.counter_offset % 4 == 0 &&
+             p.counter_offset + 3 * sizeof(uint32_t) <= sizeof(gpu::GpuCounters);
+    case Dispatch::none:
+    case Dispatch::per_tile:
+      return true;
+  }
+  return false;
+}
+
+constexpr bool pass_table_is_complete() {
+  bool batch_ended = false;
+  for (size_t i = 0; i < std::size(kPasses); ++i) {
+    const PassInfo& p = kPasses[i];
+    if (size_t(p.pass) != i || !pass_row_is_filled(p)) return false;
+    if (i > 0 && kPasses[i - 1].stage == Stage::batch && p.stage != Stage::batch)
+      batch_ended = true;
+    if (batch_ended && p.stage == Stage::batch) return false;  // batch rows must be contiguous
+  }
+  return std::size(kPasses) == kPassCount;
+}
+static_assert(pass_table_is_complete(),
+              "kPasses: one row per Pass, in order, each filled for its dispatch kind, with the "
+              "Stage::batch rows contiguous");
+
+/// The name a pass is reported under.
+constexpr const char* pass_name(Pass pass) {
+  return kPasses[size_t(pass)].name;
+}
+
+/// Timestamps a frame of `batches` batches writes: one before the first pass and one after
+/// each pass it records.
+constexpr uint32_t timestamps_needed(uint32_t batches) {
+  uint32_t per_frame = 1, per_batch = 0;
+  for (const PassInfo& p : kPasses) (p.stage == Stage::batch ? per_batch : per_frame)++;
+  return per_frame + per_batch * batches;
+}
+
+/// Pipelines outside the frame's pass sequence: the generic shading variants (used when the
+/// shading pass is not specialized to the scene) and the precomputation passes.
+enum class Pipeline {
+  shade_classic,
+  shade_filament,
+  shade_blinn_phong,
+  shade_classic_compensated,
+  shade_filament_compensated,
+  dfg_classic,  // the DFG tables, per visibility term
+  dfg_filament,
+  env_irradiance,  // the environment's irradiance coefficients
+  env_prefilter,   // one level of the prefiltered specular cube
+  count
+};
+
+struct PipelineInfo {
+  Pipeline id;
+  const char* shader;
+  Specialization spec;
+};
+
+constexpr PipelineInfo kPipelines[] = {
+    {Pipeline::shade_classic, "shade", {.brdf = TS_BRDF_CLASSIC}},
+    {Pipeline::shade_filament, "shade", {.brdf = TS_BRDF_FILAMENT}},
+    {Pipeline::shade_blinn_phong, "shade", {.brdf = TS_BRDF_BLINN_PHONG}},
+    {Pipeline::shade_classic_compensated,
+     "shade",
+     {.brdf = TS_BRDF_CLASSIC, .energy_compensation = VK_TRUE}},
+    {Pipeline::shade_filament_compensated,
+     "shade",
+     {.brdf = TS_BRDF_FILAMENT, .energy_compensation = VK_TRUE}},
+    {Pipeline::dfg_classic, "dfg", {.brdf = TS_BRDF_CLASSIC}},
+    {Pipeline::dfg_filament, "dfg", {.brdf = TS_BRDF_FILAMENT}},
+    {Pipeline::env_irradiance, "env_irradiance", {}},
+    {Pipeline::env_prefilter, "env_prefilter", {}},
+};
+
+constexpr bool pipeline_table_is_complete() {
+  for (size_t i = 0; i < std::size(kPipelines); ++i) {
+    if (size_t(kPipelines[i].id) != i || kPipelines[i].shader == nullptr) return false;
+  }
+  return std::size(kPipelines) == size_t(Pipeline::count);
+}
+static_assert(pipeline_table_is_complete(), "kPipelines: one row per Pipeline, in order");
+
+/// What a binding of the shared descriptor set holds, and who makes it.
+enum class Source {
+  frame_constants,  // the GpuFrame uniform buffer, written before each frame
+  scene,            // an array of the scene, uploaded by Renderer::set_scene
+  environment,      // a buffer or sampled image of EnvironmentGpu (environment_gpu.h)
+  output_image,     // the HDR (RGBA16F) or display (RGBA8) storage image, sized by the frame
+  sized,            // a buffer the renderer allocates by `size` below
+};
+
+/// What the size of a Source::sized buffer is a multiple of.
+enum class Scale {
+  fixed,                // `bytes` in all
+  pixels,               // per pixel of the frame
+  pixels_if_coverage,   // per pixel under RendererOptions::debug_coverage, else 4 bytes
+  tiles,                // per screen tile (plus `extra` elements)
+  raster_capacity,      // per raster triangle the scratch buffers hold (grows on overflow)
+  tile_entry_capacity,  // per tile-list entry (grows on overflow)
+  batches,              // per batch of the frame (GpuCounters slots)
+};
+
+/// When a Source::sized buffer is filled with `clear_value`.
+enum class Clear { never, per_frame, per_batch };
+
+struct BindingInfo {
+  uint32_t binding;  // TS_BINDING_*
+  VkDescriptorType type;
+  Source source;
+  Scale scale = Scale::fixed;
+  uint64_t bytes = 0;  // per element of `scale` (in all for Scale::fixed)
+  uint32_t extra = 0;  // elements beyond the scale's count
+  Clear clear = Clear::never;
+  uint32_t clear_value = 0;
+  VkBufferUsageFlags extra_usage = 0;  // besides the storage usage every buffer has
+};
+
+constexpr VkDescriptorType kStorageBuffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+
+constexpr BindingInfo kBindings[] = {
+    {TS_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, Source::frame_constants},
+    {TS_BINDING_VERTICES, kStorageBuffer, Source::scene},
+    {TS_BINDING_INDICES, kStorageBuffer, Source::scene},
+    {TS_BINDING_OBJECTS, kStorageBuffer, Source::scene},
+    {TS_BINDING_MATERIALS, kStorageBuffer, Source::scene},
+    {TS_BINDING_LIGHTS, kStorageBuffer, Source::scene},
+    {TS_BINDING_RASTER_TRIS, kStorageBuffer, Source::sized, Scale::raster_capacity,
+     sizeof(gpu::GpuRasterTri)},
+    {TS_BINDING_SMALL_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 4},
+    // (raster triangle, tile block) bin entries
+    {TS_BINDING_BIG_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 8},
+    {TS_BINDING_TILE_COUNTS, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_batch},
+    {TS_BINDING_TILE_OFFSETS, kStorageBuffer, Source::sized, Scale::tiles, 4, 1},
+    {TS_BINDING_TILE_CURSORS, kStorageBuffer, Source::sized, Scale::tiles, 4},
+    {TS_BINDING_TILE_ENTRIES, kStorageBuffer, Source::sized, Scale::tile_entry_capacity, 4},
+    {TS_BINDING_COUNTERS, kStorageBuffer, Source::sized, Scale::batches, sizeof(gpu::GpuCounters),
+     0, Clear::per_frame, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
+    {TS_BINDING_VISIBILITY, kStorageBuffer, Source::sized, Scale::pixels, 8, 0, Clear::per_frame,
+     0xFFFFFFFFu},  // TS_VIS_EMPTY
+    {TS_BINDING_COVERAGE, kStorageBuffer, Source::sized, Scale::pixels_if_coverage, 4, 0,
+     Clear::per_frame},
+    {TS_BINDING_HDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
+    {TS_BINDING_LDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
+    {TS_BINDING_CLIP_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 4},
+    // Two tables, then a row of cosine-weighted means per variant (shaders/dfg.comp).
+    {TS_BINDING_DFG, kStorageBuffer, Source::sized, Scale::fixed,
+     2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4)},
+    {TS_BINDING_TEXELS, kStorageBuffer, Source::scene},
+    {TS_BINDING_TEXTURES, kStorageBuffer, Source::scene},
+    {TS_BINDING_ENV_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},
+    {TS_BINDING_ENV_SPECULAR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},
+    {TS_BINDING_ENV_LEVELS, kStorageBuffer, Source::environment},
+    {TS_BINDING_ENV_IRRADIANCE, kStorageBuffer, Source::environment},
+};
+
+constexpr bool binding_table_is_complete() {
+  for (size_t i = 0; i < std::size(kBindings); ++i) {
+    const BindingInfo& b = kBindings[i];
+    if (b.binding != i) return false;
+    const bool buffer =
+        b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (b.source == Source::sized && (!buffer || b.bytes == 0)) return false;
+    if (b.source != Source::sized && (b.bytes != 0 || b.clear != Clear::never)) return false;
+    if (b.source == Source::output_image && b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
+      return false;
+  }
+  return std::size(kBindings) == TS_BINDING_COUNT;
+}
+static_assert(binding_table_is_complete(),
+              "kBindings: one row per TS_BINDING_*, in order; a sized buffer has a size, and "
+              "only sized buffers are cleared");
+
+/// Descriptor type of binding `binding` (TS_BINDING_*) of the shared set.
+constexpr VkDescriptorType binding_type(uint32_t binding) {
+  return kBindings[binding].type;
+}
+
+/// Bindings of the shared set of descriptor type `type`.
+constexpr uint32_t bindings_of_type(VkDescriptorType type) {
+  uint32_t n = 0;
+  for (const BindingInfo& b : kBindings) n += b.type == type ? 1 : 0;
+  return n;
+}
+
+}  // namespace tessera

@@ -1,0 +1,57 @@
+#pragma once
+// The renderer's internal interface, for the parts of Tessera that draw with its resources or
+// inspect them: the graphics-pipeline baseline (compute/baselines/) and tests. Applications use
+// compute/renderer.h only; this follows the renderer's internals and changes with them.
+
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+#include <glm/glm.hpp>
+
+#include "compute/gpu_memory.h"
+#include "compute/renderer.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+
+class RendererInternal {
+ public:
+  /// What a frame recorded outside the renderer's own passes draws with. Handles stay valid
+  /// until the next call on the renderer that changes the scene or the image size.
+  struct Frame {
+    VkDescriptorSet set = VK_NULL_HANDLE;      // the shared set (bindings of compute/passes.h)
+    VkPipelineLayout layout = VK_NULL_HANDLE;  // its layout, push constants GpuBatch, kShaderStages
+    VkImageView hdr_view = VK_NULL_HANDLE;     // the HDR image (RGBA16F, layout GENERAL, also a
+                                               // colour attachment) the resolve pass reads
+    uint64_t images_generation = 0;            // changes whenever the output images are recreated
+    uint32_t width = 0, height = 0;
+    VkBuffer indices = VK_NULL_HANDLE;        // the scene's uint32 indices (index-buffer usage too)
+    std::span<const gpu::GpuObject> objects;  // the scene's objects in slot order (the GPU's)
+    glm::vec3 background{0.0f};  // as the HDR image holds it: pre-exposed, clamped to 65504
+    CullMode cull = CullMode::back;
+  };
+
+  /// Prepares a frame of `settings` as render() does, without recording any pass: checks the
+  /// size, (re)allocates the images and buffers, updates the descriptor set and writes the
+  /// frame constants. Throws Error as render() does (no scene, a size the device cannot hold).
+  static Frame prepare_frame(Renderer& renderer, const FrameSettings& settings);
+
+  /// Records what the frame needs computed once (DFG tables, the environment), as render()
+  /// does. The shared set must be bound at the compute bind point.
+  static void record_precomputation(Renderer& renderer, VkCommandBuffer cmd,
+                                    const FrameSettings& settings);
+
+  /// Records the resolve pass (HDR image to display image; binds its pipeline and the shared
+  /// set at the compute bind point), then a barrier making its writes visible to transfers.
+  static void record_resolve(Renderer& renderer, VkCommandBuffer cmd);
+
+  /// The renderer's buffer at `binding` (TS_BINDING_* of a buffer the renderer owns; empty
+  /// before the first frame that allocates it).
+  static const Buffer& buffer(const Renderer& renderer, uint32_t binding);
+
+  /// The context the renderer was created with.
+  static Context& context(const Renderer& renderer);
+};
+
+}  // namespace tessera

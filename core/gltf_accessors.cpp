@@ -1,0 +1,211 @@
+// Accessors and primitives: every byte read from a buffer is range-checked first, with
+// overflow-checked size arithmetic, so a hostile file gets an Error and never a wild read.
+
+#include <cmath>
+#include <cstring>
+
+#include "core/check.h"
+#include "core/gltf_detail.h"
+
+namespace tessera::gltf {
+namespace {
+
+// a * b + c, or fails naming `where` if it does not fit in 64 bits.
+uint64_t checked_span(const Context& ctx, const std::string& where, uint64_t a, uint64_t b,
+                      uint64_t c) {
+  uint64_t product = 0, sum = 0;
+  if (__builtin_mul_overflow(a, b, &product) || __builtin_add_overflow(product, c, &sum)) {
+    ctx.fail(where, "the size arithmetic overflows (" + std::to_string(a) + " x " +
+                        std::to_string(b) + " + " + std::to_string(c) + ")");
+  }
+  return sum;
+}
+
+size_t component_size(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+const char* type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "an unknown type";
+  }
+}
+
+template <typename T>
+T load(const unsigned char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// One component; normalized integers as the glTF 2.0 specification (3.11) maps them.
+double read_component(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      double v = load<int8_t>(p);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      double v = load<uint8_t>(p);
+      return normalized ? v / 255.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      double v = load<int16_t>(p);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      double v = load<uint16_t>(p);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return load<uint32_t>(p);
+    default:
+      return load<float>(p);
+  }
+}
+
+constexpr uint64_t kViewStride = ~uint64_t(0);
+
+// Reads `count` elements of `components` components each from bufferViews[view] at `offset`,
+// `stride` bytes apart (0: tightly packed; kViewStride: the view's byteStride), appending to
+// `out`.
+void read_elements(const Context& ctx, const tinygltf::Model& model, int view, uint64_t offset,
+                   uint64_t count, int component_type, int components, bool normalized,
+                   uint64_t stride, const std::string& where, std::vector<double>& out) {
+  const auto [bytes, length] = buffer_view_bytes(ctx, model, view, where + ".bufferView");
+  const uint64_t element = component_size(component_type) * uint64_t(components);
+  if (stride == kViewStride) stride = model.bufferViews[view].byteStride;
+  if (stride == 0) stride = element;
+  if (stride < element) {
+    ctx.fail(at("bufferViews", view) + ".byteStride",
+             "is " + std::to_string(stride) + ", less than the " + std::to_string(element) +
+                 "-byte elements of " + where);
+  }
+  if (count == 0) return;
+  const uint64_t end =
+      checked_span(ctx, where, stride, count - 1, checked_span(ctx, where, 1, offset, element));
+  if (offset > length || end > length) {
+    ctx.fail(where, std::to_string(count) + " elements of " + std::to_string(element) + " bytes, " +
+                        std::to_string(stride) + " apart from byte " + std::to_string(offset) +
+                        ", end at byte " + std::to_string(end) + ", past the " +
+                        std::to_string(length) + " bytes of " + at("bufferViews", view));
+  }
+  const size_t csize = component_size(component_type);
+  out.reserve(out.size() + count * components);
+  for (uint64_t i = 0; i < count; ++i) {
+    const unsigned char* e = bytes + offset + i * stride;
+    for (int c = 0; c < components; ++c) {
+      out.push_back(read_component(e + c * csize, component_type, normalized));
+    }
+  }
+}
+
+}  // namespace
+
+std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
+                                                          const tinygltf::Model& model, int index,
+                                                          const std::string& where) {
+  check_index(ctx, where, index, model.bufferViews.size(), "bufferViews");
+  const tinygltf::BufferView& view = model.bufferViews[index];
+  const std::string name = at("bufferViews", index);
+  check_index(ctx, name + ".buffer", view.buffer, model.buffers.size(), "buffers");
+  const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
+  const uint64_t end = checked_span(ctx, name, 1, view.byteOffset, view.byteLength);
+  if (end > data.size()) {
+    ctx.fail(name, "bytes " + std::to_string(view.byteOffset) + ".." + std::to_string(end) +
+                       " are past the end of " + at("buffers", view.buffer) + " (" +
+                       std::to_string(data.size()) + " bytes): the buffer is truncated or " +
+                       "the view is wrong");
+  }
+  return {data.data() + view.byteOffset, view.byteLength};
+}
+
+AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
+                             const std::string& where, std::initializer_list<int> types) {
+  check_index(ctx, where, index, model.accessors.size(), "accessors");
+  const tinygltf::Accessor& a = model.accessors[index];
+  const std::string name = where + " (" + at("accessors", index) + ")";
+  bool type_ok = false;
+  std::string expected;
+  for (int t : types) {
+    type_ok |= a.type == t;
+    expected += std::string(expected.empty() ? "" : " or ") + type_name(t);
+  }
+  if (!type_ok) ctx.fail(name, std::string("is ") + type_name(a.type) + ", must be " + expected);
+  if (component_size(a.componentType) == 0) {
+    ctx.fail(name, "has invalid componentType " + std::to_string(a.componentType));
+  }
+  if (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                       a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+    ctx.fail(name, "is normalized, which only byte and short components may be");
+  }
+  AccessorValues r;
+  r.count = a.count;
+  r.components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
+  // An accessor over no buffer view is all zeros (before its sparse values).
+  if (a.bufferView < 0) {
+    r.values.assign(checked_span(ctx, name, a.count, r.components, 0), 0.0);
+  } else {
+    read_elements(ctx, model, a.bufferView, a.byteOffset, a.count, a.componentType, r.components,
+                  a.normalized, kViewStride, name, r.values);
+  }
+  if (a.sparse.isSparse) {
+    const std::string sparse = name + ".sparse";
+    if (a.sparse.count < 1 || size_t(a.sparse.count) > a.count) {
+      ctx.fail(sparse + ".count", "is " + std::to_string(a.sparse.count) + ", must be in 1.." +
+                                      std::to_string(a.count));
+    }
+    const int index_type = a.sparse.indices.componentType;
+    if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+      ctx.fail(sparse + ".indices.componentType",
+               "is " + std::to_string(index_type) + ", must be an unsigned integer type");
+    }
+    std::vector<double> indices, values;
+    read_elements(ctx, model, a.sparse.indices.bufferView, uint64_t(a.sparse.indices.byteOffset),
+                  uint64_t(a.sparse.count), index_type, 1, false, 0, sparse + ".indices", indices);
+    read_elements(ctx, model, a.sparse.values.bufferView, uint64_t(a.sparse.values.byteOffset),
+                  uint64_t(a.sparse.count), a.componentType, r.components, a.normalized, 0,
+                  sparse + ".values", values);
+    for (size_t i = 0; i < indices.size(); ++i) {
+      if (indices[i] >= double(a.count)) {
+        ctx.fail(sparse + ".indices", "element " + std::to_string(i) + " is " +
+                                          std::to_string(uint64_t(indices[i])) + ", past the " +
+                                          std::to_string(a.count) + " elements");
+      }
+      std::copy_n(values.begin() + i * r.components, r.components,
+                  r.values.begin() + size_t(indices[i]) * r.components);
+    }
+  }
+  return r;
+}
+
+}  // namespace tessera::gltf

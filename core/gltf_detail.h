@@ -1,0 +1,90 @@
+#pragma once
+// Internals of the glTF 2.0 importer (core/gltf_*.cpp), not a public interface.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
+
+#include "core/model_import.h"
+
+namespace tessera::gltf {
+
+/// The file being imported, for messages, and where warnings go.
+struct Context {
+  std::string file;      // the path as the caller gave it
+  std::string base_dir;  // folder that relative uris are resolved against
+  const ImportOptions& options;
+  std::vector<std::string>& warnings;
+
+  /// Throws Error "FILE: WHERE: WHAT"; `where` is a glTF JSON path such as
+  /// meshes[2].primitives[0].mode (empty for the file as a whole).
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const;
+  /// Records a warning, or fails with it when options.strict.
+  void warn(const std::string& where, const std::string& what) const;
+};
+
+/// "name[i]", the JSON path of element i of a top-level array.
+std::string at(const char* array, size_t i);
+
+/// Fails unless 0 <= index < count: `where` holds an index into the file's `array`.
+void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
+                 const char* array);
+
+/// Checks the JSON document before TinyGLTF reads it (TinyGLTF ignores properties of the wrong
+/// type): the type of every property Tessera reads, extensionsRequired, and that each external
+/// buffer and image file exists, is within options.max_file_bytes and, for buffers, holds
+/// byteLength bytes. Warns for extensions used but ignored.
+void check_document(const Context& ctx, const nlohmann::json& doc);
+
+/// An accessor's elements as doubles (exact for every component type), normalized integers
+/// mapped to [0, 1] or [-1, 1], sparse substitution applied: count * components values.
+struct AccessorValues {
+  size_t count = 0;
+  int components = 0;
+  std::vector<double> values;
+};
+
+/// Reads accessors[index], referenced from `where`, checking the buffer view and buffer
+/// ranges, stride, size arithmetic and sparse indices; `types` lists the allowed accessor
+/// types (TINYGLTF_TYPE_*).
+AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
+                             const std::string& where, std::initializer_list<int> types);
+
+/// Bytes of bufferViews[index], referenced from `where`, after checking its range in its buffer.
+std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
+                                                          const tinygltf::Model& model, int index,
+                                                          const std::string& where);
+
+/// How one primitive becomes a Tessera mesh.
+struct PrimitiveOptions {
+  int uv_set = 0;             // TEXCOORD_n read as Mesh::uvs
+  glm::mat3 uv_transform{1};  // KHR_texture_transform, applied to the uvs
+  bool flip_winding = false;  // for instances whose world transform mirrors
+};
+
+/// Converts meshes[mesh].primitives[primitive] (TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN,
+/// indexed or not) into a Mesh with unit normals (flat ones generated when NORMAL is absent),
+/// uvs and tangents (generated when TANGENT is absent).
+Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mesh, int primitive,
+                       const PrimitiveOptions& options);
+
+/// glTF materials and textures turned into Tessera's, created on first use.
+struct MaterialTable {
+  std::map<int, uint32_t> materials;  // glTF material (-1: the default) -> Scene::materials
+  std::map<int, PrimitiveOptions> uv_options;  // glTF material -> its uv set and transform
+  std::map<int, Texture> images;               // decoded images (RGBA8, srgb unset)
+  std::map<std::tuple<int, bool, float>, uint32_t> textures;  // (image, srgb, occlusion strength)
+};
+
+/// Scene::materials index of glTF material `material` (-1: the glTF default material), adding
+/// it and its textures to `scene` on first use; fills table.uv_options for it. `doc` is the
+/// checked JSON document (check_document), `model` TinyGLTF's reading of it.
+uint32_t material_index(const Context& ctx, const nlohmann::json& doc, const tinygltf::Model& model,
+                        int material, MaterialTable& table, Scene& scene);
+
+}  // namespace tessera::gltf

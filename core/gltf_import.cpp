@@ -1,0 +1,382 @@
+// glTF 2.0 import: reading the file, the node hierarchy, cameras and KHR_lights_punctual.
+// TinyGLTF parses the document and loads buffers; everything it hands over is checked again
+// here and in gltf_accessors.cpp before use.
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/check.h"
+#include "core/gltf_detail.h"
+
+namespace tessera::gltf {
+
+using nlohmann::json;
+
+void Context::fail(const std::string& where, const std::string& what) const {
+  throw Error(file + ": " + (where.empty() ? "" : where + ": ") + what);
+}
+
+void Context::warn(const std::string& where, const std::string& what) const {
+  if (options.strict) fail(where, what + " (an error in strict import)");
+  const std::string message = file + ": " + (where.empty() ? "" : where + ": ") + what;
+  // A sampler or texture shared by many materials warns once.
+  if (std::find(warnings.begin(), warnings.end(), message) == warnings.end()) {
+    warnings.push_back(message);
+  }
+}
+
+std::string at(const char* array, size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
+
+void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
+                 const char* array) {
+  if (index < 0 || uint64_t(index) >= count) {
+    ctx.fail(where, "refers to " + at(array, size_t(std::max<int64_t>(index, 0))) +
+                        (index < 0 ? " (negative)" : "") + ", but the file has " +
+                        std::to_string(count) + " " + array);
+  }
+}
+
+namespace {
+
+std::vector<unsigned char> read_file(const Context& ctx, const std::string& path) {
+  std::error_code error;
+  const uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) ctx.fail("", "cannot read the file: " + error.message());
+  if (size > ctx.options.max_file_bytes) {
+    ctx.fail("", "is " + std::to_string(size) + " bytes, over the limit of " +
+                     std::to_string(ctx.options.max_file_bytes));
+  }
+  if (size > UINT32_MAX) ctx.fail("", "is over 4 GiB, more than glTF files may be");
+  std::vector<unsigned char> bytes(size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) {
+    ctx.fail("", "cannot read the file");
+  }
+  return bytes;
+}
+
+uint32_t load_u32(const unsigned char* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;  // glTF is little-endian, as is every host Tessera runs on
+}
+
+// The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths.
+std::string glb_json(const Context& ctx, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 20) ctx.fail("", "is truncated: a .glb needs a 20-byte header");
+  if (load_u32(&bytes[4]) != 2) {
+    ctx.fail("", "is a binary glTF of version " + std::to_string(load_u32(&bytes[4])) + ", not 2");
+  }
+  if (load_u32(&bytes[8]) != bytes.size()) {
+    ctx.fail("", "is truncated or padded: its header says " + std::to_string(load_u32(&bytes[8])) +
+                     " bytes, the file has " + std::to_string(bytes.size()));
+  }
+  const uint64_t length = load_u32(&bytes[12]);
+  if (load_u32(&bytes[16]) != 0x4E4F534Au) ctx.fail("", "its first chunk is not JSON");
+  if (20 + length > bytes.size()) {
+    ctx.fail("", "is truncated: its JSON chunk of " + std::to_string(length) +
+                     " bytes runs past the end of the file");
+  }
+  return std::string(bytes.begin() + 20, bytes.begin() + 20 + length);
+}
+
+// Keeps an image's encoded bytes (a file's or a data uri's); material_index decodes them, after
+// its own size checks. Images in buffer views are left alone: TinyGLTF has not range-checked
+// their view, so their bytes are read only after buffer_view_bytes has.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0) image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+bool finite(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[c][r])) return false;
+    }
+  }
+  return true;
+}
+
+// A node's local transform: its matrix, or translation * rotation * scale.
+glm::dmat4 local_transform(const Context& ctx, const json& node, const std::string& where) {
+  glm::dmat4 m(1.0);
+  if (node.contains("matrix")) {
+    const std::vector<double> v = node["matrix"].get<std::vector<double>>();
+    m = glm::make_mat4(v.data());  // column-major, as glTF stores it
+    if (node.contains("translation") || node.contains("rotation") || node.contains("scale")) {
+      ctx.warn(where, "has both a matrix and TRS properties; the matrix is used");
+    }
+  } else {
+    const auto t = node.value("translation", std::vector<double>{0, 0, 0});
+    const auto r = node.value("rotation", std::vector<double>{0, 0, 0, 1});
+    const auto s = node.value("scale", std::vector<double>{1, 1, 1});
+    glm::dquat q(r[3], r[0], r[1], r[2]);
+    const double length = glm::length(q);
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      ctx.fail(where + ".rotation",
+               "is not a unit quaternion (its length is " + std::to_string(length) + ")");
+    }
+    q /= length;
+    m = glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2])) * glm::mat4_cast(q) *
+        glm::scale(glm::dmat4(1.0), glm::dvec3(s[0], s[1], s[2]));
+  }
+  if (!finite(m)) ctx.fail(where, "its transform has a NaN or infinite element");
+  return m;
+}
+
+// Camera at a node: glTF cameras look down their local -z with +y up.
+Camera place_camera(const glm::dmat4& world) {
+  Camera c;
+  const glm::dvec3 position(world * glm::dvec4(0, 0, 0, 1));
+  const glm::dvec3 forward = glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
+  c.position = glm::vec3(position);
+  c.target = glm::vec3(position + forward);
+  c.up = glm::vec3(glm::normalize(glm::dvec3(world * glm::dvec4(0, 1, 0, 0))));
+  return c;
+}
+
+// Luminous efficacy of 555 nm light, lm/W: the conversion KHR_lights_punctual's photometric
+// units need to become Tessera's radiometric ones. It treats every light as if it emitted at
+// 555 nm, which is how the extension's reference viewers read "color" too (a relative tint).
+constexpr double kLumensPerWatt = 683.0;
+
+// KHR_lights_punctual light `index` placed by a node's world transform. Point and spot
+// intensity is luminous intensity in candela (lm/sr) -> radiant intensity W/sr = cd / 683;
+// directional intensity is illuminance in lux (lm/m^2) -> irradiance W/m^2 = lx / 683.
+Light make_light(const Context& ctx, const json& lights, int index, const glm::dmat4& world) {
+  const json& l = lights[index];
+  const std::string where = "extensions.KHR_lights_punctual." + at("lights", index);
+  Light light;
+  const std::string type = l.value("type", "");
+  if (type == "point") {
+    light.kind = LightKind::point;
+  } else if (type == "spot") {
+    light.kind = LightKind::spot;
+  } else if (type == "directional") {
+    light.kind = LightKind::directional;
+  } else {
+    ctx.fail(where + ".type", "is '" + type + "', not point, spot or directional");
+  }
+  const auto color = l.value("color", std::vector<double>{1, 1, 1});
+  for (double c : color) {
+    if (!(c >= 0.0 && c <= 1.0)) ctx.fail(where + ".color", "has a component outside [0, 1]");
+  }
+  light.color = glm::vec3(color[0], color[1], color[2]);
+  const double intensity = l.value("intensity", 1.0);
+  if (!(intensity >= 0.0) || !std::isfinite(intensity)) {
+    ctx.fail(where + ".intensity", "must be a finite number >= 0");
+  }
+  light.intensity = float(intensity / kLumensPerWatt);
+  if (l.contains("range")) {
+    const double range = l["range"].get<double>();
+    if (!(range > 0.0) || !std::isfinite(range)) ctx.fail(where + ".range", "must be > 0");
+    // The extension recommends the same window as Tessera's inverse_square falloff.
+    light.range = float(range);
+  }
+  light.falloff = Falloff::inverse_square;
+  light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+  light.direction = glm::vec3(glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0))));
+  if (light.kind == LightKind::spot) {
+    const json spot = l.value("spot", json::object());
+    double inner = spot.value("innerConeAngle", 0.0);
+    double outer = spot.value("outerConeAngle", std::numbers::pi / 4);
+    if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2)) {
+      ctx.fail(where + ".spot", "needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    }
+    // Tessera needs outer < pi/2 (its cone test divides by cos(outer)).
+    constexpr double kLargestOuter = std::numbers::pi / 2 - 1e-4;
+    if (outer > kLargestOuter) {
+      ctx.warn(where + ".spot.outerConeAngle", "is pi/2; narrowed to pi/2 - 1e-4");
+      outer = kLargestOuter;
+      inner = std::min(inner, outer);
+    }
+    light.inner_angle = float(inner);
+    light.outer_angle = float(outer);
+  }
+  if (!std::isfinite(light.direction.x) || !std::isfinite(light.position.x)) {
+    ctx.fail(where, "is placed by a degenerate node transform");
+  }
+  return light;
+}
+
+// The cameras in file order, each placed by the first node that uses it (at the origin if none).
+std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
+                                 const std::map<int, glm::dmat4>& placements) {
+  std::vector<Camera> cameras;
+  const json list = doc.value("cameras", json::array());
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = at("cameras", i);
+    auto placed = placements.find(int(i));
+    Camera c = place_camera(placed == placements.end() ? glm::dmat4(1.0) : placed->second);
+    const std::string type = list[i].value("type", "");
+    if (type == "perspective") {
+      const json p = list[i].value("perspective", json::object());
+      const double yfov = p.value("yfov", 0.0), znear = p.value("znear", 0.0);
+      if (!(yfov > 0.0 && yfov < 3.1)) {
+        ctx.fail(where + ".perspective.yfov", "must be in (0, 3.1) radians");
+      }
+      if (!(znear > 0.0) || !std::isfinite(znear)) {
+        ctx.fail(where + ".perspective.znear", "must be > 0");
+      }
+      c.vertical_fov = float(yfov);
+      c.near_plane = float(znear);
+    } else if (type == "orthographic") {
+      ctx.warn(where,
+               "is orthographic, which Tessera does not render; given as a perspective "
+               "camera with a 45 degree field of view");
+    } else {
+      ctx.fail(where + ".type", "is '" + type + "', not perspective or orthographic");
+    }
+    cameras.push_back(c);
+  }
+  return cameras;
+}
+
+// The scene's node trees, depth first with an explicit stack (no recursion limit on deep
+// hierarchies), placing mesh instances, lights and cameras by their world transforms.
+void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Model& model,
+                       ImportedModel& out) {
+  const json scenes = doc.value("scenes", json::array());
+  if (scenes.empty()) ctx.fail("scenes", "the file has no scene to render");
+  const int scene_index = doc.value("scene", 0);
+  check_index(ctx, "scene", scene_index, scenes.size(), "scenes");
+  const json nodes = doc.value("nodes", json::array());
+  const json lights =
+      doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual")
+          ? doc["extensions"]["KHR_lights_punctual"].value("lights", json::array())
+          : json::array();
+
+  MaterialTable table;
+  std::map<std::tuple<int, int, bool>, uint32_t> meshes;  // (mesh, primitive, mirrored)
+  std::map<int, glm::dmat4> camera_placements;
+  std::vector<bool> on_path(nodes.size(), false);
+  struct Visit {
+    int node;
+    glm::dmat4 parent;
+    bool leave;
+    std::string from;  // where the reference to this node is, for messages
+  };
+  std::vector<Visit> stack;
+  const json roots = scenes[scene_index].value("nodes", json::array());
+  for (size_t i = roots.size(); i-- > 0;) {
+    stack.push_back({roots[i].get<int>(), glm::dmat4(1.0), false,
+                     at("scenes", scene_index) + ".nodes[" + std::to_string(i) + "]"});
+  }
+  while (!stack.empty()) {
+    Visit v = std::move(stack.back());
+    stack.pop_back();
+    if (v.leave) {
+      on_path[v.node] = false;
+      continue;
+    }
+    check_index(ctx, v.from, v.node, nodes.size(), "nodes");
+    const std::string where = at("nodes", v.node);
+    if (on_path[v.node]) {
+      ctx.fail(v.from, "refers to node " + std::to_string(v.node) +
+                           ", its own ancestor: the node graph has a cycle");
+    }
+    on_path[v.node] = true;
+    const json& node = nodes[v.node];
+    const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
+    if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
+    stack.push_back({v.node, {}, true, {}});
+    const json children = node.value("children", json::array());
+    for (size_t c = children.size(); c-- > 0;) {
+      stack.push_back(
+          {children[c].get<int>(), world, false, where + ".children[" + std::to_string(c) + "]"});
+    }
+
+    if (node.contains("mesh")) {
+      const int mesh = node["mesh"].get<int>();
+      check_index(ctx, where + ".mesh", mesh, model.meshes.size(), "meshes");
+      // A mirroring transform turns counter-clockwise triangles clockwise (specification
+      // 3.7.4): such instances get a copy of the mesh wound the other way.
+      const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+      for (size_t p = 0; p < model.meshes[mesh].primitives.size(); ++p) {
+        const int material = model.meshes[mesh].primitives[p].material;
+        if (material >= 0) {
+          check_index(ctx, at("meshes", mesh) + ".primitives[" + std::to_string(p) + "].material",
+                      material, model.materials.size(), "materials");
+        }
+        Object object;
+        object.material = material_index(ctx, doc, model, material, table, out.scene);
+        object.transform = glm::mat4(world);
+        const auto key = std::make_tuple(mesh, int(p), mirrored);
+        if (auto it = meshes.find(key); it != meshes.end()) {
+          object.mesh = it->second;
+        } else {
+          PrimitiveOptions options = table.uv_options[material];
+          options.flip_winding = mirrored;
+          out.scene.meshes.push_back(convert_primitive(ctx, model, mesh, int(p), options));
+          object.mesh = meshes[key] = uint32_t(out.scene.meshes.size() - 1);
+        }
+        out.scene.objects.push_back(object);
+      }
+    }
+    if (node.contains("camera")) {
+      const int camera = node["camera"].get<int>();
+      check_index(ctx, where + ".camera", camera, doc.value("cameras", json::array()).size(),
+                  "cameras");
+      camera_placements.try_emplace(camera, world);
+    }
+    if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
+      const json& ext = node["extensions"]["KHR_lights_punctual"];
+      if (!ext.contains("light"))
+        ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
+      const int light = ext["light"].get<int>();
+      check_index(ctx, where + ".extensions.KHR_lights_punctual.light", light, lights.size(),
+                  "KHR_lights_punctual lights");
+      out.scene.lights.push_back(make_light(ctx, lights, light, world));
+    }
+    if (node.contains("skin")) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
+  }
+  out.cameras = make_cameras(ctx, doc, camera_placements);
+}
+
+}  // namespace
+}  // namespace tessera::gltf
+
+namespace tessera {
+
+ImportedModel import_gltf(const std::string& path, const ImportOptions& options) {
+  using namespace gltf;
+  ImportedModel out;
+  Context ctx{path, std::filesystem::path(path).parent_path().string(), options, out.warnings};
+  const std::vector<unsigned char> bytes = read_file(ctx, path);
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const std::string text = binary ? glb_json(ctx, bytes) : std::string(bytes.begin(), bytes.end());
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    ctx.fail("", std::string("is not valid JSON: ") + e.what());
+  }
+  check_document(ctx, doc);
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keep_encoded_image, nullptr);
+  tinygltf::Model model;
+  std::string error, warning;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(),
+                                                       unsigned(bytes.size()), ctx.base_dir)
+                         : loader.LoadASCIIFromString(&model, &error, &warning, text.data(),
+                                                      unsigned(text.size()), ctx.base_dir);
+  if (!ok) {
+    while (!error.empty() && error.back() == '\n') error.pop_back();
+    ctx.fail("", "TinyGLTF cannot read it: " + error);
+  }
+  instantiate_nodes(ctx, doc, model, out);
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,270 @@
+// glTF metallic-roughness materials, their textures, samplers and texture transforms.
+
+#include <cmath>
+#include <memory>
+
+#include <stb/stb_image.h>
+
+#include "core/check.h"
+#include "core/gltf_detail.h"
+
+namespace tessera::gltf {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kRepeat = 10497;  // glTF sampler wrap mode REPEAT, the only one Tessera has
+
+// Decodes images[index] (from its file, data uri or buffer view) to RGBA8, refusing sides over
+// options.max_texture_side before decoding.
+const Texture& decoded_image(const Context& ctx, const tinygltf::Model& model, int index,
+                             MaterialTable& table) {
+  if (auto it = table.images.find(index); it != table.images.end()) return it->second;
+  const tinygltf::Image& image = model.images[index];
+  const std::string where = at("images", index);
+  const unsigned char* bytes = image.image.data();
+  size_t size = image.image.size();
+  if (image.bufferView >= 0) {
+    std::tie(bytes, size) = buffer_view_bytes(ctx, model, image.bufferView, where + ".bufferView");
+  }
+  if (size == 0) ctx.fail(where, "has no image data (its file could not be read)");
+  if (size > uint64_t(INT32_MAX)) ctx.fail(where, "is over 2 GiB, more than stb_image reads");
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels)) {
+    ctx.fail(where, std::string("cannot be decoded: ") + stbi_failure_reason());
+  }
+  if (uint32_t(w) > ctx.options.max_texture_side || uint32_t(h) > ctx.options.max_texture_side) {
+    ctx.fail(where, "is " + std::to_string(w) + "x" + std::to_string(h) +
+                        ", over the largest texture side of " +
+                        std::to_string(ctx.options.max_texture_side));
+  }
+  std::unique_ptr<stbi_uc, void (*)(void*)> data(
+      stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
+  if (!data) ctx.fail(where, std::string("cannot be decoded: ") + stbi_failure_reason());
+  Texture t;
+  t.width = uint32_t(w);
+  t.height = uint32_t(h);
+  const auto* texels = reinterpret_cast<const glm::u8vec4*>(data.get());
+  t.texels.assign(texels, texels + size_t(w) * h);
+  return table.images.emplace(index, std::move(t)).first->second;
+}
+
+// images[] index of textures[index], referenced from `where`, after checking the texture and
+// warning for its sampler's wrap modes.
+int texture_source(const Context& ctx, const json& doc, const tinygltf::Model& model, int index,
+                   const std::string& where) {
+  const json& textures = doc.value("textures", json::array());
+  check_index(ctx, where + ".index", index, textures.size(), "textures");
+  const json& texture = textures[index];
+  const std::string name = at("textures", index);
+  if (!texture.contains("source")) {
+    ctx.fail(name,
+             "has no source image (images of extensions such as KHR_texture_basisu or "
+             "EXT_texture_webp are not supported)");
+  }
+  const int source = texture["source"].get<int>();
+  check_index(ctx, name + ".source", source, model.images.size(), "images");
+  if (texture.contains("sampler")) {
+    const int sampler = texture["sampler"].get<int>();
+    const json& samplers = doc.value("samplers", json::array());
+    check_index(ctx, name + ".sampler", sampler, samplers.size(), "samplers");
+    const int wrap_s = samplers[sampler].value("wrapS", kRepeat);
+    const int wrap_t = samplers[sampler].value("wrapT", kRepeat);
+    if (wrap_s != kRepeat || wrap_t != kRepeat) {
+      ctx.warn(at("samplers", sampler), "wraps with modes " + std::to_string(wrap_s) + ", " +
+                                            std::to_string(wrap_t) +
+                                            "; Tessera always repeats (10497)");
+    }
+  }
+  return source;
+}
+
+// Scene::textures index for textures[index] read as colour (srgb) or data. An occlusion map
+// with strength s != 1 gets its own copy with R' = 1 + s (R - 1), glTF's blend, because
+// Tessera multiplies by R.
+uint32_t texture_index(const Context& ctx, const json& doc, const tinygltf::Model& model, int index,
+                       const std::string& where, bool srgb, float strength, MaterialTable& table,
+                       Scene& scene) {
+  const int source = texture_source(ctx, doc, model, index, where);
+  const auto key = std::make_tuple(source, srgb, strength);
+  if (auto it = table.textures.find(key); it != table.textures.end()) return it->second;
+  Texture t = decoded_image(ctx, model, source, table);
+  t.srgb = srgb;
+  if (strength != 1.0f) {
+    for (glm::u8vec4& texel : t.texels) {
+      texel.r = uint8_t(std::lround(255.0 * (1.0 + strength * (texel.r / 255.0 - 1.0))));
+    }
+  }
+  scene.textures.push_back(std::move(t));
+  return table.textures[key] = uint32_t(scene.textures.size() - 1);
+}
+
+// KHR_texture_transform as a 3x3 uv matrix: translation * rotation * scale, as the extension
+// specifies (rotation counter-clockwise in uv space, about the origin).
+glm::mat3 uv_transform(const json& info, int& tex_coord) {
+  const json* ext = nullptr;
+  if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform")) {
+    ext = &info["extensions"]["KHR_texture_transform"];
+  }
+  if (!ext) return glm::mat3(1.0f);
+  tex_coord = ext->value("texCoord", tex_coord);
+  const std::vector<double> offset = ext->value("offset", std::vector<double>{0, 0});
+  const std::vector<double> scale = ext->value("scale", std::vector<double>{1, 1});
+  const double rotation = ext->value("rotation", 0.0);
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  const glm::dmat3 t(1, 0, 0, 0, 1, 0, offset[0], offset[1], 1);  // columns
+  const glm::dmat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
+  const glm::dmat3 sc(scale[0], 0, 0, 0, scale[1], 0, 0, 0, 1);
+  return glm::mat3(t * r * sc);
+}
+
+// Fails unless the factor at `where` is in [lo, hi].
+float factor(const Context& ctx, const json& object, const char* key, double fallback,
+             const std::string& where, double lo, double hi) {
+  const double v = object.value(key, fallback);
+  if (!(v >= lo && v <= hi) || !std::isfinite(v)) {
+    ctx.fail(where + "." + key, "is " + std::to_string(v) + ", outside [" + std::to_string(lo) +
+                                    ", " + std::to_string(hi) + "]");
+  }
+  return float(v);
+}
+
+glm::vec3 mean_linear_colour(const Texture& t) {
+  glm::dvec3 sum(0.0);
+  for (const glm::u8vec4& texel : t.texels) {
+    sum += glm::dvec3(srgb_to_linear(texel.r), srgb_to_linear(texel.g), srgb_to_linear(texel.b));
+  }
+  return glm::vec3(sum / double(t.texels.size()));
+}
+
+}  // namespace
+
+uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Model& model,
+                        int index, MaterialTable& table, Scene& scene) {
+  if (auto it = table.materials.find(index); it != table.materials.end()) return it->second;
+  const json& materials = doc.value("materials", json::array());
+  Material mat;
+  PrimitiveOptions uv;
+  if (index < 0) {
+    // The glTF default material (specification 3.9.6): white, fully metallic and rough.
+    mat.base_color = glm::vec3(1.0f);
+    mat.metallic = 1.0f;
+    mat.roughness = 1.0f;
+  } else {
+    const json& m = materials[index];
+    const std::string where = at("materials", index);
+    const json pbr = m.value("pbrMetallicRoughness", json::object());
+    const std::string pbr_where = where + ".pbrMetallicRoughness";
+    const std::vector<double> base = pbr.value("baseColorFactor", std::vector<double>{1, 1, 1, 1});
+    for (int k = 0; k < 4; ++k) {
+      if (!(base[k] >= 0.0 && base[k] <= 1.0)) {
+        ctx.fail(pbr_where + ".baseColorFactor", "has a component outside [0, 1]");
+      }
+    }
+    mat.base_color = glm::vec3(base[0], base[1], base[2]);
+    mat.metallic = factor(ctx, pbr, "metallicFactor", 1.0, pbr_where, 0.0, 1.0);
+    mat.roughness = factor(ctx, pbr, "roughnessFactor", 1.0, pbr_where, 0.0, 1.0);
+    const std::vector<double> emissive = m.value("emissiveFactor", std::vector<double>{0, 0, 0});
+    float strength = 1.0f;
+    if (m.contains("extensions") && m["extensions"].contains("KHR_materials_emissive_strength")) {
+      strength = factor(ctx, m["extensions"]["KHR_materials_emissive_strength"], "emissiveStrength",
+                        1.0, where + ".extensions.KHR_materials_emissive_strength", 0.0, HUGE_VAL);
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (!(emissive[k] >= 0.0 && emissive[k] <= 1.0)) {
+        ctx.fail(where + ".emissiveFactor", "has a component outside [0, 1]");
+      }
+    }
+    mat.emissive = glm::vec3(emissive[0], emissive[1], emissive[2]) * strength;
+
+    const std::string alpha = m.value("alphaMode", "OPAQUE");
+    if (alpha == "MASK") {
+      ctx.fail(where + ".alphaMode", "is MASK (alpha testing), which Tessera does not support");
+    } else if (alpha == "BLEND") {
+      ctx.warn(where + ".alphaMode", "is BLEND; rendered opaque (Tessera has no transparency)");
+    } else if (alpha != "OPAQUE") {
+      ctx.fail(where + ".alphaMode", "is '" + alpha + "', not OPAQUE, MASK or BLEND");
+    }
+    if (m.value("doubleSided", false)) {
+      ctx.warn(where + ".doubleSided",
+               "is true; Tessera culls back faces, so surfaces seen from behind are missing");
+    }
+
+    // Each texture, its uv set and its uv transform.
+    struct Slot {
+      const json* info;
+      std::string where;
+      int tex_coord = 0;
+      glm::mat3 transform{1.0f};
+    };
+    std::vector<Slot> slots;
+    auto slot = [&](const json& parent, const char* key, const std::string& parent_where) {
+      if (!parent.contains(key)) return -1;
+      Slot s{&parent[key], parent_where + "." + key};
+      if (!s.info->contains("index")) ctx.fail(s.where + ".index", "is missing");
+      s.tex_coord = s.info->value("texCoord", 0);
+      s.transform = uv_transform(*s.info, s.tex_coord);
+      slots.push_back(s);
+      return (*s.info)["index"].get<int>();
+    };
+    const int base_map = slot(pbr, "baseColorTexture", pbr_where);
+    if (base_map >= 0) {
+      mat.base_color_map =
+          texture_index(ctx, doc, model, base_map, slots.back().where, true, 1.0f, table, scene);
+    }
+    const int mr_map = slot(pbr, "metallicRoughnessTexture", pbr_where);
+    if (mr_map >= 0) {
+      mat.metallic_roughness_map =
+          texture_index(ctx, doc, model, mr_map, slots.back().where, false, 1.0f, table, scene);
+    }
+    const int normal_map = slot(m, "normalTexture", where);
+    if (normal_map >= 0) {
+      mat.normal_map =
+          texture_index(ctx, doc, model, normal_map, slots.back().where, false, 1.0f, table, scene);
+      mat.normal_scale = float(m["normalTexture"].value("scale", 1.0));
+    }
+    const int occlusion_map = slot(m, "occlusionTexture", where);
+    if (occlusion_map >= 0) {
+      const float s = factor(ctx, m["occlusionTexture"], "strength", 1.0,
+                             where + ".occlusionTexture", 0.0, 1.0);
+      mat.occlusion_map =
+          texture_index(ctx, doc, model, occlusion_map, slots.back().where, false, s, table, scene);
+    }
+    const int emissive_map = slot(m, "emissiveTexture", where);
+    if (emissive_map >= 0) {
+      // Material has no emissive map: emission is the factor times the map's mean colour.
+      const int source = texture_source(ctx, doc, model, emissive_map, slots.back().where);
+      mat.emissive *= mean_linear_colour(decoded_image(ctx, model, source, table));
+      ctx.warn(slots.back().where,
+               "is not supported (Tessera's material has no emissive map); emission is "
+               "emissiveFactor times the map's mean colour, uniform over the surface");
+    }
+
+    // Tessera meshes carry one uv set: use the one all textures share, else TEXCOORD_0.
+    if (!slots.empty()) {
+      uv.uv_set = slots[0].tex_coord;
+      uv.uv_transform = slots[0].transform;
+      for (const Slot& s : slots) {
+        if (s.tex_coord != uv.uv_set) {
+          ctx.warn(where, "its textures use different uv sets (texCoord " +
+                              std::to_string(slots[0].tex_coord) + " and " +
+                              std::to_string(s.tex_coord) + "); Tessera has one, all read " +
+                              "TEXCOORD_" + std::to_string(slots[0].tex_coord));
+          break;
+        }
+      }
+      for (const Slot& s : slots) {
+        if (s.transform != uv.uv_transform) {
+          ctx.warn(where, "its textures have different KHR_texture_transform transforms; all " +
+                              std::string("use the one of ") + slots[0].where);
+          break;
+        }
+      }
+    }
+  }
+  scene.materials.push_back(mat);
+  table.uv_options[index] = uv;
+  return table.materials[index] = uint32_t(scene.materials.size() - 1);
+}
+
+}  // namespace tessera::gltf

@@ -1,0 +1,223 @@
+// Mesh primitives into Tessera meshes: topology, attributes, generated normals and tangents.
+
+#include <cmath>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/check.h"
+#include "core/gltf_detail.h"
+#include "core/texture.h"
+
+namespace tessera::gltf {
+namespace {
+
+const char* mode_name(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return "an unknown mode";
+  }
+}
+
+// Fails naming the element if any value of an attribute is NaN or infinite.
+void require_finite(const Context& ctx, const AccessorValues& v, const std::string& where) {
+  for (size_t i = 0; i < v.values.size(); ++i) {
+    if (!std::isfinite(v.values[i])) {
+      ctx.fail(where, "element " + std::to_string(i / v.components) + " has a NaN or infinite " +
+                          "component");
+    }
+  }
+}
+
+// Triangle list of a strip or fan, as the glTF 2.0 specification (3.7.2.1) orders them, so that
+// every triangle keeps the strip's (or fan's) winding.
+std::vector<uint32_t> triangulate(int mode, const std::vector<uint32_t>& v) {
+  std::vector<uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) return v;
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      const size_t odd = i % 2;
+      out.insert(out.end(), {v[i], v[i + 1 + odd], v[i + 2 - odd]});
+    } else {
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
+  }
+  return out;
+}
+
+// Flat normals, as the specification requires when NORMAL is absent: every triangle gets its
+// own three vertices carrying its face normal.
+void make_flat(Mesh& mesh) {
+  Mesh flat;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t* tri = &mesh.indices[3 * t];
+    const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]),
+        c(mesh.positions[tri[2]]);
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double length = glm::length(n);
+    // A degenerate triangle covers no pixel, so any unit normal will do; this one keeps NaN out.
+    const glm::vec3 normal =
+        length > 0.0 && std::isfinite(length) ? glm::vec3(n / length) : glm::vec3(0, 0, 1);
+    for (int k = 0; k < 3; ++k) {
+      flat.indices.push_back(uint32_t(flat.positions.size()));
+      flat.positions.push_back(mesh.positions[tri[k]]);
+      flat.normals.push_back(normal);
+      flat.uvs.push_back(mesh.uvs[tri[k]]);
+    }
+  }
+  mesh = std::move(flat);
+}
+
+}  // namespace
+
+Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mesh_index,
+                       int primitive_index, const PrimitiveOptions& options) {
+  const tinygltf::Primitive& prim = model.meshes[mesh_index].primitives[primitive_index];
+  const std::string where =
+      at("meshes", mesh_index) + ".primitives[" + std::to_string(primitive_index) + "]";
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ctx.fail(where + ".mode", std::string("is ") + std::to_string(prim.mode) + " (" +
+                                  mode_name(prim.mode) +
+                                  "); Tessera renders only TRIANGLES (4), TRIANGLE_STRIP (5) "
+                                  "and TRIANGLE_FAN (6)");
+  }
+  auto attribute = [&](const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  const std::string attributes = where + ".attributes.";
+  if (attribute("POSITION") < 0) ctx.fail(attributes + "POSITION", "is missing");
+  const AccessorValues positions = read_accessor(ctx, model, attribute("POSITION"),
+                                                 attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
+  require_finite(ctx, positions, attributes + "POSITION");
+  if (positions.count > UINT32_MAX) {
+    ctx.fail(attributes + "POSITION", "has more than 2^32 - 1 vertices");
+  }
+  const size_t n = positions.count;
+  // Every other attribute must match POSITION's count.
+  auto read = [&](const std::string& name, int type) {
+    const std::string path = attributes + name;
+    AccessorValues v = read_accessor(ctx, model, attribute(name.c_str()), path, {type});
+    require_finite(ctx, v, path);
+    if (v.count != n) {
+      ctx.fail(path,
+               "has " + std::to_string(v.count) + " elements, POSITION has " + std::to_string(n));
+    }
+    return v;
+  };
+
+  Mesh mesh;
+  mesh.positions.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    mesh.positions[i] = glm::vec3(glm::make_vec3(&positions.values[3 * i]));
+  }
+  mesh.uvs.assign(n, glm::vec2(0.0f));
+  const std::string uv_name = "TEXCOORD_" + std::to_string(options.uv_set);
+  if (attribute(uv_name.c_str()) >= 0) {
+    const AccessorValues uvs = read(uv_name, TINYGLTF_TYPE_VEC2);
+    for (size_t i = 0; i < n; ++i) {
+      const glm::dvec3 uv = glm::dmat3(options.uv_transform) *
+                            glm::dvec3(uvs.values[2 * i], uvs.values[2 * i + 1], 1.0);
+      mesh.uvs[i] = glm::vec2(uv);
+    }
+  }
+
+  std::vector<uint32_t> vertices;
+  if (prim.indices >= 0) {
+    const std::string path = where + ".indices";
+    const AccessorValues indices =
+        read_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR});
+    const int type = model.accessors[prim.indices].componentType;
+    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+      ctx.fail(path, "has componentType " + std::to_string(type) +
+                         ", must be an unsigned byte, short or int");
+    }
+    vertices.reserve(indices.count);
+    for (size_t i = 0; i < indices.count; ++i) {
+      if (indices.values[i] >= double(n)) {
+        ctx.fail(path, "element " + std::to_string(i) + " is vertex " +
+                           std::to_string(uint64_t(indices.values[i])) + ", past the " +
+                           std::to_string(n) + " vertices of POSITION");
+      }
+      vertices.push_back(uint32_t(indices.values[i]));
+    }
+  } else {
+    vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) vertices[i] = uint32_t(i);
+  }
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES && vertices.size() % 3 != 0) {
+    ctx.fail(prim.indices >= 0 ? where + ".indices" : attributes + "POSITION",
+             "has " + std::to_string(vertices.size()) +
+                 " elements, not a multiple of 3 as TRIANGLES need");
+  }
+  mesh.indices = triangulate(prim.mode, vertices);
+  if (options.flip_winding) {
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+      std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    }
+  }
+
+  if (attribute("NORMAL") < 0) {
+    make_flat(mesh);
+    // The specification says to ignore given tangents when normals are generated.
+  } else {
+    const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3);
+    mesh.normals.resize(n);
+    bool renormalized = false;
+    for (size_t i = 0; i < n; ++i) {
+      glm::dvec3 v = glm::make_vec3(&normals.values[3 * i]);
+      const double length = glm::length(v);
+      if (!(length > 0.0)) {
+        ctx.fail(attributes + "NORMAL", "element " + std::to_string(i) + " is the zero vector");
+      }
+      renormalized |= std::abs(length - 1.0) > 1e-3;
+      mesh.normals[i] = glm::vec3(v / length);
+    }
+    if (renormalized) {
+      ctx.warn(attributes + "NORMAL", "has normals that are not unit length; normalized");
+    }
+    if (attribute("TANGENT") >= 0) {
+      const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
+      mesh.tangents.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        const glm::dvec3 t = glm::make_vec3(&tangents.values[4 * i]);
+        const double w = tangents.values[4 * i + 3];
+        // Tessera's convention is glTF's: bitangent = w * cross(normal, tangent).
+        if (!(glm::length(t) > 0.0)) {
+          ctx.fail(attributes + "TANGENT", "element " + std::to_string(i) + " is the zero vector");
+        }
+        mesh.tangents[i] = glm::vec4(glm::normalize(t), (w < 0.0 ? -1.0f : 1.0f));
+      }
+    }
+  }
+  // Generated tangents are Lengyel's per-vertex sums (generate_tangents), not MikkTSpace: they
+  // agree on smooth, well-parametrized meshes, but a normal map baked against MikkTSpace can
+  // show small shading seams where the two frames differ (split uv islands, sharp edges).
+  if (mesh.tangents.empty()) {
+    mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+  }
+  // A mirroring transform M maps cross(n, t) to -M cross(n, t) (for orthogonal M), so the
+  // handedness that keeps the bitangent following the uvs changes sign.
+  if (options.flip_winding) {
+    for (glm::vec4& t : mesh.tangents) t.w = -t.w;
+  }
+  for (const char* ignored : {"COLOR_0", "JOINTS_0", "WEIGHTS_0"}) {
+    if (attribute(ignored) >= 0) {
+      ctx.warn(attributes + ignored, "is ignored (no vertex colours or skinning in Tessera)");
+    }
+  }
+  if (!prim.targets.empty()) ctx.warn(where + ".targets", "morph targets are ignored");
+  return mesh;
+}
+
+}  // namespace tessera::gltf

@@ -1,0 +1,363 @@
+// The JSON checks that come before TinyGLTF: property types, required extensions, and the
+// files that buffers and images name.
+
+#include <cctype>
+#include <filesystem>
+#include <set>
+
+#include "core/check.h"
+#include "core/gltf_detail.h"
+
+namespace tessera::gltf {
+namespace {
+
+using nlohmann::json;
+
+enum class Kind {
+  index,   // integer >= 0
+  uint,    // integer >= 0
+  number,  // any JSON number
+  string,
+  boolean,
+  object,     // checked against `fields`
+  objects,    // array of objects, each checked against `fields`
+  numbers,    // array of `length` numbers (any length when 0)
+  indices,    // array of integers >= 0
+  strings,    // array of strings
+  index_map,  // object whose every value is an integer >= 0 (primitive attributes)
+};
+
+struct Field {
+  const char* name;
+  Kind kind;
+  std::vector<Field> fields = {};
+  size_t length = 0;
+};
+
+const char* describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::object:
+      return "an object";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::boolean:
+      return "a boolean";
+    case json::value_t::number_float:
+      return "a fractional number";
+    case json::value_t::number_integer:
+      return v.get<int64_t>() < 0 ? "a negative integer" : "an integer";
+    case json::value_t::number_unsigned:
+      return "an integer";
+    default:
+      return "an unexpected value";
+  }
+}
+
+bool is_count(const json& v) {
+  return v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0);
+}
+
+void check_fields(const Context& ctx, const json& object, const std::string& where,
+                  const std::vector<Field>& fields);
+
+void check_value(const Context& ctx, const json& v, const std::string& where, const Field& f) {
+  auto wrong = [&](const std::string& expected) {
+    ctx.fail(where, "must be " + expected + " (found " + describe(v) + ")");
+  };
+  switch (f.kind) {
+    case Kind::index:
+    case Kind::uint:
+      if (!is_count(v)) wrong("an integer >= 0");
+      break;
+    case Kind::number:
+      if (!v.is_number()) wrong("a number");
+      break;
+    case Kind::string:
+      if (!v.is_string()) wrong("a string");
+      break;
+    case Kind::boolean:
+      if (!v.is_boolean()) wrong("true or false");
+      break;
+    case Kind::object:
+      if (!v.is_object()) wrong("an object");
+      check_fields(ctx, v, where, f.fields);
+      break;
+    case Kind::objects:
+      if (!v.is_array()) wrong("an array of objects");
+      for (size_t i = 0; i < v.size(); ++i) {
+        const std::string item = where + "[" + std::to_string(i) + "]";
+        if (!v[i].is_object()) {
+          ctx.fail(item, std::string("must be an object (found ") + describe(v[i]) + ")");
+        }
+        check_fields(ctx, v[i], item, f.fields);
+      }
+      break;
+    case Kind::numbers:
+    case Kind::indices:
+    case Kind::strings: {
+      const char* item_kind = f.kind == Kind::numbers   ? "numbers"
+                              : f.kind == Kind::indices ? "integers >= 0"
+                                                        : "strings";
+      if (!v.is_array()) wrong(std::string("an array of ") + item_kind);
+      if (f.length != 0 && v.size() != f.length) {
+        ctx.fail(where, "must have " + std::to_string(f.length) + " elements (found " +
+                            std::to_string(v.size()) + ")");
+      }
+      for (size_t i = 0; i < v.size(); ++i) {
+        bool ok = f.kind == Kind::numbers   ? v[i].is_number()
+                  : f.kind == Kind::indices ? is_count(v[i])
+                                            : v[i].is_string();
+        if (!ok) {
+          ctx.fail(where + "[" + std::to_string(i) + "]",
+                   std::string("must be one of ") + item_kind + " (found " + describe(v[i]) + ")");
+        }
+      }
+      break;
+    }
+    case Kind::index_map:
+      if (!v.is_object()) wrong("an object");
+      for (const auto& [key, value] : v.items()) {
+        if (!is_count(value)) {
+          ctx.fail(where + "." + key,
+                   std::string("must be an integer >= 0 (found ") + describe(value) + ")");
+        }
+      }
+      break;
+  }
+}
+
+void check_fields(const Context& ctx, const json& object, const std::string& where,
+                  const std::vector<Field>& fields) {
+  for (const Field& f : fields) {
+    auto it = object.find(f.name);
+    if (it != object.end()) check_value(ctx, *it, where.empty() ? f.name : where + "." + f.name, f);
+  }
+}
+
+// The properties Tessera reads (glTF 2.0 schema, and the extensions it supports). Others are
+// left to TinyGLTF and then ignored.
+const std::vector<Field>& document_schema() {
+  static const std::vector<Field> texture_transform = {{"offset", Kind::numbers, {}, 2},
+                                                       {"rotation", Kind::number},
+                                                       {"scale", Kind::numbers, {}, 2},
+                                                       {"texCoord", Kind::uint}};
+  static const std::vector<Field> texture_info = {
+      {"index", Kind::index},
+      {"texCoord", Kind::uint},
+      {"scale", Kind::number},
+      {"strength", Kind::number},
+      {"extensions", Kind::object, {{"KHR_texture_transform", Kind::object, texture_transform}}}};
+  static const std::vector<Field> schema = {
+      {"asset", Kind::object, {{"version", Kind::string}, {"minVersion", Kind::string}}},
+      {"extensionsUsed", Kind::strings},
+      {"extensionsRequired", Kind::strings},
+      {"scene", Kind::index},
+      {"scenes", Kind::objects, {{"nodes", Kind::indices}, {"name", Kind::string}}},
+      {"nodes",
+       Kind::objects,
+       {{"name", Kind::string},
+        {"children", Kind::indices},
+        {"mesh", Kind::index},
+        {"camera", Kind::index},
+        {"matrix", Kind::numbers, {}, 16},
+        {"translation", Kind::numbers, {}, 3},
+        {"rotation", Kind::numbers, {}, 4},
+        {"scale", Kind::numbers, {}, 3},
+        {"extensions",
+         Kind::object,
+         {{"KHR_lights_punctual", Kind::object, {{"light", Kind::index}}}}}}},
+      {"meshes",
+       Kind::objects,
+       {{"name", Kind::string},
+        {"primitives",
+         Kind::objects,
+         {{"attributes", Kind::index_map},
+          {"indices", Kind::index},
+          {"material", Kind::index},
+          {"mode", Kind::uint},
+          {"targets", Kind::objects}}}}},
+      {"accessors",
+       Kind::objects,
+       {{"bufferView", Kind::index},
+        {"byteOffset", Kind::uint},
+        {"componentType", Kind::uint},
+        {"normalized", Kind::boolean},
+        {"count", Kind::uint},
+        {"type", Kind::string},
+        {"min", Kind::numbers},
+        {"max", Kind::numbers},
+        {"sparse",
+         Kind::object,
+         {{"count", Kind::uint},
+          {"indices",
+           Kind::object,
+           {{"bufferView", Kind::index},
+            {"byteOffset", Kind::uint},
+            {"componentType", Kind::uint}}},
+          {"values", Kind::object, {{"bufferView", Kind::index}, {"byteOffset", Kind::uint}}}}}}},
+      {"bufferViews",
+       Kind::objects,
+       {{"buffer", Kind::index},
+        {"byteOffset", Kind::uint},
+        {"byteLength", Kind::uint},
+        {"byteStride", Kind::uint},
+        {"target", Kind::uint}}},
+      {"buffers", Kind::objects, {{"uri", Kind::string}, {"byteLength", Kind::uint}}},
+      {"materials",
+       Kind::objects,
+       {{"name", Kind::string},
+        {"pbrMetallicRoughness",
+         Kind::object,
+         {{"baseColorFactor", Kind::numbers, {}, 4},
+          {"metallicFactor", Kind::number},
+          {"roughnessFactor", Kind::number},
+          {"baseColorTexture", Kind::object, texture_info},
+          {"metallicRoughnessTexture", Kind::object, texture_info}}},
+        {"normalTexture", Kind::object, texture_info},
+        {"occlusionTexture", Kind::object, texture_info},
+        {"emissiveTexture", Kind::object, texture_info},
+        {"emissiveFactor", Kind::numbers, {}, 3},
+        {"alphaMode", Kind::string},
+        {"alphaCutoff", Kind::number},
+        {"doubleSided", Kind::boolean},
+        {"extensions",
+         Kind::object,
+         {{"KHR_materials_emissive_strength",
+           Kind::object,
+           {{"emissiveStrength", Kind::number}}}}}}},
+      {"textures",
+       Kind::objects,
+       {{"sampler", Kind::index}, {"source", Kind::index}, {"name", Kind::string}}},
+      {"images",
+       Kind::objects,
+       {{"uri", Kind::string},
+        {"mimeType", Kind::string},
+        {"bufferView", Kind::index},
+        {"name", Kind::string}}},
+      {"samplers",
+       Kind::objects,
+       {{"magFilter", Kind::uint},
+        {"minFilter", Kind::uint},
+        {"wrapS", Kind::uint},
+        {"wrapT", Kind::uint}}},
+      {"cameras",
+       Kind::objects,
+       {{"type", Kind::string},
+        {"perspective",
+         Kind::object,
+         {{"aspectRatio", Kind::number},
+          {"yfov", Kind::number},
+          {"zfar", Kind::number},
+          {"znear", Kind::number}}},
+        {"orthographic",
+         Kind::object,
+         {{"xmag", Kind::number},
+          {"ymag", Kind::number},
+          {"zfar", Kind::number},
+          {"znear", Kind::number}}}}},
+      {"extensions",
+       Kind::object,
+       {{"KHR_lights_punctual",
+         Kind::object,
+         {{"lights",
+           Kind::objects,
+           {{"type", Kind::string},
+            {"name", Kind::string},
+            {"color", Kind::numbers, {}, 3},
+            {"intensity", Kind::number},
+            {"range", Kind::number},
+            {"spot",
+             Kind::object,
+             {{"innerConeAngle", Kind::number}, {"outerConeAngle", Kind::number}}}}}}}}}};
+  return schema;
+}
+
+// Extensions whose every use Tessera honours, so files that require them can be imported.
+// KHR_mesh_quantization only widens the component types of vertex attributes, which
+// read_accessor accepts anyway.
+const std::set<std::string> kSupportedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "KHR_mesh_quantization"};
+
+// RFC 3986 percent-decoding of a relative uri into a file name.
+std::string decode_uri(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+      i += 2;
+    } else {
+      out.push_back(uri[i]);
+    }
+  }
+  return out;
+}
+
+void check_files(const Context& ctx, const json& doc, const char* array, bool is_buffer) {
+  auto it = doc.find(array);
+  if (it == doc.end()) return;
+  for (size_t i = 0; i < it->size(); ++i) {
+    const json& item = (*it)[i];
+    const std::string where = at(array, i);
+    auto uri = item.find("uri");
+    if (uri == item.end()) {
+      if (is_buffer && i != 0)
+        ctx.fail(where, "has no uri (only buffers[0] of a .glb may omit it)");
+      continue;
+    }
+    const std::string u = uri->get<std::string>();
+    if (u.rfind("data:", 0) == 0) continue;  // embedded: within the file's own size limit
+    if (u.find("://") != std::string::npos) {
+      ctx.fail(where + ".uri", "'" + u + "' is not a relative file name (no network access)");
+    }
+    const std::filesystem::path path = std::filesystem::path(ctx.base_dir) / decode_uri(u);
+    std::error_code error;
+    const uintmax_t size = std::filesystem::file_size(path, error);
+    if (error) ctx.fail(where + ".uri", "cannot read '" + path.string() + "': " + error.message());
+    if (size > ctx.options.max_file_bytes) {
+      ctx.fail(where + ".uri", "'" + path.string() + "' is " + std::to_string(size) +
+                                   " bytes, over the limit of " +
+                                   std::to_string(ctx.options.max_file_bytes));
+    }
+    if (is_buffer) {
+      const uint64_t length = item.value("byteLength", uint64_t(0));
+      if (size < length) {
+        ctx.fail(where, "'" + path.string() + "' is truncated: " + std::to_string(size) +
+                            " bytes, byteLength says " + std::to_string(length));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void check_document(const Context& ctx, const json& doc) {
+  if (!doc.is_object()) ctx.fail("", "the JSON document is not an object");
+  if (!doc.contains("asset")) ctx.fail("asset", "is missing (every glTF file has one)");
+  check_fields(ctx, doc, "", document_schema());
+  const std::string version = doc["asset"].value("version", "");
+  if (version.rfind("2.", 0) != 0) {
+    ctx.fail("asset.version", "is '" + version + "'; only glTF 2.x is supported");
+  }
+  for (const auto& name : doc.value("extensionsRequired", json::array())) {
+    if (!kSupportedExtensions.count(name.get<std::string>())) {
+      ctx.fail("extensionsRequired", "the file requires extension " + name.get<std::string>() +
+                                         ", which Tessera does not support");
+    }
+  }
+  for (const auto& name : doc.value("extensionsUsed", json::array())) {
+    if (!kSupportedExtensions.count(name.get<std::string>())) {
+      ctx.warn("extensionsUsed", "extension " + name.get<std::string>() + " is ignored");
+    }
+  }
+  check_files(ctx, doc, "buffers", true);
+  check_files(ctx, doc, "images", false);
+}
+
+}  // namespace tessera::gltf

@@ -1,0 +1,360 @@
+// glTF 2.0 import: the broken files of Debian's assimp-testmodels and tests/data/bad/ each give
+// their specific Error; good files import to the counts, bounds and transforms read by hand
+// from their JSON; BoxTextured and 2CylinderEngine render the same with the compute path and
+// the reference renderer.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/check.h"
+#include "core/image.h"
+#include "core/model_import.h"
+#include "tests/accuracy_support.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+const std::string kModels = "/usr/share/assimp/models/glTF2/";
+const std::string kData = TESSERA_TEST_DATA_DIR;
+
+// The Error message of importing `path`, or "" if it imports.
+std::string import_error(const std::string& path, const ImportOptions& options = {}) {
+  try {
+    import_gltf(path, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+#define EXPECT_IMPORT_ERROR(path, ...)                           \
+  do {                                                           \
+    const std::string message = import_error(path);              \
+    for (const char* word : {__VA_ARGS__}) {                     \
+      EXPECT_NE(message.find(word), std::string::npos)           \
+          << (path) << ": '" << word << "' not in: " << message; \
+    }                                                            \
+  } while (0)
+
+TEST(GltfImport, AssimpBrokenFilesGiveSpecificErrors) {
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badArray.gltf", "badArray.gltf", "meshes[0].primitives",
+                      "must be an array of objects", "found an object");
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badExtension.gltf",
+                      "baseColorTexture.extensions.KHR_texture_transform", "must be an object",
+                      "found a string");
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badNumber.gltf", "materials[0].normalTexture.scale",
+                      "must be a number", "found a string");
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badObject.gltf", "materials[0].pbrMetallicRoughness",
+                      "must be an object", "found an array");
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badString.gltf", "scenes[0].name", "must be a string",
+                      "found an integer");
+  EXPECT_IMPORT_ERROR(kModels + "wrongTypes/badUint.gltf", "baseColorTexture.index", "integer >= 0",
+                      "negative");
+  EXPECT_IMPORT_ERROR(kModels + "SchemaFailures/sceneWrongType.gltf",
+                      "scene:", "must be an integer >= 0", "found a string");
+  // 24 vertices; the first index is 255 (IndexOutOfRange) or 65535 (AllIndicesOutOfRange).
+  EXPECT_IMPORT_ERROR(kModels + "IndexOutOfRange/IndexOutOfRange.gltf",
+                      "meshes[0].primitives[0].indices", "is vertex 255", "past the 24 vertices");
+  EXPECT_IMPORT_ERROR(kModels + "IndexOutOfRange/AllIndicesOutOfRange.gltf",
+                      "meshes[0].primitives[0].indices", "is vertex 65535", "past the 24 vertices");
+  // meshes[1] ("TruncatedCube") draws 35 vertices as TRIANGLES.
+  EXPECT_IMPORT_ERROR(kModels + "IncorrectVertexArrays/Cube.gltf",
+                      "meshes[1].primitives[0].attributes.POSITION", "35 elements",
+                      "not a multiple of 3");
+  EXPECT_IMPORT_ERROR(kModels + "MissingBin/BoxTextured.gltf", "buffers[0].uri", "BoxTextured0.bin",
+                      "No such file");
+  EXPECT_IMPORT_ERROR(kModels + "RecursiveNodes/RecursiveNodes.gltf", "nodes[1].children[0]",
+                      "node 0", "cycle");
+  EXPECT_IMPORT_ERROR(kModels + "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb",
+                      "attributes.POSITION", "NaN or infinite");
+  EXPECT_IMPORT_ERROR(kModels + "TestNoRootNode/NoScene.gltf", "no scene");
+}
+
+// Each tests/data/bad/NAME.gltf must fail with the text of NAME.expected in its message.
+TEST(GltfImport, HandMadeBadFilesGiveTheirExpectedErrors) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kData + "/bad")) {
+    if (entry.path().extension() != ".gltf") continue;
+    std::ifstream in(std::filesystem::path(entry.path()).replace_extension(".expected"));
+    std::string expected;
+    ASSERT_TRUE(std::getline(in, expected)) << entry.path() << " has no .expected file";
+    const std::string message = import_error(entry.path().string());
+    EXPECT_NE(message.find(expected), std::string::npos)
+        << entry.path() << ": expected '" << expected << "', got: " << message;
+    EXPECT_NE(message.find(entry.path().filename().string()), std::string::npos) << message;
+    ++files;
+  }
+  EXPECT_GE(files, 20);
+}
+
+TEST(GltfImport, PointsAndLinesAreRefusedByName) {
+  const char* modes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+  for (int m : {0, 1, 2, 3, 7, 8, 9, 10}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "Mesh_PrimitiveMode_%02d.gltf", m);
+    EXPECT_IMPORT_ERROR(kModels + "glTF-Asset-Generator/Mesh_PrimitiveMode/" + name,
+                        "meshes[0].primitives[0].mode", modes[m % 7]);
+  }
+}
+
+TEST(GltfImport, LimitsAreEnforced) {
+  ImportOptions small_files;
+  small_files.max_file_bytes = 1000;
+  const std::string glb = kModels + "BoxTextured-glTF-Binary/BoxTextured.glb";
+  EXPECT_NE(import_error(glb, small_files).find("over the limit of 1000"), std::string::npos);
+  ImportOptions small_textures;
+  small_textures.max_texture_side = 128;
+  EXPECT_NE(import_error(glb, small_textures).find("images[0]: is 211x211, over the largest"),
+            std::string::npos)
+      << import_error(glb, small_textures);
+  // A .glb cut short.
+  std::ifstream in(glb, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = testing::TempDir() + "truncated.glb";
+  std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() - 100));
+  EXPECT_NE(import_error(cut).find("truncated"), std::string::npos) << import_error(cut);
+  // Strict import turns the .gltf form's sampler warning (MIRRORED_REPEAT, CLAMP; the .glb
+  // form's sampler repeats) into an error.
+  ImportOptions strict;
+  strict.strict = true;
+  const std::string gltf = kModels + "BoxTextured-glTF/BoxTextured.gltf";
+  EXPECT_NE(import_error(gltf, strict).find("samplers[0]: wraps with modes 33648, 33071"),
+            std::string::npos);
+  EXPECT_EQ(import_error(glb, strict), "");
+}
+
+void world_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {
+  lo = glm::vec3(INFINITY);
+  hi = glm::vec3(-INFINITY);
+  for (const Object& o : s.objects) {
+    for (const glm::vec3& p : s.meshes[o.mesh].positions) {
+      const glm::vec3 w(o.transform * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  }
+}
+
+size_t triangles(const Scene& s) {
+  size_t n = 0;
+  for (const Object& o : s.objects) n += s.meshes[o.mesh].triangle_count();
+  return n;
+}
+
+TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
+  const ImportedModel gltf = import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf");
+  const ImportedModel glb = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");
+  const ImportedModel embedded =
+      import_gltf(kModels + "BoxTextured-glTF-Embedded/BoxTextured.gltf");
+  // From the JSON: 36 indices (12 triangles), 24 vertices in [-0.5, 0.5]^3, node 0's matrix
+  // (columns (1,0,0), (0,0,-1), (0,1,0)) over the mesh's node, one 211x211 texture
+  // (CesiumLogoFlat.png).
+  const Scene& s = gltf.scene;
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(triangles(s), 12u);
+  EXPECT_EQ(s.meshes[0].positions.size(), 24u);
+  const glm::mat4 expected(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1);
+  EXPECT_EQ(s.objects[0].transform, expected);
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_EQ(s.textures[0].width, 211u);
+  EXPECT_TRUE(s.textures[0].srgb);
+  EXPECT_EQ(s.materials[0].base_color_map, 0u);
+  EXPECT_EQ(s.materials[0].metallic, 0.0f);  // metallicFactor 0, roughness default 1
+  EXPECT_EQ(s.materials[0].roughness, 1.0f);
+  glm::vec3 lo, hi;
+  world_bounds(s, lo, hi);
+  EXPECT_EQ(lo, glm::vec3(-0.5f));
+  EXPECT_EQ(hi, glm::vec3(0.5f));
+  for (const ImportedModel* other : {&glb, &embedded}) {
+    const Scene& o = other->scene;
+    ASSERT_EQ(o.meshes.size(), 1u);
+    EXPECT_EQ(o.meshes[0].positions, s.meshes[0].positions);
+    EXPECT_EQ(o.meshes[0].normals, s.meshes[0].normals);
+    EXPECT_EQ(o.meshes[0].uvs, s.meshes[0].uvs);
+    EXPECT_EQ(o.meshes[0].indices, s.meshes[0].indices);
+    EXPECT_EQ(o.objects[0].transform, s.objects[0].transform);
+    EXPECT_EQ(o.textures[0].texels, s.textures[0].texels);
+  }
+}
+
+TEST(GltfImport, EngineCountsAndADeepNodesWorldTransform) {
+  const ImportedModel m = import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+  // From the JSON: 67 mesh instances with 115 primitives in all, 121496 triangles (sum of index
+  // counts / 3 over instances), one perspective camera with yfov 0.3143463730812073.
+  EXPECT_EQ(m.scene.objects.size(), 115u);
+  EXPECT_EQ(triangles(m.scene), 121496u);
+  ASSERT_EQ(m.cameras.size(), 1u);
+  EXPECT_FLOAT_EQ(m.cameras[0].vertical_fov, 0.3143463730812073f);
+  // nodes[17] (mesh 6) hangs under 16 <- 15 <- 14 <- 13 <- 0; 16, 13 and 0 have no transform.
+  const double n14[] = {-2.430540746445331e-07,
+                        1.4087579529586947e-06,
+                        -1.0,
+                        0.0,
+                        -1.0,
+                        -2.430540746445331e-07,
+                        2.4305373358401994e-07,
+                        0.0,
+                        -2.4305373358401994e-07,
+                        1.0,
+                        1.4087580666455324e-06,
+                        0.0,
+                        -48.26182556152344,
+                        -59.11042404174805,
+                        34.595985412597656,
+                        1.0};
+  const double n15[] = {-0.45468202233314514, 0.6541662216186523, -0.6044260263442993, 0.0,
+                        0.8696397542953491,   0.4726206660270691, -0.1426759660243988, 0.0,
+                        0.19233042001724243,  -0.590505063533783, -0.7837810516357422, 0.0,
+                        14.898193359375,      85.82951354980469,  -48.034645080566406, 1.0};
+  const double n17[] = {0.8450329899787903,  0.005398945417255163, -0.5346869230270386, 0.0,
+                        -0.4710906744003296, 0.4805830717086792,   -0.7396712303161621, 0.0,
+                        0.25296804308891296, 0.8769326210021973,   0.4086519181728363,  0.0,
+                        -74.0894775390625,   71.41646575927734,    -157.91323852539062, 1.0};
+  const glm::mat4 expected(glm::make_mat4(n14) * glm::make_mat4(n15) * glm::make_mat4(n17));
+  int found = 0;
+  for (const Object& o : m.scene.objects) {
+    bool same = true;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) same &= std::abs(o.transform[c][r] - expected[c][r]) < 1e-4f;
+    }
+    found += same;
+  }
+  EXPECT_GE(found, 1);
+  EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+}
+
+TEST(GltfImport, StripsFansAndIndexTypesGiveTheSameSquare) {
+  // The asset generator's square: 4 vertices, 2 triangles covering it, each drawn by a different
+  // mode or index component type. Every variant covers the same area: 2 triangles with normal
+  // +z (flat normals where NORMAL is absent), counter-clockwise in xy.
+  for (int m : {4, 5, 6, 11, 12, 13, 14, 15}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "Mesh_PrimitiveMode_%02d.gltf", m);
+    SCOPED_TRACE(name);
+    const ImportedModel model =
+        import_gltf(kModels + "glTF-Asset-Generator/Mesh_PrimitiveMode/" + name);
+    ASSERT_EQ(model.scene.objects.size(), 1u);
+    const Mesh& mesh = model.scene.meshes[model.scene.objects[0].mesh];
+    ASSERT_EQ(mesh.triangle_count(), 2u);
+    double area = 0.0;
+    for (size_t t = 0; t < 2; ++t) {
+      const glm::dvec3 a(mesh.positions[mesh.indices[3 * t]]),
+          b(mesh.positions[mesh.indices[3 * t + 1]]), c(mesh.positions[mesh.indices[3 * t + 2]]);
+      const glm::dvec3 n = glm::cross(b - a, c - a);
+      EXPECT_GT(n.z, 0.0);  // counter-clockwise seen from +z
+      area += 0.5 * glm::length(n);
+    }
+    EXPECT_NEAR(area, 1.0, 1e-6);  // the unit square (positions in [-0.5, 0.5]^2)
+  }
+}
+
+TEST(GltfImport, HandMadeFeaturesFile) {
+  const ImportedModel m = import_gltf(kData + "/features.gltf");
+  EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+  const Scene& s = m.scene;
+  ASSERT_EQ(s.objects.size(), 1u);
+  const Mesh& mesh = s.meshes[s.objects[0].mesh];
+  // A strip of 4 vertices, no indices -> (0,1,2), (1,3,2); no NORMAL -> flat, 6 vertices. The
+  // sparse accessor moves vertex 3 from (1,1,0) to (2,2,0).
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  ASSERT_EQ(mesh.positions.size(), 6u);
+  EXPECT_EQ(mesh.positions[3], glm::vec3(1, 0, 0));
+  EXPECT_EQ(mesh.positions[4], glm::vec3(2, 2, 0));
+  EXPECT_EQ(mesh.positions[5], glm::vec3(0, 1, 0));
+  for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+  // Normalized ushort uvs (65535 -> 1) through KHR_texture_transform offset (0.5, 0), scale 2.
+  EXPECT_EQ(mesh.uvs[0], glm::vec2(0.5f, 0.0f));  // vertex 0, uv (0, 0)
+  EXPECT_EQ(mesh.uvs[1], glm::vec2(2.5f, 0.0f));  // vertex 1, uv (1, 0)
+  EXPECT_EQ(mesh.uvs[4], glm::vec2(2.5f, 2.0f));  // vertex 3, uv (1, 1)
+  EXPECT_EQ(mesh.tangents.size(), 6u);
+  // World = translate(1, 2, 3) * scale 2 (the child's matrix).
+  const glm::mat4 world(2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1);
+  EXPECT_EQ(s.objects[0].transform, world);
+  glm::vec3 lo, hi;
+  world_bounds(s, lo, hi);
+  EXPECT_EQ(lo, glm::vec3(1, 2, 3));
+  EXPECT_EQ(hi, glm::vec3(5, 6, 3));
+  // Material: factors as written, emission 4 x (0.1, 0.2, 0.3); base colour and occlusion
+  // share a texture, but occlusion strength 0.5 gives a copy with R' = 1 + 0.5 (R - 1).
+  const Material& mat = s.materials[s.objects[0].material];
+  EXPECT_EQ(mat.base_color, glm::vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_FLOAT_EQ(mat.metallic, 0.3f);
+  EXPECT_FLOAT_EQ(mat.roughness, 0.6f);
+  EXPECT_NEAR(mat.emissive.x, 0.4f, 1e-6f);
+  EXPECT_NEAR(mat.emissive.z, 1.2f, 1e-6f);
+  ASSERT_EQ(s.textures.size(), 2u);
+  const Texture& base = s.textures[mat.base_color_map];
+  const Texture& occlusion = s.textures[mat.occlusion_map];
+  EXPECT_TRUE(base.srgb);
+  EXPECT_FALSE(occlusion.srgb);
+  EXPECT_EQ(base.texels[0], glm::u8vec4(0, 64, 128, 255));
+  EXPECT_EQ(occlusion.texels[0].r, 128);  // 255 * (1 + 0.5 * (0 - 1)) = 127.5, rounded
+  EXPECT_EQ(occlusion.texels[1].r, 255);  // R = 255 stays
+  // Camera at (0, 0, 10) looking down -z; yfov 0.5, znear 0.05.
+  ASSERT_EQ(m.cameras.size(), 1u);
+  EXPECT_EQ(m.cameras[0].position, glm::vec3(0, 0, 10));
+  EXPECT_EQ(m.cameras[0].target, glm::vec3(0, 0, 9));
+  EXPECT_FLOAT_EQ(m.cameras[0].vertical_fov, 0.5f);
+  EXPECT_FLOAT_EQ(m.cameras[0].near_plane, 0.05f);
+  // Lights: 683 cd -> 1 W/sr at (0, 5, 0); the spot (1366 cd -> 2 W/sr, range 7) turned +90
+  // degrees about x, so its -z axis points along +y.
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].kind, LightKind::point);
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 1.0f);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(0, 5, 0));
+  EXPECT_EQ(s.lights[0].color, glm::vec3(1, 0.5f, 0.25f));
+  EXPECT_EQ(s.lights[1].kind, LightKind::spot);
+  EXPECT_FLOAT_EQ(s.lights[1].intensity, 2.0f);
+  EXPECT_FLOAT_EQ(s.lights[1].range, 7.0f);
+  EXPECT_NEAR(s.lights[1].direction.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(s.lights[1].direction.z, 0.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(s.lights[1].inner_angle, 0.2f);
+  EXPECT_FLOAT_EQ(s.lights[1].outer_angle, 0.4f);
+}
+
+// A lit scene framing the model's world bounds from the front and above.
+Scene framed(ImportedModel model) {
+  Scene s = std::move(model.scene);
+  glm::vec3 lo, hi;
+  world_bounds(s, lo, hi);
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  s.camera.target = centre;
+  s.camera.position = centre + radius * glm::vec3(1.2f, 1.0f, 2.2f);
+  s.camera.vertical_fov = glm::radians(45.0f);
+  s.camera.near_plane = 0.01f * radius;
+  Light sun;
+  sun.kind = LightKind::directional;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
+  sun.intensity = 3.0f;
+  s.lights = {sun};
+  s.ambient = glm::vec3(0.15f);
+  s.background = glm::vec3(0.05f);
+  return s;
+}
+
+class GltfRender : public test::VulkanTest {};
+
+TEST_F(GltfRender, BoxTexturedMatchesTheReference) {
+  const Scene scene = framed(import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf"));
+  const test::AccuracyReport r =
+      test::compare_with_reference(context(), scene, 256, 256, "gltf_box_textured");
+  test::expect_meets_bars(r);
+  write_png(test::output_path("gltf_box_textured.png"), render(scene, 256, 256).ldr);
+}
+
+TEST_F(GltfRender, EngineMatchesTheReference) {
+  const Scene scene =
+      framed(import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"));
+  const test::AccuracyReport r =
+      test::compare_with_reference(context(), scene, 256, 256, "gltf_engine");
+  test::expect_meets_bars(r);
+  write_png(test::output_path("gltf_engine.png"), render(scene, 256, 256).ldr);
+}
+
+}  // namespace
+}  // namespace tessera
