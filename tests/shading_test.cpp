@@ -234,7 +234,7 @@ TEST_F(Shading, EnergyCompensationRestoresTheFurnaceWithinOnePercent) {
   fs.energy_compensation = true;
   renderer.render(fs);  // computes the tables
   const std::vector<glm::vec4> table = renderer.read_dfg_table();
-  const int n = 64;  // TS_DFG_SIZE
+  const int n = 64;                                  // TS_DFG_SIZE
   ASSERT_EQ(table.size(), size_t(2 * (n + 1) * n));  // two tables, then a row of means each
   auto lookup = [&](int variant, double n_dot_v, double roughness) {
     const double px = std::clamp(n_dot_v, 0.0, 1.0) * (n - 1),
