@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "core/reference_brdf.h"
 #include "core/texture.h"
+#include "shaders/shared/constants.h"
 
 namespace tessera {
 namespace {
@@ -22,10 +23,7 @@ using glm::dvec2;
 using glm::dvec3;
 using glm::dvec4;
 
-constexpr int64_t kSubpixelOne = 256;  // 8 sub-pixel bits
-constexpr double kGuardBandPx = 32768.0;
-constexpr uint32_t kMaxSide = 16384;
-constexpr double kMaxHalf = 65504.0;  // the HDR image is fp16 (holding exposed radiance)
+constexpr int64_t kSubpixelOne = TS_SUBPIXEL_ONE;  // int64 for the edge arithmetic
 
 struct CameraModel {
   dmat4 view_proj;
@@ -53,8 +51,8 @@ CameraModel make_camera(const Camera& c, uint32_t width, uint32_t height) {
   proj[1][1] = -1.0 / m.tan_y;
   proj[2][3] = -1.0;
   m.view_proj = proj * view;
-  m.guard_x = 2.0 * kGuardBandPx / m.width - 1.0;
-  m.guard_y = 2.0 * kGuardBandPx / m.height - 1.0;
+  m.guard_x = 2.0 * TS_GUARD_BAND_PX / m.width - 1.0;
+  m.guard_y = 2.0 * TS_GUARD_BAND_PX / m.height - 1.0;
   return m;
 }
 
@@ -281,29 +279,42 @@ dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec
   return (lobes.diffuse + lobes.specular) * incident * n_dot_l;
 }
 
-// Incident radiance scale of a point or spot light at squared distance d2, arriving along l.
-double attenuation(const Light& light, double d2, dvec3 l) {
-  double a;
+// Incident radiance scale of a light with a position at squared distance d2 (its Falloff).
+double distance_attenuation(const Light& light, double d2) {
   if (light.falloff == Falloff::classic) {
     const glm::dvec3 k(light.attenuation);
-    a = 1.0 / std::max(k.x + k.y * std::sqrt(d2) + k.z * d2, kMinAttenuationDenominator);
-  } else {
-    a = 1.0 / std::max(d2, kMinLightDistanceSquared);  // inverse square
-    if (light.range > 0.0f) {
-      const double r = light.range;
-      const double fade = std::clamp(1.0 - (d2 * d2) / (r * r * r * r), 0.0, 1.0);
-      a *= fade * fade;  // Karis 2013 window
-    }
+    return 1.0 / std::max(k.x + k.y * std::sqrt(d2) + k.z * d2, TS_MIN_ATTENUATION_DENOMINATOR);
   }
+  double a = 1.0 / std::max(d2, TS_MIN_LIGHT_DISTANCE_SQUARED);  // inverse square
+  if (light.range > 0.0f) {
+    const double r = light.range;
+    const double fade = std::clamp(1.0 - (d2 * d2) / (r * r * r * r), 0.0, 1.0);
+    a *= fade * fade;  // Karis 2013 window
+  }
+  return a;
+}
+
+// The light arriving at a surface point from one light: unit direction l towards it and the
+// incident radiance along l. One case per LightKind.
+struct LightArrival {
+  dvec3 l, incident;
+};
+LightArrival light_arrival(const Light& light, dvec3 position, dvec3 normal) {
+  const dvec3 power = dvec3(light.color) * double(light.intensity);
+  if (light.kind == LightKind::directional) return {-glm::normalize(dvec3(light.direction)), power};
+  const dvec3 to_light = dvec3(light.position) - position;
+  const double d2 = glm::dot(to_light, to_light);
+  const dvec3 l = d2 > 0.0 ? to_light / std::sqrt(d2) : normal;
+  double a = distance_attenuation(light, d2);
   if (light.kind == LightKind::spot) {
     const double cos_inner = std::cos(double(light.inner_angle)),
                  cos_outer = std::cos(double(light.outer_angle));
     const double c = glm::dot(glm::normalize(dvec3(light.direction)), -l);
-    const double t =
-        std::clamp((c - cos_outer) / std::max(cos_inner - cos_outer, kMinSpotCosineGap), 0.0, 1.0);
+    const double t = std::clamp(
+        (c - cos_outer) / std::max(cos_inner - cos_outer, TS_MIN_SPOT_COSINE_GAP), 0.0, 1.0);
     a *= t * t;
   }
-  return a;
+  return {l, power * a};
 }
 
 struct Surface {
@@ -385,16 +396,12 @@ struct ShadeContext {
   const ReferenceSettings& settings;
 };
 
-// Smallest N.V a normal map may leave: a mapped normal facing away from the viewer is bent
-// back towards it (the same constant and rule as shaders/material.glsl).
-constexpr double kMinMappedNoV = 0.01;
-
 // The material at the surface point with its texture maps applied, and the shading normal
 // (normal-mapped when the material has a normal map).
 Material resolve_material(const ShadeContext& c, const Material& base, Surface& s, dvec3 v) {
   Material m = base;
   auto sample = [&](uint32_t map) {
-    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.max_anisotropy);
+    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.frame.max_anisotropy);
   };
   if (m.base_color_map != kNoTexture) m.base_color *= glm::vec3(sample(m.base_color_map));
   if (m.metallic_roughness_map != kNoTexture) {
@@ -418,7 +425,7 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
       if (m2 > 1e-20) {
         dvec3 nm = mapped / std::sqrt(m2);
         const double nv = glm::dot(nm, v);
-        if (nv < kMinMappedNoV) nm = glm::normalize(nm + v * (kMinMappedNoV - nv));
+        if (nv < TS_MIN_MAPPED_N_DOT_V) nm = glm::normalize(nm + v * (TS_MIN_MAPPED_N_DOT_V - nv));
         s.normal = nm;
       }
     }
@@ -428,13 +435,13 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
 
 dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   const Scene& scene = c.scene;
-  const Brdf brdf = c.settings.brdf;
+  const Brdf brdf = c.settings.frame.brdf;
   const Instance& inst = instance_of(c.instances, id);
   const dvec3 dir = camera_ray(c.cam, x, y);
   Surface s = surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
                          camera_ray_at(c.cam, x + 0.5, y + 1.5));
   const Material m = resolve_material(c, *inst.material, s, -dir);
-  switch (c.settings.view) {
+  switch (c.settings.frame.view) {
     case View::normal:
       return s.normal * 0.5 + 0.5;
     case View::uv:
@@ -450,24 +457,14 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   dvec3 color =
       dvec3(scene.ambient) * dvec3(m.base_color) * double(m.occlusion) + dvec3(m.emissive);
   for (const Light& light : scene.lights) {
-    dvec3 l, incident;
-    const dvec3 power = dvec3(light.color) * double(light.intensity);
-    if (light.kind == LightKind::directional) {
-      l = -glm::normalize(dvec3(light.direction));
-      incident = power;
-    } else {
-      const dvec3 to_light = dvec3(light.position) - s.position;
-      const double d2 = glm::dot(to_light, to_light);
-      l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
-      incident = power * attenuation(light, d2, l);
-    }
-    color += reflected(brdf, s.normal, v, l, m, incident, c.settings.energy_compensation);
+    const LightArrival a = light_arrival(light, s.position, s.normal);
+    color += reflected(brdf, s.normal, v, a.l, m, a.incident, c.settings.frame.energy_compensation);
   }
   if (scene.environment) {
     color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
                                                                v, m, dvec3(1.0),
                                                                c.settings.environment_samples,
-                                                               c.settings.energy_compensation);
+                                                               c.settings.frame.energy_compensation);
   }
   return color;
 }
@@ -503,10 +500,11 @@ void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
 }
 
 void check_size(const ReferenceSettings& settings) {
-  if (settings.width == 0 || settings.height == 0 || settings.width > kMaxSide ||
-      settings.height > kMaxSide) {
-    throw Error("image size " + std::to_string(settings.width) + "x" +
-                std::to_string(settings.height) + " is outside 1..16384 per side");
+  if (settings.frame.width == 0 || settings.frame.height == 0 ||
+      settings.frame.width > TS_MAX_IMAGE_SIDE || settings.frame.height > TS_MAX_IMAGE_SIDE) {
+    throw Error("image size " + std::to_string(settings.frame.width) + "x" +
+                std::to_string(settings.frame.height) + " is outside 1.." +
+                std::to_string(TS_MAX_IMAGE_SIDE) + " per side");
   }
 }
 
@@ -515,7 +513,7 @@ void check_size(const ReferenceSettings& settings) {
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings) {
   validate_scene(scene);
   check_size(settings);
-  const uint32_t w = settings.width, h = settings.height;
+  const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
   const ObjectNumbering numbering = number_objects(scene);
@@ -556,23 +554,23 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   f.ldr = {w, h, std::vector<glm::u8vec4>(pixels)};
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
     rasterize_rows(tris, w, y0, y1, f);
-    const bool shaded = settings.view == View::shaded;
-    const double exposure = shaded ? std::exp2(double(settings.exposure_ev)) : 1.0;
-    const ToneMap op = shaded ? settings.tonemap : ToneMap::clamp;
+    const bool shaded = settings.frame.view == View::shaded;
+    const double exposure = shaded ? std::exp2(double(settings.frame.exposure_ev)) : 1.0;
+    const ToneMap op = shaded ? settings.frame.tonemap : ToneMap::clamp;
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
         dvec3 c;
         if (f.owner[i] != kNoTriangle) {
           c = shade_pixel(context, f.owner[i], x, y);
-        } else if (scene.environment && settings.view == View::shaded) {
+        } else if (scene.environment && settings.frame.view == View::shaded) {
           c = environment_radiance(*scene.environment, camera_ray(cam, x, y));
         } else {
           c = dvec3(scene.background);
         }
         // Pre-exposure, as the compute path: the exposed value meets the fp16 clamp, and the
         // HDR output divides the exposure back out.
-        const dvec3 exposed = glm::min(c * exposure, dvec3(kMaxHalf));
+        const dvec3 exposed = glm::min(c * exposure, dvec3(TS_MAX_HALF));
         f.hdr.pixels[i] = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {
@@ -589,7 +587,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
 ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,
                                uint32_t triangle_id, uint32_t x, uint32_t y) {
   check_size(settings);
-  const CameraModel cam = make_camera(scene.camera, settings.width, settings.height);
+  const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
   const ObjectNumbering numbering = number_objects(scene);
   const std::vector<Instance> instances = make_instances(scene, numbering);
   TESSERA_CHECK(triangle_id < numbering.triangle_count);

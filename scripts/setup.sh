@@ -6,8 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev
-  assimp-testmodels
+  libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+  libtinyobjloader-dev assimp-testmodels
 )
 
 missing=()

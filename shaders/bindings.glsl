@@ -47,7 +47,7 @@ layout(push_constant) uniform BatchBlock { GpuBatch batch; };
 // Last object whose first triangle-instance id is <= `tri` (objects are sorted by it).
 uint find_object(uint tri) {
   uint lo = 0u;
-  uint hi = frame.scene_counts.x;
+  uint hi = frame.object_count;
   while (hi - lo > 1u) {
     uint mid = (lo + hi) >> 1;
     if (objects[mid].first_triangle <= tri) lo = mid; else hi = mid;
@@ -74,14 +74,11 @@ uint pixel_index(ivec2 pixel) {
   return uint(pixel.y) * frame.image_size.x + uint(pixel.x);
 }
 
-// Largest finite fp16 value: the HDR image is RGBA16F and anything above would become Inf.
-const float MAX_HALF = 65504.0;
-
 // The factor the shading stages multiply radiance by before it meets the fp16 HDR image
 // (pre-exposure: Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering",
 // 5.1; Filament does the same): the camera's exposure 2^EV, so that scenes in physical units
 // (sunlight ~1e5 W/m^2) keep their exposed range inside fp16. Renderer::read_hdr divides it back
 // out. Debug views are written as they are.
 float pre_exposure() {
-  return frame.limits.w == TS_VIEW_SHADED ? frame.raster_params.z : 1.0;
+  return frame.view == TS_VIEW_SHADED ? frame.exposure_scale : 1.0;
 }

@@ -23,7 +23,7 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
     return;
   }
   uint index = atomicAdd(counters[batch.index].raster_tris, 1u);
-  if (index >= frame.limits.x) return;  // overflow: the host sees the count, grows, redoes
+  if (index >= frame.raster_capacity) return;  // overflow: the host sees the count, grows, redoes
   store_raster_tri(index, t);
   if (outcome == OUTCOME_SMALL) {
     small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
@@ -34,7 +34,7 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
 }
 
 void main() {
-  uint count = min(counters[batch.index].clip_list, frame.limits.x);
+  uint count = min(counters[batch.index].clip_list, frame.raster_capacity);
   for (uint i = gl_GlobalInvocationID.x; i < count; i += TS_CLIP_GROUPS * TS_GROUP_SIZE) {
     uint id = clip_list[i];
     vec4 c[3];

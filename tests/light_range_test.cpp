@@ -154,8 +154,8 @@ TEST_F(LightRange, HeadOnPlaneMatchesHandDerivedRadiance) {
     EXPECT_NEAR(hdr.pixels[centre].r, expected, 2e-3 * expected) << "GPU";
 
     ReferenceSettings rs;
-    rs.width = rs.height = kSize;
-    rs.exposure_ev = c.exposure_ev;
+    rs.frame.width = rs.frame.height = kSize;
+    rs.frame.exposure_ev = c.exposure_ev;
     const ReferenceFrame ref = render_reference(scene, rs);
     EXPECT_NEAR(ref.hdr.pixels[centre].r, expected, 1e-5 * expected) << "reference";
   }
@@ -177,8 +177,8 @@ TEST_F(LightRange, StrongestDirectionalSaturatesTheHdrClamp) {
   EXPECT_FLOAT_EQ(renderer.read_hdr().pixels[centre].r, float(65504.0 * std::exp2(64.0)));
   EXPECT_EQ(renderer.read_ldr().pixels[centre].r, 255);
   ReferenceSettings rs;
-  rs.width = rs.height = kSize;
-  rs.exposure_ev = -64.0f;
+  rs.frame.width = rs.frame.height = kSize;
+  rs.frame.exposure_ev = -64.0f;
   const ReferenceFrame ref = render_reference(scene, rs);
   EXPECT_FLOAT_EQ(ref.hdr.pixels[centre].r, float(65504.0 * std::exp2(64.0)));
   EXPECT_EQ(ref.ldr.pixels[centre].r, 255);

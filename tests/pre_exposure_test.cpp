@@ -71,8 +71,8 @@ Result render_centre(test::VulkanTest& t, const Scene& scene, float ev, bool har
 
 Result reference_centre(const Scene& scene, float ev) {
   ReferenceSettings rs;
-  rs.width = rs.height = kSize;
-  rs.exposure_ev = ev;
+  rs.frame.width = rs.frame.height = kSize;
+  rs.frame.exposure_ev = ev;
   const ReferenceFrame f = render_reference(scene, rs);
   return {f.hdr.pixels[kCentre].r, f.ldr.pixels[kCentre].r};
 }

@@ -19,7 +19,7 @@ void main() {
   // Opposite vertex normals can cancel; the face normal is then the only sensible choice.
   vec3 N = n2 > 1e-20 ? world_normal * inversesqrt(n2)
                       : normalize(cross(dFdx(world_position), dFdy(world_position)));
-  vec3 V = normalize(frame.camera_position.xyz - world_position);
+  vec3 V = normalize(frame.camera_position - world_position);
   SurfaceGeometry g;
   g.P = world_position;
   g.N = N;
@@ -28,5 +28,5 @@ void main() {
   g.duv_dx = dFdxFine(uv);
   g.duv_dy = dFdyFine(uv);
   MaterialSample ms = evaluate_material(material, g, V);
-  color = vec4(min(shade_surface(world_position, V, ms) * pre_exposure(), vec3(MAX_HALF)), 1.0);
+  color = vec4(min(shade_surface(world_position, V, ms) * pre_exposure(), vec3(TS_MAX_HALF)), 1.0);
 }

@@ -23,5 +23,5 @@ void main() {
   uv = vec2(v.position_u.w, v.normal_v.w);
   gl_Position = frame.view_proj * world;
   // Reverse depth as in the compute path: z / w = near / w, nearer is larger.
-  gl_Position.z = frame.camera_position.w;
+  gl_Position.z = frame.near_plane;
 }

@@ -1,0 +1,831 @@
+// Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses; this file checks what
+// it does not (it drops bad faces and clamps nothing, reporting out-of-range indices once per
+// file without the line) by scanning each file first, so every error names its line and column.
+//
+// Conventions chosen here, each because the format leaves it open:
+// - Polygons are split by this file, not by tinyobjloader: convex ones as a fan from their first
+//   corner (quads: (0 1 2) (0 2 3)), concave ones by ear clipping in the plane of their Newell
+//   normal. tinyobjloader's built-in splitter picks quad diagonals by length and can lose
+//   polygons it fails to clip; here every polygon of n corners gives n - 2 triangles.
+// - Missing normals follow OBJ smoothing groups, as the format defines them: faces in group
+//   `s k` (k > 0) share area-weighted vertex normals with the faces of group k that touch the
+//   same position; faces with `s off` (the default) are flat.
+// - OBJ puts v = 0 at the bottom of an image; Tessera's v = 0 is the top row (core/texture.h),
+//   so v becomes 1 - v.
+// - `Ns` (a Blinn-Phong exponent) becomes roughness by matching Beckmann's alpha, alpha^2 =
+//   2 / (Ns + 2) (Walter et al. 2007, "Microfacet Models for Refraction through Rough
+//   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <unordered_map>
+
+#include <stb/stb_image.h>
+#include <tiny_obj_loader.h>
+
+#include "core/check.h"
+#include "core/model_import.h"
+
+namespace tessera {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const std::string& path) {
+  return "'" + path + "'";
+}
+
+std::string place(const std::string& file, size_t line, size_t column = 0) {
+  std::string s = quoted(file) + " line " + std::to_string(line);
+  if (column > 0) s += ", column " + std::to_string(column);
+  return s;
+}
+
+[[noreturn]] void fail(const std::string& file, size_t line, size_t column,
+                       const std::string& what) {
+  throw Error(place(file, line, column) + ": " + what);
+}
+
+/// Reads a whole file, refusing one over `max_bytes`. Returns nullopt if it does not exist.
+std::optional<std::string> read_limited(const std::string& path, uint64_t max_bytes) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) throw Error("cannot read " + quoted(path) + ": " + ec.message());
+  if (size > max_bytes) {
+    throw Error(quoted(path) + " is " + std::to_string(size) + " bytes, over the limit of " +
+                std::to_string(max_bytes) + " (ImportOptions::max_file_bytes)");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string text(size, '\0');
+  if (!in.read(text.data(), std::streamsize(size))) throw Error("cannot read " + quoted(path));
+  return text;
+}
+
+struct Token {
+  std::string_view text;
+  size_t column = 0;  // 1-based
+};
+
+/// The whitespace-separated words of one line, with their columns.
+class Tokens {
+ public:
+  explicit Tokens(std::string_view line) : line_(line) {}
+  std::optional<Token> next() {
+    while (pos_ < line_.size() && (line_[pos_] == ' ' || line_[pos_] == '\t')) ++pos_;
+    if (pos_ >= line_.size()) return std::nullopt;
+    const size_t start = pos_;
+    while (pos_ < line_.size() && line_[pos_] != ' ' && line_[pos_] != '\t') ++pos_;
+    return Token{line_.substr(start, pos_ - start), start + 1};
+  }
+
+ private:
+  std::string_view line_;
+  size_t pos_ = 0;
+};
+
+/// Calls f(line_number, line) for each line of `text` ('\n' or "\r\n" endings).
+template <typename F>
+void for_each_line(std::string_view text, F&& f) {
+  size_t line = 0, start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view s = text.substr(start, end - start);
+    if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
+    f(++line, s);
+    start = end + 1;
+  }
+}
+
+/// A finite number that fits a float (tinyobjloader stores floats), or an Error at its place.
+float parse_number(const std::string& file, size_t line, const Token& t) {
+  std::string_view s = t.text;
+  if (!s.empty() && s[0] == '+') s.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (ec == std::errc::result_out_of_range) {
+    fail(file, line, t.column, "'" + std::string(t.text) + "' is out of range");
+  }
+  if (ec != std::errc() || end != s.data() + s.size()) {
+    fail(file, line, t.column, "'" + std::string(t.text) + "' is not a number");
+  }
+  if (!std::isfinite(value)) {
+    fail(file, line, t.column, "'" + std::string(t.text) + "' is not a finite number");
+  }
+  // Magnitudes below the float range become 0, as they would in any float parser.
+  if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+    fail(file, line, t.column, "'" + std::string(t.text) + "' is too large for a float");
+  }
+  return float(value);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ scan: every check tinyobjloader does not make with a line number.
+
+enum Attribute { kPosition = 0, kTexcoord = 1, kNormal = 2 };
+const char* const kAttributeName[3] = {"vertex", "texture coordinate", "normal"};
+const char* const kAttributePlural[3] = {"vertices", "texture coordinates", "normals"};
+
+struct ObjScan {
+  int64_t count[3] = {0, 0, 0};
+  // The largest positive index of each kind and where it is: checked against the file's final
+  // counts, since OBJ readers accept references to vertices defined further down.
+  int64_t largest[3] = {0, 0, 0};
+  size_t largest_line[3] = {0, 0, 0}, largest_column[3] = {0, 0, 0};
+  std::vector<size_t> polygon_lines;  // line of each face with more than 3 corners, in order
+  std::vector<std::pair<size_t, std::string>> usemtl;  // line, material name
+  std::map<std::string, size_t> mtllib_line;           // library name -> line naming it
+  uint64_t faces = 0;
+  uint64_t zero_normals = 0;  // `vn 0 0 0` (exporters write them for degenerate faces)
+  size_t first_zero_normal_line = 0;
+};
+
+/// One corner of `f`: v, v/vt, v//vn or v/vt/vn (1-based, or negative: relative to the end).
+void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& scan) {
+  std::string_view rest = t.text;
+  for (int k = 0; k < 3 && !rest.empty(); ++k) {
+    const size_t slash = rest.find('/');
+    const std::string_view part = rest.substr(0, slash);
+    const size_t column = t.column + size_t(part.data() - t.text.data());
+    rest = slash == std::string_view::npos ? std::string_view() : rest.substr(slash + 1);
+    if (slash != std::string_view::npos && k == 2) {
+      fail(file, line, t.column, "'" + std::string(t.text) + "' has more than 3 indices");
+    }
+    if (part.empty()) {
+      if (k == 1 && slash != std::string_view::npos) continue;  // v//vn
+      fail(file, line, t.column, "'" + std::string(t.text) + "' is not a vertex reference");
+    }
+    int64_t index = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), index);
+    if (ec != std::errc() || end != part.data() + part.size() || index < INT32_MIN + 1 ||
+        index > INT32_MAX) {
+      fail(file, line, column, "'" + std::string(part) + "' is not a valid index");
+    }
+    const std::string name = kAttributeName[k];
+    if (index == 0) fail(file, line, column, name + " index 0 is invalid (OBJ counts from 1)");
+    if (index < 0 && scan.count[k] + index < 0) {
+      fail(file, line, column,
+           name + " index " + std::to_string(index) + " reaches before the first " + name + " (" +
+               std::to_string(scan.count[k]) + " defined above)");
+    }
+    if (index > scan.largest[k]) {
+      scan.largest[k] = index;
+      scan.largest_line[k] = line;
+      scan.largest_column[k] = column;
+    }
+  }
+}
+
+ObjScan scan_obj(const std::string& file, std::string_view text,
+                 std::vector<std::string>& warnings) {
+  ObjScan scan;
+  std::map<std::string, size_t> ignored;  // keyword -> first line
+  for_each_line(text, [&](size_t line, std::string_view s) {
+    Tokens tokens(s);
+    const std::optional<Token> key = tokens.next();
+    if (!key || key->text[0] == '#') return;
+    const std::string_view k = key->text;
+    if (k == "v" || k == "vn" || k == "vt") {
+      const Attribute a = k == "v" ? kPosition : k == "vt" ? kTexcoord : kNormal;
+      float values[3] = {0, 0, 0};
+      int n = 0;
+      while (const std::optional<Token> t = tokens.next()) {
+        const float x = parse_number(file, line, *t);
+        if (n < 3) values[n] = x;
+        ++n;
+      }
+      // v: x y z [w] or x y z r g b; vt: u [v [w]]; vn: x y z.
+      const bool ok = a == kPosition   ? (n == 3 || n == 4 || n == 6)
+                      : a == kTexcoord ? (n >= 1 && n <= 3)
+                                       : n == 3;
+      if (!ok) {
+        fail(file, line, key->column,
+             "'" + std::string(k) + "' has " + std::to_string(n) + " numbers, expected " +
+                 (a == kPosition   ? "3 (x y z), 4 or 6"
+                  : a == kTexcoord ? "1 to 3"
+                                   : "3"));
+      }
+      if (a == kNormal && values[0] == 0 && values[1] == 0 && values[2] == 0) {
+        if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
+      }
+      ++scan.count[a];
+    } else if (k == "f") {
+      int corners = 0;
+      while (const std::optional<Token> t = tokens.next()) {
+        scan_corner(file, line, *t, scan);
+        ++corners;
+      }
+      if (corners < 3) {
+        fail(file, line, key->column,
+             "face has " + std::to_string(corners) + " vertices, fewer than 3");
+      }
+      if (corners > 255) {
+        // tinyobjloader counts corners in an unsigned char.
+        fail(file, line, key->column,
+             "face has " + std::to_string(corners) + " vertices, more than 255");
+      }
+      if (corners > 3) scan.polygon_lines.push_back(line);
+      ++scan.faces;
+    } else if (k == "usemtl") {
+      const std::optional<Token> name = tokens.next();
+      scan.usemtl.emplace_back(line, name ? std::string(name->text) : std::string());
+    } else if (k == "mtllib") {
+      while (const std::optional<Token> t = tokens.next()) {
+        scan.mtllib_line.emplace(std::string(t->text), line);
+      }
+    } else if (k != "g" && k != "o" && k != "s") {
+      ignored.emplace(std::string(k), line);
+    }
+  });
+  for (int a = 0; a < 3; ++a) {
+    if (scan.largest[a] > scan.count[a]) {
+      const std::string name = kAttributeName[a];
+      fail(file, scan.largest_line[a], scan.largest_column[a],
+           name + " index " + std::to_string(scan.largest[a]) + " is out of range: the file has " +
+               std::to_string(scan.count[a]) + " " +
+               (scan.count[a] == 1 ? kAttributeName[a] : kAttributePlural[a]));
+    }
+  }
+  if (scan.zero_normals > 0) {
+    warnings.push_back(place(file, scan.first_zero_normal_line) + ": normal (0, 0, 0) has no " +
+                       "direction (" + std::to_string(scan.zero_normals) +
+                       " such in the file); corners using it get generated normals");
+  }
+  for (const auto& [keyword, line] : ignored) {
+    warnings.push_back(place(file, line) + ": '" + keyword +
+                       "' statements are not supported and were ignored (" +
+                       (keyword == "l" || keyword == "p" ? "Tessera draws only faces"
+                                                         : "not a polygon statement") +
+                       ")");
+  }
+  return scan;
+}
+
+// ---------------------------------------------------------------------------------------------
+// MTL
+
+struct MtlInfo {
+  std::string file;                     // the library's path
+  std::map<std::string, size_t> lines;  // keyword -> line of its last use ("newmtl" included)
+};
+
+/// Checks the numbers of an MTL file and records where each material's statements are.
+void scan_mtl(const std::string& file, std::string_view text,
+              std::map<std::string, MtlInfo>& materials) {
+  static const char* const kNumeric[] = {"Ka", "Kd", "Ks", "Ke", "Ns",  "Ni",    "d",     "Tr",
+                                         "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+  MtlInfo* current = nullptr;
+  for_each_line(text, [&](size_t line, std::string_view s) {
+    Tokens tokens(s);
+    const std::optional<Token> key = tokens.next();
+    if (!key || key->text[0] == '#') return;
+    const std::string keyword(key->text);
+    if (keyword == "newmtl") {
+      // As tinyobjloader names it: the rest of the line after "newmtl" and one separator.
+      const size_t start = key->column - 1 + 7;
+      current = &materials[start < s.size() ? std::string(s.substr(start)) : std::string()];
+      current->file = file;
+    }
+    if (current) current->lines[keyword] = line;
+    if (std::find(std::begin(kNumeric), std::end(kNumeric), keyword) == std::end(kNumeric)) {
+      return;
+    }
+    int n = 0;
+    float first = 0.0f;
+    while (const std::optional<Token> t = tokens.next()) {
+      const float x = parse_number(file, line, *t);
+      if (n++ == 0) first = x;
+      if (keyword == "Ke" && x < 0.0f) {
+        fail(file, line, t->column, "emission 'Ke' must not be negative");
+      }
+    }
+    if (n == 0) fail(file, line, key->column, "'" + keyword + "' has no value");
+    if (keyword == "Ns" && first < 0.0f) {
+      fail(file, line, key->column, "specular exponent 'Ns' must not be negative");
+    }
+  });
+}
+
+/// Reads the libraries named by `mtllib` for tinyobjloader, scanning each first. Errors and
+/// warnings are kept and raised after tinyobjloader returns, not thrown through it.
+class MtlReader : public tinyobj::MaterialReader {
+ public:
+  MtlReader(const std::string& obj_path, const ObjScan& scan, uint64_t max_bytes)
+      : obj_path_(obj_path), scan_(scan), max_bytes_(max_bytes) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* warn,
+                  std::string* err) override {
+    std::string relative = name;
+    std::replace(relative.begin(), relative.end(), '\\', '/');
+    const std::string path =
+        (fs::path(obj_path_).parent_path() / fs::path(relative)).lexically_normal().string();
+    const auto it = scan_.mtllib_line.find(name);
+    const size_t line = it == scan_.mtllib_line.end() ? 0 : it->second;
+    try {
+      const std::optional<std::string> text = read_limited(path, max_bytes_);
+      if (!text) {
+        warnings.push_back(place(obj_path_, line) + ": material library " + quoted(path) +
+                           " not found; its materials are replaced by the default material");
+        return false;
+      }
+      scan_mtl(path, *text, info);
+      std::istringstream in(*text);
+      const size_t first = materials->size();
+      tinyobj::LoadMtl(material_map, materials, &in, warn, err);
+      // tinyobjloader also keeps statements before any newmtl, as a material named "".
+      for (size_t m = first; m < materials->size(); ++m) {
+        info.try_emplace((*materials)[m].name, MtlInfo{path, {}});
+      }
+      return true;
+    } catch (const Error& e) {
+      if (!error) error = e.what();
+      return false;
+    }
+  }
+
+  std::map<std::string, MtlInfo> info;  // by material name
+  std::vector<std::string> warnings;
+  std::optional<std::string> error;
+
+ private:
+  std::string obj_path_;
+  const ObjScan& scan_;
+  uint64_t max_bytes_;
+};
+
+struct Importer {
+  std::string path;
+  ImportOptions options;
+  ImportedModel model;
+  std::map<std::string, uint32_t> texture_cache;  // key -> index into scene.textures
+
+  void warn(const std::string& message) {
+    if (options.strict) throw Error(message + " (a warning, an error in strict import)");
+    model.warnings.push_back(message);
+  }
+
+  /// Where a material statement is, for messages.
+  std::string where(const MtlInfo& info, const std::string& keyword,
+                    const std::string& material) const {
+    const auto it = info.lines.find(keyword);
+    return place(info.file, it == info.lines.end() ? 0 : it->second) + " ('" + keyword +
+           "' of material '" + material + "')";
+  }
+
+  /// The image a map statement names, or nullopt (with a warning) when the file is missing.
+  std::optional<Texture> load_map(const MtlInfo& info, const std::string& keyword,
+                                  const std::string& material, const std::string& name,
+                                  const tinyobj::texture_option_t& option, bool srgb) {
+    std::string relative = name;
+    std::replace(relative.begin(), relative.end(), '\\', '/');
+    const std::string file =
+        (fs::path(info.file).parent_path() / fs::path(relative)).lexically_normal().string();
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) {
+      warn(where(info, keyword, material) + ": texture " + quoted(file) +
+           " not found; the material is drawn without it");
+      return std::nullopt;
+    }
+    const uint64_t size = fs::file_size(file, ec);
+    if (size > options.max_file_bytes) {
+      throw Error(where(info, keyword, material) + ": texture " + quoted(file) + " is " +
+                  std::to_string(size) + " bytes, over the limit of " +
+                  std::to_string(options.max_file_bytes) + " (ImportOptions::max_file_bytes)");
+    }
+    int w = 0, h = 0, channels = 0;
+    if (!stbi_info(file.c_str(), &w, &h, &channels)) {
+      throw Error(where(info, keyword, material) + ": cannot read texture " + quoted(file) + ": " +
+                  stbi_failure_reason());
+    }
+    if (uint32_t(w) > options.max_texture_side || uint32_t(h) > options.max_texture_side) {
+      throw Error(where(info, keyword, material) + ": texture " + quoted(file) + " is " +
+                  std::to_string(w) + "x" + std::to_string(h) + ", over the largest side of " +
+                  std::to_string(options.max_texture_side) + " (ImportOptions::max_texture_side)");
+    }
+    if (option.scale[0] != 1 || option.scale[1] != 1 || option.origin_offset[0] != 0 ||
+        option.origin_offset[1] != 0 || option.clamp) {
+      warn(where(info, keyword, material) +
+           ": texture options -s, -o and -clamp are not supported and were ignored");
+    }
+    try {
+      return load_texture(file, srgb);
+    } catch (const Error& e) {
+      throw Error(where(info, keyword, material) + ": " + e.what());
+    }
+  }
+
+  uint32_t add_texture(const std::string& key, Texture texture) {
+    const uint32_t index = uint32_t(model.scene.textures.size());
+    model.scene.textures.push_back(std::move(texture));
+    texture_cache.emplace(key, index);
+    return index;
+  }
+
+  uint32_t cached(const std::string& key) const {
+    const auto it = texture_cache.find(key);
+    return it == texture_cache.end() ? kNoTexture : it->second;
+  }
+
+  /// One channel of a grayscale map: -imfchan r, g or b; otherwise red (gray images have
+  /// R = G = B, and luminance would weight a coloured map arbitrarily).
+  static int channel_of(const tinyobj::texture_option_t& option) {
+    return option.imfchan == 'g' ? 1 : option.imfchan == 'b' ? 2 : 0;
+  }
+
+  /// map_Pr and map_Pm packed as glTF's metallic-roughness texture (G roughness, B metallic),
+  /// at the larger of the two sizes (nearest texel of the smaller); a missing one reads 1.
+  uint32_t metallic_roughness_map(const MtlInfo& info, const tinyobj::material_t& m) {
+    const std::string key =
+        "mr|" + info.file + "|" + m.roughness_texname + "|" + m.metallic_texname;
+    if (const uint32_t index = cached(key); index != kNoTexture) return index;
+    std::optional<Texture> rough, metal;
+    if (!m.roughness_texname.empty()) {
+      rough = load_map(info, "map_Pr", m.name, m.roughness_texname, m.roughness_texopt, false);
+    }
+    if (!m.metallic_texname.empty()) {
+      metal = load_map(info, "map_Pm", m.name, m.metallic_texname, m.metallic_texopt, false);
+    }
+    if (!rough && !metal) return kNoTexture;
+    Texture packed;
+    packed.width = std::max(rough ? rough->width : 0u, metal ? metal->width : 0u);
+    packed.height = std::max(rough ? rough->height : 0u, metal ? metal->height : 0u);
+    packed.texels.assign(size_t(packed.width) * packed.height, glm::u8vec4(255));
+    const auto copy = [&](const Texture& src, int from, int to) {
+      for (uint32_t y = 0; y < packed.height; ++y) {
+        for (uint32_t x = 0; x < packed.width; ++x) {
+          const size_t sx = size_t(x) * src.width / packed.width;
+          const size_t sy = size_t(y) * src.height / packed.height;
+          packed.texels[size_t(y) * packed.width + x][to] = src.texels[sy * src.width + sx][from];
+        }
+      }
+    };
+    if (rough) copy(*rough, channel_of(m.roughness_texopt), 1);
+    if (metal) copy(*metal, channel_of(m.metallic_texopt), 2);
+    return add_texture(key, std::move(packed));
+  }
+
+  uint32_t plain_map(const MtlInfo& info, const std::string& keyword, const tinyobj::material_t& m,
+                     const std::string& name, const tinyobj::texture_option_t& option, bool srgb) {
+    const std::string key = (srgb ? "srgb|" : "linear|") + info.file + "|" + name;
+    if (const uint32_t index = cached(key); index != kNoTexture) return index;
+    std::optional<Texture> t = load_map(info, keyword, m.name, name, option, srgb);
+    if (!t) return kNoTexture;
+    if (keyword != "norm" && std::all_of(t->texels.begin(), t->texels.end(),
+                                         [](glm::u8vec4 c) { return c.r == c.g && c.g == c.b; })) {
+      warn(where(info, keyword, m.name) +
+           ": the bump map is grayscale, so a height map, not a normal map; it was ignored");
+      return kNoTexture;
+    }
+    return add_texture(key, std::move(*t));
+  }
+
+  float clamped(const MtlInfo& info, const std::string& keyword, const std::string& material,
+                float value) {
+    if (value >= 0.0f && value <= 1.0f) return value;
+    warn(where(info, keyword, material) + ": " + std::to_string(value) +
+         " is outside [0, 1] and was clamped");
+    return std::clamp(value, 0.0f, 1.0f);
+  }
+
+  Material convert(const tinyobj::material_t& m, const MtlInfo& info) {
+    const auto has = [&](const char* keyword) { return info.lines.count(keyword) > 0; };
+    Material out;
+    for (int c = 0; c < 3; ++c) out.base_color[c] = clamped(info, "Kd", m.name, m.diffuse[c]);
+    if (has("Pr")) {
+      out.roughness = clamped(info, "Pr", m.name, m.roughness);
+    } else if (has("Ns")) {
+      out.roughness = float(std::pow(2.0 / (double(m.shininess) + 2.0), 0.25));
+    } else if (!m.roughness_texname.empty()) {
+      out.roughness = 1.0f;  // the map alone defines it, as in glTF
+    }
+    if (has("Pm")) {
+      out.metallic = clamped(info, "Pm", m.name, m.metallic);
+    } else if (!m.metallic_texname.empty()) {
+      out.metallic = 1.0f;
+    }
+    out.emissive = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);
+    if (!m.diffuse_texname.empty()) {
+      out.base_color_map =
+          plain_map(info, "map_Kd", m, m.diffuse_texname, m.diffuse_texopt, /*srgb=*/true);
+    }
+    out.metallic_roughness_map = metallic_roughness_map(info, m);
+    // `norm` is the PBR extension's normal map; `bump` is, strictly, a height map, but many
+    // exporters write normal maps there (grayscale ones are refused in plain_map).
+    const bool norm = !m.normal_texname.empty();
+    const std::string& normal = norm ? m.normal_texname : m.bump_texname;
+    const tinyobj::texture_option_t& normal_option = norm ? m.normal_texopt : m.bump_texopt;
+    if (!normal.empty()) {
+      const std::string keyword = norm ? "norm" : has("map_bump") ? "map_bump" : "bump";
+      out.normal_map = plain_map(info, keyword, m, normal, normal_option, /*srgb=*/false);
+      out.normal_scale = normal_option.bump_multiplier;
+      if (!std::isfinite(out.normal_scale)) {
+        throw Error(where(info, keyword, m.name) + ": -bm is not a finite number");
+      }
+    }
+    if (m.dissolve < 1.0f) {
+      warn(where(info, has("d") ? "d" : "Tr", m.name) +
+           ": transparency is not supported; the material is rendered opaque");
+    }
+    const std::pair<const char*, const std::string*> ignored[] = {
+        {"map_Ke", &m.emissive_texname},   {"map_d", &m.alpha_texname},
+        {"map_Ks", &m.specular_texname},   {"map_Ns", &m.specular_highlight_texname},
+        {"disp", &m.displacement_texname}, {"map_Ka", &m.ambient_texname}};
+    for (const auto& [keyword, name] : ignored) {
+      if (!name->empty()) warn(where(info, keyword, m.name) + ": not supported, ignored");
+    }
+    return out;
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Polygons
+
+/// Twice the signed area of (a, b, c) in the plane: > 0 when counter-clockwise.
+double orient(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+/// Splits a polygon (corners in order, counter-clockwise about `normal`) into n - 2 triangles
+/// of corner numbers appended to `out`. Returns false if ear clipping found no ear somewhere
+/// (a self-intersecting polygon), where it cut one anyway.
+bool triangulate(const std::vector<glm::vec3>& corners, glm::vec3 normal,
+                 std::vector<uint32_t>& out) {
+  const size_t n = corners.size();
+  if (n == 3) {
+    out.insert(out.end(), {0u, 1u, 2u});
+    return true;
+  }
+  // Project along the normal's largest axis, keeping the winding (right-handed pairs).
+  const glm::vec3 a = glm::abs(normal);
+  const int axis = a.x > a.y && a.x > a.z ? 0 : a.y > a.z ? 1 : 2;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const bool flip = normal[axis] < 0.0f;
+  std::vector<glm::dvec2> p(n);
+  for (size_t i = 0; i < n; ++i) {
+    p[i] =
+        flip ? glm::dvec2(corners[i][v], corners[i][u]) : glm::dvec2(corners[i][u], corners[i][v]);
+  }
+  bool convex = true;
+  for (size_t i = 0; i < n && convex; ++i) {
+    convex = orient(p[i], p[(i + 1) % n], p[(i + 2) % n]) >= 0.0;
+  }
+  if (convex) {
+    for (uint32_t i = 1; i + 1 < n; ++i) out.insert(out.end(), {0u, i, i + 1});
+    return true;
+  }
+  std::vector<uint32_t> left(n);
+  for (uint32_t i = 0; i < n; ++i) left[i] = i;
+  bool clean = true;
+  while (left.size() > 3) {
+    const size_t m = left.size();
+    size_t ear = m;
+    for (size_t i = 0; i < m && ear == m; ++i) {
+      const uint32_t i0 = left[(i + m - 1) % m], i1 = left[i], i2 = left[(i + 1) % m];
+      if (orient(p[i0], p[i1], p[i2]) <= 0.0) continue;  // reflex or flat: not an ear
+      bool empty = true;
+      for (size_t j = 0; j < m && empty; ++j) {
+        const glm::dvec2 q = p[left[j]];
+        if (q == p[i0] || q == p[i1] || q == p[i2]) continue;
+        empty = !(orient(p[i0], p[i1], q) > 0.0 && orient(p[i1], p[i2], q) > 0.0 &&
+                  orient(p[i2], p[i0], q) > 0.0);
+      }
+      if (empty) ear = i;
+    }
+    if (ear == m) {
+      clean = false;
+      ear = 1;
+    }
+    out.insert(out.end(), {left[(ear + m - 1) % m], left[ear], left[(ear + 1) % m]});
+    left.erase(left.begin() + ptrdiff_t(ear));
+  }
+  out.insert(out.end(), {left[0], left[1], left[2]});
+  return clean;
+}
+
+/// Newell's normal of a polygon: its direction is the polygon's facing, its length twice its
+/// area, for any planar polygon (convex or not).
+glm::vec3 newell_normal(const std::vector<glm::vec3>& corners) {
+  glm::vec3 n(0.0f);
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const glm::vec3& a = corners[i];
+    const glm::vec3& b = corners[(i + 1) % corners.size()];
+    n += glm::vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+  }
+  return n;
+}
+
+/// A unit normal for `n`, or +z for a zero one: a degenerate face covers no pixel, but the
+/// scene needs unit normals everywhere.
+glm::vec3 unit_or_z(glm::vec3 n) {
+  const float length = glm::length(n);
+  return length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+/// What makes two corners one vertex: position, uv and normal source.
+struct VertexKey {
+  int32_t v, vt;
+  int64_t normal;  // >= 0: a file normal; else -1 - smoothing group, or flat: kFlat - face
+  bool operator==(const VertexKey&) const = default;
+};
+constexpr int64_t kFlat = INT64_MIN / 2;
+
+struct VertexKeyHash {
+  size_t operator()(const VertexKey& k) const {
+    // splitmix64 finalizer over the packed fields
+    uint64_t x = (uint64_t(uint32_t(k.v)) << 32 | uint32_t(k.vt)) ^
+                 (uint64_t(k.normal) * 0x9E3779B97F4A7C15ull);
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return size_t(x ^ (x >> 31));
+  }
+};
+
+struct MeshBuilder {
+  int material = -1;
+  Mesh mesh;
+  std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertices;
+};
+
+}  // namespace
+
+ImportedModel import_obj(const std::string& path, const ImportOptions& options) {
+  Importer im{path, options, {}, {}};
+  const std::optional<std::string> text = read_limited(path, options.max_file_bytes);
+  if (!text) throw Error("OBJ file " + quoted(path) + " not found");
+  std::vector<std::string> scan_warnings;
+  const ObjScan scan = scan_obj(path, *text, scan_warnings);
+  for (const std::string& w : scan_warnings) im.warn(w);
+  if (scan.faces == 0) {
+    throw Error(quoted(path) + " has no faces ('f' statements); Tessera draws only faces");
+  }
+
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string tiny_warn, tiny_err;
+  MtlReader reader(path, scan, options.max_file_bytes);
+  std::istringstream in(*text);
+  const bool ok =
+      tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in, &reader,
+                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (reader.error) throw Error(*reader.error);
+  if (!ok || !tiny_err.empty()) throw Error(quoted(path) + ": tinyobjloader: " + tiny_err);
+  for (const std::string& w : reader.warnings) im.warn(w);
+  // tinyobjloader's own warnings repeat what the scans report with a line, or what is handled
+  // below (material names); the others are passed on.
+  {
+    std::istringstream lines(tiny_warn);
+    std::string line;
+    const char* const known[] = {"material [", "Failed to load material", "Empty group name"};
+    while (std::getline(lines, line)) {
+      if (line.empty() || line == ".") continue;
+      const bool repeat = std::any_of(std::begin(known), std::end(known),
+                                      [&](const char* k) { return line.rfind(k, 0) == 0; });
+      if (!repeat) im.warn(quoted(path) + ": tinyobjloader: " + line);
+    }
+  }
+  TESSERA_CHECK(attrib.vertices.size() == size_t(scan.count[kPosition]) * 3);
+  TESSERA_CHECK(attrib.normals.size() == size_t(scan.count[kNormal]) * 3);
+  TESSERA_CHECK(attrib.texcoords.size() == size_t(scan.count[kTexcoord]) * 2);
+
+  // Materials, in the libraries' order; one default material for faces without one.
+  Scene& scene = im.model.scene;
+  for (const tinyobj::material_t& m : materials) {
+    const auto it = reader.info.find(m.name);
+    TESSERA_CHECK(it != reader.info.end());
+    scene.materials.push_back(im.convert(m, it->second));
+  }
+  for (const auto& [line, name] : scan.usemtl) {
+    if (std::none_of(materials.begin(), materials.end(),
+                     [&](const tinyobj::material_t& m) { return m.name == name; })) {
+      im.warn(place(path, line) + ": material '" + name +
+              "' is not defined in any material library; the default material is used");
+    }
+  }
+  uint32_t default_material = kNoTexture;
+  const auto material_index = [&](int id) {
+    if (id >= 0 && size_t(id) < scene.materials.size()) return uint32_t(id);
+    if (default_material == kNoTexture) {
+      default_material = uint32_t(scene.materials.size());
+      scene.materials.push_back(Material{});
+    }
+    return default_material;
+  };
+
+  // A corner's file normal, unless it has none or a zero one (see scan_obj).
+  const auto file_normal = [&](const tinyobj::index_t& index) -> std::optional<glm::vec3> {
+    if (index.normal_index < 0) return std::nullopt;
+    const float* vn = &attrib.normals[3 * size_t(index.normal_index)];
+    if (vn[0] == 0.0f && vn[1] == 0.0f && vn[2] == 0.0f) return std::nullopt;
+    return glm::vec3(vn[0], vn[1], vn[2]);
+  };
+  const auto position = [&](int i) {
+    return glm::vec3(attrib.vertices[3 * size_t(i)], attrib.vertices[3 * size_t(i) + 1],
+                     attrib.vertices[3 * size_t(i) + 2]);
+  };
+  std::vector<glm::vec3> corners;
+  const auto gather = [&](const tinyobj::mesh_t& mesh, size_t offset, size_t n) {
+    corners.resize(n);
+    for (size_t c = 0; c < n; ++c) corners[c] = position(mesh.indices[offset + c].vertex_index);
+  };
+
+  // Smoothing groups: area-weighted normal sums per (group, position), over every shape.
+  std::unordered_map<uint64_t, glm::vec3> smooth;
+  for (const tinyobj::shape_t& shape : shapes) {
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const size_t n = shape.mesh.num_face_vertices[f];
+      const uint32_t group = shape.mesh.smoothing_group_ids[f];
+      if (group > 0) {
+        gather(shape.mesh, offset, n);
+        const glm::vec3 normal = newell_normal(corners);
+        for (size_t c = 0; c < n; ++c) {
+          const tinyobj::index_t& index = shape.mesh.indices[offset + c];
+          if (!file_normal(index)) {
+            smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)] += normal;
+          }
+        }
+      }
+      offset += n;
+    }
+  }
+
+  size_t polygon = 0;  // faces with more than 3 corners so far (scan.polygon_lines)
+  int64_t face_serial = 0;
+  std::vector<uint32_t> triangles, corner_vertex;
+  for (const tinyobj::shape_t& shape : shapes) {
+    std::vector<MeshBuilder> builders;  // one per material, in order of first use
+    size_t offset = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_serial) {
+      const size_t n = shape.mesh.num_face_vertices[f];
+      const int material = shape.mesh.material_ids[f];
+      auto b = std::find_if(builders.begin(), builders.end(),
+                            [&](const MeshBuilder& x) { return x.material == material; });
+      if (b == builders.end()) {
+        builders.emplace_back().material = material;
+        b = builders.end() - 1;
+      }
+      gather(shape.mesh, offset, n);
+      const glm::vec3 face_normal = newell_normal(corners);
+      const uint32_t group = shape.mesh.smoothing_group_ids[f];
+      corner_vertex.resize(n);
+      for (size_t c = 0; c < n; ++c) {
+        const tinyobj::index_t& index = shape.mesh.indices[offset + c];
+        const std::optional<glm::vec3> given = file_normal(index);
+        VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index};
+        if (!given) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
+        const auto [it, inserted] = b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
+        if (inserted) {
+          if (b->mesh.positions.size() == UINT32_MAX) {
+            throw Error(quoted(path) + ": a mesh has more than 2^32 - 1 vertices");
+          }
+          b->mesh.positions.push_back(corners[c]);
+          glm::vec3 normal;
+          if (given) {
+            normal = *given;
+          } else if (group > 0) {
+            normal = smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)];
+          } else {
+            normal = face_normal;
+          }
+          b->mesh.normals.push_back(unit_or_z(normal));
+          glm::vec2 uv(0.0f);
+          if (index.texcoord_index >= 0) {
+            const float* vt = &attrib.texcoords[2 * size_t(index.texcoord_index)];
+            uv = glm::vec2(vt[0], 1.0f - vt[1]);
+          }
+          b->mesh.uvs.push_back(uv);
+        }
+        corner_vertex[c] = it->second;
+      }
+      triangles.clear();
+      if (!triangulate(corners, face_normal, triangles)) {
+        im.warn(place(path, scan.polygon_lines[polygon]) +
+                ": the polygon intersects itself; its triangulation is arbitrary");
+      }
+      if (n > 3) ++polygon;
+      for (uint32_t t : triangles) b->mesh.indices.push_back(corner_vertex[t]);
+      offset += n;
+    }
+    for (MeshBuilder& b : builders) {
+      Object object;
+      object.mesh = uint32_t(scene.meshes.size());
+      object.material = material_index(b.material);
+      scene.meshes.push_back(std::move(b.mesh));
+      scene.objects.push_back(object);
+    }
+  }
+  return std::move(im.model);
+}
+
+}  // namespace tessera

@@ -1,0 +1,436 @@
+// OBJ/MTL import (core/obj_import.cpp): bad files and the message each must give, small files
+// whose meshes are derived by hand, and assimp's test models (Debian assimp-testmodels), counted
+// with awk and rendered against the reference.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/check.h"
+#include "core/image.h"
+#include "core/model_import.h"
+#include "tests/accuracy_support.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kAssimpObj = "/usr/share/assimp/models/OBJ/";
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Writes `text` to `name` in the test's output folder and returns the path.
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = test::output_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// Imports `text` written to `name` in the test's output folder.
+ImportedModel import_text(const std::string& name, const std::string& text) {
+  return import_obj(write_file(name, text));
+}
+
+/// The one mesh of `text` imported (as import_text does).
+Mesh only_mesh(const std::string& name, const std::string& text) {
+  ImportedModel model = import_text(name, text);
+  EXPECT_EQ(model.scene.meshes.size(), 1u) << name;
+  return model.scene.meshes.at(0);
+}
+
+std::string error_of(const std::string& path, const ImportOptions& options = {}) {
+  try {
+    import_obj(path, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string all_warnings(const ImportedModel& model) {
+  std::string s;
+  for (const std::string& w : model.warnings) s += w + "\n";
+  return s;
+}
+
+// Each tests/data/bad/NAME.obj comes with NAME.expected: "error: TEXT" or "warning: TEXT", TEXT
+// a part of the message (the place and what is wrong, written by hand from the file).
+TEST(ObjImportBadFiles, EachGivesItsMessage) {
+  const fs::path dir = fs::path(TESSERA_TEST_DATA_DIR) / "bad";
+  int errors = 0, warnings = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".obj") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const fs::path expected_path = fs::path(entry.path()).replace_extension(".expected");
+    ASSERT_TRUE(fs::exists(expected_path)) << "every bad file says what it must produce";
+    const std::string expected = read_text(expected_path);
+    if (expected.rfind("error: ", 0) == 0) {
+      ++errors;
+      EXPECT_NE(error_of(entry.path().string()).find(expected.substr(7)), std::string::npos)
+          << "expected: " << expected.substr(7) << "\ngot: " << error_of(entry.path().string());
+    } else {
+      ASSERT_EQ(expected.rfind("warning: ", 0), 0u) << expected;
+      ++warnings;
+      ImportedModel model;
+      ASSERT_NO_THROW(model = import_obj(entry.path().string()));
+      EXPECT_NE(all_warnings(model).find(expected.substr(9)), std::string::npos)
+          << "expected: " << expected.substr(9) << "\ngot: " << all_warnings(model);
+      // A warning leaves a scene that renders.
+      EXPECT_NO_THROW(validate_scene(model.scene));
+      // Strict import turns it into an error.
+      ImportOptions strict;
+      strict.strict = true;
+      EXPECT_NE(error_of(entry.path().string(), strict).find("strict"), std::string::npos);
+    }
+  }
+  EXPECT_GE(errors, 15);
+  EXPECT_GE(warnings, 8);
+}
+
+TEST(ObjImportLimits, FileOverMaxBytesIsRefused) {
+  const std::string path = kAssimpObj + "spider.obj";
+  ImportOptions options;
+  options.max_file_bytes = 1000;
+  const std::string e = error_of(path, options);
+  EXPECT_NE(e.find("spider.obj' is "), std::string::npos) << e;
+  EXPECT_NE(e.find("over the limit of 1000"), std::string::npos) << e;
+}
+
+TEST(ObjImportLimits, TextureOverMaxSideIsRefused) {
+  write_png(test::output_path("wide.png"), Image8{4, 2, std::vector<glm::u8vec4>(8)});
+  write_file("wide.mtl", "newmtl m\nmap_Kd wide.png\n");
+  const std::string obj =
+      write_file("wide.obj", "mtllib wide.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n");
+  ImportOptions options;
+  options.max_texture_side = 3;
+  const std::string e = error_of(obj, options);
+  EXPECT_NE(e.find("wide.mtl' line 2 ('map_Kd' of material 'm'): texture"), std::string::npos) << e;
+  EXPECT_NE(e.find("is 4x2, over the largest side of 3"), std::string::npos) << e;
+  options.max_texture_side = 4;
+  EXPECT_NO_THROW(import_obj(obj, options));
+}
+
+TEST(ObjImportLimits, MissingFileNamesIt) {
+  EXPECT_NE(error_of("/nonexistent/model.obj").find("'/nonexistent/model.obj' not found"),
+            std::string::npos);
+}
+
+// A unit quad with uvs: fanned from its first corner, (0 1 2) (0 2 3); OBJ's v flipped.
+TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
+  const ImportedModel model = import_text("quad.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                          "f 1/1 2/2 3/3 4/4\n");
+  ASSERT_EQ(model.scene.meshes.size(), 1u);
+  const Mesh& m = model.scene.meshes[0];
+  EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+  EXPECT_EQ(m.uvs, (std::vector<glm::vec2>{{0, 1}, {1, 1}, {1, 0}, {0, 0}}));
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  // No vn and no smoothing group: the face's own normal.
+  EXPECT_EQ(m.normals, std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
+  ASSERT_EQ(model.scene.objects.size(), 1u);
+  EXPECT_EQ(model.scene.objects[0].transform, glm::mat4(1.0f));
+  EXPECT_EQ(model.scene.materials.size(), 1u) << "the default material";
+  EXPECT_TRUE(model.warnings.empty()) << all_warnings(model);
+  EXPECT_NO_THROW(validate_scene(model.scene));
+}
+
+TEST(ObjImportGeometry, ConvexPentagonIsAFan) {
+  const Mesh m = only_mesh("pentagon.obj",
+                           "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
+                           "f 1 2 3 4 5\n");
+  EXPECT_EQ(m.positions.size(), 5u);
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
+}
+
+// Twice the signed area of triangle t of `m` in the xy plane (> 0: counter-clockwise seen
+// from +z).
+double signed_area_xy(const Mesh& m, size_t t) {
+  const glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                   c = m.positions[m.indices[3 * t + 2]];
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// An L of area 2 * 1 + 1 * 1 = 3 with a reflex corner at (1, 1): a fan from corner 0 would
+// cover the missing square; ear clipping gives 6 - 2 triangles, all inside, summing to 3.
+void expect_l_shape(const Mesh& m, double facing) {
+  ASSERT_EQ(m.triangle_count(), 4u);
+  double area = 0.0;
+  for (size_t t = 0; t < 4; ++t) {
+    const double a = facing * signed_area_xy(m, t);
+    EXPECT_GT(a, 0.0) << "triangle " << t << " keeps the polygon's winding";
+    area += a / 2.0;
+    glm::vec3 centroid(0.0f);
+    for (int k = 0; k < 3; ++k) centroid += m.positions[m.indices[3 * t + k]] / 3.0f;
+    EXPECT_TRUE(centroid.x < 1.0f || centroid.y < 1.0f) << "triangle " << t << " is inside the L";
+  }
+  EXPECT_NEAR(area, 3.0, 1e-6);
+  for (const glm::vec3& n : m.normals) EXPECT_EQ(n, glm::vec3(0, 0, float(facing)));
+}
+
+TEST(ObjImportGeometry, ConcavePolygonIsEarClipped) {
+  expect_l_shape(
+      import_text("l_front.obj",
+                  "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4 5 6\n")
+          .scene.meshes.at(0),
+      1.0);
+  // The same L wound the other way faces -z: the projection must keep its winding too.
+  expect_l_shape(
+      import_text("l_back.obj",
+                  "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\nf 6 5 4 3 2 1\n")
+          .scene.meshes.at(0),
+      -1.0);
+}
+
+TEST(ObjImportGeometry, VerticesAreSharedByIndexTriple) {
+  const Mesh a =
+      only_mesh("shared.obj",
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n");
+  EXPECT_EQ(a.positions.size(), 4u);
+  EXPECT_EQ(a.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  // Corner 3 of the second face has another uv: one more vertex.
+  const Mesh b =
+      only_mesh("split.obj",
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                "vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/5/1 4/4/1\n");
+  EXPECT_EQ(b.positions.size(), 5u);
+  EXPECT_EQ(b.uvs[3], glm::vec2(0.5f, 0.5f));
+  EXPECT_EQ(b.indices, (std::vector<uint32_t>{0, 1, 2, 0, 3, 4}));
+}
+
+TEST(ObjImportGeometry, FileNormalsAreNormalized) {
+  const Mesh m = only_mesh("normals.obj",
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 3 0 4\nvn 0 -5 0\n"
+                           "f 1//1 2//2 3//3\n");
+  EXPECT_EQ(m.normals, (std::vector<glm::vec3>{{0, 0, 1}, {0.6f, 0, 0.8f}, {0, -1, 0}}));
+}
+
+// Two triangles of area 1/2 on the edge (0,0,0)-(0,1,0), one facing +z, one facing +x.
+const char* const kTent =
+    "v 0 0 0\nv 0 1 0\nv -1 0 0\nv 0 0 -1\n"
+    "f 3 1 2\nf 1 4 2\n";
+
+TEST(ObjImportGeometry, SmoothingGroupsShareNormals) {
+  const Mesh m = only_mesh("smooth.obj", std::string("s 1\n") + kTent);
+  ASSERT_EQ(m.positions.size(), 4u);
+  const float h = float(std::sqrt(0.5));
+  // Vertices in first-use order: (-1,0,0), (0,0,0), (0,1,0), (0,0,-1).
+  EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, -1}}));
+  const std::vector<glm::vec3> expected{{0, 0, 1}, {h, 0, h}, {h, 0, h}, {1, 0, 0}};
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(glm::distance(m.normals[i], expected[i]), 0.0f, 1e-6f) << i;
+  }
+  const Mesh flat = only_mesh("flat.obj", std::string("s off\n") + kTent);
+  ASSERT_EQ(flat.positions.size(), 6u);
+  EXPECT_EQ(flat.normals, (std::vector<glm::vec3>{
+                              {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}));
+}
+
+// Ns -> roughness = (2 / (Ns + 2))^(1/4): Ns = 30 gives 16^(-1/4) = 0.5, Ns = 510 gives
+// 256^(-1/4) = 0.25, Ns = 0 gives 1. Pr wins over Ns; neither leaves the default 0.5.
+TEST(ObjImportMaterials, MtlValuesAndOneMeshPerMaterial) {
+  write_file("mat.mtl",
+             "newmtl a\nKd 0.5 0.25 1\nNs 30\n"
+             "newmtl b\nNs 510\nPm 0.75\nKe 2 3 4\n"
+             "newmtl c\nNs 0\n"
+             "newmtl d\nNs 30\nPr 0.125\n"
+             "newmtl e\nKd 1 1 1\n");
+  const ImportedModel model =
+      import_text("mat.obj",
+                  "mtllib mat.mtl\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                  "f 1 2 3\nusemtl c\nf 1 2 3\nusemtl a\nf 1 2 3\nusemtl c\nf 2 3 1\n"
+                  "usemtl b\nf 1 2 3\nusemtl d\nf 1 2 3\nusemtl e\nf 1 2 3\n");
+  EXPECT_TRUE(model.warnings.empty()) << all_warnings(model);
+  const std::vector<Material>& mats = model.scene.materials;
+  ASSERT_EQ(mats.size(), 6u) << "a to e, then the default for the face before any usemtl";
+  EXPECT_EQ(mats[0].base_color, glm::vec3(0.5f, 0.25f, 1.0f));
+  EXPECT_FLOAT_EQ(mats[0].roughness, 0.5f);
+  EXPECT_FLOAT_EQ(mats[0].metallic, 0.0f);
+  EXPECT_FLOAT_EQ(mats[1].roughness, 0.25f);
+  EXPECT_FLOAT_EQ(mats[1].metallic, 0.75f);
+  EXPECT_EQ(mats[1].emissive, glm::vec3(2, 3, 4));
+  EXPECT_FLOAT_EQ(mats[2].roughness, 1.0f);
+  EXPECT_FLOAT_EQ(mats[3].roughness, 0.125f);
+  EXPECT_FLOAT_EQ(mats[4].roughness, 0.5f);
+  // One group: a mesh per material in order of first use: default, c (2 faces), a, b, d, e.
+  const std::vector<uint32_t> material_of_object{5, 2, 0, 1, 3, 4};
+  ASSERT_EQ(model.scene.objects.size(), material_of_object.size());
+  for (size_t i = 0; i < material_of_object.size(); ++i) {
+    EXPECT_EQ(model.scene.objects[i].material, material_of_object[i]) << i;
+    EXPECT_EQ(model.scene.objects[i].mesh, i);
+  }
+  EXPECT_EQ(model.scene.meshes[1].triangle_count(), 2u);
+  EXPECT_EQ(model.scene.meshes[1].positions.size(), 3u)
+      << "f 2 3 1 reuses f 1 2 3's vertices (same smoothing group)";
+}
+
+// tinyobjloader drops statements before the first `newmtl` unless there is none (then they
+// make a material named ""), and names a material by the rest of its line, spaces included.
+TEST(ObjImportMaterials, UnnamedAndSpacedMaterialNames) {
+  write_file("unnamed.mtl", "Kd 1 0 0\n");
+  const ImportedModel unnamed =
+      import_text("unnamed.obj", "mtllib unnamed.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  ASSERT_EQ(unnamed.scene.materials.size(), 2u) << "the unnamed one, then the default";
+  EXPECT_EQ(unnamed.scene.materials[0].base_color, glm::vec3(1, 0, 0));
+  EXPECT_EQ(unnamed.scene.objects.at(0).material, 1u);
+  write_file("spaced.mtl", "Kd 1 0 0\nnewmtl two words\nKd 0 1 0\n");
+  const ImportedModel spaced =
+      import_text("spaced.obj", "mtllib spaced.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  ASSERT_GE(spaced.scene.materials.size(), 1u);
+  EXPECT_EQ(spaced.scene.materials[0].base_color, glm::vec3(0, 1, 0));
+  EXPECT_NO_THROW(validate_scene(spaced.scene));
+}
+
+TEST(ObjImportMaterials, TextureMaps) {
+  const auto gray = [](std::initializer_list<uint8_t> values) {
+    std::vector<glm::u8vec4> texels;
+    for (uint8_t v : values) texels.push_back(glm::u8vec4(v, v, v, 255));
+    return texels;
+  };
+  const Image8 base{2, 2, {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {9, 9, 9, 255}}};
+  write_png(test::output_path("base.png"), base);
+  write_png(test::output_path("rough.png"), Image8{2, 1, gray({64, 32})});
+  write_png(test::output_path("metal.png"), Image8{1, 2, gray({200, 100})});
+  write_png(test::output_path("normal.png"), Image8{1, 1, {{128, 140, 250, 255}}});
+  write_png(test::output_path("height.png"), Image8{1, 1, gray({77})});
+  write_file("tex.mtl",
+             "newmtl a\nmap_Kd base.png\nmap_Pr rough.png\nmap_Pm metal.png\n"
+             "norm -bm 0.5 normal.png\n"
+             "newmtl b\nKd 0.5 0.5 0.5\nmap_Kd base.png\nmap_bump height.png\n");
+  const ImportedModel model =
+      import_text("tex.obj",
+                  "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"
+                  "usemtl b\nf 1 2 3\n");
+  const Scene& s = model.scene;
+  ASSERT_EQ(s.textures.size(), 3u) << "base (shared by a and b), packed metal-roughness, normal";
+  const Material& a = s.materials.at(0);
+  EXPECT_EQ(a.base_color_map, 0u);
+  EXPECT_TRUE(s.textures[0].srgb);
+  EXPECT_EQ(s.textures[0].texels, base.pixels);
+  // Packed at 2 x 2: G from rough.png's row (nearest), B from metal.png's column.
+  ASSERT_EQ(a.metallic_roughness_map, 1u);
+  const Texture& mr = s.textures[1];
+  EXPECT_FALSE(mr.srgb);
+  ASSERT_EQ(mr.width, 2u);
+  ASSERT_EQ(mr.height, 2u);
+  EXPECT_EQ(
+      mr.texels,
+      (std::vector<glm::u8vec4>{
+          {255, 64, 200, 255}, {255, 32, 200, 255}, {255, 64, 100, 255}, {255, 32, 100, 255}}));
+  EXPECT_EQ(a.roughness, 1.0f) << "a map without Pr is the roughness";
+  EXPECT_EQ(a.metallic, 1.0f);
+  ASSERT_EQ(a.normal_map, 2u);
+  EXPECT_FALSE(s.textures[2].srgb);
+  EXPECT_EQ(a.normal_scale, 0.5f);
+  const Material& b = s.materials.at(1);
+  EXPECT_EQ(b.base_color_map, 0u);
+  EXPECT_EQ(b.normal_map, kNoTexture) << "a grayscale bump map is a height map";
+  EXPECT_NE(all_warnings(model).find("tex.mtl' line 9 ('map_bump' of material 'b'): the bump "
+                                     "map is grayscale"),
+            std::string::npos)
+      << all_warnings(model);
+  EXPECT_NO_THROW(validate_scene(s));
+}
+
+// Counts from the file itself:
+//   awk '$1=="f"{t+=NF-3} END{print t}' spider.obj                              -> 1368
+//   awk '$1=="f"{n[NF-1]++} END{for(k in n) print k, n[k]}' spider.obj          -> 3 1368
+//   awk '$1=="g"{g=$2} $1=="usemtl"{m=$2} $1=="f"{p[g SUBSEP m]=1;
+//        for(i=2;i<=NF;i++) u[g SUBSEP m SUBSEP $i]=1} END{...count p, u}' spider.obj
+//                                                            -> 19 meshes, 974 index triples
+//   Normal 488 (line 1560) is (0, 0, 0), used by 108 corners; those get generated normals,
+//   keyed by (v, vt, smoothing group) instead of the triple:
+//   awk '$1=="vn"{n++; if($2==0&&$3==0&&$4==0) z[n]=1} $1=="g"{g=$2} $1=="usemtl"{m=$2}
+//        $1=="s"{s=($2=="off")?0:$2} $1=="f"{f++; for(i=2;i<=NF;i++){split($i,a,"/");
+//        k=(a[3] in z)?((s>0)?"s" s:"f" f):a[3]; u[g SUBSEP m SUBSEP a[1] SUBSEP a[2] SUBSEP k]=1}}
+//        END{for(x in u) c++; print c}' spider.obj                      -> 986 vertices
+//   grep -c ^newmtl spider.mtl -> 5; every material has its own map_Kd -> 5 textures
+TEST(ObjImportAssimpModels, SpiderCounts) {
+  const ImportedModel model = import_obj(kAssimpObj + "spider.obj");
+  const Scene& s = model.scene;
+  ASSERT_EQ(model.warnings.size(), 1u) << all_warnings(model);
+  EXPECT_NE(model.warnings[0].find("spider.obj' line 1560: normal (0, 0, 0) has no direction"),
+            std::string::npos)
+      << model.warnings[0];
+  EXPECT_EQ(s.meshes.size(), 19u);
+  EXPECT_EQ(s.objects.size(), 19u);
+  EXPECT_EQ(s.materials.size(), 5u);
+  EXPECT_EQ(s.textures.size(), 5u);
+  size_t triangles = 0, vertices = 0;
+  for (const Mesh& m : s.meshes) {
+    triangles += m.triangle_count();
+    vertices += m.positions.size();
+  }
+  EXPECT_EQ(triangles, 1368u);
+  EXPECT_EQ(vertices, 986u);
+  // The file's first face, f 1/1/1 2/2/2 3/3/3: v 1 = (1.160379 4.512684 6.449167),
+  // vt 1 = (0.186192 0.222718) -> uv (0.186192, 1 - 0.222718).
+  const Mesh& first = s.meshes[0];
+  EXPECT_EQ(first.positions[0], glm::vec3(1.160379f, 4.512684f, 6.449167f));
+  EXPECT_NEAR(first.uvs[0].x, 0.186192f, 1e-6f);
+  EXPECT_NEAR(first.uvs[0].y, 1.0f - 0.222718f, 1e-6f);
+  EXPECT_NO_THROW(validate_scene(s));
+}
+
+// awk '$1=="f"{t+=NF-3} END{print t}' WusonOBJ.obj                 -> 3732
+// awk '$1=="f"{for(i=2;i<=NF;i++) u[$i]=1} END{...}' WusonOBJ.obj -> 2117 (one group, no usemtl)
+TEST(ObjImportAssimpModels, WusonCounts) {
+  const ImportedModel model = import_obj(kAssimpObj + "WusonOBJ.obj");
+  ASSERT_EQ(model.scene.meshes.size(), 1u);
+  EXPECT_EQ(model.scene.meshes[0].triangle_count(), 3732u);
+  EXPECT_EQ(model.scene.meshes[0].positions.size(), 2117u);
+  EXPECT_EQ(model.scene.materials.size(), 1u);
+  EXPECT_TRUE(model.scene.textures.empty());
+}
+
+/// A camera and light framing the model's bounding box from the front, above and right.
+void frame(Scene& scene) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const Mesh& m : scene.meshes) {
+    for (const glm::vec3& p : m.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  const glm::vec3 centre = (lo + hi) * 0.5f;
+  const float radius = glm::length(hi - lo) * 0.5f;
+  const float fov = glm::radians(40.0f);
+  scene.camera.target = centre;
+  scene.camera.position =
+      centre + glm::normalize(glm::vec3(0.6f, 0.5f, 1.0f)) * (radius / std::sin(fov / 2));
+  // The box's corners lie outside most models (the spider's legs), so come closer than the
+  // distance that fits the whole sphere.
+  scene.camera.position = glm::mix(centre, scene.camera.position, 0.7f);
+  scene.camera.vertical_fov = fov;
+  scene.camera.near_plane = radius * 0.05f;
+  Light sun;
+  sun.kind = LightKind::directional;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  scene.ambient = glm::vec3(0.15f);
+  scene.background = glm::vec3(0.05f, 0.06f, 0.08f);
+}
+
+class ObjImportRendering : public test::VulkanTest {};
+
+TEST_F(ObjImportRendering, SpiderAgreesWithTheReference) {
+  Scene scene = import_obj(kAssimpObj + "spider.obj").scene;
+  frame(scene);
+  write_png(test::output_path("spider.png"), render(scene, 320, 240).ldr);
+  const test::AccuracyReport r = test::compare_with_reference(context(), scene, 320, 240, "spider");
+  std::printf("%s\n", test::describe(r).c_str());
+  test::expect_meets_bars(r);
+  EXPECT_GT(r.covered, 320u * 240u / 10) << "the spider fills a good part of the frame";
+}
+
+}  // namespace
+}  // namespace tessera
