@@ -96,7 +96,8 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
         .base_vertex = base_vertex[o.mesh],
         .triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count()),
         .material = o.material,
-        .first_triangle = uint32_t(numbering.first_triangle[slot])};
+        .first_triangle = uint32_t(numbering.first_triangle[slot]),
+        .mirrored = is_mirroring(o.transform) ? 1u : 0u};
     out.objects.push_back(g);
   }
 

@@ -75,6 +75,7 @@ struct Instance {
   dmat3 normal_matrix;
   uint64_t first_triangle;
   uint32_t slot;
+  bool mirrored;  // is_mirroring(transform): front faces wind clockwise, tangent frames flip
   const std::vector<glm::vec4>* tangents = nullptr;  // the mesh's, or generated; null if unused
 };
 
@@ -85,7 +86,7 @@ std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& 
     dmat4 model(o.transform);
     out.push_back({&scene.meshes[o.mesh], &scene.materials[o.material], model,
                    glm::transpose(glm::inverse(dmat3(model))), numbering.first_triangle[slot],
-                   uint32_t(slot)});
+                   uint32_t(slot), is_mirroring(o.transform)});
   }
   return out;
 }
@@ -135,7 +136,15 @@ std::vector<dvec4> clipped_polygon(const CameraModel& cam, const std::array<dvec
       dvec4 a = poly[i], b = poly[(i + 1) % poly.size()];
       double da = plane_distance(cam, a, plane), db = plane_distance(cam, b, plane);
       if (da >= 0) next.push_back(a);
-      if ((da >= 0) != (db >= 0)) next.push_back(a + (b - a) * (da / (da - db)));
+      if ((da >= 0) != (db >= 0)) {
+        // From the inside end towards the outside end, whichever way the edge is walked: the
+        // two triangles sharing an edge walk it in opposite directions and must get the same
+        // crossing, or samples on the edge are covered twice or missed.
+        const bool a_in = da >= 0;
+        const dvec4 p_in = a_in ? a : b, p_out = a_in ? b : a;
+        const double d_in = a_in ? da : db, d_out = a_in ? db : da;
+        next.push_back(p_in + (p_out - p_in) * (d_in / (d_in - d_out)));
+      }
     }
     poly = std::move(next);
   }
@@ -174,8 +183,9 @@ struct RasterTriangle {
 };
 
 // Snaps, culls by facing and area, and computes the pixel box; false if nothing remains.
+// `mirrored`: the object's transform has a negative determinant.
 bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4 c1, dvec4 c2,
-                          uint32_t id, RasterTriangle& t) {
+                          uint32_t id, bool mirrored, RasterTriangle& t) {
   const dvec4 c[3] = {c0, c1, c2};
   FixedPoint v[3];
   double d[3];
@@ -187,9 +197,12 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   }
   const int64_t area = edge(v[0], v[1], v[2]);
   if (area == 0) return false;
-  const bool front = area < 0;  // counter-clockwise in the world is clockwise in y-down pixels
+  // Counter-clockwise in the world is clockwise in y-down pixels; a mirroring transform has
+  // reversed the winding once more, and glTF 2.0 makes its clockwise faces the front ones.
+  const bool clockwise = area < 0;
+  const bool front = clockwise != mirrored;
   if ((front && cull == CullMode::front) || (!front && cull == CullMode::back)) return false;
-  const int second = front ? 2 : 1, third = front ? 1 : 2;
+  const int second = clockwise ? 2 : 1, third = clockwise ? 1 : 2;
   t.v[0] = v[0];
   t.v[1] = v[second];
   t.v[2] = v[third];
@@ -224,12 +237,14 @@ void setup_triangle(const CameraModel& cam, CullMode cull, const Instance& inst,
     for (int plane = 0; plane < 5; ++plane) inside = inside && plane_distance(cam, v, plane) >= 0;
   }
   if (inside) {
-    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), t)) out.push_back(t);
+    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, t))
+      out.push_back(t);
     return;
   }
   std::vector<dvec4> poly = clipped_polygon(cam, c);
   for (size_t k = 1; k + 1 < poly.size(); ++k) {
-    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), t))
+    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), inst.mirrored,
+                             t))
       out.push_back(t);
   }
 }
@@ -381,7 +396,7 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
     dvec3 t(0.0);
     for (int k = 0; k < 3; ++k) t += b[k] * (model3 * dvec3(glm::vec3((*inst.tangents)[idx[k]])));
     // A mirroring transform flips the handedness of the tangent frame.
-    const double w = (*inst.tangents)[idx[0]].w * (glm::determinant(model3) < 0.0 ? -1.0 : 1.0);
+    const double w = (*inst.tangents)[idx[0]].w * (inst.mirrored ? -1.0 : 1.0);
     out.tangent = glm::dvec4(t, w);
   }
   return out;

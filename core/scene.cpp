@@ -230,6 +230,12 @@ void validate_scene(const Scene& scene) {
   for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);
 }
 
+bool is_mirroring(const glm::mat4& transform) {
+  // In double, so that the sign is that of the determinant of the float matrix except within
+  // rounding of singular (degenerate) transforms, whose triangles have no area anyway.
+  return glm::determinant(glm::dmat3(glm::mat3(transform))) < 0.0;
+}
+
 glm::mat4 view_matrix(const Camera& camera) {
   return glm::lookAtRH(camera.position, camera.target, camera.up);
 }

@@ -185,6 +185,12 @@ glm::vec3 id_colour(uint32_t id);
 /// World -> view transform of `camera` (right-handed, looking down -z).
 glm::mat4 view_matrix(const Camera& camera);
 
+/// True if `transform` mirrors what it places: its upper 3x3 has a negative determinant. Such
+/// an object's counter-clockwise triangles wind clockwise in the world, so its front faces are
+/// the clockwise ones (as glTF 2.0 requires), and its tangent frames change handedness. The one
+/// decision used by the compute path, the hardware baseline and the reference renderer.
+bool is_mirroring(const glm::mat4& transform);
+
 /// View -> clip projection for Vulkan's y-down NDC. clip.w is the distance along the view
 /// axis; clip.z is unused by the rasterizer (depth is near / w). `aspect` = width / height.
 glm::mat4 projection_matrix(const Camera& camera, float aspect);

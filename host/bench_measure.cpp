@@ -13,6 +13,7 @@
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
 #include "host/report.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
@@ -132,15 +133,14 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   fs.height = a.height;
   const float aspect = float(a.width) / float(a.height);
 
-  // A built-in scene has a fixed object count: it is one point of the sweep.
-  const bool builtin = is_builtin_scene(a.scene);
+  // A built-in scene or a scene file has a fixed object count: it is one point of the sweep.
+  const bool builtin = is_builtin_scene(a.scene) || is_scene_path(a.scene);
+  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene : Scene{};
   const std::vector<uint32_t> counts =
-      builtin ? std::vector<uint32_t>{uint32_t(make_builtin_scene(a.scene).objects.size())}
-              : a.objects;
+      builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
   Progress progress(counts.size() * a.backends.size(), !a.quiet);
   for (uint32_t n : counts) {
-    const Scene scene =
-        builtin ? make_builtin_scene(a.scene) : make_bench_scene(a.scene, n, a.segments, aspect);
+    const Scene scene = builtin ? fixed : make_bench_scene(a.scene, n, a.segments, aspect);
     uint64_t triangles = 0;
     for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
     uint64_t pixels_shaded = 0;

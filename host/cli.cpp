@@ -6,6 +6,7 @@
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "host/cli_values.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
@@ -13,15 +14,16 @@ namespace {
 const std::vector<std::string> kCommands = {"render", "bench", "devices", "scenes"};
 
 // Checks that a scene exists; the builders throw Error naming the known scenes otherwise.
+// A scene file (a path) is read when the command runs, where its errors name file and place.
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name)) make_builtin_scene(name);
+    if (!is_builtin_scene(name) && !is_scene_path(name)) make_builtin_scene(name);
   });
 }
 
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name)) make_bench_scene(name, 1, 8, 1.0f);
+    if (!is_builtin_scene(name) && !is_scene_path(name)) make_bench_scene(name, 1, 8, 1.0f);
   });
 }
 
@@ -35,8 +37,13 @@ CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const st
 }
 
 void add_render_options(CLI::App& app, RenderArgs& a) {
-  app.add_option("--scene", a.scene, "built-in scene (default spheres; see\n`tessera scenes`)")
-      ->type_name("NAME")
+  app.add_option("--scene", a.scene,
+                 "built-in scene (default spheres; see\n"
+                 "`tessera scenes`) or a scene file\n"
+                 "(docs/scene-format.md), whose \"render\" block\n"
+                 "sets size, exposure, tone map and BRDF unless\n"
+                 "given here")
+      ->type_name("NAME|FILE")
       ->check(builtin_scene());
   add_size(app, a.frame.width, a.frame.height,
            "image size in pixels, each side 1..16384\n(default 512x512)");
@@ -127,12 +134,13 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                "(synchronization too); exit status 3 if it\n"
                "reports anything");
   app.add_flag("--quiet", a.quiet, "print nothing but errors");
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
 }
 
 void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--scene", a.scene,
                  "grid (default), scatter or huge; or a\n"
-                 "built-in scene of `tessera scenes` (one point:\n"
+                 "built-in scene of `tessera scenes` or a scene\nfile (one point:\n"
                  "its own object count)")
       ->type_name("NAME")
       ->check(bench_scene());
@@ -266,6 +274,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     throw UsageError(message_of(e), help_command);
   }
   for (CLI::App* sub : {render, bench, devices, scenes}) reject_extras(*sub, help_command);
+  RenderArgs& r = line.render;
+  r.size_given = render->count("--size") > 0;
+  r.exposure_given = render->count("--exposure") > 0;
+  r.tonemap_given = render->count("--tonemap") > 0;
+  r.brdf_given = render->count("--brdf") > 0;
   reject_extras(app, help_command);
   line.command = render->parsed()    ? Command::render
                  : bench->parsed()   ? Command::bench

@@ -28,6 +28,10 @@ struct RenderArgs {
   uint32_t repeat = 3;
   bool validate = false;
   bool quiet = false;
+  bool strict = false;  // --strict: unknown keys in a scene file are errors
+  // Which frame options the command line gave: the others come from the scene file's
+  // "render" block when it has them.
+  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false;
 };
 
 struct BenchArgs {

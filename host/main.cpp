@@ -11,6 +11,7 @@
 #include "host/bench_command.h"
 #include "host/cli.h"
 #include "host/render_command.h"
+#include "host/scene_source.h"
 
 namespace {
 
@@ -23,9 +24,7 @@ int run_devices() {
 }
 
 int run_scenes() {
-  for (const auto& s : tessera::builtin_scenes()) {
-    std::printf("%-12s %s\n", std::string(s.name).c_str(), std::string(s.description).c_str());
-  }
+  std::fputs(tessera::scene_listing().c_str(), stdout);
   return 0;
 }
 

@@ -12,13 +12,24 @@
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
 #include "host/report.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
 
-// The scene with the environment --env asks for.
-Scene scene_of(const RenderArgs& args) {
-  Scene scene = make_builtin_scene(args.scene);
+// The scene with the environment --env asks for; the file's render defaults fill in what the
+// command line left unset.
+Scene scene_of(RenderArgs& args) {
+  SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
+  const RenderDefaults& r = file.render;
+  if (!args.size_given) {
+    args.frame.width = r.width.value_or(args.frame.width);
+    args.frame.height = r.height.value_or(args.frame.height);
+  }
+  if (!args.exposure_given) args.frame.exposure_ev = r.exposure_ev.value_or(args.frame.exposure_ev);
+  if (!args.tonemap_given) args.frame.tonemap = r.tonemap.value_or(args.frame.tonemap);
+  if (!args.brdf_given) args.frame.brdf = r.brdf.value_or(args.frame.brdf);
+  Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();
   } else if (args.env == "sky") {
@@ -99,7 +110,8 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
 
 }  // namespace
 
-int run_render(const RenderArgs& args) {
+int run_render(const RenderArgs& given) {
+  RenderArgs args = given;
   const Scene scene = scene_of(args);
   // Check outputs before spending time on a render.
   if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");

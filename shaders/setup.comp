@@ -43,7 +43,7 @@ uint classify(uint slot, uint id, out RasterTri t) {
   }
   if (outside) return OUTCOME_OUTSIDE;
   if (needs_clip) return OUTCOME_CLIP;
-  return prepare_triangle(c[0], c[1], c[2], id, t);
+  return prepare_triangle(c[0], c[1], c[2], id, objects[slot].mirrored != 0u, t);
 }
 
 // Adds the number of this subgroup's threads for which `mine` holds to `counter`, once.

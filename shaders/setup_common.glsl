@@ -35,9 +35,10 @@ float plane_distance(vec4 c, int plane) {
 }
 
 // Snaps a triangle whose corners are in front of the near plane and inside the guard band,
-// culls it by facing and by what it covers, and fills `t`. Returns OUTCOME_FACING, _EMPTY,
-// _SMALL or _BIG.
-uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
+// culls it by facing and by what it covers, and fills `t`. `mirrored`: its object's transform
+// has a negative determinant (GpuObject.mirrored). Returns OUTCOME_FACING, _EMPTY, _SMALL or
+// _BIG.
+uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, out RasterTri t) {
   vec2 size = vec2(frame.image_size);
   float near_plane = frame.near_plane;
   vec4 c[3] = vec4[3](c0, c1, c2);
@@ -51,14 +52,16 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
   int64_t area = edge_function(v[0], v[1], v[2]);
   if (area == 0) return OUTCOME_EMPTY;
   // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
-  // their doubled area comes out negative here.
-  bool front = area < 0;
+  // their doubled area comes out negative here. A mirroring transform has already reversed
+  // the winding of its object's triangles once more (glTF 2.0: front faces are then clockwise).
+  bool clockwise = area < 0;
+  bool front = clockwise != mirrored;
   if ((front && frame.cull == TS_CULL_FRONT) || (!front && frame.cull == TS_CULL_BACK)) {
     return OUTCOME_FACING;
   }
   // Order the vertices so the area is positive: every edge function is then >= 0 inside.
-  int second = front ? 2 : 1;
-  int third = front ? 1 : 2;
+  int second = clockwise ? 2 : 1;
+  int third = clockwise ? 1 : 2;
   t.v0 = v[0];
   t.v1 = v[second];
   t.v2 = v[third];

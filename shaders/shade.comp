@@ -100,7 +100,7 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   g.duv_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by)
                  ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
   // A mirroring transform flips the handedness of the tangent frame.
-  float handedness = vertices[vi[0]].tangent.w * (determinant(mat3(o.model)) < 0.0 ? -1.0 : 1.0);
+  float handedness = vertices[vi[0]].tangent.w * (o.mirrored != 0u ? -1.0 : 1.0);
   g.T = vec4(b.x * tan[0] + b.y * tan[1] + b.z * tan[2], handedness);
   MaterialSample ms = evaluate_material(o.material, g, -dir);
 

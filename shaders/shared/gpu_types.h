@@ -131,7 +131,7 @@ struct GpuObject {
   uint triangle_count;
   uint material;
   uint first_triangle;
-  uint pad0;
+  uint mirrored;  // 1 if model's upper 3x3 has a negative determinant (is_mirroring, scene.h)
   uint pad1;
   uint pad2;
 };
@@ -270,6 +270,7 @@ static_assert(sizeof(GpuObject) == 160);
 static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
+static_assert(offsetof(GpuObject, mirrored) == 148);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(offsetof(GpuMaterial, metallic) == 12);
 static_assert(offsetof(GpuMaterial, emissive) == 16);
