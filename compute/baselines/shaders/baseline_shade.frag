@@ -28,5 +28,5 @@ void main() {
   g.duv_dx = dFdxFine(uv);
   g.duv_dy = dFdyFine(uv);
   MaterialSample ms = evaluate_material(material, g, V);
-  color = vec4(min(shade_surface(world_position, V, ms), vec3(TS_MAX_HALF)), 1.0);
+  color = vec4(min(shade_surface(world_position, V, ms) * pre_exposure(), vec3(TS_MAX_HALF)), 1.0);
 }
