@@ -3,6 +3,7 @@
 # SECONDS (default 60) on one core, at low priority. Exit status 0 only if no target crashed,
 # leaked, hit a sanitizer report, an internal check, an uncaught exception or a timeout.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: gltf obj scene_json; default all)
+# FUZZ_RUNS=N also stops each target after N executions (the long runs of docs/fuzzing.md).
 # New inputs are kept in build-fuzz/corpus/TARGET; a failing input is written to
 # build-fuzz/artifacts/ and its log to build-fuzz/fuzz-TARGET.log.
 set -euo pipefail
@@ -71,7 +72,7 @@ for t in "${targets[@]}"; do
   log=build-fuzz/fuzz-$t.log
   echo "fuzz: $t for ${seconds}s (log: $log)" >&2
   if nice -n 10 "build-fuzz/fuzz/${t}_fuzzer" -max_total_time="$seconds" -max_len="${max_len[$t]}" \
-      -dict="${dict[$t]}" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
+      -dict="${dict[$t]}" -runs="${FUZZ_RUNS:--1}" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="build-fuzz/artifacts/$t-" \
       "build-fuzz/corpus/$t" "build-fuzz/seeds/$t" >"$log" 2>&1; then
     grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb)' "$log" >&2 || true
