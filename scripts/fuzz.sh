@@ -64,6 +64,7 @@ declare -A dict=([gltf]=fuzz/gltf.dict [obj]=fuzz/obj.dict [scene_json]=fuzz/jso
 scratch=$(mktemp -d /dev/shm/tessera-fuzz.XXXXXX 2>/dev/null || mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 export TESSERA_FUZZ_SCRATCH=$scratch
+export UBSAN_OPTIONS=print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}
 mkdir -p build-fuzz/artifacts
 failed=()
 for t in "${targets[@]}"; do
