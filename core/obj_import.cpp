@@ -158,6 +158,11 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
   std::string_view rest = t.text;
   for (int k = 0; k < 3 && !rest.empty(); ++k) {
     const size_t slash = rest.find('/');
+    // tinyobjloader reads past a final '/' (into the next corner's number, or "" as index 0
+    // and then a normal that does not exist; found by fuzzing).
+    if (slash != std::string_view::npos && slash + 1 == rest.size()) {
+      fail(file, line, t.column, "'" + std::string(t.text) + "' ends with '/', without an index");
+    }
     const std::string_view part = rest.substr(0, slash);
     const size_t column = t.column + size_t(part.data() - t.text.data());
     rest = slash == std::string_view::npos ? std::string_view() : rest.substr(slash + 1);
