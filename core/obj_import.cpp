@@ -96,17 +96,17 @@ class Tokens {
   size_t pos_ = 0;
 };
 
-/// Calls f(line_number, line) for each line of `text` ('\n' or "\r\n" endings).
+/// Calls f(line_number, line) for each line of `text`. Lines end as tinyobjloader ends them
+/// (its safeGetline): at "\n", "\r\n" or a lone "\r"; otherwise the scan and tinyobjloader would
+/// see different statements (a "\rv" line is a vertex to tinyobjloader; found by fuzzing).
 template <typename F>
 void for_each_line(std::string_view text, F&& f) {
   size_t line = 0, start = 0;
   while (start < text.size()) {
-    size_t end = text.find('\n', start);
+    size_t end = text.find_first_of("\r\n", start);
     if (end == std::string_view::npos) end = text.size();
-    std::string_view s = text.substr(start, end - start);
-    if (!s.empty() && s.back() == '\r') s.remove_suffix(1);
-    f(++line, s);
-    start = end + 1;
+    f(++line, text.substr(start, end - start));
+    start = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
   }
 }
 
