@@ -20,6 +20,7 @@
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "core/statistics.h"
 
 namespace tessera {
 namespace {
@@ -33,11 +34,6 @@ Context& bench_context() {
     return create_context(options);
   }();
   return *ctx;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 void report_counters(benchmark::State& state, const std::vector<FrameStats>& frames,

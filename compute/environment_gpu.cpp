@@ -158,13 +158,13 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
          (w >> env.irradiance_level) > options.irradiance_size)
     ++env.irradiance_level;
 
-  // Level 0 from the file's float radiance, as fp16 (values above 65504 saturate to it).
+  // Level 0 from the file's float radiance, as fp16 (values above TS_MAX_HALF saturate to it).
   Buffer staging = create_buffer(ctx, VkDeviceSize(w) * h * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  MemoryKind::upload);
   auto* out = static_cast<uint16_t*>(staging.mapped);
   for (size_t i = 0; i < radiance.pixels.size(); ++i) {
     for (int c = 0; c < 4; ++c) {
-      const float v = c == 3 ? 1.0f : std::min(radiance.pixels[i][c], 65504.0f);
+      const float v = c == 3 ? 1.0f : std::min(radiance.pixels[i][c], float(TS_MAX_HALF));
       out[i * 4 + c] = uint16_t(glm::packHalf1x16(v));
     }
   }

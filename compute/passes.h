@@ -42,11 +42,9 @@ struct Specialization {
   uint32_t brdf = 0;
   VkBool32 energy_compensation = VK_FALSE;
   VkBool32 lights_specialized = VK_FALSE;
-  uint32_t point_lights = 0;
-  uint32_t spot_lights = 0;
-  uint32_t directional_lights = 0;
   uint32_t texture_maps = TS_MAP_ALL;
   uint32_t ibl = TS_IBL_RUNTIME;
+  std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
 /// When a pass is recorded.

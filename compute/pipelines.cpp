@@ -31,21 +31,23 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                    std::string_view shader, Specialization values) {
   VkShaderModule module = create_shader_module(ctx, shader);
 
-  const VkSpecializationMapEntry entries[] = {
+  std::vector<VkSpecializationMapEntry> entries = {
       {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},
       {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)},
       {TS_SPEC_ENERGY_COMPENSATION, offsetof(Specialization, energy_compensation),
        sizeof(VkBool32)},
       {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
-      {TS_SPEC_POINT_LIGHTS, offsetof(Specialization, point_lights), sizeof(uint32_t)},
-      {TS_SPEC_SPOT_LIGHTS, offsetof(Specialization, spot_lights), sizeof(uint32_t)},
-      {TS_SPEC_DIRECTIONAL_LIGHTS, offsetof(Specialization, directional_lights), sizeof(uint32_t)},
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)}};
+  for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
+    entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
+                       uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
+                       sizeof(uint32_t)});
+  }
   // Every member of Specialization (4 bytes each) has its entry: a member without one would be
   // silently ignored by the driver.
-  static_assert(std::size(entries) * 4 == sizeof(Specialization));
-  VkSpecializationInfo spec{uint32_t(std::size(entries)), entries, sizeof(values), &values};
+  TESSERA_CHECK(entries.size() * 4 == sizeof(Specialization));
+  VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), sizeof(values), &values};
 
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -66,15 +68,13 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
 
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& v) {
-  Specialization values{VK_FALSE,
-                        v.brdf,
-                        v.energy_compensation ? VK_TRUE : VK_FALSE,
-                        VK_TRUE,
-                        v.light_counts[0],
-                        v.light_counts[1],
-                        v.light_counts[2],
-                        v.texture_maps,
-                        v.ibl ? TS_IBL_ON : TS_IBL_OFF};
+  const Specialization values{.debug_coverage = VK_FALSE,
+                              .brdf = v.brdf,
+                              .energy_compensation = v.energy_compensation ? VK_TRUE : VK_FALSE,
+                              .lights_specialized = VK_TRUE,
+                              .texture_maps = v.texture_maps,
+                              .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
+                              .light_counts = v.light_counts};
   return create_compute_pipeline(ctx, pipelines.layout, "shade", values);
 }
 

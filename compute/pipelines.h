@@ -37,12 +37,12 @@ VkShaderModule create_shader_module(const Context& ctx, std::span<const uint32_t
 VkShaderModule create_shader_module(const Context& ctx, std::string_view name);
 
 /// A shading pipeline specialized to a scene: BRDF variant, energy compensation, the number
-/// of point, spot and directional lights (lights sorted by kind), the texture maps its
+/// of lights of each kind (lights sorted by kind), the texture maps its
 /// materials use (TS_MAP_* bits) and whether an environment lights it.
 struct ShadeVariant {
   uint32_t brdf;
   bool energy_compensation;
-  std::array<uint32_t, 3> light_counts;
+  std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts;  // by TS_LIGHT_* kind
   uint32_t texture_maps;
   bool ibl;
   auto operator<=>(const ShadeVariant&) const = default;

@@ -599,26 +599,32 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   const float aspect = float(s.width) / float(s.height);
   const glm::dmat4 view_proj =
       glm::dmat4(projection_matrix(camera, aspect)) * glm::dmat4(view_matrix(camera));
-  gpu::GpuFrame f{};
-  f.view_proj = glm::mat4(view_proj);
-  f.inv_view_proj = glm::mat4(glm::inverse(view_proj));
-  f.camera_position = glm::vec4(camera.position, camera.near_plane);
-  f.background = glm::vec4(s.background, 1.0f);
-  f.ambient = glm::vec4(s.ambient, 0.0f);
-  // Guard band: NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
-  f.raster_params = glm::vec4(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
-                              float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0),
-                              std::exp2(settings.exposure_ev), 0.0f);
-  f.image_size = glm::uvec4(s.width, s.height, s.tiles_x, s.tiles_y);
-  f.scene_counts =
-      glm::uvec4(uint32_t(s.uploaded.objects.size()), uint32_t(s.uploaded.lights.size()),
-                 uint32_t(s.uploaded.triangle_count), tonemap_id(settings.tonemap));
-  f.limits = glm::uvec4(s.raster_capacity, s.tile_entry_capacity, s.options.small_triangle_max_area,
-                        view_id(settings.view));
-  f.flags = glm::uvec4(s.options.cull == CullMode::back    ? TS_CULL_BACK
-                       : s.options.cull == CullMode::front ? TS_CULL_FRONT
-                                                           : TS_CULL_NONE,
-                       s.env.source ? 1u : 0u, specular_levels(s.env), settings.max_anisotropy);
+  const gpu::GpuFrame f{.view_proj = glm::mat4(view_proj),
+                        .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
+                        .camera_position = camera.position,
+                        .near_plane = camera.near_plane,
+                        .background = s.background,
+                        .exposure_scale = std::exp2(settings.exposure_ev),
+                        .ambient = s.ambient,
+                        .view = view_id(settings.view),
+                        // NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
+                        .guard_band = glm::vec2(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
+                                                float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0)),
+                        .tonemap = tonemap_id(settings.tonemap),
+                        .cull = s.options.cull == CullMode::back    ? TS_CULL_BACK
+                                : s.options.cull == CullMode::front ? TS_CULL_FRONT
+                                                                    : TS_CULL_NONE,
+                        .image_size = glm::uvec2(s.width, s.height),
+                        .tiles = glm::uvec2(s.tiles_x, s.tiles_y),
+                        .object_count = uint32_t(s.uploaded.objects.size()),
+                        .light_count = uint32_t(s.uploaded.lights.size()),
+                        .triangle_count = uint32_t(s.uploaded.triangle_count),
+                        .raster_capacity = s.raster_capacity,
+                        .tile_entry_capacity = s.tile_entry_capacity,
+                        .small_triangle_max_area = s.options.small_triangle_max_area,
+                        .environment = s.env.source ? 1u : 0u,
+                        .env_levels = specular_levels(s.env),
+                        .anisotropy = settings.max_anisotropy};
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 

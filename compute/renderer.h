@@ -15,6 +15,7 @@
 #include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
 #include "compute/passes.h"
+#include "core/frame_settings.h"
 #include "core/image.h"
 #include "core/scene.h"
 
@@ -48,19 +49,6 @@ struct RendererOptions {
   EnvironmentOptions environment;
 };
 
-struct FrameSettings {
-  uint32_t width = 512;
-  uint32_t height = 512;
-  float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
-  ToneMap tonemap = ToneMap::aces;
-  View view = View::shaded;  // debug views are written as they are, without exposure or curve
-  Brdf brdf = Brdf::classic;
-  /// Multiple-scattering energy compensation of the specular lobe (classic and filament).
-  bool energy_compensation = false;
-  /// Texture filtering: 1 is trilinear; 2 to 16 take up to that many trilinear probes along
-  /// the footprint's longer axis (anisotropic filtering).
-  uint32_t max_anisotropy = 1;
-};
 
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps

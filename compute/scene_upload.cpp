@@ -10,6 +10,41 @@
 #include "core/texture.h"
 
 namespace tessera {
+namespace {
+
+gpu::GpuMaterial gpu_material(const Material& m) {
+  return {.base_color = m.base_color,
+          .metallic = m.metallic,
+          .emissive = m.emissive,
+          .roughness = m.roughness,
+          .occlusion = m.occlusion,
+          .normal_scale = m.normal_scale,
+          .base_color_map = m.base_color_map,
+          .metallic_roughness_map = m.metallic_roughness_map,
+          .normal_map = m.normal_map,
+          .occlusion_map = m.occlusion_map};
+}
+
+// The same conversion for every kind: each kind's shader branch reads the fields it needs.
+gpu::GpuLight gpu_light(const Light& l) {
+  // A point light's direction may be zero (validation allows it).
+  const float length = glm::length(l.direction);
+  // Spot cone as saturate(cos * scale + offset): 1 inside the inner cone, 0 outside the outer.
+  const float cos_inner = std::cos(l.inner_angle), cos_outer = std::cos(l.outer_angle);
+  const float scale = 1.0f / std::max(cos_inner - cos_outer, float(TS_MIN_SPOT_COSINE_GAP));
+  return {.position = l.position,
+          .kind = uint32_t(l.kind),
+          .direction = length > 0.0f ? glm::normalize(l.direction) : glm::vec3(0.0f),
+          .falloff = uint32_t(l.falloff),
+          .radiance = l.color * l.intensity,
+          .inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f,
+          .attenuation = l.attenuation,
+          .cone_scale = scale,
+          .cone_offset = -cos_outer * scale};
+}
+
+}  // namespace
+
 GpuSceneArrays flatten_scene(const Scene& scene) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
@@ -26,9 +61,9 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     }
     const std::vector<glm::vec4>& tangents = mesh.tangents.empty() ? generated : mesh.tangents;
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      out.vertices.push_back({glm::vec4(mesh.positions[v], mesh.uvs[v].x),
-                              glm::vec4(mesh.normals[v], mesh.uvs[v].y),
-                              tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
+      out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], mesh.uvs[v].x),
+                              .normal_v = glm::vec4(mesh.normals[v], mesh.uvs[v].y),
+                              .tangent = tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
     }
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
@@ -43,30 +78,34 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
   out.triangle_count = numbering.triangle_count;
   for (size_t slot = 0; slot < numbering.objects.size(); ++slot) {
     const Object& o = scene.objects[numbering.objects[slot]];
-    gpu::GpuObject g{};
-    g.model = o.transform;
-    g.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(o.transform))));
-    g.first_index = first_index[o.mesh];
-    g.base_vertex = base_vertex[o.mesh];
-    g.triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count());
-    g.material = o.material;
-    g.first_triangle = uint32_t(numbering.first_triangle[slot]);
+    const gpu::GpuObject g{
+        .model = o.transform,
+        .normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(o.transform)))),
+        .first_index = first_index[o.mesh],
+        .base_vertex = base_vertex[o.mesh],
+        .triangle_count = uint32_t(scene.meshes[o.mesh].triangle_count()),
+        .material = o.material,
+        .first_triangle = uint32_t(numbering.first_triangle[slot]),
+        .mirrored = is_mirroring(o.transform) ? 1u : 0u};
     out.objects.push_back(g);
   }
 
-  for (const Material& m : scene.materials) {
-    const glm::uvec4 maps(m.base_color_map, m.metallic_roughness_map, m.normal_map,
-                          m.occlusion_map);
-    out.materials.push_back({glm::vec4(m.base_color, 1.0f), glm::vec4(m.emissive, m.occlusion),
-                             m.metallic, m.roughness, m.normal_scale, 0.0f, maps});
-    for (int k = 0; k < 4; ++k) {
-      if (maps[k] != kNoTexture) out.texture_maps |= 1u << k;
+  for (const Material& m : scene.materials) out.materials.push_back(gpu_material(m));
+  for (const gpu::GpuMaterial& m : out.materials) {
+    const std::pair<uint32_t, uint32_t> maps[] = {
+        {m.base_color_map, TS_MAP_BASE_COLOR},
+        {m.metallic_roughness_map, TS_MAP_METALLIC_ROUGHNESS},
+        {m.normal_map, TS_MAP_NORMAL},
+        {m.occlusion_map, TS_MAP_OCCLUSION}};
+    for (const auto& [map, bit] : maps) {
+      if (map != kNoTexture) out.texture_maps |= bit;
     }
   }
   for (const Texture& t : scene.textures) {
     const MipChain chain = build_mip_chain(t);
     gpu::GpuTexture g{};
-    g.size = glm::uvec4(t.width, t.height, uint32_t(chain.levels.size()), 0);
+    g.size = glm::uvec2(t.width, t.height);
+    g.levels = uint32_t(chain.levels.size());
     TESSERA_CHECK(chain.levels.size() <= TS_MAX_TEXTURE_LEVELS);
     for (size_t l = 0; l < chain.levels.size(); ++l) {
       if (out.texels.size() > 0xFFFFFFFFull - chain.levels[l].texels.size()) {
@@ -79,37 +118,15 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
     }
     out.textures.push_back(g);
   }
-  // Sorted by kind (stably), so a shading pipeline specialized to the counts of each kind can
-  // loop over each kind separately.
+  // Sorted by kind (stably), in TS_LIGHT_* order, so a shading pipeline specialized to the
+  // counts of each kind can loop over each kind separately.
   std::vector<const Light*> sorted;
-  for (LightKind kind : {LightKind::point, LightKind::spot, LightKind::directional}) {
-    for (const Light& l : scene.lights) {
-      if (l.kind != kind) continue;
-      sorted.push_back(&l);
-      out.light_counts[kind == LightKind::point ? 0 : kind == LightKind::spot ? 1 : 2]++;
-    }
-  }
-  for (const Light* light : sorted) {
-    const Light& l = *light;
-    gpu::GpuLight g{};
-    g.position = glm::vec4(l.position, 1.0f);
-    const glm::vec3 dir =
-        l.kind == LightKind::point ? glm::vec3(0.0f) : glm::normalize(l.direction);
-    g.direction = glm::vec4(dir, 0.0f);
-    g.radiance = glm::vec4(l.color * l.intensity, 0.0f);
-    const float inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f;
-    g.falloff = glm::vec4(inv_range4, l.attenuation);
-    // Spot cone as saturate(cos * scale + offset): 1 inside the inner cone, 0 outside the outer.
-    // Equal angles would divide by zero: 1e-4 makes the edge a hard step instead.
-    const float cos_inner = std::cos(l.inner_angle), cos_outer = std::cos(l.outer_angle);
-    const float scale = 1.0f / std::max(cos_inner - cos_outer, 1e-4f);
-    g.cone = glm::vec4(scale, -cos_outer * scale, 0.0f, 0.0f);
-    const uint32_t kind = l.kind == LightKind::directional ? TS_LIGHT_DIRECTIONAL
-                          : l.kind == LightKind::spot      ? TS_LIGHT_SPOT
-                                                           : TS_LIGHT_POINT;
-    g.kind = glm::uvec4(
-        kind, l.falloff == Falloff::classic ? TS_FALLOFF_CLASSIC : TS_FALLOFF_INVERSE_SQUARE, 0, 0);
-    out.lights.push_back(g);
+  for (const Light& l : scene.lights) sorted.push_back(&l);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const Light* a, const Light* b) { return a->kind < b->kind; });
+  for (const Light* l : sorted) {
+    out.lights.push_back(gpu_light(*l));
+    out.light_counts[uint32_t(l->kind)]++;
   }
   return out;
 }

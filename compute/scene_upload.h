@@ -15,13 +15,13 @@ struct GpuSceneArrays {
   std::vector<uint32_t> indices;         // all meshes, relative to each mesh's first vertex
   std::vector<gpu::GpuObject> objects;   // canonical order (see flatten_scene)
   std::vector<gpu::GpuMaterial> materials;
-  std::vector<gpu::GpuLight> lights;       // sorted by kind: point, spot, directional
-  std::array<uint32_t, 3> light_counts{};  // point, spot, directional
-  std::vector<gpu::GpuTexture> textures;   // per Scene::textures entry
-  std::vector<glm::uvec2> texels;          // every mip level of every texture, fp16 RGBA
-  uint32_t texture_maps = 0;               // TS_MAP_* bits of the maps any material uses
-  std::vector<uint32_t> object_of_slot;    // GPU object slot -> index in Scene::objects
-  uint64_t triangle_count = 0;             // triangle instances over all objects
+  std::vector<gpu::GpuLight> lights;                         // sorted by kind (TS_LIGHT_* order)
+  std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // lights of each kind, by TS_LIGHT_*
+  std::vector<gpu::GpuTexture> textures;                     // per Scene::textures entry
+  std::vector<glm::uvec2> texels;        // every mip level of every texture, fp16 RGBA
+  uint32_t texture_maps = 0;             // TS_MAP_* bits of the maps any material uses
+  std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
+  uint64_t triangle_count = 0;           // triangle instances over all objects
 };
 
 /// Flattens `scene` (which must have passed validate_scene). Objects are uploaded in the order

@@ -45,19 +45,25 @@ double blinn_phong_lobe(double n_dot_h, double alpha) {
 
 }  // namespace
 
+ShadingParams reference_shading_params(const Material& m) {
+  ShadingParams p;
+  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
+  const dvec3 base(m.base_color);
+  p.roughness = std::clamp(double(m.roughness), TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  p.alpha = p.roughness * p.roughness;
+  p.f0 = glm::mix(dvec3(TS_DIELECTRIC_F0), base, metallic);
+  p.diffuse_color = (1.0 - metallic) * base;
+  return p;
+}
+
 BrdfLobes reference_brdf_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return {dvec3(0.0), dvec3(0.0)};
-  const double n_dot_v = std::max(glm::dot(n, v), kMinNoV);
+  const double n_dot_v = std::max(glm::dot(n, v), TS_MIN_N_DOT_V);
   const dvec3 half_vector = v + l;
   const double length2 = glm::dot(half_vector, half_vector);
   const dvec3 h = length2 > 0.0 ? half_vector / std::sqrt(length2) : n;
-  const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
-  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
-  const double alpha = roughness * roughness;
-  const dvec3 base(m.base_color);
-  const dvec3 f0 = glm::mix(dvec3(0.04), base, metallic);
-  const dvec3 diffuse_color = (1.0 - metallic) * base;
+  const auto [diffuse_color, f0, roughness, alpha] = reference_shading_params(m);
   const double n_dot_h = std::clamp(glm::dot(n, h), 0.0, 1.0);
   if (variant == Brdf::blinn_phong)
     return {diffuse_color / kPi, f0 * blinn_phong_lobe(n_dot_h, alpha)};
@@ -78,8 +84,8 @@ dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m)
 }
 
 double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
-  roughness = std::clamp(roughness, kMinPerceptualRoughness, 1.0);
-  n_dot_v = std::clamp(n_dot_v, kMinNoV, 1.0);
+  roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  n_dot_v = std::clamp(n_dot_v, TS_MIN_N_DOT_V, 1.0);
   const double alpha = roughness * roughness;
   const double sin_v = std::sqrt(1.0 - n_dot_v * n_dot_v);
   const dvec3 v(sin_v, 0.0, n_dot_v);

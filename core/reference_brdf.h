@@ -9,17 +9,26 @@
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "shaders/shared/constants.h"
 
 namespace tessera {
 
-// The shading model's guards, the same constants as the compute path's (shaders/brdf.glsl
-// gives the reasons): they are part of the model, not of either implementation.
+// The shading model's guards (TS_MIN_*) are shared with the compute path through
+// shaders/shared/constants.h, which gives the reasons: they are part of the model, not of
+// either implementation.
 inline constexpr double kPi = std::numbers::pi;
-inline constexpr double kMinPerceptualRoughness = 0.045;
-inline constexpr double kMinNoV = 1e-4;
-inline constexpr double kMinLightDistanceSquared = 1e-4;
-inline constexpr double kMinAttenuationDenominator = 1e-4;
-inline constexpr double kMinSpotCosineGap = 1e-4;
+
+/// The shading parameters of a material (the reference's counterpart of brdf.glsl's
+/// PixelParams): the glTF 2.0 metallic-roughness model with metallic clamped to [0, 1] and
+/// roughness to [TS_MIN_PERCEPTUAL_ROUGHNESS, 1]. Every material parameter that changes the
+/// BRDF is applied here, once, for the lights, the environment and energy compensation alike.
+struct ShadingParams {
+  glm::dvec3 diffuse_color;  // Lambert albedo
+  glm::dvec3 f0;             // specular reflectance at normal incidence
+  double roughness;          // perceptual
+  double alpha;              // roughness^2
+};
+ShadingParams reference_shading_params(const Material& m);
 
 /// The two lobes of f(l, v) (without the cosine): diffuse and specular, each 0 for N.L <= 0.
 struct BrdfLobes {

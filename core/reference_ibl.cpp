@@ -34,8 +34,7 @@ dvec3 reference_environment_light(const Environment& environment, Brdf variant, 
   const dvec3 bt(b, sign + n.y * n.y * a, -n.y);
   auto to_world = [&](dvec3 local) { return t * local.x + bt * local.y + n * local.z; };
 
-  const double roughness = std::clamp(double(m.roughness), kMinPerceptualRoughness, 1.0);
-  const double alpha = roughness * roughness;
+  const double alpha = reference_shading_params(m).alpha;
   dvec3 diffuse(0.0), specular(0.0);
   for (uint32_t i = 0; i < samples; ++i) {
     const dvec2 u = hammersley(i, samples);

@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "core/reference_brdf.h"
 #include "core/texture.h"
+#include "shaders/shared/constants.h"
 
 namespace tessera {
 namespace {
@@ -22,10 +23,7 @@ using glm::dvec2;
 using glm::dvec3;
 using glm::dvec4;
 
-constexpr int64_t kSubpixelOne = 256;  // 8 sub-pixel bits
-constexpr double kGuardBandPx = 32768.0;
-constexpr uint32_t kMaxSide = 16384;
-constexpr double kMaxHalf = 65504.0;  // the HDR output is fp16
+constexpr int64_t kSubpixelOne = TS_SUBPIXEL_ONE;  // int64 for the edge arithmetic
 
 struct CameraModel {
   dmat4 view_proj;
@@ -53,8 +51,8 @@ CameraModel make_camera(const Camera& c, uint32_t width, uint32_t height) {
   proj[1][1] = -1.0 / m.tan_y;
   proj[2][3] = -1.0;
   m.view_proj = proj * view;
-  m.guard_x = 2.0 * kGuardBandPx / m.width - 1.0;
-  m.guard_y = 2.0 * kGuardBandPx / m.height - 1.0;
+  m.guard_x = 2.0 * TS_GUARD_BAND_PX / m.width - 1.0;
+  m.guard_y = 2.0 * TS_GUARD_BAND_PX / m.height - 1.0;
   return m;
 }
 
@@ -77,6 +75,7 @@ struct Instance {
   dmat3 normal_matrix;
   uint64_t first_triangle;
   uint32_t slot;
+  bool mirrored;  // is_mirroring(transform): front faces wind clockwise, tangent frames flip
   const std::vector<glm::vec4>* tangents = nullptr;  // the mesh's, or generated; null if unused
 };
 
@@ -87,7 +86,7 @@ std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& 
     dmat4 model(o.transform);
     out.push_back({&scene.meshes[o.mesh], &scene.materials[o.material], model,
                    glm::transpose(glm::inverse(dmat3(model))), numbering.first_triangle[slot],
-                   uint32_t(slot)});
+                   uint32_t(slot), is_mirroring(o.transform)});
   }
   return out;
 }
@@ -137,7 +136,15 @@ std::vector<dvec4> clipped_polygon(const CameraModel& cam, const std::array<dvec
       dvec4 a = poly[i], b = poly[(i + 1) % poly.size()];
       double da = plane_distance(cam, a, plane), db = plane_distance(cam, b, plane);
       if (da >= 0) next.push_back(a);
-      if ((da >= 0) != (db >= 0)) next.push_back(a + (b - a) * (da / (da - db)));
+      if ((da >= 0) != (db >= 0)) {
+        // From the inside end towards the outside end, whichever way the edge is walked: the
+        // two triangles sharing an edge walk it in opposite directions and must get the same
+        // crossing, or samples on the edge are covered twice or missed.
+        const bool a_in = da >= 0;
+        const dvec4 p_in = a_in ? a : b, p_out = a_in ? b : a;
+        const double d_in = a_in ? da : db, d_out = a_in ? db : da;
+        next.push_back(p_in + (p_out - p_in) * (d_in / (d_in - d_out)));
+      }
     }
     poly = std::move(next);
   }
@@ -176,8 +183,9 @@ struct RasterTriangle {
 };
 
 // Snaps, culls by facing and area, and computes the pixel box; false if nothing remains.
+// `mirrored`: the object's transform has a negative determinant.
 bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4 c1, dvec4 c2,
-                          uint32_t id, RasterTriangle& t) {
+                          uint32_t id, bool mirrored, RasterTriangle& t) {
   const dvec4 c[3] = {c0, c1, c2};
   FixedPoint v[3];
   double d[3];
@@ -189,9 +197,12 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   }
   const int64_t area = edge(v[0], v[1], v[2]);
   if (area == 0) return false;
-  const bool front = area < 0;  // counter-clockwise in the world is clockwise in y-down pixels
+  // Counter-clockwise in the world is clockwise in y-down pixels; a mirroring transform has
+  // reversed the winding once more, and glTF 2.0 makes its clockwise faces the front ones.
+  const bool clockwise = area < 0;
+  const bool front = clockwise != mirrored;
   if ((front && cull == CullMode::front) || (!front && cull == CullMode::back)) return false;
-  const int second = front ? 2 : 1, third = front ? 1 : 2;
+  const int second = clockwise ? 2 : 1, third = clockwise ? 1 : 2;
   t.v[0] = v[0];
   t.v[1] = v[second];
   t.v[2] = v[third];
@@ -226,12 +237,14 @@ void setup_triangle(const CameraModel& cam, CullMode cull, const Instance& inst,
     for (int plane = 0; plane < 5; ++plane) inside = inside && plane_distance(cam, v, plane) >= 0;
   }
   if (inside) {
-    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), t)) out.push_back(t);
+    if (make_raster_triangle(cam, cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, t))
+      out.push_back(t);
     return;
   }
   std::vector<dvec4> poly = clipped_polygon(cam, c);
   for (size_t k = 1; k + 1 < poly.size(); ++k) {
-    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), t))
+    if (make_raster_triangle(cam, cull, poly[0], poly[k], poly[k + 1], uint32_t(id), inst.mirrored,
+                             t))
       out.push_back(t);
   }
 }
@@ -280,29 +293,42 @@ dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec
   return (lobes.diffuse + lobes.specular * specular_scale) * incident * n_dot_l;
 }
 
-// Incident radiance scale of a point or spot light at squared distance d2, arriving along l.
-double attenuation(const Light& light, double d2, dvec3 l) {
-  double a;
+// Incident radiance scale of a light with a position at squared distance d2 (its Falloff).
+double distance_attenuation(const Light& light, double d2) {
   if (light.falloff == Falloff::classic) {
     const glm::dvec3 k(light.attenuation);
-    a = 1.0 / std::max(k.x + k.y * std::sqrt(d2) + k.z * d2, kMinAttenuationDenominator);
-  } else {
-    a = 1.0 / std::max(d2, kMinLightDistanceSquared);  // inverse square
-    if (light.range > 0.0f) {
-      const double r = light.range;
-      const double fade = std::clamp(1.0 - (d2 * d2) / (r * r * r * r), 0.0, 1.0);
-      a *= fade * fade;  // Karis 2013 window
-    }
+    return 1.0 / std::max(k.x + k.y * std::sqrt(d2) + k.z * d2, TS_MIN_ATTENUATION_DENOMINATOR);
   }
+  double a = 1.0 / std::max(d2, TS_MIN_LIGHT_DISTANCE_SQUARED);  // inverse square
+  if (light.range > 0.0f) {
+    const double r = light.range;
+    const double fade = std::clamp(1.0 - (d2 * d2) / (r * r * r * r), 0.0, 1.0);
+    a *= fade * fade;  // Karis 2013 window
+  }
+  return a;
+}
+
+// The light arriving at a surface point from one light: unit direction l towards it and the
+// incident radiance along l. One case per LightKind.
+struct LightArrival {
+  dvec3 l, incident;
+};
+LightArrival light_arrival(const Light& light, dvec3 position, dvec3 normal) {
+  const dvec3 power = dvec3(light.color) * double(light.intensity);
+  if (light.kind == LightKind::directional) return {-glm::normalize(dvec3(light.direction)), power};
+  const dvec3 to_light = dvec3(light.position) - position;
+  const double d2 = glm::dot(to_light, to_light);
+  const dvec3 l = d2 > 0.0 ? to_light / std::sqrt(d2) : normal;
+  double a = distance_attenuation(light, d2);
   if (light.kind == LightKind::spot) {
     const double cos_inner = std::cos(double(light.inner_angle)),
                  cos_outer = std::cos(double(light.outer_angle));
     const double c = glm::dot(glm::normalize(dvec3(light.direction)), -l);
-    const double t =
-        std::clamp((c - cos_outer) / std::max(cos_inner - cos_outer, kMinSpotCosineGap), 0.0, 1.0);
+    const double t = std::clamp(
+        (c - cos_outer) / std::max(cos_inner - cos_outer, TS_MIN_SPOT_COSINE_GAP), 0.0, 1.0);
     a *= t * t;
   }
-  return a;
+  return {l, power * a};
 }
 
 struct Surface {
@@ -369,7 +395,7 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
     dvec3 t(0.0);
     for (int k = 0; k < 3; ++k) t += b[k] * (model3 * dvec3(glm::vec3((*inst.tangents)[idx[k]])));
     // A mirroring transform flips the handedness of the tangent frame.
-    const double w = (*inst.tangents)[idx[0]].w * (glm::determinant(model3) < 0.0 ? -1.0 : 1.0);
+    const double w = (*inst.tangents)[idx[0]].w * (inst.mirrored ? -1.0 : 1.0);
     out.tangent = glm::dvec4(t, w);
   }
   return out;
@@ -384,16 +410,12 @@ struct ShadeContext {
   const ReferenceSettings& settings;
 };
 
-// Smallest N.V a normal map may leave: a mapped normal facing away from the viewer is bent
-// back towards it (the same constant and rule as shaders/material.glsl).
-constexpr double kMinMappedNoV = 0.01;
-
 // The material at the surface point with its texture maps applied, and the shading normal
 // (normal-mapped when the material has a normal map).
 Material resolve_material(const ShadeContext& c, const Material& base, Surface& s, dvec3 v) {
   Material m = base;
   auto sample = [&](uint32_t map) {
-    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.max_anisotropy);
+    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.frame.max_anisotropy);
   };
   if (m.base_color_map != kNoTexture) m.base_color *= glm::vec3(sample(m.base_color_map));
   if (m.metallic_roughness_map != kNoTexture) {
@@ -417,7 +439,7 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
       if (m2 > 1e-20) {
         dvec3 nm = mapped / std::sqrt(m2);
         const double nv = glm::dot(nm, v);
-        if (nv < kMinMappedNoV) nm = glm::normalize(nm + v * (kMinMappedNoV - nv));
+        if (nv < TS_MIN_MAPPED_N_DOT_V) nm = glm::normalize(nm + v * (TS_MIN_MAPPED_N_DOT_V - nv));
         s.normal = nm;
       }
     }
@@ -427,13 +449,13 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
 
 dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   const Scene& scene = c.scene;
-  const Brdf brdf = c.settings.brdf;
+  const Brdf brdf = c.settings.frame.brdf;
   const Instance& inst = instance_of(c.instances, id);
   const dvec3 dir = camera_ray(c.cam, x, y);
   Surface s = surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
                          camera_ray_at(c.cam, x + 0.5, y + 1.5));
   const Material m = resolve_material(c, *inst.material, s, -dir);
-  switch (c.settings.view) {
+  switch (c.settings.frame.view) {
     case View::normal:
       return s.normal * 0.5 + 0.5;
     case View::uv:
@@ -447,35 +469,23 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
   }
   const dvec3 v = -dir;
   dvec3 specular_scale(1.0);
-  if (c.settings.energy_compensation && brdf != Brdf::blinn_phong) {
+  if (c.settings.frame.energy_compensation && brdf != Brdf::blinn_phong) {
     // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
     const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
-    const dvec3 f0 =
-        glm::mix(dvec3(0.04), dvec3(m.base_color), std::clamp(double(m.metallic), 0.0, 1.0));
-    specular_scale = 1.0 + f0 * (1.0 / e - 1.0);
+    specular_scale = 1.0 + reference_shading_params(m).f0 * (1.0 / e - 1.0);
   }
   dvec3 color =
       dvec3(scene.ambient) * dvec3(m.base_color) * double(m.occlusion) + dvec3(m.emissive);
   for (const Light& light : scene.lights) {
-    dvec3 l, incident;
-    const dvec3 power = dvec3(light.color) * double(light.intensity);
-    if (light.kind == LightKind::directional) {
-      l = -glm::normalize(dvec3(light.direction));
-      incident = power;
-    } else {
-      const dvec3 to_light = dvec3(light.position) - s.position;
-      const double d2 = glm::dot(to_light, to_light);
-      l = d2 > 0.0 ? to_light / std::sqrt(d2) : s.normal;
-      incident = power * attenuation(light, d2, l);
-    }
-    color += reflected(brdf, s.normal, v, l, m, incident, specular_scale);
+    const LightArrival a = light_arrival(light, s.position, s.normal);
+    color += reflected(brdf, s.normal, v, a.l, m, a.incident, specular_scale);
   }
   if (scene.environment) {
     color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
                                                                v, m, specular_scale,
                                                                c.settings.environment_samples);
   }
-  return glm::min(color, dvec3(kMaxHalf));
+  return glm::min(color, dvec3(TS_MAX_HALF));
 }
 
 // --- Resolve -------------------------------------------------------------------------------
@@ -509,10 +519,11 @@ void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
 }
 
 void check_size(const ReferenceSettings& settings) {
-  if (settings.width == 0 || settings.height == 0 || settings.width > kMaxSide ||
-      settings.height > kMaxSide) {
-    throw Error("image size " + std::to_string(settings.width) + "x" +
-                std::to_string(settings.height) + " is outside 1..16384 per side");
+  if (settings.frame.width == 0 || settings.frame.height == 0 ||
+      settings.frame.width > TS_MAX_IMAGE_SIDE || settings.frame.height > TS_MAX_IMAGE_SIDE) {
+    throw Error("image size " + std::to_string(settings.frame.width) + "x" +
+                std::to_string(settings.frame.height) + " is outside 1.." +
+                std::to_string(TS_MAX_IMAGE_SIDE) + " per side");
   }
 }
 
@@ -521,7 +532,7 @@ void check_size(const ReferenceSettings& settings) {
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings) {
   validate_scene(scene);
   check_size(settings);
-  const uint32_t w = settings.width, h = settings.height;
+  const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
   const ObjectNumbering numbering = number_objects(scene);
@@ -562,18 +573,18 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   f.ldr = {w, h, std::vector<glm::u8vec4>(pixels)};
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
     rasterize_rows(tris, w, y0, y1, f);
-    const bool shaded = settings.view == View::shaded;
-    const double exposure = shaded ? std::exp2(double(settings.exposure_ev)) : 1.0;
-    const ToneMap op = shaded ? settings.tonemap : ToneMap::clamp;
+    const bool shaded = settings.frame.view == View::shaded;
+    const double exposure = shaded ? std::exp2(double(settings.frame.exposure_ev)) : 1.0;
+    const ToneMap op = shaded ? settings.frame.tonemap : ToneMap::clamp;
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
         dvec3 c;
         if (f.owner[i] != kNoTriangle) {
           c = shade_pixel(context, f.owner[i], x, y);
-        } else if (scene.environment && settings.view == View::shaded) {
+        } else if (scene.environment && settings.frame.view == View::shaded) {
           c = glm::min(environment_radiance(*scene.environment, camera_ray(cam, x, y)),
-                       dvec3(kMaxHalf));
+                       dvec3(TS_MAX_HALF));
         } else {
           c = dvec3(scene.background);
         }
@@ -593,7 +604,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
 ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,
                                uint32_t triangle_id, uint32_t x, uint32_t y) {
   check_size(settings);
-  const CameraModel cam = make_camera(scene.camera, settings.width, settings.height);
+  const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
   const ObjectNumbering numbering = number_objects(scene);
   const std::vector<Instance> instances = make_instances(scene, numbering);
   TESSERA_CHECK(triangle_id < numbering.triangle_count);

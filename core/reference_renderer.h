@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/frame_settings.h"
 #include "core/image.h"
 #include "core/reference_brdf.h"
 #include "core/scene.h"
@@ -21,15 +22,10 @@
 namespace tessera {
 
 struct ReferenceSettings {
-  uint32_t width = 512;
-  uint32_t height = 512;
-  float exposure_ev = 0.0f;
-  ToneMap tonemap = ToneMap::aces;
-  View view = View::shaded;
+  /// As for the compute path; energy compensation scales specular by 1 + F0 (1/E - 1), with E
+  /// integrated by quadrature rather than read from a table.
+  FrameSettings frame;
   CullMode cull = CullMode::back;
-  Brdf brdf = Brdf::classic;
-  bool energy_compensation = false;  // scales specular by 1 + F0 (1/E - 1), E by quadrature
-  uint32_t max_anisotropy = 1;        // texture filtering, as FrameSettings::max_anisotropy
   /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
   uint32_t environment_samples = 1024;
   unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread

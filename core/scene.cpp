@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -26,6 +27,13 @@ bool finite(const glm::mat4& m) {
     if (!finite(m[c])) return false;
   }
   return true;
+}
+
+// A float as printed in messages: shortest form ("0", "1.5").
+std::string number(float v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
 }
 
 void require(bool ok, const std::string& what) {
@@ -112,15 +120,16 @@ void validate_scene(const Scene& scene) {
   for (size_t m = 0; m < scene.meshes.size(); ++m) validate_mesh(scene.meshes[m], m);
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
-    require(finite(mat.base_color) && finite(mat.metallic) && finite(mat.roughness) &&
-                finite(mat.emissive) && finite(mat.occlusion),
-            "material " + std::to_string(m) + " has a NaN or infinite value");
+    const std::string name = "material " + std::to_string(m);
+    require(finite(mat.base_color) && finite(mat.emissive), name + " has a NaN or infinite colour");
     require(glm::all(glm::greaterThanEqual(mat.emissive, glm::vec3(0.0f))),
-            "material " + std::to_string(m) + " has a negative emissive colour");
-    require(mat.occlusion >= 0.0f && mat.occlusion <= 1.0f,
-            "material " + std::to_string(m) + " has an occlusion outside [0, 1]");
-    require(finite(mat.normal_scale),
-            "material " + std::to_string(m) + " has a NaN or infinite normal scale");
+            name + " has a negative emissive colour");
+    for (const MaterialScalar& p : kMaterialScalars) {
+      const float v = mat.*p.field;
+      require(finite(v), name + " has a NaN or infinite " + p.name);
+      require(v >= p.min && v <= p.max, name + " has " + p.name + " outside [" + number(p.min) +
+                                            ", " + number(p.max) + "]: " + number(v));
+    }
     const std::pair<const char*, uint32_t> maps[] = {
         {"base colour", mat.base_color_map},
         {"metallic-roughness", mat.metallic_roughness_map},
@@ -128,8 +137,8 @@ void validate_scene(const Scene& scene) {
         {"occlusion", mat.occlusion_map}};
     for (const auto& [what, index] : maps) {
       require(index == kNoTexture || index < scene.textures.size(),
-              "material " + std::to_string(m) + " uses texture " + std::to_string(index) +
-                  " as its " + what + " map, of " + std::to_string(scene.textures.size()));
+              name + " uses texture " + std::to_string(index) + " as its " + what + " map, of " +
+                  std::to_string(scene.textures.size()));
     }
   }
   for (size_t t = 0; t < scene.textures.size(); ++t) {
@@ -178,6 +187,12 @@ void validate_scene(const Scene& scene) {
                 light.inner_angle <= light.outer_angle && light.outer_angle < 1.5707963f,
             name + " needs spot angles with 0 <= inner <= outer < pi/2");
   }
+}
+
+bool is_mirroring(const glm::mat4& transform) {
+  // In double, so that the sign is that of the determinant of the float matrix except within
+  // rounding of singular (degenerate) transforms, whose triangles have no area anyway.
+  return glm::determinant(glm::dmat3(glm::mat3(transform))) < 0.0;
 }
 
 glm::mat4 view_matrix(const Camera& camera) {

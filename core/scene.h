@@ -3,6 +3,7 @@
 // colours are linear RGB.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "core/environment.h"
 #include "core/texture.h"
+#include "shaders/shared/constants.h"
 
 namespace tessera {
 
@@ -55,15 +57,38 @@ struct Material {
   float normal_scale = 1.0f;                     // scales the normal map's x and y
 };
 
-enum class LightKind { point, directional, spot };
+/// A scalar parameter of Material and the values validate_scene accepts for it (inclusive;
+/// NaN and infinities never). Every float of Material has its line, so a new parameter is
+/// validated by adding it here.
+struct MaterialScalar {
+  const char* name;
+  float Material::*field;
+  float min, max;
+};
+inline constexpr float kAnyFinite = std::numeric_limits<float>::max();
+inline constexpr MaterialScalar kMaterialScalars[] = {
+    // Outside [0, 1] metallic and roughness are clamped when shading, as glTF allows.
+    {"metallic", &Material::metallic, -kAnyFinite, kAnyFinite},
+    {"roughness", &Material::roughness, -kAnyFinite, kAnyFinite},
+    {"occlusion", &Material::occlusion, 0.0f, 1.0f},
+    {"normal scale", &Material::normal_scale, -kAnyFinite, kAnyFinite},
+};
+
+/// The kinds of light, numbered as the shaders number them (TS_LIGHT_*, which also orders the
+/// uploaded lights).
+enum class LightKind : uint32_t {
+  point = TS_LIGHT_POINT,
+  spot = TS_LIGHT_SPOT,
+  directional = TS_LIGHT_DIRECTIONAL,
+};
 
 /// How a point or spot light's intensity falls with distance d.
-enum class Falloff {
+enum class Falloff : uint32_t {
   /// Physically based: intensity / d^2, faded to zero at `range` by
   /// saturate(1 - (d / range)^4)^2 (Karis 2013); no fade when range is 0.
-  inverse_square,
+  inverse_square = TS_FALLOFF_INVERSE_SQUARE,
   /// The classic model: intensity / (Kc + Kl d + Kq d^2), with `attenuation` = (Kc, Kl, Kq).
-  classic,
+  classic = TS_FALLOFF_CLASSIC,
 };
 
 /// Units: colour is linear RGB and dimensionless; intensity is radiant intensity (W/sr) for
@@ -71,7 +96,7 @@ enum class Falloff {
 /// and irradiance (W/m^2) for directional lights.
 struct Light {
   LightKind kind = LightKind::point;
-  glm::vec3 position{0.0f};                // point and spot lights
+  glm::vec3 position{0.0f};                // all but directional lights
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional and spot lights: the way light travels
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
@@ -92,10 +117,13 @@ struct Object {
 enum class ToneMap { aces, reinhard, clamp };
 
 /// The BRDF of the shading model (docs/shading.md).
-enum class Brdf {
-  classic,      // GGX, Smith with Schlick-GGX k = (r+1)^2/8, Schlick F on V.H, (1-F)(1-m) Lambert
-  filament,     // GGX, height-correlated Smith visibility, Schlick F on V.H, (1-m) Lambert
-  blinn_phong,  // normalized Blinn-Phong, the non-physical baseline
+/// Values are the shaders' TS_BRDF_*.
+enum class Brdf : uint32_t {
+  classic = TS_BRDF_CLASSIC,    // GGX, Smith with Schlick-GGX k = (r+1)^2/8, Schlick F on V.H,
+                                // (1-F)(1-m) Lambert
+  filament = TS_BRDF_FILAMENT,  // GGX, height-correlated Smith visibility, Schlick F on V.H,
+                                // (1-m) Lambert
+  blinn_phong = TS_BRDF_BLINN_PHONG,  // normalized Blinn-Phong, the non-physical baseline
 };
 
 /// Which triangles are culled by their facing. Front faces wind counter-clockwise as seen.
@@ -143,6 +171,12 @@ glm::vec3 id_colour(uint32_t id);
 
 /// World -> view transform of `camera` (right-handed, looking down -z).
 glm::mat4 view_matrix(const Camera& camera);
+
+/// True if `transform` mirrors what it places: its upper 3x3 has a negative determinant. Such
+/// an object's counter-clockwise triangles wind clockwise in the world, so its front faces are
+/// the clockwise ones (as glTF 2.0 requires), and its tangent frames change handedness. The one
+/// decision used by the compute path, the hardware baseline and the reference renderer.
+bool is_mirroring(const glm::mat4& transform);
 
 /// View -> clip projection for Vulkan's y-down NDC. clip.w is the distance along the view
 /// axis; clip.z is unused by the rasterizer (depth is near / w). `aspect` = width / height.

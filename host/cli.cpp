@@ -1,222 +1,290 @@
 #include "host/cli.h"
 
-#include <charconv>
-#include <cmath>
-#include <functional>
-#include <map>
+#include <algorithm>
+#include <tuple>
 
-#include "core/check.h"
-#include "shaders/shared/gpu_types.h"
+#include "core/bench_scenes.h"
+#include "core/builtin_scenes.h"
+#include "host/cli_values.h"
+#include "host/scene_source.h"
 
 namespace tessera {
-
-uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min,
-                    uint32_t max) {
-  uint64_t value = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
-    throw Error(option + " expects a whole number from " + std::to_string(min) + " to " +
-                std::to_string(max) + ", got '" + text + "'");
-  }
-  return uint32_t(value);
-}
-
 namespace {
 
-float parse_float(const std::string& option, const std::string& text) {
-  float value = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw Error(option + " expects a number, got '" + text + "'");
-  }
-  return value;
+const std::vector<std::string> kCommands = {"render", "bench", "devices", "scenes"};
+
+// Checks that a scene exists; the builders throw Error naming the known scenes otherwise.
+// A scene file (a path) is read when the command runs, where its errors name file and place.
+CLI::Validator builtin_scene() {
+  return checked_by([](const std::string& name) {
+    if (!is_builtin_scene(name) && !is_scene_path(name)) make_builtin_scene(name);
+  });
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+CLI::Validator bench_scene() {
+  return checked_by([](const std::string& name) {
+    if (!is_builtin_scene(name) && !is_scene_path(name)) make_bench_scene(name, 1, 8, 1.0f);
+  });
+}
+
+CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {
+  auto set = [&width, &height](const std::string& text) {
+    std::tie(width, height) = read_size(text);
+  };
+  return app.add_option_function<std::string>("--size", set, help)
+      ->type_name("WxH")
+      ->check(image_size());
+}
+
+void add_render_options(CLI::App& app, RenderArgs& a) {
+  app.add_option("--scene", a.scene,
+                 "built-in scene (default spheres; see\n"
+                 "`tessera scenes`) or a scene file\n"
+                 "(docs/scene-format.md), whose \"render\" block\n"
+                 "sets size, exposure, tone map and BRDF unless\n"
+                 "given here")
+      ->type_name("NAME|FILE")
+      ->check(builtin_scene());
+  add_size(app, a.frame.width, a.frame.height,
+           "image size in pixels, each side 1..16384\n(default 512x512)");
+  app.add_option("--out", a.out, "display image, sRGB (default tessera.png)")
+      ->type_name("FILE.png")
+      ->check(file_with_suffix({".png"}));
+  app.add_option("--hdr-out", a.hdr_out,
+                 "linear HDR image too, .pfm (exact floats) or\n.hdr (RGBE)")
+      ->type_name("FILE")
+      ->check(file_with_suffix({".pfm", ".hdr"}));
+  app.add_option("--device", a.device,
+                 "lavapipe, gpu, a device index (default: a\n"
+                 "discrete GPU if there is one, else lavapipe),\n"
+                 "or reference: the CPU reference renderer in\n"
+                 "double precision")
+      ->type_name("D");
+  app.add_option("--exposure", a.frame.exposure_ev,
+                 "exposure in stops, applied before tone\nmapping, -64..64 (default 0)")
+      ->type_name("EV")
+      ->check(finite_number(-64.0, 64.0));
+  add_choice(app, "--tonemap", a.frame.tonemap,
+             {{"aces", ToneMap::aces}, {"reinhard", ToneMap::reinhard}, {"clamp", ToneMap::clamp}},
+             "tone curve (default aces)");
+  add_choice(app, "--brdf", a.frame.brdf,
+             {{"classic", Brdf::classic},
+              {"filament", Brdf::filament},
+              {"blinn-phong", Brdf::blinn_phong}},
+             "classic (default: GGX, Schlick-GGX Smith,\n"
+             "Schlick Fresnel), filament (height-correlated\n"
+             "Smith) or blinn-phong");
+  app.add_flag("--energy-compensation", a.frame.energy_compensation,
+               "multiple-scattering energy compensation of\n"
+               "the specular lobe (classic and filament), from\n"
+               "a DFG table");
+  app.add_option("--env", a.env,
+                 "light the scene with an environment, also\n"
+                 "drawn behind it: FILE.hdr (Radiance) or\n"
+                 "FILE.pfm, equirectangular; sky (a procedural\n"
+                 "sky); none (the scene's lights only). Default:\n"
+                 "the scene's own (only `environment` has one)")
+      ->type_name("E")
+      ->check(file_with_suffix({".hdr", ".pfm"}, {"sky", "none"}));
+  app.add_option("--env-size", a.env_options.specular_size,
+                 "side of the prefiltered specular cube, a\npower of two 1..512 (default 128)")
+      ->type_name("N")
+      ->check(whole_number(1, 512))
+      ->check(checked_by([](const std::string& text) {
+        EnvironmentOptions options;
+        options.specular_size = uint32_t(std::stoul(text));
+        validate_environment_options(options);
+      }));
+  app.add_option("--env-samples", a.env_options.specular_samples,
+                 "GGX samples per cube texel when prefiltering,\n1..65536 (default 128)")
+      ->type_name("N")
+      ->check(whole_number(1, 65536));
+  app.add_option("--env-irradiance-size", a.env_options.irradiance_size,
+                 "width of the map level the irradiance is\nprojected from, 1..16384 (default 64)")
+      ->type_name("N")
+      ->check(whole_number(1, 16384));
+  app.add_option("--env-reference-samples", a.env_reference_samples,
+                 "Monte Carlo directions per lobe and pixel\n"
+                 "with --device reference, 1..1048576 (default\n"
+                 "1024)")
+      ->type_name("N")
+      ->check(whole_number(1, 1u << 20));
+  app.add_option("--anisotropy", a.frame.max_anisotropy,
+                 "texture filtering: 1 trilinear (default),\n2..16 anisotropic")
+      ->type_name("N")
+      ->check(whole_number(1, 16));
+  add_choice(app, "--view", a.frame.view,
+             {{"shaded", View::shaded},
+              {"normal", View::normal},
+              {"uv", View::uv},
+              {"triangle", View::triangle},
+              {"object", View::object}},
+             "shaded (default), or a debug view: normal,\n"
+             "uv, triangle (a colour per triangle) or object\n"
+             "(a colour per object)");
+  app.add_option("--repeat", a.repeat,
+                 "frames timed after the first, 1..1000\n"
+                 "(default 3): their median, min and max GPU\n"
+                 "times are reported; the first frame's apart,\n"
+                 "as it includes pipeline compilation")
+      ->type_name("K")
+      ->check(whole_number(1, 1000));
+  app.add_flag("--validate", a.validate,
+               "enable the Khronos validation layer\n"
+               "(synchronization too); exit status 3 if it\n"
+               "reports anything");
+  app.add_flag("--quiet", a.quiet, "print nothing but errors");
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
+}
+
+void add_bench_options(CLI::App& app, BenchArgs& a) {
+  app.add_option("--scene", a.scene,
+                 "grid (default), scatter or huge; or a\n"
+                 "built-in scene of `tessera scenes` or a scene\nfile (one point:\n"
+                 "its own object count)")
+      ->type_name("NAME")
+      ->check(bench_scene());
+  app.add_option("--objects", a.objects, "object counts, e.g. 1,10,100,1000 (default\n1,10,100)")
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(whole_number(1, 100'000'000));
+  add_size(app, a.width, a.height, "image size, each side 1..16384 (default\n512x512)");
+  app.add_option("--segments", a.segments,
+                 "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
+      ->type_name("S")
+      ->check(whole_number(4, 4096));
+  app.add_option("--device", a.device,
+                 "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
+      ->type_name("D");
+  app.add_option("--backends", a.backends,
+                 "compute, hardware, reference (default\ncompute,hardware)")
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(one_of({"compute", "hardware", "reference"}));
+  app.add_option("--repeat", a.repeat, "timed frames per point, 1..1000 (default 10)")
+      ->type_name("K")
+      ->check(whole_number(1, 1000));
+  app.add_option("--warmup", a.warmup, "untimed frames first, 0..100 (default 2)")
+      ->type_name("K")
+      ->check(whole_number(0, 100));
+  app.add_option("--reference-max-triangles", a.reference_max_triangles,
+                 "skip the reference above T triangles\n(default 2000000)")
+      ->type_name("T")
+      ->check(whole_number(1, 4'000'000'000u));
+  app.add_option("--small-triangle-area", a.small_triangle_area,
+                 "pixel-box area up to which a triangle is\n"
+                 "rasterized by one thread; larger ones are\n"
+                 "binned into tiles (default 64)")
+      ->type_name("A")
+      ->check(whole_number(0, 1u << 24));
+  app.add_flag("--generic-shading", a.generic_shading,
+               "shade with the generic pipeline instead of one\n"
+               "specialized to the scene's light counts, to\n"
+               "measure what specialization saves");
+  app.add_option("--csv", a.csv, "write every measurement as CSV")->type_name("FILE");
+  app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
+      ->type_name("FILE");
+  app.add_option("--chart", a.chart,
+                 "time against objects (log-log, one line per\n"
+                 "backend) and the compute path's per-pass\n"
+                 "breakdown, as SVG or PNG")
+      ->type_name("FILE")
+      ->check(file_with_suffix({".svg", ".png"}));
+  app.add_flag("--validate", a.validate,
+               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+  app.add_flag("--quiet", a.quiet, "no progress bar or table");
+}
+
+// CLI11's message, reworded where it is unclear for a missing value.
+std::string message_of(const CLI::ParseError& e) {
+  const std::string what = e.what();
+  const size_t colon = what.find(':');
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && colon != std::string::npos &&
+      what.ends_with(" missing")) {
+    return what.substr(0, colon) + " needs a value";
+  }
+  return what;
+}
+
+// An argument that no option took: an unknown option, or a value where none belongs.
+void reject_extras(const CLI::App& command, const std::string& help_command) {
+  const std::vector<std::string> extras = command.remaining();
+  if (extras.empty()) return;
+  const std::string& first = extras.front();
+  throw UsageError(first.starts_with("-") ? "unknown option '" + first + "'"
+                                          : "unexpected argument '" + first + "'",
+                   help_command);
 }
 
 }  // namespace
 
-bool parse_options(const std::vector<std::string>& args,
-                   const std::map<std::string, ValueHandler>& with_value,
-                   const std::map<std::string, std::function<void()>>& flags,
-                   const std::string& command) {
-  for (size_t i = 0; i < args.size(); ++i) {
-    std::string name = args[i];
-    std::string value;
-    bool has_inline_value = false;
-    if (size_t eq = name.find('='); name.rfind("--", 0) == 0 && eq != std::string::npos) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-      has_inline_value = true;
-    }
-    if (name == "--help" || name == "-h") return false;
-    if (auto f = flags.find(name); f != flags.end() && !has_inline_value) {
-      f->second();
-      continue;
-    }
-    auto h = with_value.find(name);
-    if (h == with_value.end())
-      throw Error("unknown option '" + args[i] + "' (see " + command + " --help)");
-    if (!has_inline_value) {
-      if (i + 1 >= args.size()) throw Error(name + " needs a value");
-      value = args[++i];
-    }
-    h->second(value);
+CommandLine parse_command_line(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    throw UsageError("a command is required: " + list_of_choices(kCommands), "tessera --help");
   }
-  return true;
-}
+  const std::string& command = args.front();
+  const bool asks_help = command == "--help" || command == "-h" || command == "help";
+  if (!asks_help && std::find(kCommands.begin(), kCommands.end(), command) == kCommands.end()) {
+    throw UsageError(
+        (command.starts_with("-") ? "unknown option '" : "unknown command '") + command + "'",
+        "tessera --help");
+  }
 
-void parse_size(const std::string& text, uint32_t& width, uint32_t& height) {
-  const size_t x = text.find('x');
-  if (x == std::string::npos) throw Error("--size expects WxH (e.g. 512x512), got '" + text + "'");
-  width = parse_uint("--size width", text.substr(0, x), 1, TS_MAX_IMAGE_SIDE);
-  height = parse_uint("--size height", text.substr(x + 1), 1, TS_MAX_IMAGE_SIDE);
-}
+  CommandLine line;
+  CLI::App app("a triangle rasterizer and PBR shader written entirely in Vulkan compute",
+               "tessera");
+  // Names of up to 28 characters, descriptions of up to 49: 80 columns.
+  app.get_formatter()->column_width(31);
+  app.require_subcommand(1);
+  CLI::App* render = app.add_subcommand("render", "render a scene to a PNG");
+  add_render_options(*render, line.render);
+  CLI::App* bench =
+      app.add_subcommand("bench", "sweep a benchmark scene over object counts and backends");
+  add_bench_options(*bench, line.bench);
+  CLI::App* devices =
+      app.add_subcommand("devices", "list the Vulkan devices and whether Tessera can use them");
+  CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes");
+  const std::string exit_statuses =
+      "Exit status: 0 success, 1 a failure while running, 2 a bad command line,\n"
+      "3 reports of the validation layer (--validate).";
+  app.footer("Run `tessera COMMAND --help` for a command's options.\n" + exit_statuses);
+  for (CLI::App* sub : {render, bench, devices, scenes}) {
+    sub->allow_extras();
+    sub->footer(exit_statuses);
+  }
+  bench->footer(
+      "Figures are medians of GPU timestamps over --repeat frames after --warmup\n"
+      "untimed ones: per pass for the compute path, around the render pass for\n"
+      "the hardware baseline; wall time for the CPU reference.\n" +
+      exit_statuses);
 
-std::string main_help() {
-  return "tessera: a triangle rasterizer and PBR shader written entirely in Vulkan compute\n"
-         "\n"
-         "usage: tessera <command> [options]\n"
-         "\n"
-         "commands:\n"
-         "  render     render a scene to a PNG (tessera render --help)\n"
-         "  bench      sweep a benchmark scene over object counts and backends (tessera bench "
-         "--help)\n"
-         "  devices    list the Vulkan devices and whether Tessera can use them\n"
-         "  scenes     list the built-in scenes\n";
-}
-
-std::string render_help() {
-  return "usage: tessera render [options]\n"
-         "\n"
-         "  --scene NAME        built-in scene (default spheres; see `tessera scenes`)\n"
-         "  --size WxH          image size in pixels, each side 1..16384 (default 512x512)\n"
-         "  --out FILE.png      display image, sRGB (default tessera.png)\n"
-         "  --hdr-out FILE      linear HDR image too, .pfm (exact floats) or .hdr (RGBE)\n"
-         "  --device D          lavapipe, gpu, a device index (default: a discrete GPU if\n"
-         "                      there is one, else lavapipe), or reference: the CPU\n"
-         "                      reference renderer in double precision\n"
-         "  --exposure EV       exposure in stops, applied before tone mapping (default 0)\n"
-         "  --tonemap OP        aces (default), reinhard or clamp\n"
-         "  --brdf B            classic (default: GGX, Schlick-GGX Smith, Schlick Fresnel),\n"
-         "                      filament (height-correlated Smith) or blinn-phong\n"
-         "  --energy-compensation  multiple-scattering energy compensation of the specular\n"
-         "                      lobe (classic and filament), from a DFG table\n"
-         "  --env E             light the scene with an environment, also drawn behind it:\n"
-         "                      FILE.hdr (Radiance) or FILE.pfm, equirectangular; sky (a\n"
-         "                      procedural sky); none (the scene's lights only). Default:\n"
-         "                      the scene's own (only `environment` has one)\n"
-         "  --env-size N        side of the prefiltered specular cube, a power of two\n"
-         "                      1..512 (default 128)\n"
-         "  --env-samples N     GGX samples per cube texel when prefiltering (default 128)\n"
-         "  --env-irradiance-size N  width of the map level the irradiance is projected\n"
-         "                      from (default 64)\n"
-         "  --env-reference-samples N  Monte Carlo directions per lobe and pixel with\n"
-         "                      --device reference (default 1024)\n"
-         "  --anisotropy N      texture filtering: 1 trilinear (default), 2..16 anisotropic\n"
-         "  --view V            shaded (default), or a debug view: normal, uv, triangle\n"
-         "                      (a colour per triangle) or object (a colour per object)\n"
-         "  --repeat K          render K frames (1..1000) and report median GPU timings\n"
-         "  --validate          enable the Khronos validation layer (synchronization too)\n"
-         "  --quiet             print nothing but errors\n"
-         "  --help              this text\n";
-}
-
-bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out) {
-  const std::map<std::string, ValueHandler> with_value = {
-      {"--scene", [&](const std::string& v) { out.scene = v; }},
-      {"--size", [&](const std::string& v) { parse_size(v, out.width, out.height); }},
-      {"--out",
-       [&](const std::string& v) {
-         if (!ends_with(v, ".png")) throw Error("--out must name a .png file, got '" + v + "'");
-         out.out = v;
-       }},
-      {"--hdr-out",
-       [&](const std::string& v) {
-         if (!ends_with(v, ".pfm") && !ends_with(v, ".hdr")) {
-           throw Error("--hdr-out must name a .pfm or .hdr file, got '" + v + "'");
-         }
-         out.hdr_out = v;
-       }},
-      {"--device", [&](const std::string& v) { out.device = v; }},
-      {"--exposure",
-       [&](const std::string& v) {
-         out.exposure_ev = parse_float("--exposure", v);
-         if (std::abs(out.exposure_ev) > 64.0f)
-           throw Error("--exposure must be within [-64, 64] EV");
-       }},
-      {"--tonemap",
-       [&](const std::string& v) {
-         if (v == "aces")
-           out.tonemap = ToneMap::aces;
-         else if (v == "reinhard")
-           out.tonemap = ToneMap::reinhard;
-         else if (v == "clamp")
-           out.tonemap = ToneMap::clamp;
-         else
-           throw Error("--tonemap expects aces, reinhard or clamp, got '" + v + "'");
-       }},
-      {"--view",
-       [&](const std::string& v) {
-         const std::map<std::string, View> views = {{"shaded", View::shaded},
-                                                    {"normal", View::normal},
-                                                    {"uv", View::uv},
-                                                    {"triangle", View::triangle},
-                                                    {"object", View::object}};
-         auto it = views.find(v);
-         if (it == views.end()) {
-           throw Error("--view expects shaded, normal, uv, triangle or object, got '" + v + "'");
-         }
-         out.view = it->second;
-       }},
-      {"--brdf",
-       [&](const std::string& v) {
-         if (v == "classic")
-           out.brdf = Brdf::classic;
-         else if (v == "filament")
-           out.brdf = Brdf::filament;
-         else if (v == "blinn-phong")
-           out.brdf = Brdf::blinn_phong;
-         else
-           throw Error("--brdf expects classic, filament or blinn-phong, got '" + v + "'");
-       }},
-      {"--repeat", [&](const std::string& v) { out.repeat = parse_uint("--repeat", v, 1, 1000); }},
-      {"--env",
-       [&](const std::string& v) {
-         if (v != "sky" && v != "none" && !ends_with(v, ".hdr") && !ends_with(v, ".pfm")) {
-           throw Error("--env expects a .hdr or .pfm file, sky or none, got '" + v + "'");
-         }
-         out.env = v;
-       }},
-      {"--env-size",
-       [&](const std::string& v) {
-         out.env_options.specular_size = parse_uint("--env-size", v, 1, 512);
-         validate_environment_options(out.env_options);
-       }},
-      {"--env-samples",
-       [&](const std::string& v) {
-         out.env_options.specular_samples = parse_uint("--env-samples", v, 1, 65536);
-       }},
-      {"--env-irradiance-size",
-       [&](const std::string& v) {
-         out.env_options.irradiance_size = parse_uint("--env-irradiance-size", v, 1, 16384);
-       }},
-      {"--env-reference-samples",
-       [&](const std::string& v) {
-         out.env_reference_samples = parse_uint("--env-reference-samples", v, 1, 1u << 20);
-       }},
-      {"--anisotropy",
-       [&](const std::string& v) { out.anisotropy = parse_uint("--anisotropy", v, 1, 16); }},
-  };
-  const std::map<std::string, std::function<void()>> flags = {
-      {"--validate", [&] { out.validate = true; }},
-      {"--quiet", [&] { out.quiet = true; }},
-      {"--energy-compensation", [&] { out.energy_compensation = true; }},
-  };
-  return parse_options(args, with_value, flags, "tessera render");
+  // CLI11 takes the arguments last first.
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  if (command == "help") reversed.back() = "--help";
+  const std::string help_command = asks_help ? "tessera --help" : "tessera " + command + " --help";
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    line.command = Command::help;
+    line.help = app.help();
+    return line;
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(message_of(e), help_command);
+  }
+  for (CLI::App* sub : {render, bench, devices, scenes}) reject_extras(*sub, help_command);
+  RenderArgs& r = line.render;
+  r.size_given = render->count("--size") > 0;
+  r.exposure_given = render->count("--exposure") > 0;
+  r.tonemap_given = render->count("--tonemap") > 0;
+  r.brdf_given = render->count("--brdf") > 0;
+  reject_extras(app, help_command);
+  line.command = render->parsed()    ? Command::render
+                 : bench->parsed()   ? Command::bench
+                 : devices->parsed() ? Command::devices
+                                     : Command::scenes;
+  return line;
 }
 
 }  // namespace tessera

@@ -1,62 +1,82 @@
 #pragma once
-// Command-line parsing for the `tessera` tool. Each command has an options struct and a
-// parser; adding an option means adding a field and one entry in its parser's table.
+// The command line of the `tessera` tool: its commands, their options (parsed with CLI11, which
+// also writes the --help texts) and how a bad command line is reported. Adding an option means
+// a field in RenderArgs or BenchArgs and one add_option call in host/cli.cpp.
 
 #include <cstdint>
-#include <functional>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "compute/environment_gpu.h"
+#include "core/check.h"
+#include "core/frame_settings.h"
 #include "core/scene.h"
 
 namespace tessera {
 
 struct RenderArgs {
   std::string scene = "spheres";
-  uint32_t width = 512;
-  uint32_t height = 512;
+  FrameSettings frame;  // --size, --exposure, --tonemap, --view, --brdf, --anisotropy, ...
   std::string out = "tessera.png";
   std::string hdr_out;  // empty: no HDR file
   std::string device = "auto";
-  float exposure_ev = 0.0f;
-  ToneMap tonemap = ToneMap::aces;
-  View view = View::shaded;
-  Brdf brdf = Brdf::classic;
-  bool energy_compensation = false;
-  std::string env;              // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
+  std::string env;  // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
   EnvironmentOptions env_options;
   uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
-  uint32_t anisotropy = 1;
-  uint32_t repeat = 1;  // frames rendered; timings are the median over them
+  // Timed frames after the first, whose times (which include pipeline compilation and other
+  // first-use costs) are reported apart; the figures are medians over these.
+  uint32_t repeat = 3;
   bool validate = false;
   bool quiet = false;
+  bool strict = false;  // --strict: unknown keys in a scene file are errors
+  // Which frame options the command line gave: the others come from the scene file's
+  // "render" block when it has them.
+  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false;
 };
 
-/// Parses the arguments after `tessera render`. Throws tessera::Error naming the bad
-/// argument. Returns false (and prints nothing) if --help was given.
-bool parse_render_args(const std::vector<std::string>& args, RenderArgs& out);
+struct BenchArgs {
+  std::string scene = "grid";                    // a family of core/bench_scenes.h
+  std::vector<uint32_t> objects = {1, 10, 100};  // object counts, the sweep
+  uint32_t width = 512;
+  uint32_t height = 512;
+  uint32_t segments = 32;  // sphere tessellation: 960 triangles per sphere
+  std::string device = "auto";
+  std::vector<std::string> backends = {"compute", "hardware"};  // and/or "reference"
+  uint32_t repeat = 10;  // timed frames per point; figures are their medians
+  uint32_t warmup = 2;   // untimed frames first
+  uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
+  uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
+  bool generic_shading = false;                  // RendererOptions::specialize_lights off
+  std::string csv, json, chart;
+  bool quiet = false;
+  bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
+};
 
-/// Help text of `tessera render`.
-std::string render_help();
-/// Help text of `tessera` itself.
-std::string main_help();
+enum class Command { help, render, bench, devices, scenes };
 
-using ValueHandler = std::function<void(const std::string&)>;
+/// A parsed command line.
+struct CommandLine {
+  Command command = Command::help;
+  std::string help;  // Command::help: the text asked for (the tool's or a command's)
+  RenderArgs render;
+  BenchArgs bench;
+};
 
-/// Parses `--name value`, `--name=value` and `--flag` arguments with the given handlers.
-/// Throws Error for an unknown option (naming `command` for help) or a missing value.
-/// Returns false, handling nothing further, if --help or -h was given.
-bool parse_options(const std::vector<std::string>& args,
-                   const std::map<std::string, ValueHandler>& with_value,
-                   const std::map<std::string, std::function<void()>>& flags,
-                   const std::string& command);
+/// A command line that does not parse: an unknown command or option, a missing or bad value.
+/// The message names the option; `help_command` is what shows the usage (e.g.
+/// "tessera render --help").
+struct UsageError : Error {
+  UsageError(const std::string& message, std::string help_command)
+      : Error(message), help_command(std::move(help_command)) {}
+  std::string help_command;
+};
 
-/// Parses a whole number in [min, max] for `option`. Throws Error naming the option otherwise.
-uint32_t parse_uint(const std::string& option, const std::string& text, uint32_t min, uint32_t max);
+/// Exit statuses of the tool.
+constexpr int kExitRuntimeError = 1;     // a tessera::Error while running (files, devices)
+constexpr int kExitUsageError = 2;       // a UsageError
+constexpr int kExitValidationError = 3;  // --validate and the validation layer reported
 
-/// Parses "WxH" (e.g. "1920x1080"), each side in [1, 16384]. Throws Error otherwise.
-void parse_size(const std::string& text, uint32_t& width, uint32_t& height);
+/// Parses the arguments after the program name (argv[1..]). Throws UsageError.
+CommandLine parse_command_line(const std::vector<std::string>& args);
 
 }  // namespace tessera

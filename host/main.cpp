@@ -1,4 +1,5 @@
-// tessera: the command-line tool.
+// tessera: the command-line tool. Every failure is reported as one line, "tessera: error: ...",
+// with the exit statuses of host/cli.h.
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -10,6 +11,7 @@
 #include "host/bench_command.h"
 #include "host/cli.h"
 #include "host/render_command.h"
+#include "host/scene_source.h"
 
 namespace {
 
@@ -22,8 +24,23 @@ int run_devices() {
 }
 
 int run_scenes() {
-  for (const auto& s : tessera::builtin_scenes()) {
-    std::printf("%-10s %s\n", std::string(s.name).c_str(), std::string(s.description).c_str());
+  std::fputs(tessera::scene_listing().c_str(), stdout);
+  return 0;
+}
+
+int run(const tessera::CommandLine& line, const std::string& command_line) {
+  switch (line.command) {
+    case tessera::Command::help:
+      std::fputs(line.help.c_str(), stdout);
+      return 0;
+    case tessera::Command::render:
+      return tessera::run_render(line.render);
+    case tessera::Command::bench:
+      return tessera::run_bench(line.bench, command_line);
+    case tessera::Command::devices:
+      return run_devices();
+    case tessera::Command::scenes:
+      return run_scenes();
   }
   return 0;
 }
@@ -31,42 +48,20 @@ int run_scenes() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::string command_line = "tessera";
+  for (const std::string& arg : args) command_line += " " + arg;
   try {
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-      std::fputs(tessera::main_help().c_str(), args.empty() ? stderr : stdout);
-      return args.empty() ? 2 : 0;
-    }
-    const std::string command = args[0];
-    args.erase(args.begin());
-    if (command == "render") {
-      tessera::RenderArgs render;
-      if (!tessera::parse_render_args(args, render)) {
-        std::fputs(tessera::render_help().c_str(), stdout);
-        return 0;
-      }
-      return tessera::run_render(render);
-    }
-    if (command == "bench") {
-      tessera::BenchArgs bench;
-      if (!tessera::parse_bench_args(args, bench)) {
-        std::fputs(tessera::bench_help().c_str(), stdout);
-        return 0;
-      }
-      std::string command_line = "tessera";
-      for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
-      return tessera::run_bench(bench, command_line);
-    }
-    if (command == "devices") return run_devices();
-    if (command == "scenes") return run_scenes();
-    std::fprintf(stderr, "tessera: unknown command '%s'\n\n%s", command.c_str(),
-                 tessera::main_help().c_str());
-    return 2;
+    return run(tessera::parse_command_line(args), command_line);
+  } catch (const tessera::UsageError& e) {
+    std::fprintf(stderr, "tessera: error: %s\nRun '%s' for the options.\n", e.what(),
+                 e.help_command.c_str());
+    return tessera::kExitUsageError;
   } catch (const tessera::Error& e) {
-    std::fprintf(stderr, "tessera: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "tessera: error: %s\n", e.what());
+    return tessera::kExitRuntimeError;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tessera: unexpected error: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "tessera: error: unexpected: %s\n", e.what());
+    return tessera::kExitRuntimeError;
   }
 }

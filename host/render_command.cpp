@@ -1,6 +1,5 @@
 #include "host/render_command.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <vector>
@@ -11,33 +10,26 @@
 #include "core/check.h"
 #include "core/image.h"
 #include "core/reference_renderer.h"
+#include "core/statistics.h"
+#include "host/report.h"
+#include "host/scene_source.h"
 
 namespace tessera {
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// What a frame looks like, from the command line (the same for every backend).
-FrameSettings settings_of(const RenderArgs& args) {
-  FrameSettings settings;
-  settings.width = args.width;
-  settings.height = args.height;
-  settings.exposure_ev = args.exposure_ev;
-  settings.tonemap = args.tonemap;
-  settings.view = args.view;
-  settings.brdf = args.brdf;
-  settings.energy_compensation = args.energy_compensation;
-  settings.max_anisotropy = args.anisotropy;
-  return settings;
-}
-
-// The scene with the environment --env asks for.
-Scene scene_of(const RenderArgs& args) {
-  Scene scene = make_builtin_scene(args.scene);
+// The scene with the environment --env asks for; the file's render defaults fill in what the
+// command line left unset.
+Scene scene_of(RenderArgs& args) {
+  SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
+  const RenderDefaults& r = file.render;
+  if (!args.size_given) {
+    args.frame.width = r.width.value_or(args.frame.width);
+    args.frame.height = r.height.value_or(args.frame.height);
+  }
+  if (!args.exposure_given) args.frame.exposure_ev = r.exposure_ev.value_or(args.frame.exposure_ev);
+  if (!args.tonemap_given) args.frame.tonemap = r.tonemap.value_or(args.frame.tonemap);
+  if (!args.brdf_given) args.frame.brdf = r.brdf.value_or(args.frame.brdf);
+  Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();
   } else if (args.env == "sky") {
@@ -53,19 +45,18 @@ void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr)
   if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
 }
 
+void print_written(const RenderArgs& args, const std::string& device) {
+  std::printf("wrote %s (%ux%u, scene '%s', device '%s')\n", args.out.c_str(), args.frame.width,
+              args.frame.height, args.scene.c_str(), device.c_str());
+  if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
+}
+
 // The CPU reference renderer (core/reference_renderer.h): same options, same files.
 int run_reference(const Scene& scene, const RenderArgs& args) {
-  const FrameSettings frame_settings = settings_of(args);
   ReferenceSettings settings;
-  settings.width = frame_settings.width;
-  settings.height = frame_settings.height;
-  settings.exposure_ev = frame_settings.exposure_ev;
-  settings.tonemap = frame_settings.tonemap;
-  settings.view = frame_settings.view;
-  settings.brdf = frame_settings.brdf;
-  settings.energy_compensation = frame_settings.energy_compensation;
-  settings.max_anisotropy = frame_settings.max_anisotropy;
+  settings.frame = args.frame;
   settings.environment_samples = args.env_reference_samples;
+  // No pipelines to compile: every frame costs the same, so all of them are timed.
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < args.repeat; ++i) {
@@ -77,19 +68,50 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   }
   write_outputs(args, frame.ldr, frame.hdr);
   if (!args.quiet) {
-    std::printf("wrote %s (%ux%u, scene '%s', device 'reference (CPU, double precision)')\n",
-                args.out.c_str(), args.width, args.height, args.scene.c_str());
-    if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
+    print_written(args, "reference (CPU, double precision)");
     std::printf("triangles: %llu rasterized\n", (unsigned long long)frame.raster_triangles);
-    std::printf("CPU time, median of %u frame%s: %.1f ms\n", args.repeat,
-                args.repeat > 1 ? "s" : "", median(times));
+    const Summary time = summarize(times);
+    std::printf("CPU time, median of %zu frame%s: %.1f ms", time.count, time.count > 1 ? "s" : "",
+                time.median);
+    if (time.count > 1) std::printf(" (min %.1f, max %.1f)", time.min, time.max);
+    std::printf("\n");
   }
   return 0;
 }
 
+void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& first,
+                  const std::vector<FrameStats>& timed) {
+  const FrameStats& last = timed.back();
+  print_written(args, ctx.properties.deviceName);
+  std::printf(
+      "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
+      "%llu outside, %llu empty, %llu clipped\n",
+      (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
+      (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
+      (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
+      (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+  if (!last.has_timestamps) {
+    std::printf("GPU timings unavailable: the queue has no timestamp support\n");
+    return;
+  }
+  print_pass_times(
+      "GPU time, first frame, including pipeline compilation and other first-use costs", {first});
+  print_pass_times("GPU time, median of " + std::to_string(timed.size()) + " frame" +
+                       (timed.size() > 1 ? "s" : "") + " after the first",
+                   timed);
+  const double precompute = first.pass_ms[size_t(Pass::environment)];
+  if (precompute > 0.0) {
+    std::printf(
+        "environment precomputation (DFG tables, irradiance, prefiltered cube), first frame "
+        "only: %.3f ms\n",
+        precompute);
+  }
+}
+
 }  // namespace
 
-int run_render(const RenderArgs& args) {
+int run_render(const RenderArgs& given) {
+  RenderArgs args = given;
   const Scene scene = scene_of(args);
   // Check outputs before spending time on a render.
   if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");
@@ -108,52 +130,17 @@ int run_render(const RenderArgs& args) {
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 
-  const FrameSettings settings = settings_of(args);
+  const FrameSettings& settings = args.frame;
 
-  std::vector<FrameStats> frames;
-  for (uint32_t i = 0; i < args.repeat; ++i) frames.push_back(renderer.render(settings));
+  // The first frame pays for what the driver defers to first use (compiling pipelines,
+  // allocating) and for precomputing the environment; it is reported apart from the others.
+  const FrameStats first = renderer.render(settings);
+  std::vector<FrameStats> timed;
+  for (uint32_t i = 0; i < args.repeat; ++i) timed.push_back(renderer.render(settings));
 
   write_outputs(args, renderer.read_ldr(), args.hdr_out.empty() ? ImageF{} : renderer.read_hdr());
-
-  if (!args.quiet) {
-    const FrameStats& last = frames.back();
-    std::printf("wrote %s (%ux%u, scene '%s', device '%s')\n", args.out.c_str(), args.width,
-                args.height, args.scene.c_str(), ctx->properties.deviceName);
-    if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
-    std::printf(
-        "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
-        "%llu outside, %llu empty, %llu clipped\n",
-        (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
-        (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
-        (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
-        (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
-    if (last.has_timestamps) {
-      std::printf("GPU time, median of %u frame%s (ms):", args.repeat, args.repeat > 1 ? "s" : "");
-      for (size_t p = 0; p < kPassCount; ++p) {
-        std::vector<double> v;
-        for (const FrameStats& f : frames) v.push_back(f.pass_ms[p]);
-        std::printf(" %s %.3f", pass_name(Pass(p)), median(v));
-      }
-      std::vector<double> totals;
-      for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
-      std::printf(" | total %.3f\n", median(totals));
-      const double precompute = frames.front().pass_ms[size_t(Pass::environment)];
-      if (precompute > 0.0) {
-        std::printf(
-            "environment precomputation (DFG tables, irradiance, prefiltered cube), first "
-            "frame only: %.3f ms\n",
-            precompute);
-      }
-    } else {
-      std::printf("GPU timings unavailable: the queue has no timestamp support\n");
-    }
-  }
-  if (ctx->validation && (ctx->validation->errors || ctx->validation->warnings)) {
-    std::fprintf(stderr, "validation reported %u errors and %u warnings\n",
-                 ctx->validation->errors.load(), ctx->validation->warnings.load());
-    return 3;
-  }
-  return 0;
+  if (!args.quiet) print_frames(args, *ctx, first, timed);
+  return validation_exit_status(ctx.get());
 }
 
 }  // namespace tessera

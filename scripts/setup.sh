@@ -6,8 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libtinyobjloader-dev assimp-testmodels
+  libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+  libtinyobjloader-dev assimp-testmodels nlohmann-json3-dev
   # scripts/fuzz.sh: libFuzzer and the sanitizer runtimes
   clang-14 libclang-rt-14-dev
 )

@@ -47,7 +47,7 @@ layout(push_constant) uniform BatchBlock { GpuBatch batch; };
 // Last object whose first triangle-instance id is <= `tri` (objects are sorted by it).
 uint find_object(uint tri) {
   uint lo = 0u;
-  uint hi = frame.scene_counts.x;
+  uint hi = frame.object_count;
   while (hi - lo > 1u) {
     uint mid = (lo + hi) >> 1;
     if (objects[mid].first_triangle <= tri) lo = mid; else hi = mid;

@@ -1,18 +1,52 @@
 // BRDF terms, one function per physical term, and the variants built from them.
-// Conventions: roughness is perceptual, alpha = roughness^2 (Burley 2012); all cosines are
-// clamped by the caller as documented in shade.comp.
+// Conventions: roughness is perceptual, alpha = roughness^2 (Burley 2012). The guards
+// (TS_MIN_*) are in shaders/shared/constants.h, shared with the reference renderer.
+// The structure follows Filament's surfaceShading(PixelParams, Light, ...): a surface point,
+// the shading parameters of its material and one light's sample, each a struct, so a new
+// material parameter or light changes a struct and the code that uses it, not every signature.
+
+#ifndef TESSERA_BRDF_GLSL
+#define TESSERA_BRDF_GLSL
 
 const float PI = 3.14159265358979323846;
 
-// Smallest perceptual roughness used: below it alpha^2 underflows the GGX denominator in fp32
-// and a point light's highlight collapses to a single sample (Filament uses 0.045 for fp32).
-const float MIN_PERCEPTUAL_ROUGHNESS = 0.045;
-// Smallest N.V used: at a silhouette N.V reaches 0 and the specular term divides by it.
-const float MIN_N_DOT_V = 1e-4;
-// Smallest squared light distance, in m^2 (1 cm): a light on the surface would divide by zero.
-const float MIN_LIGHT_DISTANCE_SQUARED = 1e-4;
-// Smallest classic attenuation denominator Kc + Kl d + Kq d^2: it is 0 at d = 0 when Kc = 0.
-const float MIN_ATTENUATION_DENOMINATOR = 1e-4;
+// Where and from where a surface point is seen.
+struct ShadingPoint {
+  vec3 P;     // world position
+  vec3 N;     // unit shading normal
+  vec3 V;     // unit direction towards the viewer
+  float NoV;  // N.V clamped to >= TS_MIN_N_DOT_V
+};
+
+// The shading parameters of a material at a point (Filament's PixelParams), derived once per
+// pixel from the material's factors and maps.
+struct PixelParams {
+  vec3 diffuse_color;   // Lambert albedo: (1 - metallic) base colour
+  vec3 f0;              // specular reflectance at normal incidence
+  float roughness;      // perceptual, clamped to [TS_MIN_PERCEPTUAL_ROUGHNESS, 1]
+  float alpha;          // roughness^2
+  vec3 specular_scale;  // multiplies the specular lobe: the energy compensation factor, or 1
+};
+
+// The light arriving at a point from one light.
+struct LightSample {
+  vec3 L;         // unit direction towards the light
+  vec3 radiance;  // incident radiance along L (after falloff and cone)
+};
+
+// The shading parameters of the glTF 2.0 metallic-roughness model (Burley 2012): dielectrics
+// reflect TS_DIELECTRIC_F0 specularly and their base colour diffusely, metals reflect their
+// base colour specularly. Factors outside [0, 1] are clamped.
+PixelParams metallic_roughness_params(vec3 base_color, float metallic, float roughness) {
+  PixelParams p;
+  float m = clamp(metallic, 0.0, 1.0);
+  p.roughness = clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  p.alpha = p.roughness * p.roughness;
+  p.f0 = mix(vec3(TS_DIELECTRIC_F0), base_color, m);
+  p.diffuse_color = (1.0 - m) * base_color;
+  p.specular_scale = vec3(1.0);
+  return p;
+}
 
 // GGX / Trowbridge-Reitz normal distribution (Walter et al. 2007, "Microfacet Models for
 // Refraction through Rough Surfaces"). With alpha >= 0.045^2 the denominator stays >= alpha^4 > 0.
@@ -40,7 +74,7 @@ vec3 F_Schlick(float VoH, vec3 f0) {
 
 // Height-correlated Smith visibility V = G / (4 N.L N.V) for GGX (Heitz 2014, "Understanding
 // the Masking-Shadowing Function in Microfacet-Based BRDFs"; the form Filament uses). With
-// N.V >= MIN_N_DOT_V, N.L > 0 and alpha > 0 the denominator is positive.
+// N.V >= TS_MIN_N_DOT_V, N.L > 0 and alpha > 0 the denominator is positive.
 float V_SmithGGXCorrelated(float NoV, float NoL, float alpha) {
   float a2 = alpha * alpha;
   float lambda_v = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
@@ -64,11 +98,9 @@ float Fd_Lambert() {
 // The BRDF variant, chosen when the pipeline is built (TS_BRDF_*).
 layout(constant_id = TS_SPEC_BRDF) const uint BRDF_VARIANT = TS_BRDF_CLASSIC;
 
-// Outgoing radiance towards V from one light of incident radiance `radiance` arriving along L:
-// f(L, V) * radiance * N.L. N, V, L unit; NoV already clamped to >= MIN_N_DOT_V.
-// `specular_scale` multiplies the specular lobe: the energy compensation factor, or 1.
-vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float metallic,
-                      float roughness, vec3 radiance, vec3 specular_scale) {
+// Outgoing radiance towards s.V from one light: f(L, V) * radiance * N.L.
+vec3 surface_response(ShadingPoint s, PixelParams p, LightSample light) {
+  vec3 N = s.N, V = s.V, L = light.L;
   float NoL = dot(N, L);
   if (NoL <= 0.0) return vec3(0.0);  // light below the horizon contributes nothing
   // V + L vanishes only for a light exactly opposite the viewer, already excluded for
@@ -79,22 +111,21 @@ vec3 surface_response(vec3 N, vec3 V, vec3 L, float NoV, vec3 base_color, float 
   float NoH = clamp(dot(N, H), 0.0, 1.0);
   float VoH = clamp(dot(V, H), 0.0, 1.0);
 
-  float alpha = roughness * roughness;
-  vec3 f0 = mix(vec3(0.04), base_color, metallic);
-  vec3 diffuse_color = (1.0 - metallic) * base_color;
   vec3 f;
   if (BRDF_VARIANT == TS_BRDF_BLINN_PHONG) {
     // The non-physical baseline: no Fresnel, no geometry term.
-    f = diffuse_color * Fd_Lambert() + f0 * D_BlinnPhong(NoH, alpha);
+    f = p.diffuse_color * Fd_Lambert() + p.f0 * D_BlinnPhong(NoH, p.alpha);
   } else {
-    vec3 F = F_Schlick(VoH, f0);
-    float D = D_GGX(NoH, alpha);
+    vec3 F = F_Schlick(VoH, p.f0);
+    float D = D_GGX(NoH, p.alpha);
     if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
-      f = diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(NoV, NoL, alpha) * F * specular_scale;
+      f = p.diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(s.NoV, NoL, p.alpha) * F * p.specular_scale;
     } else {
-      f = (vec3(1.0) - F) * diffuse_color * Fd_Lambert() +
-          D * V_SmithSchlickGGX(NoV, NoL, roughness) * F * specular_scale;
+      f = (vec3(1.0) - F) * p.diffuse_color * Fd_Lambert() +
+          D * V_SmithSchlickGGX(s.NoV, NoL, p.roughness) * F * p.specular_scale;
     }
   }
-  return f * radiance * NoL;
+  return f * light.radiance * NoL;
 }
+
+#endif  // TESSERA_BRDF_GLSL

@@ -11,9 +11,9 @@ layout(local_size_x = TS_GROUP_SIZE) in;
 
 #include "setup_common.glsl"
 
-void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
+void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored) {
   RasterTri t;
-  uint outcome = prepare_triangle(c0, c1, c2, id, t);
+  uint outcome = prepare_triangle(c0, c1, c2, id, mirrored, t);
   if (outcome == OUTCOME_FACING) {
     atomicAdd(counters[batch.index].culled_backface, 1u);
     return;
@@ -23,7 +23,7 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
     return;
   }
   uint index = atomicAdd(counters[batch.index].raster_tris, 1u);
-  if (index >= frame.limits.x) return;  // overflow: the host sees the count, grows, redoes
+  if (index >= frame.raster_capacity) return;  // overflow: the host sees the count, grows, redoes
   store_raster_tri(index, t);
   if (outcome == OUTCOME_SMALL) {
     small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
@@ -34,11 +34,12 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id) {
 }
 
 void main() {
-  uint count = min(counters[batch.index].clip_list, frame.limits.x);
+  uint count = min(counters[batch.index].clip_list, frame.raster_capacity);
   for (uint i = gl_GlobalInvocationID.x; i < count; i += TS_CLIP_GROUPS * TS_GROUP_SIZE) {
     uint id = clip_list[i];
     vec4 c[3];
-    triangle_clip_coords(find_object(id), id, c);
+    uint slot = find_object(id);
+    triangle_clip_coords(slot, id, c);
     atomicAdd(counters[batch.index].clipped, 1u);
     vec4 poly[9];
     vec4 next_poly[9];
@@ -54,11 +55,23 @@ void main() {
         float da = plane_distance(a, plane);
         float db = plane_distance(b, plane);
         if (da >= 0.0) next_poly[m++] = a;
-        if ((da >= 0.0) != (db >= 0.0)) next_poly[m++] = mix(a, b, da / (da - db));
+        if ((da >= 0.0) != (db >= 0.0)) {
+          // An edge shared by two triangles is walked a->b by one and b->a by the other. The
+          // crossing is computed from its inside end towards its outside end, whichever way
+          // the edge is walked, so that both triangles get the same bits and no sample on the
+          // edge is covered twice or missed (docs/architecture.md, "Coverage rules").
+          bool a_in = da >= 0.0;
+          vec4 p_in = a_in ? a : b;
+          vec4 p_out = a_in ? b : a;
+          float d_in = a_in ? da : db;
+          float d_out = a_in ? db : da;
+          next_poly[m++] = mix(p_in, p_out, d_in / (d_in - d_out));
+        }
       }
       n = m;
       for (int k = 0; k < n; ++k) poly[k] = next_poly[k];
     }
-    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id);
+    bool mirrored = objects[slot].mirrored != 0u;
+    for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id, mirrored);
   }
 }

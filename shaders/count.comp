@@ -9,7 +9,7 @@
 layout(local_size_x = TS_GROUP_SIZE) in;
 
 void main() {
-  uint n = min(counters[batch.index].big_tris, frame.limits.x);
+  uint n = min(counters[batch.index].big_tris, frame.raster_capacity);
   for (uint e = gl_GlobalInvocationID.x; e < n; e += TS_COUNT_GROUPS * TS_GROUP_SIZE) {
     uvec2 entry = big_list[e];
     RasterTri t = load_raster_tri(entry.x);
@@ -17,7 +17,7 @@ void main() {
     ivec2 size = ivec2((entry.y >> 20) & 0xFu, (entry.y >> 24) & 0xFu) + 1;
     for (int ty = origin.y; ty < origin.y + size.y; ++ty) {
       for (int tx = origin.x; tx < origin.x + size.x; ++tx) {
-        if (tile_may_overlap(t, ivec2(tx, ty))) atomicAdd(tile_counts[uint(ty) * frame.image_size.z + uint(tx)], 1u);
+        if (tile_may_overlap(t, ivec2(tx, ty))) atomicAdd(tile_counts[uint(ty) * frame.tiles.x + uint(tx)], 1u);
       }
     }
   }

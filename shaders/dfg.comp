@@ -23,8 +23,8 @@ void main() {
   uvec2 cell = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(cell, uvec2(TS_DFG_SIZE)))) return;
   // Grid points from 0 to 1 inclusive, with the shading pass's own clamps.
-  float NoV = max(float(cell.x) / float(TS_DFG_SIZE - 1), MIN_N_DOT_V);
-  float roughness = max(float(cell.y) / float(TS_DFG_SIZE - 1), MIN_PERCEPTUAL_ROUGHNESS);
+  float NoV = max(float(cell.x) / float(TS_DFG_SIZE - 1), TS_MIN_N_DOT_V);
+  float roughness = max(float(cell.y) / float(TS_DFG_SIZE - 1), TS_MIN_PERCEPTUAL_ROUGHNESS);
   float alpha = roughness * roughness;
   vec3 V = vec3(sqrt(1.0 - NoV * NoV), 0.0, NoV);
   vec2 sum = vec2(0.0);

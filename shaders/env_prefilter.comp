@@ -50,7 +50,7 @@ void main() {
     float cube_texel = 4.0 * PI / (6.0 * float(size * size));
     result = environment_at(R, max(0.5 * log2(cube_texel / texel_solid_angle), 0.0));
   } else {
-    float roughness = max(float(env_pass.level) / float(env_pass.levels - 1u), MIN_PERCEPTUAL_ROUGHNESS);
+    float roughness = max(float(env_pass.level) / float(env_pass.levels - 1u), TS_MIN_PERCEPTUAL_ROUGHNESS);
     float alpha = roughness * roughness;
     // Frame around R.
     vec3 up = abs(R.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);

@@ -11,7 +11,7 @@ layout(local_size_x = TS_GROUP_SIZE) in;
 
 void main() {
   uint e = gl_GlobalInvocationID.x;
-  if (e >= min(counters[batch.index].big_tris, frame.limits.x)) return;
+  if (e >= min(counters[batch.index].big_tris, frame.raster_capacity)) return;
   uvec2 entry = big_list[e];
   RasterTri t = load_raster_tri(entry.x);
   ivec2 origin = ivec2(entry.y & 0x3FFu, (entry.y >> 10) & 0x3FFu);
@@ -19,8 +19,8 @@ void main() {
   for (int ty = origin.y; ty < origin.y + size.y; ++ty) {
     for (int tx = origin.x; tx < origin.x + size.x; ++tx) {
       if (!tile_may_overlap(t, ivec2(tx, ty))) continue;
-      uint slot = atomicAdd(tile_cursors[uint(ty) * frame.image_size.z + uint(tx)], 1u);
-      if (slot < frame.limits.y) tile_entries[slot] = entry.x;
+      uint slot = atomicAdd(tile_cursors[uint(ty) * frame.tiles.x + uint(tx)], 1u);
+      if (slot < frame.tile_entry_capacity) tile_entries[slot] = entry.x;
     }
   }
 }

@@ -1,8 +1,8 @@
 // The shading model of a surface point: constant ambient, the environment's light (split-sum
 // image-based lighting) and Cook-Torrance (brdf.glsl) for every light. Shared by the compute
 // shading pass and the graphics baseline's fragment shader, so both do the same work. Needs
-// bindings.glsl (frame, lights, environment) and material.glsl (MaterialSample).
-#include "brdf.glsl"
+// bindings.glsl (frame, lights, environment) and material.glsl (MaterialSample, and through
+// it brdf.glsl).
 
 // Multiple-scattering energy compensation (Kulla & Conty 2017, in Filament's form): scales the
 // specular lobe by 1 + F0 (1 / E - 1), E the lobe's directional albedo with F = 1 from the DFG
@@ -13,7 +13,7 @@ layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION
 layout(constant_id = TS_SPEC_IBL) const uint IBL_MODE = TS_IBL_RUNTIME;
 
 bool ibl_enabled() {
-  return IBL_MODE == TS_IBL_ON || (IBL_MODE == TS_IBL_RUNTIME && frame.flags.y != 0u);
+  return IBL_MODE == TS_IBL_ON || (IBL_MODE == TS_IBL_RUNTIME && frame.environment != 0u);
 }
 
 // Bilinear lookup in the DFG table of this variant at (N.V, roughness): x the Schlick-weighted
@@ -53,112 +53,108 @@ vec3 irradiance_sh(vec3 n) {
 }
 
 // Specialization to the scene's lights: with LIGHTS_SPECIALIZED, the lights are sorted by kind
-// (point, spot, directional) and each kind has its own loop of known length, whose branches
-// the compiler resolves; otherwise one loop over frame.scene_counts.y lights decides per light.
+// (in TS_LIGHT_* order) and each kind has its own loop of known length, whose branches the
+// compiler resolves; otherwise one loop over frame.light_count lights decides per light.
+// The count of kind k is specialization constant TS_SPEC_LIGHT_COUNT_BASE + k.
 layout(constant_id = TS_SPEC_LIGHTS_SPECIALIZED) const bool LIGHTS_SPECIALIZED = false;
-layout(constant_id = TS_SPEC_POINT_LIGHTS) const uint POINT_LIGHTS = 0u;
-layout(constant_id = TS_SPEC_SPOT_LIGHTS) const uint SPOT_LIGHTS = 0u;
-layout(constant_id = TS_SPEC_DIRECTIONAL_LIGHTS) const uint DIRECTIONAL_LIGHTS = 0u;
+layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_POINT) const uint POINT_LIGHTS = 0u;
+layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_SPOT) const uint SPOT_LIGHTS = 0u;
+layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_DIRECTIONAL) const uint DIRECTIONAL_LIGHTS = 0u;
 
-struct SurfacePoint {
-  vec3 P, N, V;
-  float NoV;
-  vec3 base_color;
-  float metallic, roughness;
-  vec3 specular_scale;
-};
+// Distance falloff of a light with a position at squared distance d2 (TS_FALLOFF_*).
+float distance_attenuation(GpuLight light, float d2) {
+  if (light.falloff == TS_FALLOFF_CLASSIC) {
+    // A classic light with Kc = 0 would divide by zero at distance 0.
+    float d = sqrt(d2);
+    return 1.0 / max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d2, TS_MIN_ATTENUATION_DENOMINATOR);
+  }
+  float attenuation = 1.0 / max(d2, TS_MIN_LIGHT_DISTANCE_SQUARED);
+  // Smooth fade to zero at the light's range (Karis 2013): saturate(1 - (d/r)^4)^2.
+  float fade = clamp(1.0 - d2 * d2 * light.inv_range4, 0.0, 1.0);
+  return attenuation * (fade * fade);
+}
+
+// What `light` of kind `kind` (a compile-time constant in the specialized loops) sends to the
+// surface point P with normal N: one branch per TS_LIGHT_* kind.
+LightSample light_sample(GpuLight light, uint kind, vec3 P, vec3 N) {
+  LightSample ls;
+  if (kind == TS_LIGHT_DIRECTIONAL) {
+    ls.L = -light.direction;
+    ls.radiance = light.radiance;
+    return ls;
+  }
+  vec3 to_light = light.position - P;
+  float d2 = dot(to_light, to_light);
+  // A light exactly on the surface has no direction: treat it as arriving along N.
+  ls.L = d2 > 0.0 ? to_light * inversesqrt(d2) : N;
+  float attenuation = distance_attenuation(light, d2);
+  if (kind == TS_LIGHT_SPOT) {
+    // Smooth step between the outer and inner cones, squared as in Filament.
+    float spot = clamp(dot(light.direction, -ls.L) * light.cone_scale + light.cone_offset, 0.0, 1.0);
+    attenuation *= spot * spot;
+  }
+  ls.radiance = light.radiance * attenuation;
+  return ls;
+}
 
 // Light i's contribution; `kind` is a compile-time constant in the specialized loops.
-vec3 light_contribution(SurfacePoint s, uint i, uint kind) {
-  GpuLight light = lights[i];
-  vec3 L;
-  vec3 radiance;
-  if (kind == TS_LIGHT_DIRECTIONAL) {
-    L = -light.direction.xyz;
-    radiance = light.radiance.rgb;
-  } else {
-    vec3 to_light = light.position.xyz - s.P;
-    float d2 = dot(to_light, to_light);
-    // A light exactly on the surface has no direction: treat it as arriving along N.
-    L = d2 > 0.0 ? to_light * inversesqrt(d2) : s.N;
-    float attenuation;
-    if (light.kind.y == TS_FALLOFF_CLASSIC) {
-      // A classic light with Kc = 0 would divide by zero at distance 0.
-      float d = sqrt(d2);
-      attenuation = 1.0 / max(light.falloff.y + light.falloff.z * d + light.falloff.w * d2, MIN_ATTENUATION_DENOMINATOR);
-    } else {
-      attenuation = 1.0 / max(d2, MIN_LIGHT_DISTANCE_SQUARED);
-      // Smooth fade to zero at the light's range (Karis 2013): saturate(1 - (d/r)^4)^2.
-      float fade = clamp(1.0 - d2 * d2 * light.falloff.x, 0.0, 1.0);
-      attenuation *= fade * fade;
-    }
-    if (kind == TS_LIGHT_SPOT) {
-      // Smooth step between the outer and inner cones, squared as in Filament.
-      float spot = clamp(dot(light.direction.xyz, -L) * light.cone.x + light.cone.y, 0.0, 1.0);
-      attenuation *= spot * spot;
-    }
-    radiance = light.radiance.rgb * attenuation;
-  }
-  return surface_response(s.N, s.V, L, s.NoV, s.base_color, s.metallic, s.roughness, radiance, s.specular_scale);
+vec3 light_contribution(ShadingPoint s, PixelParams p, uint i, uint kind) {
+  return surface_response(s, p, light_sample(lights[i], kind, s.P, s.N));
 }
 
 // The environment's light reflected towards V with the split-sum approximation (Karis 2013):
 // the prefiltered radiance along the reflection at this roughness times the specular albedo
 // from the DFG table, plus the diffuse albedo times the irradiance.
-vec3 environment_light(SurfacePoint s) {
-  vec3 f0 = mix(vec3(0.04), s.base_color, s.metallic);
-  vec3 diffuse_color = (1.0 - s.metallic) * s.base_color;
+vec3 environment_light(ShadingPoint s, PixelParams p) {
   vec3 R = reflect(-s.V, s.N);
   // A rough lobe leans from R towards N, more so at grazing angles (off-specular peak): look
   // the prefiltered map up along the lobe's dominant direction (Lagarde & de Rousiers 2014,
   // "Moving Frostbite to Physically Based Rendering", listing 22).
-  float alpha = s.roughness * s.roughness;
+  float alpha = p.alpha;
   float smooth_factor = 1.0 - alpha;
   vec3 dominant = normalize(mix(s.N, R, smooth_factor * (sqrt(smooth_factor) + alpha)));
   // Level k of the cube was prefiltered for roughness k / (levels - 1).
-  float lod = s.roughness * float(frame.flags.z - 1u);
+  float lod = p.roughness * float(frame.env_levels - 1u);
   vec3 prefiltered = textureLod(env_specular, dominant, lod).rgb;
   vec3 irradiance = irradiance_sh(s.N);
-  if (BRDF_VARIANT == TS_BRDF_BLINN_PHONG) return diffuse_color * irradiance + f0 * prefiltered;
-  vec3 dfg_terms = dfg_lookup(s.NoV, s.roughness);
+  if (BRDF_VARIANT == TS_BRDF_BLINN_PHONG) return p.diffuse_color * irradiance + p.f0 * prefiltered;
+  vec3 dfg_terms = dfg_lookup(s.NoV, p.roughness);
   // Integral of F_Schlick times the lobe: f0 (E - E_Fc) + E_Fc, with E_Fc the Schlick part.
-  vec3 specular = (f0 * (dfg_terms.y - dfg_terms.x) + dfg_terms.x) * prefiltered * s.specular_scale;
+  vec3 specular = (p.f0 * (dfg_terms.y - dfg_terms.x) + dfg_terms.x) * prefiltered * p.specular_scale;
   // The classic model weights diffuse by 1 - F(V.H), F averaged over the cosine lobe:
   // 1 - (f0 + (1 - f0) mean(Fc)) = (1 - f0) (1 - mean(Fc)).
-  vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? (vec3(1.0) - f0) * (1.0 - dfg_terms.z) : vec3(1.0);
-  return kd * diffuse_color * irradiance + specular;
+  vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? (vec3(1.0) - p.f0) * (1.0 - dfg_terms.z) : vec3(1.0);
+  return kd * p.diffuse_color * irradiance + specular;
 }
 
 // Radiance leaving surface point P (world) towards the unit direction V (towards the viewer),
 // for the material sample `ms` (with its shading normal).
 vec3 shade_surface(vec3 P, vec3 V, MaterialSample ms) {
-  SurfacePoint s;
+  ShadingPoint s;
   s.P = P;
   s.N = ms.N;
   s.V = V;
-  s.base_color = ms.base_color;
-  s.metallic = clamp(ms.metallic, 0.0, 1.0);
-  s.roughness = clamp(ms.roughness, MIN_PERCEPTUAL_ROUGHNESS, 1.0);
-  s.NoV = max(dot(s.N, V), MIN_N_DOT_V);
-  s.specular_scale = vec3(1.0);
+  s.NoV = max(dot(s.N, V), TS_MIN_N_DOT_V);
+  PixelParams p = ms.pixel;
   if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
     // E is at least ~0.07 (classic, grazing, alpha = 1), so the division is safe.
-    vec3 f0 = mix(vec3(0.04), s.base_color, s.metallic);
-    s.specular_scale = 1.0 + f0 * (1.0 / specular_albedo(s.NoV, s.roughness) - 1.0);
+    p.specular_scale = 1.0 + p.f0 * (1.0 / specular_albedo(s.NoV, p.roughness) - 1.0);
   }
 
   // Constant ambient and the environment, dimmed by the material's occlusion, plus what the
   // surface emits.
-  vec3 color = frame.ambient.rgb * s.base_color * ms.occlusion + ms.emissive;
-  if (ibl_enabled()) color += environment_light(s) * ms.occlusion;
+  vec3 color = frame.ambient * ms.base_color * ms.occlusion + ms.emissive;
+  if (ibl_enabled()) color += environment_light(s, p) * ms.occlusion;
   if (LIGHTS_SPECIALIZED) {
-    for (uint i = 0u; i < POINT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_POINT);
-    for (uint i = POINT_LIGHTS; i < POINT_LIGHTS + SPOT_LIGHTS; ++i) color += light_contribution(s, i, TS_LIGHT_SPOT);
-    for (uint i = POINT_LIGHTS + SPOT_LIGHTS; i < POINT_LIGHTS + SPOT_LIGHTS + DIRECTIONAL_LIGHTS; ++i) {
-      color += light_contribution(s, i, TS_LIGHT_DIRECTIONAL);
-    }
+    // One loop per kind, in TS_LIGHT_* order (the order of the sorted lights).
+    uint first = 0u;
+    for (uint i = first; i < first + POINT_LIGHTS; ++i) color += light_contribution(s, p, i, TS_LIGHT_POINT);
+    first += POINT_LIGHTS;
+    for (uint i = first; i < first + SPOT_LIGHTS; ++i) color += light_contribution(s, p, i, TS_LIGHT_SPOT);
+    first += SPOT_LIGHTS;
+    for (uint i = first; i < first + DIRECTIONAL_LIGHTS; ++i) color += light_contribution(s, p, i, TS_LIGHT_DIRECTIONAL);
   } else {
-    for (uint i = 0u; i < frame.scene_counts.y; ++i) color += light_contribution(s, i, lights[i].kind.x);
+    for (uint i = 0u; i < frame.light_count; ++i) color += light_contribution(s, p, i, lights[i].kind);
   }
   return color;
 }

@@ -1,18 +1,15 @@
 // A material at a surface point: its factors times its texture maps, and the shading normal
 // with the normal map applied. Shared by the compute shading pass and the graphics baseline.
 // Needs bindings.glsl; the mirror in the reference is resolve_material (reference_renderer.cpp).
+// A material parameter is read here (from GpuMaterial) and applied to the shading parameters
+// (PixelParams) at the end of evaluate_material; the lighting code uses only PixelParams.
 #include "texture.glsl"
+#include "brdf.glsl"
 
 // Maps this pipeline can sample (TS_MAP_* bits). The generic pipeline keeps them all and tests
 // each material's map index at run time; a pipeline specialized to a scene drops the code of
 // maps no material of the scene uses.
 layout(constant_id = TS_SPEC_TEXTURE_MAPS) const uint TEXTURE_MAPS = TS_MAP_ALL;
-
-// Smallest N.V a normal map may leave. A mapped normal can face away from the viewer (a steep
-// bump near a silhouette); shading it would light the surface from below its horizon and make
-// the clamped N.V of the specular term blow up. Such a normal is bent back towards V until
-// N.V = 0.01 (about 0.6 degrees above the horizon), which keeps the image continuous.
-const float MIN_MAPPED_N_DOT_V = 0.01;
 
 // Where and how a pixel sees a surface, before the material is applied.
 struct SurfaceGeometry {
@@ -25,12 +22,11 @@ struct SurfaceGeometry {
 };
 
 struct MaterialSample {
-  vec3 base_color;
-  float metallic;
-  float roughness;
-  float occlusion;
+  vec3 base_color;  // with its map applied (the ambient term's albedo)
+  float occlusion;  // scales ambient and environment light
   vec3 emissive;
-  vec3 N;  // shading normal
+  vec3 N;             // shading normal
+  PixelParams pixel;  // what the BRDF needs (brdf.glsl)
 };
 
 bool has_map(uint bit, uint index) {
@@ -51,33 +47,34 @@ vec3 apply_normal_map(SurfaceGeometry g, vec3 local, float scale, vec3 V) {
   if (m2 <= 1e-20) return g.N;
   vec3 n = mapped * inversesqrt(m2);
   float nv = dot(n, V);
-  if (nv < MIN_MAPPED_N_DOT_V) n = normalize(n + V * (MIN_MAPPED_N_DOT_V - nv));
+  if (nv < TS_MIN_MAPPED_N_DOT_V) n = normalize(n + V * (TS_MIN_MAPPED_N_DOT_V - nv));
   return n;
 }
 
 MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   GpuMaterial m = materials[index];
   MaterialSample s;
-  s.base_color = m.base_color.rgb;
-  s.metallic = m.metallic;
-  s.roughness = m.roughness;
-  s.occlusion = m.emissive_occlusion.a;
-  s.emissive = m.emissive_occlusion.rgb;
+  s.base_color = m.base_color;
+  float metallic = m.metallic;
+  float roughness = m.roughness;
+  s.occlusion = m.occlusion;
+  s.emissive = m.emissive;
   s.N = g.N;
-  if (has_map(TS_MAP_BASE_COLOR, m.maps.x)) {
-    s.base_color *= sample_texture(m.maps.x, g.uv, g.duv_dx, g.duv_dy).rgb;
+  if (has_map(TS_MAP_BASE_COLOR, m.base_color_map)) {
+    s.base_color *= sample_texture(m.base_color_map, g.uv, g.duv_dx, g.duv_dy).rgb;
   }
-  if (has_map(TS_MAP_METALLIC_ROUGHNESS, m.maps.y)) {
-    vec4 t = sample_texture(m.maps.y, g.uv, g.duv_dx, g.duv_dy);
-    s.roughness *= t.g;
-    s.metallic *= t.b;
+  if (has_map(TS_MAP_METALLIC_ROUGHNESS, m.metallic_roughness_map)) {
+    vec4 t = sample_texture(m.metallic_roughness_map, g.uv, g.duv_dx, g.duv_dy);
+    roughness *= t.g;
+    metallic *= t.b;
   }
-  if (has_map(TS_MAP_OCCLUSION, m.maps.w)) {
-    s.occlusion *= sample_texture(m.maps.w, g.uv, g.duv_dx, g.duv_dy).r;
+  if (has_map(TS_MAP_OCCLUSION, m.occlusion_map)) {
+    s.occlusion *= sample_texture(m.occlusion_map, g.uv, g.duv_dx, g.duv_dy).r;
   }
-  if (has_map(TS_MAP_NORMAL, m.maps.z)) {
-    vec3 local = sample_texture(m.maps.z, g.uv, g.duv_dx, g.duv_dy).rgb * 2.0 - 1.0;
+  if (has_map(TS_MAP_NORMAL, m.normal_map)) {
+    vec3 local = sample_texture(m.normal_map, g.uv, g.duv_dx, g.duv_dy).rgb * 2.0 - 1.0;
     s.N = apply_normal_map(g, local, m.normal_scale, V);
   }
+  s.pixel = metallic_roughness_params(s.base_color, metallic, roughness);
   return s;
 }

@@ -9,7 +9,7 @@ layout(local_size_x = TS_GROUP_SIZE) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= min(counters[batch.index].small_tris, frame.limits.x)) return;
+  if (i >= min(counters[batch.index].small_tris, frame.raster_capacity)) return;
   RasterTri t = load_raster_tri(small_list[i]);
   Thresholds h = thresholds_of(t);
   // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.

@@ -9,11 +9,11 @@ layout(local_size_x = TS_TILE_SIZE, local_size_y = TS_TILE_SIZE) in;
 
 void main() {
   ivec2 tile = ivec2(gl_WorkGroupID.xy);
-  uint tile_index = uint(tile.y) * frame.image_size.z + uint(tile.x);
+  uint tile_index = uint(tile.y) * frame.tiles.x + uint(tile.x);
   uint count = tile_counts[tile_index];
   if (count == 0u) return;
   uint first = tile_offsets[tile_index];
-  uint end = min(first + count, frame.limits.y);  // past capacity the frame is redone anyway
+  uint end = min(first + count, frame.tile_entry_capacity);  // past capacity the frame is redone anyway
 
   ivec2 pixel = tile * TS_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   ivec2 p = pixel_centre(pixel);

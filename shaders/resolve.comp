@@ -25,12 +25,12 @@ vec3 srgb_encode(vec3 c) {
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, ivec2(frame.image_size.xy)))) return;
+  if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
   vec3 hdr = max(imageLoad(hdr_image, pixel).rgb, vec3(0.0));
   // Debug views hold values in [0, 1] meant to be seen as they are: no exposure, no curve.
-  bool shaded = frame.limits.w == TS_VIEW_SHADED;
-  hdr *= shaded ? frame.raster_params.z : 1.0;
-  uint op = shaded ? frame.scene_counts.w : TS_TONEMAP_CLAMP;
+  bool shaded = frame.view == TS_VIEW_SHADED;
+  hdr *= shaded ? frame.exposure_scale : 1.0;
+  uint op = shaded ? frame.tonemap : TS_TONEMAP_CLAMP;
   vec3 mapped = op == TS_TONEMAP_ACES       ? tonemap_aces(hdr)
                 : op == TS_TONEMAP_REINHARD ? tonemap_reinhard(hdr)
                                             : clamp(hdr, 0.0, 1.0);

@@ -10,15 +10,15 @@ layout(local_size_x = TS_SCAN_GROUP_SIZE) in;
 shared uint partial[TS_SCAN_GROUP_SIZE];
 
 void write_dispatch_sizes(uint b, bool tiles_used) {
-  uint small_count = min(counters[b].small_tris, frame.limits.x);
-  uint big_count = min(counters[b].big_tris, frame.limits.x);
+  uint small_count = min(counters[b].small_tris, frame.raster_capacity);
+  uint big_count = min(counters[b].big_tris, frame.raster_capacity);
   counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
   counters[b].big_dispatch = uvec4((big_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
-  counters[b].tiles_dispatch = tiles_used ? uvec4(frame.image_size.z, frame.image_size.w, 1, 0) : uvec4(0, 1, 1, 0);
+  counters[b].tiles_dispatch = tiles_used ? uvec4(frame.tiles.x, frame.tiles.y, 1, 0) : uvec4(0, 1, 1, 0);
 }
 
 void main() {
-  uint n = frame.image_size.z * frame.image_size.w;
+  uint n = frame.tiles.x * frame.tiles.y;
   uint t = gl_LocalInvocationID.x;
   // Nothing binned (the common case for small triangles): every count is 0, so the offsets
   // are never read; skip the scan and the tile passes.

@@ -43,7 +43,7 @@ uint classify(uint slot, uint id, out RasterTri t) {
   }
   if (outside) return OUTCOME_OUTSIDE;
   if (needs_clip) return OUTCOME_CLIP;
-  return prepare_triangle(c[0], c[1], c[2], id, t);
+  return prepare_triangle(c[0], c[1], c[2], id, objects[slot].mirrored != 0u, t);
 }
 
 // Adds the number of this subgroup's threads for which `mine` holds to `counter`, once.
@@ -72,7 +72,7 @@ void main() {
   uint slot = 0u;
   if (subgroupElect()) slot = find_object(subgroupBroadcastFirst(id));
   slot = subgroupBroadcastFirst(slot);
-  while (slot + 1u < frame.scene_counts.x && objects[slot + 1u].first_triangle <= id) ++slot;
+  while (slot + 1u < frame.object_count && objects[slot + 1u].first_triangle <= id) ++slot;
   RasterTri t;
   uint outcome = local < batch.triangle_count ? classify(slot, id, t) : OUTCOME_NONE;
 
@@ -92,13 +92,13 @@ void main() {
 
   uint clip_slot;
   APPEND_SLOT(counters[batch.index].clip_list, outcome == OUTCOME_CLIP, clip_slot);
-  if (outcome == OUTCOME_CLIP && clip_slot < frame.limits.x) clip_list[clip_slot] = id;
+  if (outcome == OUTCOME_CLIP && clip_slot < frame.raster_capacity) clip_list[clip_slot] = id;
 
   // Past capacity the write is skipped; the host sees the count, grows the buffers, redoes.
   bool emits = outcome == OUTCOME_SMALL || outcome == OUTCOME_BIG;
   uint index;
   APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
-  bool stored = emits && index < frame.limits.x;
+  bool stored = emits && index < frame.raster_capacity;
   if (stored) store_raster_tri(index, t);
   uint small_slot;
   APPEND_SLOT(counters[batch.index].small_tris, stored && outcome == OUTCOME_SMALL, small_slot);

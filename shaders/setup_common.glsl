@@ -23,10 +23,10 @@ void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
 
 // Signed distance to clip plane `plane` (inside >= 0): the near plane, then the guard band.
 float plane_distance(vec4 c, int plane) {
-  float gx = frame.raster_params.x;
-  float gy = frame.raster_params.y;
+  float gx = frame.guard_band.x;
+  float gy = frame.guard_band.y;
   switch (plane) {
-    case 0: return c.w - frame.camera_position.w;
+    case 0: return c.w - frame.near_plane;
     case 1: return gx * c.w - c.x;
     case 2: return gx * c.w + c.x;
     case 3: return gy * c.w - c.y;
@@ -35,11 +35,12 @@ float plane_distance(vec4 c, int plane) {
 }
 
 // Snaps a triangle whose corners are in front of the near plane and inside the guard band,
-// culls it by facing and by what it covers, and fills `t`. Returns OUTCOME_FACING, _EMPTY,
-// _SMALL or _BIG.
-uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
-  vec2 size = vec2(frame.image_size.xy);
-  float near_plane = frame.camera_position.w;
+// culls it by facing and by what it covers, and fills `t`. `mirrored`: its object's transform
+// has a negative determinant (GpuObject.mirrored). Returns OUTCOME_FACING, _EMPTY, _SMALL or
+// _BIG.
+uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, out RasterTri t) {
+  vec2 size = vec2(frame.image_size);
+  float near_plane = frame.near_plane;
   vec4 c[3] = vec4[3](c0, c1, c2);
   ivec2 v[3];
   float d[3];
@@ -51,14 +52,16 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
   int64_t area = edge_function(v[0], v[1], v[2]);
   if (area == 0) return OUTCOME_EMPTY;
   // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
-  // their doubled area comes out negative here.
-  bool front = area < 0;
-  if ((front && frame.flags.x == TS_CULL_FRONT) || (!front && frame.flags.x == TS_CULL_BACK)) {
+  // their doubled area comes out negative here. A mirroring transform has already reversed
+  // the winding of its object's triangles once more (glTF 2.0: front faces are then clockwise).
+  bool clockwise = area < 0;
+  bool front = clockwise != mirrored;
+  if ((front && frame.cull == TS_CULL_FRONT) || (!front && frame.cull == TS_CULL_BACK)) {
     return OUTCOME_FACING;
   }
   // Order the vertices so the area is positive: every edge function is then >= 0 inside.
-  int second = front ? 2 : 1;
-  int third = front ? 1 : 2;
+  int second = clockwise ? 2 : 1;
+  int third = clockwise ? 1 : 2;
   t.v0 = v[0];
   t.v1 = v[second];
   t.v2 = v[third];
@@ -69,7 +72,7 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
   ivec2 hi = max(max(t.v0, t.v1), t.v2);
   // Pixel x has its centre at x*256 + 128: the first centre >= lo and the last <= hi.
   t.box_min = max((lo - TS_SUBPIXEL_ONE / 2 + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
-  t.box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size.xy) - 1);
+  t.box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size) - 1);
   if (any(greaterThan(t.box_min, t.box_max))) return OUTCOME_EMPTY;
   // Slivers and sub-pixel triangles often cover no pixel centre: for boxes of up to 2x2
   // pixels, test the centres here rather than pay for a raster triangle that writes nothing.
@@ -84,7 +87,7 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, out RasterTri t) {
     if (!any_covered) return OUTCOME_EMPTY;
   }
   uvec2 extent = uvec2(t.box_max - t.box_min) + 1u;
-  return extent.x * extent.y <= frame.limits.z ? OUTCOME_SMALL : OUTCOME_BIG;
+  return extent.x * extent.y <= frame.small_triangle_max_area ? OUTCOME_SMALL : OUTCOME_BIG;
 }
 
 void store_raster_tri(uint index, RasterTri t) {
@@ -116,7 +119,7 @@ uint bin_entry(RasterTri t, uint k) {
 // Writes the bin entries of raster triangle `index` at slots [first, first + count) of the big
 // list, skipping those past its capacity (the host sees the count and redoes the frame).
 void store_bin_entries(uint index, RasterTri t, uint first, uint count) {
-  for (uint k = 0u; k < count && first + k < frame.limits.x; ++k) {
+  for (uint k = 0u; k < count && first + k < frame.raster_capacity; ++k) {
     big_list[first + k] = uvec2(index, bin_entry(t, k));
   }
 }

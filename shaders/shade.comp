@@ -11,14 +11,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// Largest finite fp16 value: the HDR image is RGBA16F and anything above would become Inf.
-const float MAX_HALF = 65504.0;
-
 // Unit ray through the point `pixel_point` of the image, in pixels.
 vec3 camera_ray_at(vec2 pixel_point) {
-  vec2 ndc = pixel_point / vec2(frame.image_size.xy) * 2.0 - 1.0;
+  vec2 ndc = pixel_point / vec2(frame.image_size) * 2.0 - 1.0;
   vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
-  return normalize(far_point.xyz / far_point.w - frame.camera_position.xyz);
+  return normalize(far_point.xyz / far_point.w - frame.camera_position);
 }
 
 vec3 camera_ray(ivec2 pixel) {
@@ -82,7 +79,7 @@ vec3 shade_sample(uint id, ivec2 pixel) {
     t[k] = vec2(vert.position_u.w, vert.normal_v.w);
     tan[k] = mat3(o.model) * vert.tangent.xyz;
   }
-  vec3 origin = frame.camera_position.xyz;
+  vec3 origin = frame.camera_position;
   vec3 dir = camera_ray(pixel);
   vec3 b = ray_barycentrics(origin, dir, p[0], p[1], p[2]);
   vec3 P = b.x * p[0] + b.y * p[1] + b.z * p[2];
@@ -103,11 +100,11 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   g.duv_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by)
                  ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
   // A mirroring transform flips the handedness of the tangent frame.
-  float handedness = vertices[vi[0]].tangent.w * (determinant(mat3(o.model)) < 0.0 ? -1.0 : 1.0);
+  float handedness = vertices[vi[0]].tangent.w * (o.mirrored != 0u ? -1.0 : 1.0);
   g.T = vec4(b.x * tan[0] + b.y * tan[1] + b.z * tan[2], handedness);
   MaterialSample ms = evaluate_material(o.material, g, -dir);
 
-  uint view = frame.limits.w;
+  uint view = frame.view;
   if (view == TS_VIEW_NORMAL) return ms.N * 0.5 + 0.5;
   if (view == TS_VIEW_UV) return vec3(g.uv, 0.0);
   if (view == TS_VIEW_TRIANGLE) return id_colour(id);
@@ -118,16 +115,16 @@ vec3 shade_sample(uint id, ivec2 pixel) {
 
 // What pixels no triangle covers show.
 vec3 background(ivec2 pixel) {
-  if (ibl_enabled() && frame.limits.w == TS_VIEW_SHADED) {
+  if (ibl_enabled() && frame.view == TS_VIEW_SHADED) {
     return textureLod(env_map, equirect_uv(camera_ray(pixel)), 0.0).rgb;
   }
-  return frame.background.rgb;
+  return frame.background;
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, ivec2(frame.image_size.xy)))) return;
+  if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
   uint64_t key = visibility[pixel_index(pixel)];
   vec3 color = key == TS_VIS_EMPTY ? background(pixel) : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
-  imageStore(hdr_image, pixel, vec4(min(color, vec3(MAX_HALF)), 1.0));
+  imageStore(hdr_image, pixel, vec4(min(color, vec3(TS_MAX_HALF)), 1.0));
 }

@@ -17,7 +17,7 @@ uint wrap_once(int i, int n) {
 // on CPU implementations (its offset array becomes an indexed local array).
 vec4 bilinear(uint tex, uint level, vec2 uv) {
   uv -= floor(uv);  // into [0, 1], so the corner indices below are within one period
-  ivec2 size = ivec2(max(textures[tex].size.xy >> level, uvec2(1u)));
+  ivec2 size = ivec2(max(textures[tex].size >> level, uvec2(1u)));
   uint offset = textures[tex].level_offset[level >> 2u][level & 3u];
   vec2 xy = uv * vec2(size) - 0.5;
   vec2 corner = floor(xy);
@@ -43,10 +43,10 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
 
 // Filtered lookup of texture `index` at uv with the screen-space derivatives of one pixel step
 // (see sample_texture in core/texture.h): trilinear at log2 of the footprint's longer axis in
-// texels, or, with anisotropy > 1 (GpuFrame.flags.w), up to that many trilinear probes along
+// texels, or, with anisotropy > 1 (GpuFrame.anisotropy), up to that many trilinear probes along
 // the longer axis at a finer level.
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
-  uvec3 info = textures[index].size.xyz;
+  uvec3 info = uvec3(textures[index].size, textures[index].levels);
   vec2 size = vec2(info.xy);
   uint levels = info.z;
   float lx = length(duv_dx * size);
@@ -56,7 +56,7 @@ vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   // An infinite or NaN footprint (a triangle seen edge-on): the coarsest level.
   if (!(major <= 3.0e38)) return trilinear(index, levels, uv, float(levels - 1u));
   float probes = 1.0;
-  uint anisotropy = frame.flags.w;
+  uint anisotropy = frame.anisotropy;
   if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
   float lod = log2(major / probes);
   if (probes == 1.0) return trilinear(index, levels, uv, lod);

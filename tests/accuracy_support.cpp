@@ -28,11 +28,11 @@ AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t
   const std::vector<uint64_t> vis = renderer.read_visibility();
 
   ReferenceSettings rs;
-  rs.width = width;
-  rs.height = height;
+  rs.frame.width = width;
+  rs.frame.height = height;
   rs.cull = options.cull;
-  rs.brdf = brdf;
-  rs.max_anisotropy = anisotropy;
+  rs.frame.brdf = brdf;
+  rs.frame.max_anisotropy = anisotropy;
   rs.environment_samples = environment_samples;
   const ReferenceFrame ref = render_reference(scene, rs);
 

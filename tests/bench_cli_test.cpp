@@ -8,7 +8,7 @@
 #include "core/bench_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
-#include "host/bench_command.h"
+#include "host/cli.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -56,24 +56,124 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
   EXPECT_EQ(chart.width, 1300u);
 }
 
-TEST(BenchCli, BadArgumentsNameTheProblem) {
+TEST(BenchCli, ParsesEveryOption) {
+  const CommandLine line = parse_command_line({"bench",
+                                               "--scene",
+                                               "scatter",
+                                               "--objects",
+                                               "2,20,200",
+                                               "--size",
+                                               "64x32",
+                                               "--segments",
+                                               "8",
+                                               "--device",
+                                               "lavapipe",
+                                               "--backends",
+                                               "reference,compute",
+                                               "--repeat",
+                                               "4",
+                                               "--warmup",
+                                               "1",
+                                               "--reference-max-triangles",
+                                               "1000",
+                                               "--small-triangle-area",
+                                               "16",
+                                               "--generic-shading",
+                                               "--csv",
+                                               "a.csv",
+                                               "--json",
+                                               "a.json",
+                                               "--chart",
+                                               "a.svg",
+                                               "--validate",
+                                               "--quiet"});
+  ASSERT_EQ(line.command, Command::bench);
+  const BenchArgs& a = line.bench;
+  EXPECT_EQ(a.scene, "scatter");
+  EXPECT_EQ(a.objects, (std::vector<uint32_t>{2, 20, 200}));
+  EXPECT_EQ(a.width, 64u);
+  EXPECT_EQ(a.height, 32u);
+  EXPECT_EQ(a.segments, 8u);
+  EXPECT_EQ(a.device, "lavapipe");
+  EXPECT_EQ(a.backends, (std::vector<std::string>{"reference", "compute"}));
+  EXPECT_EQ(a.repeat, 4u);
+  EXPECT_EQ(a.warmup, 1u);
+  EXPECT_EQ(a.reference_max_triangles, 1000u);
+  EXPECT_EQ(a.small_triangle_area, 16u);
+  EXPECT_TRUE(a.generic_shading);
+  EXPECT_EQ(a.csv, "a.csv");
+  EXPECT_EQ(a.json, "a.json");
+  EXPECT_EQ(a.chart, "a.svg");
+  EXPECT_TRUE(a.validate);
+  EXPECT_TRUE(a.quiet);
+  // Defaults: the documented sweep.
+  const BenchArgs d = parse_command_line({"bench"}).bench;
+  EXPECT_EQ(d.objects, (std::vector<uint32_t>{1, 10, 100}));
+  EXPECT_EQ(d.backends, (std::vector<std::string>{"compute", "hardware"}));
+  EXPECT_EQ(d.repeat, 10u);
+  EXPECT_EQ(d.warmup, 2u);
+}
+
+TEST(BenchCli, HelpListsEveryOption) {
+  const CommandLine line = parse_command_line({"bench", "--help"});
+  ASSERT_EQ(line.command, Command::help);
+  for (const char* option :
+       {"Usage: tessera bench", "--scene NAME", "--objects LIST", "--size WxH", "--segments S",
+        "--device D", "--backends LIST", "--repeat K", "--warmup K", "--reference-max-triangles T",
+        "--small-triangle-area A", "--generic-shading", "--csv FILE", "--json FILE", "--chart FILE",
+        "--validate", "--quiet", "Exit status"}) {
+    EXPECT_NE(line.help.find(option), std::string::npos) << option << " in\n" << line.help;
+  }
+}
+
+TEST(BenchCli, BadArgumentsNameTheOption) {
   auto error = [](std::vector<std::string> args) {
-    BenchArgs a;
+    args.insert(args.begin(), "bench");
     try {
-      parse_bench_args(args, a);
-    } catch (const Error& e) {
+      parse_command_line(args);
+    } catch (const UsageError& e) {
       return std::string(e.what());
     }
     return std::string();
   };
-  EXPECT_NE(error({"--scene", "forest"}).find("unknown benchmark scene 'forest'"),
+  EXPECT_NE(error({"--scene", "forest"}).find("--scene: unknown benchmark scene 'forest'"),
             std::string::npos);
-  EXPECT_NE(error({"--objects", "1,x"}).find("--objects"), std::string::npos);
-  EXPECT_NE(error({"--objects", "0"}).find("--objects"), std::string::npos);
-  EXPECT_NE(error({"--backends", "compute,magic"}).find("'magic'"), std::string::npos);
-  EXPECT_NE(error({"--chart", "c.jpg"}).find(".svg or .png"), std::string::npos);
-  EXPECT_NE(error({"--csv", "/nonexistent-dir/x.csv"}).find("cannot write"), std::string::npos);
-  EXPECT_NE(error({"--segments", "2"}).find("--segments"), std::string::npos);
+  EXPECT_NE(error({"--objects", "1,x"}).find("--objects: expects a whole number"),
+            std::string::npos);
+  EXPECT_NE(error({"--objects", "0"}).find("--objects: expects a whole number from 1"),
+            std::string::npos);
+  EXPECT_NE(error({"--objects", "1", "2"}).find("unexpected argument '2'"), std::string::npos);
+  EXPECT_NE(error({"--backends", "compute,magic"})
+                .find("--backends: expects compute, hardware or "
+                      "reference, got 'magic'"),
+            std::string::npos);
+  EXPECT_NE(error({"--chart", "c.jpg"}).find("--chart: expects a .svg file or a .png file"),
+            std::string::npos);
+  EXPECT_NE(error({"--segments", "2"}).find("--segments: expects a whole number from 4"),
+            std::string::npos);
+  EXPECT_NE(error({"--repeat", "0"}).find("--repeat:"), std::string::npos);
+  EXPECT_NE(error({"--warmup", "101"}).find("--warmup: expects a whole number from 0 to 100"),
+            std::string::npos);
+  EXPECT_NE(error({"--size", "0x5"}).find("--size: width"), std::string::npos);
+  EXPECT_NE(error({"--small-triangle-area", "-1"}).find("--small-triangle-area:"),
+            std::string::npos);
+  EXPECT_NE(error({"--reference-max-triangles", "0"}).find("--reference-max-triangles:"),
+            std::string::npos);
+  EXPECT_NE(error({"--turbo"}).find("unknown option '--turbo'"), std::string::npos);
+}
+
+// An output that cannot be written is a failure while running (status 1), found before the
+// sweep spends any time.
+TEST(BenchCli, UnwritableOutputFailsBeforeMeasuring) {
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --csv /nonexistent-dir/x.csv",
+                              out),
+            1);
+  EXPECT_NE(out.find("tessera: error: cannot write output file '/nonexistent-dir/x.csv'"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("objects"), std::string::npos) << "no table: nothing was measured\n" << out;
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "core/builtin_scenes.h"
+#include "tests/golden.h"
 #include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
@@ -92,13 +93,24 @@ TEST_P(Golden, BitIdentical) {
   Renderer renderer(context(), options);
   renderer.set_scene(make_builtin_scene(c.scene));
   renderer.render(c.settings);
+  test::expect_golden(renderer, c.name);
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Golden, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<GoldenCase>& info) {
+                           return std::string(info.param.name);
+                         });
+
+}  // namespace
+
+void test::expect_golden(Renderer& renderer, const std::string& name) {
   const ImageF hdr = renderer.read_hdr();
   const Image8 ldr = renderer.read_ldr();
   const std::vector<uint64_t> vis = renderer.read_visibility();
   const uint64_t hdr_hash = fnv1a(hdr.pixels.data(), hdr.pixels.size() * sizeof(hdr.pixels[0]));
   const uint64_t vis_hash = fnv1a(vis.data(), vis.size() * sizeof(vis[0]));
 
-  const std::string base = golden_dir() + "/" + c.name;
+  const std::string base = golden_dir() + "/" + name;
   EXPECT_MATCHES_GOLDEN(ldr, base + ".png", 0);
 
   const char* update = std::getenv("TESSERA_UPDATE_GOLDENS");
@@ -114,10 +126,4 @@ TEST_P(Golden, BitIdentical) {
   EXPECT_EQ(hdr_hash, want_hdr) << "linear HDR image differs from the golden one";
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, Golden, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<GoldenCase>& info) {
-                           return std::string(info.param.name);
-                         });
-
-}  // namespace
 }  // namespace tessera

@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "core/mesh.h"
 #include "core/reference_renderer.h"
+#include "core/statistics.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -161,7 +162,7 @@ TEST_F(ImageBasedLighting, SplitSumAgainstMonteCarloByRoughnessAndViewAngle) {
     ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
   }
   ReferenceSettings rs;
-  rs.width = rs.height = size;
+  rs.frame.width = rs.frame.height = size;
   rs.environment_samples = 1024;
   const ReferenceFrame ref = render_reference(scene, rs);
 
@@ -188,11 +189,6 @@ TEST_F(ImageBasedLighting, SplitSumAgainstMonteCarloByRoughnessAndViewAngle) {
       cells[material][bin].errors.push_back(std::abs(luminance(g) / luminance(r) - 1.0));
     }
   }
-  auto median = [](std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   std::printf("IBL split-sum vs Monte Carlo, median |relative luminance error| by N.V bin\n");
   std::printf("material roughness | N.V <.25 | .25-.5 | .5-.75 | >=.75 | all\n");
   for (size_t m = 0; m < scene.materials.size(); ++m) {
@@ -223,7 +219,7 @@ TEST_F(ImageBasedLighting, PrecomputationSettingsAgainstMonteCarlo) {
   const Scene scene = make_builtin_scene("environment");
   const uint32_t size = 128;
   ReferenceSettings rs;
-  rs.width = rs.height = size;
+  rs.frame.width = rs.frame.height = size;
   const ReferenceFrame ref = render_reference(scene, rs);
   std::vector<double> medians;
   std::printf("cube size / samples: median relative luminance error over the spheres\n");
@@ -243,8 +239,7 @@ TEST_F(ImageBasedLighting, PrecomputationSettingsAgainstMonteCarlo) {
       const double r = luminance(glm::dvec3(ref.hdr.pixels[i]));
       errors.push_back(std::abs(luminance(glm::dvec3(gpu.pixels[i])) / r - 1.0));
     }
-    std::sort(errors.begin(), errors.end());
-    medians.push_back(errors[errors.size() / 2]);
+    medians.push_back(median(errors));
     std::printf("  %u / %u: %.2f %%\n", side, samples, medians.back() * 100.0);
   }
   EXPECT_LT(medians.back(), medians.front());

@@ -38,7 +38,7 @@ TEST(Reference, HeadOnPlaneMatchesTheFormulaByHand) {
     for (float metallic : {0.0f, 1.0f}) {
       Scene s = facing_plane(roughness, metallic);
       ReferenceSettings rs;
-      rs.width = rs.height = 101;
+      rs.frame.width = rs.frame.height = 101;
       ReferenceFrame f = render_reference(s, rs);
       const double pi = std::numbers::pi;
       const double alpha = double(roughness) * roughness;
@@ -59,9 +59,9 @@ TEST(Reference, ToneCurveAndEncodingByHand) {
   Scene s = facing_plane(0.5f, 0.0f);
   s.camera.vertical_fov = glm::radians(90.0f);  // the plane covers the middle third only
   ReferenceSettings rs;
-  rs.width = rs.height = 11;
-  rs.tonemap = ToneMap::reinhard;
-  rs.exposure_ev = 1.0f;
+  rs.frame.width = rs.frame.height = 11;
+  rs.frame.tonemap = ToneMap::reinhard;
+  rs.frame.exposure_ev = 1.0f;
   ReferenceFrame f = render_reference(s, rs);
   const double x = 2.0 * f.hdr.at(5, 5).r;  // one stop up
   const double mapped = x / (1 + x);
@@ -75,8 +75,8 @@ TEST(Reference, ToneCurveAndEncodingByHand) {
 TEST(Reference, ThreadCountDoesNotChangeABit) {
   Scene s = make_sphere_grid_scene();
   ReferenceSettings rs;
-  rs.width = 128;
-  rs.height = 96;
+  rs.frame.width = 128;
+  rs.frame.height = 96;
   rs.threads = 1;
   ReferenceFrame one = render_reference(s, rs);
   rs.threads = 5;
@@ -92,8 +92,8 @@ TEST(Reference, SharedEdgesAreCoveredOnce) {
   Scene s = facing_plane(0.5f, 0.0f);
   s.meshes[0] = make_plane(13, 7);
   ReferenceSettings rs;
-  rs.width = 120;
-  rs.height = 90;
+  rs.frame.width = 120;
+  rs.frame.height = 90;
   ReferenceFrame f = render_reference(s, rs);
   size_t covered = 0;
   for (uint32_t c : f.coverage) {
@@ -107,7 +107,7 @@ TEST(Reference, ProbeMeasuresEdgeDistanceAndDepth) {
   Scene s = facing_plane(0.5f, 0.0f);
   s.meshes[0] = make_plane(1, 1);  // triangle 0: (-1,-1), (1,-1), (1,1): the part with y < x
   ReferenceSettings rs;
-  rs.width = rs.height = 101;
+  rs.frame.width = rs.frame.height = 101;
   // Pixel (60, 70) sees the plane z = 0 at world (x, y); its nearest edge is the diagonal.
   const double pixel_size = 3.0 * std::tan(double(s.camera.vertical_fov) / 2) / 50.5;
   const double x = (60.5 - 50.5) * pixel_size, y = -(70.5 - 50.5) * pixel_size;
@@ -120,9 +120,9 @@ TEST(Reference, ProbeMeasuresEdgeDistanceAndDepth) {
 TEST(Reference, RejectsBadInput) {
   Scene s = facing_plane(0.5f, 0.0f);
   ReferenceSettings rs;
-  rs.width = 0;
+  rs.frame.width = 0;
   EXPECT_THROW(render_reference(s, rs), Error);
-  rs.width = 16;
+  rs.frame.width = 16;
   s.meshes[0].positions[0].x = std::nanf("");
   EXPECT_THROW(render_reference(s, rs), Error);
 }

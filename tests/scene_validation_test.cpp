@@ -113,9 +113,13 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   Renderer renderer(context());
   Scene scene = make_sphere_grid_scene();
   UploadStats first = renderer.set_scene(scene);
-  uint64_t all_bytes =
-      scene.objects.size() * 160 + scene.materials.size() * 64 + scene.lights.size() * 96;
-  for (const Mesh& m : scene.meshes) all_bytes += m.positions.size() * 48 + m.indices.size() * 4;
+  uint64_t all_bytes = scene.objects.size() * sizeof(tessera::gpu::GpuObject) +
+                       scene.materials.size() * sizeof(tessera::gpu::GpuMaterial) +
+                       scene.lights.size() * sizeof(tessera::gpu::GpuLight);
+  for (const Mesh& m : scene.meshes) {
+    all_bytes +=
+        m.positions.size() * sizeof(tessera::gpu::GpuVertex) + m.indices.size() * sizeof(uint32_t);
+  }
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
 
@@ -125,7 +129,7 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   EXPECT_EQ(one_material.buffers_created, 0u);
 
   scene.lights[2].intensity = 10.0f;
-  EXPECT_EQ(renderer.set_scene(scene).bytes, 96u) << "one GpuLight";
+  EXPECT_EQ(renderer.set_scene(scene).bytes, sizeof(tessera::gpu::GpuLight)) << "one GpuLight";
 
   FrameSettings settings;
   settings.width = settings.height = 64;

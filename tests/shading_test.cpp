@@ -283,10 +283,10 @@ TEST_F(Shading, EnergyCompensatedRendersAgreeWithTheReference) {
     renderer.render(fs);
     const Image8 uncompensated = renderer.read_ldr();
     ReferenceSettings rs;
-    rs.width = fs.width;
-    rs.height = fs.height;
-    rs.brdf = variant;
-    rs.energy_compensation = true;
+    rs.frame.width = fs.width;
+    rs.frame.height = fs.height;
+    rs.frame.brdf = variant;
+    rs.frame.energy_compensation = true;
     const ReferenceFrame ref = render_reference(scene, rs);
     const ImageDifference d = compare_images(gpu, ref.ldr, 1.0);
     std::printf("%s with compensation: 8-bit max %.0f, %zu px over 1 level, PSNR %.1f dB\n",

@@ -161,9 +161,9 @@ TEST_F(TexturedRendering, AnisotropicFilteringIsCloserToTheSupersampledTruth) {
                   glm::vec3(8.0f))});
   const uint32_t w = 96, h = 64, ss = 16;
   ReferenceSettings truth_settings;
-  truth_settings.width = w * ss;
-  truth_settings.height = h * ss;
-  truth_settings.max_anisotropy = 16;
+  truth_settings.frame.width = w * ss;
+  truth_settings.frame.height = h * ss;
+  truth_settings.frame.max_anisotropy = 16;
   const ReferenceFrame fine = render_reference(scene, truth_settings);
   std::vector<glm::dvec3> truth(size_t(w) * h, glm::dvec3(0.0));
   for (uint32_t y = 0; y < h * ss; ++y) {

@@ -178,8 +178,8 @@ TEST_P(WatertightRandom, FrontAndBackCoverageAgreeOnEveryPixel) {
   }
   EXPECT_GT(inside, 3000u);
   ReferenceSettings rs;
-  rs.width = w;
-  rs.height = h;
+  rs.frame.width = w;
+  rs.frame.height = h;
   rs.cull = CullMode::back;
   ReferenceFrame rf = render_reference(scene, rs);
   rs.cull = CullMode::front;

@@ -15,15 +15,19 @@ std::vector<glm::vec3> evaluate_brdf_on_gpu(const Context& ctx, Brdf variant,
                                             const std::vector<BrdfSample>& samples) {
   std::vector<glm::vec3> out(samples.size());
   if (samples.empty()) return out;
-  std::vector<glm::vec4> packed;
+  std::vector<gpu::GpuBrdfSample> packed;
   for (const BrdfSample& s : samples) {
-    packed.insert(packed.end(), {glm::vec4(s.n, 0), glm::vec4(s.v, 0), glm::vec4(s.l, 0),
-                                 glm::vec4(s.material.base_color, s.material.metallic),
-                                 glm::vec4(s.material.roughness, 0, 0, 0)});
+    packed.push_back({.n = s.n,
+                      .metallic = s.material.metallic,
+                      .v = s.v,
+                      .roughness = s.material.roughness,
+                      .l = s.l,
+                      .base_color = s.material.base_color});
   }
-  Buffer input = create_buffer(ctx, packed.size() * sizeof(glm::vec4),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::upload);
-  std::memcpy(input.mapped, packed.data(), packed.size() * sizeof(glm::vec4));
+  const size_t input_bytes = packed.size() * sizeof(gpu::GpuBrdfSample);
+  Buffer input =
+      create_buffer(ctx, input_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::upload);
+  std::memcpy(input.mapped, packed.data(), input_bytes);
   Buffer output = create_buffer(ctx, samples.size() * sizeof(glm::vec4),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::readback);
 

@@ -65,8 +65,9 @@ VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPip
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = desc.cull;
   // Vulkan's facing uses the y-down framebuffer's area with a minus sign, so the world's
-  // counter-clockwise front faces stay counter-clockwise here.
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  // counter-clockwise front faces stay counter-clockwise here; a mirroring transform has
+  // reversed them.
+  raster.frontFace = desc.mirrored ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;

@@ -18,11 +18,12 @@ struct GraphicsPipelineDesc {
   const char* vertex_shader;  // embedded names (baseline_shaders.h)
   const char* fragment_shader;
   bool clip_space_positions;  // one vec4 vertex attribute at binding 0; else vertices pulled
-  VkCullModeFlags cull;       // front faces wind counter-clockwise
+  VkCullModeFlags cull;
   VkCompareOp depth_compare;  // depth test and write on
   VkColorComponentFlags color_mask;
   uint32_t brdf = 0;                        // specialization constants of the fragment shader:
   VkBool32 energy_compensation = VK_FALSE;  // TS_SPEC_BRDF, TS_SPEC_ENERGY_COMPENSATION
+  bool mirrored = false;  // front faces wind clockwise in the world (is_mirroring, scene.h)
 };
 
 /// A triangle-list pipeline for `pass`'s subpass 0, one sample, dynamic viewport and scissor.

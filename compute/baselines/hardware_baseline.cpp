@@ -119,22 +119,28 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   require_graphics_queue(ctx);
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
-  VkPipeline& pipeline =
-      pipelines_[size_t(settings.brdf) * 2 + (settings.energy_compensation ? 1 : 0)];
-  if (!pipeline) {
-    const GraphicsPipelineDesc desc{
-        "baseline_shade_vert",
-        "baseline_shade_frag",
-        false,
-        VkCullModeFlags(frame.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
-                        : frame.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
-                                                        : VK_CULL_MODE_NONE),
-        VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
-        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-            VK_COLOR_COMPONENT_A_BIT,
-        uint32_t(settings.brdf),
-        settings.energy_compensation ? VK_TRUE : VK_FALSE};
-    pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
+  // Mirrored objects need the opposite front face: Vulkan 1.2 has no dynamic state for it.
+  VkPipeline pipelines[2];
+  for (int mirrored = 0; mirrored < 2; ++mirrored) {
+    VkPipeline& pipeline =
+        pipelines_[size_t(settings.brdf) * 4 + (settings.energy_compensation ? 2 : 0) + mirrored];
+    if (!pipeline) {
+      const GraphicsPipelineDesc desc{
+          "baseline_shade_vert",
+          "baseline_shade_frag",
+          false,
+          VkCullModeFlags(frame.cull == CullMode::back    ? VK_CULL_MODE_BACK_BIT
+                          : frame.cull == CullMode::front ? VK_CULL_MODE_FRONT_BIT
+                                                          : VK_CULL_MODE_NONE),
+          VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
+          VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+              VK_COLOR_COMPONENT_A_BIT,
+          uint32_t(settings.brdf),
+          settings.energy_compensation ? VK_TRUE : VK_FALSE,
+          mirrored == 1};
+      pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
+    }
+    pipelines[mirrored] = pipeline;
   }
   ensure_targets(frame.hdr_view, frame.images_generation, frame.width, frame.height);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
@@ -145,21 +151,22 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &queries_));
   }
 
-  // One instanced draw per run of consecutive object slots that share a mesh (the canonical
-  // order sorts by mesh first, so each mesh is one run).
+  // One instanced draw per run of consecutive object slots that share a mesh and mirroring
+  // (the canonical order sorts by mesh first, so each mesh is one run unless some of its
+  // objects are mirrored).
   struct Draw {
-    uint32_t first_index, index_count, base_vertex, first_instance, instances;
+    uint32_t first_index, index_count, base_vertex, first_instance, instances, mirrored;
   };
   std::vector<Draw> draws;
   const auto& objects = frame.objects;
   for (uint32_t slot = 0; slot < objects.size(); ++slot) {
     const gpu::GpuObject& o = objects[slot];
     if (!draws.empty() && draws.back().first_index == o.first_index &&
-        draws.back().base_vertex == o.base_vertex &&
+        draws.back().base_vertex == o.base_vertex && draws.back().mirrored == o.mirrored &&
         draws.back().first_instance + draws.back().instances == slot) {
       draws.back().instances++;
     } else {
-      draws.push_back({o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1});
+      draws.push_back({o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, o.mirrored});
     }
   }
 
@@ -187,7 +194,6 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     begin.clearValueCount = 2;
     begin.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, frame.layout, 0, 1, &frame.set, 0,
                             nullptr);
     const VkViewport viewport{0, 0, float(frame.width), float(frame.height), 0, 1};
@@ -195,7 +201,12 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     if (!draws.empty()) vkCmdBindIndexBuffer(cmd, frame.indices, 0, VK_INDEX_TYPE_UINT32);
+    VkPipeline bound = VK_NULL_HANDLE;
     for (const Draw& d : draws) {
+      if (pipelines[d.mirrored] != bound) {
+        bound = pipelines[d.mirrored];
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
+      }
       vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),
                        d.first_instance);
     }

@@ -43,7 +43,8 @@ class HardwareBaseline {
   Renderer& renderer_;
   const Context& ctx_;
   VkRenderPass pass_ = VK_NULL_HANDLE;
-  std::array<VkPipeline, 6> pipelines_{};  // per Brdf variant, with and without compensation
+  // Per Brdf variant, with and without compensation, for objects with and without mirroring.
+  std::array<VkPipeline, 12> pipelines_{};
   Attachment depth_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
   uint64_t images_generation_ = 0;  // of the renderer's images the framebuffer holds

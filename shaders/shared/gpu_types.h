@@ -1,11 +1,17 @@
 // GPU-visible data layouts, shared by the GLSL compute shaders and the C++ host.
 //
-// This is the one definition of every struct that crosses the host/GPU boundary. Members are
-// only vec4, uvec4, mat4 and groups of four 32-bit scalars, so std430 (buffers) and std140
-// (the frame uniform block) give the same offsets as C++ with glm; the static_asserts at the
-// end check size and offsets on the C++ side.
+// This is the one definition of every struct that crosses the host/GPU boundary. Members come
+// in 16-byte groups: a mat4; a vec4 or uvec4; a vec3 and one 32-bit scalar; a vec2 or uvec2
+// and another, or two 32-bit scalars; or four 32-bit scalars. So std430 (buffers) and std140
+// (the frame uniform block) give the same offsets as C++ with glm (whose vec3 is 12 bytes,
+// 4-aligned); the static_asserts at the end check size and offsets on the C++ side. Every
+// field has a name: no component of a vector holds an unrelated value, except in
+// GpuRasterTri, packed into three 16-byte stores for the rasterizer's bandwidth
+// (raster_common.glsl unpacks it), and the VkDispatchIndirectCommand vectors of GpuCounters.
 #ifndef TESSERA_GPU_TYPES_H
 #define TESSERA_GPU_TYPES_H
+
+#include "constants.h"
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -14,20 +20,15 @@
 namespace tessera::gpu {
 using uint = std::uint32_t;
 using glm::mat4;
+using glm::uvec2;
 using glm::uvec4;
+using glm::vec2;
+using glm::vec3;
 using glm::vec4;
 #endif
 
-// Fixed-point screen coordinates: 8 sub-pixel bits, as in common hardware rasterizers.
-#define TS_SUBPIXEL_BITS 8
-#define TS_SUBPIXEL_ONE 256
 // Screen tiles used by binning and the per-tile rasterizer, in pixels per side.
 #define TS_TILE_SIZE 16
-// Snapped coordinates stay inside +-TS_GUARD_BAND_PX so that edge products fit easily in int64
-// and the coordinates themselves in int32 (2^15 px * 2^8 = 2^23).
-#define TS_GUARD_BAND_PX 32768.0
-// Largest image side the renderer accepts: box corners are packed as two 16-bit halves.
-#define TS_MAX_IMAGE_SIDE 16384
 // Visibility buffer value of a pixel no triangle covers (all bits set: larger than any key).
 #define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
 // Threads per workgroup of the one-thread-per-item passes.
@@ -45,31 +46,7 @@ using glm::vec4;
 // thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
 #define TS_BIN_CHUNK 8
 
-// Light kinds (GpuLight.kind.x) and falloff models (GpuLight.kind.y).
-#define TS_LIGHT_POINT 0u
-#define TS_LIGHT_DIRECTIONAL 1u
-#define TS_LIGHT_SPOT 2u
-#define TS_FALLOFF_INVERSE_SQUARE 0u
-#define TS_FALLOFF_CLASSIC 1u
-
-// BRDF variants (specialization constant TS_SPEC_BRDF of the shading stages).
-#define TS_BRDF_CLASSIC 0u
-#define TS_BRDF_FILAMENT 1u
-#define TS_BRDF_BLINN_PHONG 2u
-
-// Tone-mapping operators (GpuFrame.scene_counts.w).
-#define TS_TONEMAP_ACES 0u
-#define TS_TONEMAP_REINHARD 1u
-#define TS_TONEMAP_CLAMP 2u
-
-// What the shading pass writes (GpuFrame.limits.w): shaded colour, or a debug view.
-#define TS_VIEW_SHADED 0u
-#define TS_VIEW_NORMAL 1u    // world normal * 0.5 + 0.5
-#define TS_VIEW_UV 2u        // (u, v, 0)
-#define TS_VIEW_TRIANGLE 3u  // a colour hashed from the triangle-instance id
-#define TS_VIEW_OBJECT 4u    // a colour hashed from the object slot
-
-// Facing culled by setup (GpuFrame.flags.x).
+// Facing culled by setup (GpuFrame.cull).
 #define TS_CULL_BACK 0u
 #define TS_CULL_FRONT 1u
 #define TS_CULL_NONE 2u
@@ -95,30 +72,31 @@ using glm::vec4;
 #define TS_BINDING_LDR_IMAGE 17
 #define TS_BINDING_CLIP_LIST 18
 #define TS_BINDING_DFG 19
-#define TS_BINDING_TEXELS 20           // every texture's mip chain, fp16 RGBA
-#define TS_BINDING_TEXTURES 21         // GpuTexture per Scene::textures entry
-#define TS_BINDING_ENV_MAP 22          // equirectangular radiance with mips (sampler2D)
-#define TS_BINDING_ENV_SPECULAR 23     // prefiltered specular cube, one roughness per level
-#define TS_BINDING_ENV_LEVELS 24       // the same cube's levels as written by the prefilter
-#define TS_BINDING_ENV_IRRADIANCE 25   // 9 spherical-harmonic coefficients of irradiance / pi
+#define TS_BINDING_TEXELS 20          // every texture's mip chain, fp16 RGBA
+#define TS_BINDING_TEXTURES 21        // GpuTexture per Scene::textures entry
+#define TS_BINDING_ENV_MAP 22         // equirectangular radiance with mips (sampler2D)
+#define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
+#define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
+#define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
 #define TS_BINDING_COUNT 26
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
 #define TS_SPEC_BRDF 1
 #define TS_SPEC_ENERGY_COMPENSATION 2
-#define TS_SPEC_LIGHTS_SPECIALIZED 3  // the light counts below are the scene's (lights sorted by kind)
-#define TS_SPEC_POINT_LIGHTS 4
-#define TS_SPEC_SPOT_LIGHTS 5
-#define TS_SPEC_DIRECTIONAL_LIGHTS 6
-#define TS_SPEC_TEXTURE_MAPS 7  // maps the shader can sample (TS_MAP_* bits; all if generic)
-#define TS_SPEC_IBL 8           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
+#define TS_SPEC_LIGHTS_SPECIALIZED \
+  3                             // the light counts below are the scene's (lights sorted by kind)
+#define TS_SPEC_TEXTURE_MAPS 4  // maps the shader can sample (TS_MAP_* bits; all if generic)
+#define TS_SPEC_IBL 5           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
+// The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
+// TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
+#define TS_SPEC_LIGHT_COUNT_BASE 6
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
-#define TS_IBL_RUNTIME 2u  // decided per frame by GpuFrame.flags.y
+#define TS_IBL_RUNTIME 2u  // decided per frame by GpuFrame.environment
 
-// Texture maps of a material (bits of TS_SPEC_TEXTURE_MAPS; slots of GpuMaterial.maps).
+// Texture maps of a material (bits of TS_SPEC_TEXTURE_MAPS; GpuMaterial.*_map).
 #define TS_MAP_BASE_COLOR 1u
 #define TS_MAP_METALLIC_ROUGHNESS 2u
 #define TS_MAP_NORMAL 4u
@@ -153,52 +131,92 @@ struct GpuObject {
   uint triangle_count;
   uint material;
   uint first_triangle;
-  uint pad0;
+  uint mirrored;  // 1 if model's upper 3x3 has a negative determinant (is_mirroring, scene.h)
   uint pad1;
   uint pad2;
 };
 
-// Metallic-roughness material; roughness is perceptual (alpha = roughness^2).
+// Metallic-roughness material (core/scene.h's Material, whose comments give ranges and units);
+// roughness is perceptual (alpha = roughness^2). The maps index GpuTexture (TS_NO_TEXTURE: none).
 struct GpuMaterial {
-  vec4 base_color;          // linear RGB, a unused
-  vec4 emissive_occlusion;  // rgb: emitted radiance; a: occlusion (scales ambient and IBL)
+  vec3 base_color;  // linear RGB
   float metallic;
+  vec3 emissive;  // emitted radiance, linear RGB
   float roughness;
+  float occlusion;  // scales ambient and environment light
   float normal_scale;
+  float pad0;
   float pad1;
-  uvec4 maps;  // textures: base colour, metallic-roughness, normal, occlusion (TS_NO_TEXTURE)
+  uint base_color_map;
+  uint metallic_roughness_map;
+  uint normal_map;
+  uint occlusion_map;
 };
 
 // One texture: its mip chain in the texel buffer, level l being max(1, size >> l) texels per
 // side, rows top to bottom, starting at texel level_offset[l / 4][l % 4].
 struct GpuTexture {
-  uvec4 size;  // width, height, levels, unused
+  uvec2 size;   // texels of level 0
+  uint levels;  // in the mip chain
+  uint pad0;
   uvec4 level_offset[TS_MAX_TEXTURE_LEVELS / 4];
 };
 
+// One light (core/scene.h's Light, converted by flatten_scene).
 struct GpuLight {
-  vec4 position;   // world, point and spot lights
-  vec4 direction;  // world, unit, the direction light travels (directional and spot lights)
-  vec4 radiance;   // rgb: colour * intensity (W/sr for point and spot lights, W/m^2 directional)
-  vec4 falloff;    // x: 1 / range^4 (0: no fade), y, z, w: Kc, Kl, Kq (classic falloff)
-  vec4 cone;       // spot: x = 1 / max(cos inner - cos outer, 1e-4), y = -cos outer * x
-  uvec4 kind;      // x: TS_LIGHT_*, y: TS_FALLOFF_*
+  vec3 position;      // world, lights with a position (all but directional)
+  uint kind;          // TS_LIGHT_*
+  vec3 direction;     // world, unit, the direction light travels (directional and spot lights)
+  uint falloff;       // TS_FALLOFF_*
+  vec3 radiance;      // colour * intensity (W/sr for point and spot lights, W/m^2 directional)
+  float inv_range4;   // inverse-square falloff: 1 / range^4 (0: no fade)
+  vec3 attenuation;   // classic falloff: Kc, Kl, Kq
+  float cone_scale;   // spot: 1 / max(cos inner - cos outer, TS_MIN_SPOT_COSINE_GAP)
+  float cone_offset;  // spot: -cos outer * cone_scale, so saturate(cos * scale + offset)
+  float pad0;
+  float pad1;
+  float pad2;
 };
 
 // Per-frame constants (uniform block, std140).
 struct GpuFrame {
   mat4 view_proj;        // world -> clip; clip.w is the view-space distance along the view axis
   mat4 inv_view_proj;    // clip -> world, for the shading pass's camera rays
-  vec4 camera_position;  // xyz world, w: near-plane distance
-  vec4 background;       // linear HDR colour of pixels no triangle covers
-  vec4 ambient;          // rgb: constant ambient radiance, multiplied by the diffuse albedo
-  vec4 raster_params;    // x, y: guard band in NDC units; z: exposure scale 2^EV; w: unused
-  uvec4 image_size;      // width, height, tiles_x, tiles_y
-  uvec4 scene_counts;    // objects, lights, triangle instances, tone-mapping operator
-  uvec4 limits;          // raster-triangle capacity, tile-entry capacity, small-path max box
-                         // area, view (TS_VIEW_*)
-  uvec4 flags;           // x: culling (TS_CULL_*); y: 1 if an environment lights the scene;
-                         // z: levels of the prefiltered cube; w: texture anisotropy (>= 1)
+  vec3 camera_position;  // world
+  float near_plane;      // distance of the near plane
+  vec3 background;       // linear HDR colour of pixels no triangle covers
+  float exposure_scale;  // 2^EV, applied before tone mapping
+  vec3 ambient;          // constant ambient radiance, multiplied by the diffuse albedo
+  uint view;             // TS_VIEW_*
+  vec2 guard_band;       // x, y extent of the guard band in NDC units
+  uint tonemap;          // TS_TONEMAP_*
+  uint cull;             // TS_CULL_*
+  uvec2 image_size;      // pixels
+  uvec2 tiles;           // tiles per row and column
+  uint object_count;
+  uint light_count;
+  uint triangle_count;   // triangle instances
+  uint raster_capacity;  // raster triangles the buffers hold
+  uint tile_entry_capacity;
+  uint small_triangle_max_area;  // largest pixel box of the per-triangle rasterizer
+  uint environment;              // 1 if an environment lights the scene
+  uint env_levels;               // levels of the prefiltered specular cube
+  uint anisotropy;               // texture anisotropy (>= 1)
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
+struct GpuBrdfSample {
+  vec3 n;  // unit normal
+  float metallic;
+  vec3 v;           // unit direction towards the viewer
+  float roughness;  // perceptual
+  vec3 l;           // unit direction towards the light
+  float pad0;
+  vec3 base_color;
+  float pad1;
 };
 
 // Push constants of the environment passes (env_irradiance.comp, env_prefilter.comp), in the
@@ -220,9 +238,9 @@ struct GpuBatch {
 
 // A triangle after setup, clipped and snapped, ready to rasterize. 48 bytes.
 struct GpuRasterTri {
-  uvec4 xy01;     // x0, y0, x1, y1: int32 fixed point (TS_SUBPIXEL_BITS), stored as bits
-  uvec4 xy2_box;  // x2, y2, box min (x | y << 16), box max (x | y << 16), inclusive pixels
-  uvec4 depth_id; // x, y, z: float bits of near/w at each vertex; w: triangle-instance id
+  uvec4 xy01;      // x0, y0, x1, y1: int32 fixed point (TS_SUBPIXEL_BITS), stored as bits
+  uvec4 xy2_box;   // x2, y2, box min (x | y << 16), box max (x | y << 16), inclusive pixels
+  uvec4 depth_id;  // x, y, z: float bits of near/w at each vertex; w: triangle-instance id
 };
 
 // Counters of one batch, written by the GPU and read back by the host after the frame.
@@ -232,14 +250,14 @@ struct GpuCounters {
   uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
   uint small_tris;
-  uint big_tris;         // bin entries (a binned triangle makes one per 8x8 block of tiles)
-  uint tile_entries;     // entries the tile lists need (may exceed capacity, likewise)
+  uint big_tris;      // bin entries (a binned triangle makes one per 8x8 block of tiles)
+  uint tile_entries;  // entries the tile lists need (may exceed capacity, likewise)
   uint culled_backface;
-  uint culled_frustum;   // entirely outside the view or behind the near plane
-  uint culled_empty;     // zero area or no pixel centre covered
-  uint culled_nonfinite; // a vertex with NaN or Inf clip coordinates
-  uint clipped;          // triangles that crossed the near plane or the guard band
-  uint clip_list;        // entries in the clip list (== clipped unless it overflowed)
+  uint culled_frustum;    // entirely outside the view or behind the near plane
+  uint culled_empty;      // zero area or no pixel centre covered
+  uint culled_nonfinite;  // a vertex with NaN or Inf clip coordinates
+  uint clipped;           // triangles that crossed the near plane or the guard band
+  uint clip_list;         // entries in the clip list (== clipped unless it overflowed)
   uint pad1;
   uint pad2;
 };
@@ -252,22 +270,47 @@ static_assert(sizeof(GpuObject) == 160);
 static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
+static_assert(offsetof(GpuObject, mirrored) == 148);
 static_assert(sizeof(GpuMaterial) == 64);
-static_assert(offsetof(GpuMaterial, emissive_occlusion) == 16);
-static_assert(offsetof(GpuMaterial, metallic) == 32);
-static_assert(offsetof(GpuMaterial, normal_scale) == 40);
-static_assert(offsetof(GpuMaterial, maps) == 48);
+static_assert(offsetof(GpuMaterial, metallic) == 12);
+static_assert(offsetof(GpuMaterial, emissive) == 16);
+static_assert(offsetof(GpuMaterial, roughness) == 28);
+static_assert(offsetof(GpuMaterial, occlusion) == 32);
+static_assert(offsetof(GpuMaterial, base_color_map) == 48);
+static_assert(offsetof(GpuMaterial, occlusion_map) == 60);
 static_assert(sizeof(GpuTexture) == 80);
+static_assert(offsetof(GpuTexture, levels) == 8);
 static_assert(offsetof(GpuTexture, level_offset) == 16);
-static_assert(sizeof(GpuLight) == 96);
-static_assert(offsetof(GpuLight, falloff) == 48);
-static_assert(offsetof(GpuLight, kind) == 80);
+static_assert(sizeof(GpuLight) == 80);
+static_assert(offsetof(GpuLight, kind) == 12);
+static_assert(offsetof(GpuLight, direction) == 16);
+static_assert(offsetof(GpuLight, falloff) == 28);
+static_assert(offsetof(GpuLight, radiance) == 32);
+static_assert(offsetof(GpuLight, inv_range4) == 44);
+static_assert(offsetof(GpuLight, attenuation) == 48);
+static_assert(offsetof(GpuLight, cone_scale) == 60);
+static_assert(offsetof(GpuLight, cone_offset) == 64);
 static_assert(sizeof(GpuFrame) == 256);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
+static_assert(offsetof(GpuFrame, near_plane) == 140);
+static_assert(offsetof(GpuFrame, background) == 144);
+static_assert(offsetof(GpuFrame, exposure_scale) == 156);
+static_assert(offsetof(GpuFrame, ambient) == 160);
+static_assert(offsetof(GpuFrame, view) == 172);
+static_assert(offsetof(GpuFrame, guard_band) == 176);
+static_assert(offsetof(GpuFrame, tonemap) == 184);
+static_assert(offsetof(GpuFrame, cull) == 188);
 static_assert(offsetof(GpuFrame, image_size) == 192);
-static_assert(offsetof(GpuFrame, limits) == 224);
-static_assert(offsetof(GpuFrame, flags) == 240);
+static_assert(offsetof(GpuFrame, tiles) == 200);
+static_assert(offsetof(GpuFrame, object_count) == 208);
+static_assert(offsetof(GpuFrame, raster_capacity) == 220);
+static_assert(offsetof(GpuFrame, tile_entry_capacity) == 224);
+static_assert(offsetof(GpuFrame, env_levels) == 236);
+static_assert(offsetof(GpuFrame, anisotropy) == 240);
+static_assert(sizeof(GpuBrdfSample) == 64);
+static_assert(offsetof(GpuBrdfSample, roughness) == 28);
+static_assert(offsetof(GpuBrdfSample, base_color) == 48);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);

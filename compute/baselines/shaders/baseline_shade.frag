@@ -14,15 +14,12 @@ layout(location = 3) in vec4 world_tangent;
 layout(location = 4) in vec2 uv;
 layout(location = 0) out vec4 color;
 
-// Largest finite fp16 value: the HDR image is RGBA16F.
-const float MAX_HALF = 65504.0;
-
 void main() {
   float n2 = dot(world_normal, world_normal);
   // Opposite vertex normals can cancel; the face normal is then the only sensible choice.
   vec3 N = n2 > 1e-20 ? world_normal * inversesqrt(n2)
                       : normalize(cross(dFdx(world_position), dFdy(world_position)));
-  vec3 V = normalize(frame.camera_position.xyz - world_position);
+  vec3 V = normalize(frame.camera_position - world_position);
   SurfaceGeometry g;
   g.P = world_position;
   g.N = N;
@@ -31,5 +28,5 @@ void main() {
   g.duv_dx = dFdxFine(uv);
   g.duv_dy = dFdyFine(uv);
   MaterialSample ms = evaluate_material(material, g, V);
-  color = vec4(min(shade_surface(world_position, V, ms), vec3(MAX_HALF)), 1.0);
+  color = vec4(min(shade_surface(world_position, V, ms), vec3(TS_MAX_HALF)), 1.0);
 }

@@ -19,9 +19,9 @@ void main() {
   material = o.material;
   // A mirroring transform flips the handedness of the tangent frame.
   world_tangent = vec4(mat3(o.model) * v.tangent.xyz,
-                       v.tangent.w * (determinant(mat3(o.model)) < 0.0 ? -1.0 : 1.0));
+                       v.tangent.w * (o.mirrored != 0u ? -1.0 : 1.0));
   uv = vec2(v.position_u.w, v.normal_v.w);
   gl_Position = frame.view_proj * world;
   // Reverse depth as in the compute path: z / w = near / w, nearer is larger.
-  gl_Position.z = frame.camera_position.w;
+  gl_Position.z = frame.near_plane;
 }

@@ -1,0 +1,26 @@
+#pragma once
+// What one frame looks like, independent of the backend that renders it: the compute path
+// (compute/renderer.h), the hardware baseline and the CPU reference (core/reference_renderer.h)
+// all take these. No Vulkan here.
+
+#include <cstdint>
+
+#include "core/scene.h"
+
+namespace tessera {
+
+struct FrameSettings {
+  uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
+  uint32_t height = 512;
+  float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
+  ToneMap tonemap = ToneMap::aces;
+  View view = View::shaded;  // debug views are written as they are, without exposure or curve
+  Brdf brdf = Brdf::classic;
+  /// Multiple-scattering energy compensation of the specular lobe (classic and filament).
+  bool energy_compensation = false;
+  /// Texture filtering: 1 is trilinear; 2 to 16 take up to that many trilinear probes along
+  /// the footprint's longer axis (anisotropic filtering).
+  uint32_t max_anisotropy = 1;
+};
+
+}  // namespace tessera

@@ -1,0 +1,36 @@
+#pragma once
+// Where each value of a JSON text is: nlohmann-json parses without keeping positions, so a
+// second pass over the (already parsed) text maps each value's JSON pointer to its line and
+// column, for messages that point into the file.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+
+namespace tessera {
+
+/// 1-based line and column (in bytes) of a place in a text; 0:0 when unknown.
+struct JsonPlace {
+  size_t line = 0, column = 0;
+};
+
+/// Line and column of byte `offset` (0-based) of `text`.
+JsonPlace place_of_offset(std::string_view text, size_t offset);
+
+struct JsonPlaces {
+  /// Keyed by RFC 6901 JSON pointer ("" is the root, "/materials/0/roughness").
+  std::unordered_map<std::string, JsonPlace> values;  // where each value starts
+  std::unordered_map<std::string, JsonPlace> keys;    // where each object member's key starts
+};
+
+/// Indexes every value of `text`, which nlohmann-json has parsed (or refused only for a number
+/// out of double's range). Throws Error("LINE:COLUMN: ...") for what the parser lets through
+/// but a scene file must not have: a number that overflows a double (1e999), a key given
+/// twice in one object, nesting deeper than `max_depth`.
+JsonPlaces index_json_places(std::string_view text, size_t max_depth = 64);
+
+/// `token` escaped for use in a JSON pointer (~ as ~0, / as ~1).
+std::string json_pointer_token(std::string_view token);
+
+}  // namespace tessera

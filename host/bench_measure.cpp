@@ -1,0 +1,175 @@
+#include "host/bench_measure.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include "compute/baselines/hardware_baseline.h"
+#include "core/bench_scenes.h"
+#include "core/builtin_scenes.h"
+#include "core/reference_renderer.h"
+#include "core/statistics.h"
+#include "host/report.h"
+#include "host/scene_source.h"
+
+namespace tessera {
+namespace {
+
+class Progress {
+ public:
+  Progress(size_t total, bool enabled)
+      : total_(total), enabled_(enabled && isatty(fileno(stderr))) {}
+  void step(const std::string& what) {
+    if (!enabled_) return;
+    const int width = 30;
+    const int filled = int(width * done_ / std::max<size_t>(total_, 1));
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu %-40s", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), done_, total_, what.c_str());
+    std::fflush(stderr);
+    ++done_;
+  }
+  ~Progress() {
+    if (enabled_) std::fprintf(stderr, "\r%80s\r", "");
+  }
+
+ private:
+  size_t total_, done_ = 0;
+  bool enabled_;
+};
+
+BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
+  for (uint32_t i = 0; i < a.warmup; ++i) r.render(fs);
+  std::vector<FrameStats> frames;
+  for (uint32_t i = 0; i < a.repeat; ++i) frames.push_back(r.render(fs));
+  std::vector<double> cpu;
+  for (const FrameStats& f : frames) cpu.push_back(f.cpu_record_submit_ms);
+  std::vector<double> total;
+  for (const FrameStats& f : frames) total.push_back(f.gpu_total_ms);
+  BenchRow row;
+  row.pass_ms = pass_medians(frames);
+  row.total_ms = median(total);
+  row.cpu_record_ms = median(cpu);
+  const FrameStats& last = frames.back();
+  row.triangles_rasterized = last.raster_triangles;
+  row.small_triangles = last.small_triangles;
+  row.bin_entries = last.big_triangles;
+  row.tile_entries = last.tile_entries;
+  row.batches = last.batches;
+  row.frames = a.repeat;
+  if (!last.has_timestamps) row.note = "no timestamps";
+  return row;
+}
+
+// The hardware baseline (compute/baselines/): timestamps around its render pass (clear, draws,
+// shading) are the yardstick.
+BenchRow measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
+  HardwareBaseline hardware(r);
+  for (uint32_t i = 0; i < a.warmup; ++i) hardware.render(fs);
+  std::vector<double> pass, cpu;
+  for (uint32_t i = 0; i < a.repeat; ++i) {
+    const BaselineStats s = hardware.render(fs);
+    pass.push_back(s.render_pass_ms);
+    cpu.push_back(s.cpu_record_submit_ms);
+  }
+  BenchRow row;
+  row.total_ms = median(pass);
+  row.cpu_record_ms = median(cpu);
+  row.frames = a.repeat;
+  return row;
+}
+
+BenchRow measure_reference(const Scene& scene, const FrameSettings& fs, const BenchArgs& a) {
+  ReferenceSettings rs;
+  rs.frame = fs;
+  const uint32_t frames = std::min<uint32_t>(a.repeat, 3);  // it is slow; 3 suffice for a median
+  std::vector<double> wall;
+  ReferenceFrame f;
+  for (uint32_t i = 0; i < frames; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    f = render_reference(scene, rs);
+    wall.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+  }
+  BenchRow row;
+  row.total_ms = median(wall);
+  row.triangles_rasterized = f.raster_triangles;
+  row.frames = frames;
+  row.note = "CPU wall time";
+  return row;
+}
+
+// compute / hardware per object count, from the same run.
+std::vector<std::pair<uint32_t, double>> compute_over_hardware(const std::vector<BenchRow>& rows) {
+  std::vector<std::pair<uint32_t, double>> ratios;
+  for (const BenchRow& c : rows) {
+    if (c.backend != "compute") continue;
+    for (const BenchRow& h : rows) {
+      if (h.objects == c.objects && h.backend == "hardware" && h.total_ms > 0)
+        ratios.push_back({c.objects, c.total_ms / h.total_ms});
+    }
+  }
+  return ratios;
+}
+
+}  // namespace
+
+BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
+  BenchResults results;
+  std::unique_ptr<Renderer> renderer;
+  if (ctx) {
+    RendererOptions options;
+    options.small_triangle_max_area = a.small_triangle_area;
+    options.specialize_lights = !a.generic_shading;
+    renderer = std::make_unique<Renderer>(*ctx, options);
+    results.device = ctx->properties.deviceName;
+    results.driver = ctx->driver;
+  }
+  FrameSettings fs;
+  fs.width = a.width;
+  fs.height = a.height;
+  const float aspect = float(a.width) / float(a.height);
+
+  // A built-in scene or a scene file has a fixed object count: it is one point of the sweep.
+  const bool builtin = is_builtin_scene(a.scene) || is_scene_path(a.scene);
+  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene : Scene{};
+  const std::vector<uint32_t> counts =
+      builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
+  Progress progress(counts.size() * a.backends.size(), !a.quiet);
+  for (uint32_t n : counts) {
+    const Scene scene = builtin ? fixed : make_bench_scene(a.scene, n, a.segments, aspect);
+    uint64_t triangles = 0;
+    for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
+    uint64_t pixels_shaded = 0;
+    if (renderer) {
+      renderer->set_scene(scene);  // uploaded once, outside the timed frames
+      renderer->render(fs);
+      for (uint64_t key : renderer->read_visibility()) pixels_shaded += key != ~0ull;
+    }
+    for (const std::string& backend : a.backends) {
+      progress.step("objects " + std::to_string(n) + ", " + backend);
+      BenchRow row;
+      if (backend == "compute") {
+        row = measure_compute(*renderer, fs, a);
+      } else if (backend == "hardware") {
+        row = measure_hardware(*renderer, fs, a);
+      } else if (triangles <= a.reference_max_triangles) {
+        row = measure_reference(scene, fs, a);
+      } else {
+        row.skipped = true;
+      }
+      row.objects = n;
+      row.backend = backend;
+      row.triangles_submitted = triangles;
+      row.pixels_shaded = pixels_shaded;
+      results.rows.push_back(row);
+    }
+  }
+  results.compute_over_hardware = compute_over_hardware(results.rows);
+  return results;
+}
+
+}  // namespace tessera

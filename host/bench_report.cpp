@@ -1,0 +1,152 @@
+#include "host/bench_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+
+#include "core/check.h"
+#include "host/chart.h"
+
+namespace tessera {
+namespace {
+
+std::string human_count(double v) {
+  char buf[32];
+  if (v >= 1e9)
+    std::snprintf(buf, sizeof(buf), "%.2fG", v / 1e9);
+  else if (v >= 1e6)
+    std::snprintf(buf, sizeof(buf), "%.2fM", v / 1e6);
+  else if (v >= 1e3)
+    std::snprintf(buf, sizeof(buf), "%.1fk", v / 1e3);
+  else
+    std::snprintf(buf, sizeof(buf), "%.0f", v);
+  return buf;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (uint8_t(c) < 0x20) continue;
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+void print_bench_table(const BenchResults& results, const BenchArgs& a) {
+  std::printf(
+      "scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), medians of %u "
+      "frames\n",
+      a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area, results.device.c_str(),
+      results.driver.c_str(), a.repeat);
+  std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
+              "rasterized", "ms", "triangles/s", "cpu ms");
+  for (const BenchRow& r : results.rows) {
+    if (r.skipped) {
+      std::printf("%10u %10s %12s  skipped (over --reference-max-triangles)\n", r.objects,
+                  r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str());
+      continue;
+    }
+    std::printf("%10u %10s %12s %12s %10.3f %12s %10.3f\n", r.objects, r.backend.c_str(),
+                human_count(double(r.triangles_submitted)).c_str(),
+                r.triangles_rasterized ? human_count(double(r.triangles_rasterized)).c_str() : "-",
+                r.total_ms, human_count(r.triangles_per_second()).c_str(), r.cpu_record_ms);
+  }
+  for (const auto& [n, ratio] : results.compute_over_hardware) {
+    std::printf("objects %u: compute / hardware = %.3f (compute %.2fx %s)\n", n, ratio,
+                ratio < 1 ? 1 / ratio : ratio, ratio < 1 ? "faster" : "slower");
+  }
+}
+
+void write_bench_csv(const std::string& path, const BenchResults& results, const BenchArgs& a) {
+  std::ofstream f(path);
+  f << "scene,objects,backend,width,height,triangles_submitted,triangles_rasterized,pixels_shaded,"
+       "total_ms,cpu_record_ms,triangles_per_s";
+  for (size_t p = 0; p < kPassCount; ++p) f << "," << pass_name(Pass(p)) << "_ms";
+  f << ",batches,frames,device,note\n";
+  for (const BenchRow& r : results.rows) {
+    if (r.skipped) continue;
+    f << a.scene << "," << r.objects << "," << r.backend << "," << a.width << "," << a.height << ","
+      << r.triangles_submitted << "," << r.triangles_rasterized << "," << r.pixels_shaded << ","
+      << r.total_ms << "," << r.cpu_record_ms << "," << r.triangles_per_second();
+    for (double ms : r.pass_ms) f << "," << ms;
+    f << "," << r.batches << "," << r.frames << ",\"" << results.device << "\",\"" << r.note
+      << "\"\n";
+  }
+  if (!f) throw Error("cannot write CSV '" + path + "'");
+}
+
+void write_bench_json(const std::string& path, const BenchResults& results, const BenchArgs& a,
+                      const std::string& command_line) {
+  std::ofstream f(path);
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  f << "{\n  \"device\": " << json_string(results.device)
+    << ",\n  \"driver\": " << json_string(results.driver)
+    << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
+    << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
+    << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
+    << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
+    << ",\n  \"statistic\": \"median\",\n  \"results\": [";
+  bool first = true;
+  for (const BenchRow& r : results.rows) {
+    if (r.skipped) continue;
+    f << (first ? "\n" : ",\n") << "    {\"objects\": " << r.objects
+      << ", \"backend\": " << json_string(r.backend)
+      << ", \"triangles_submitted\": " << r.triangles_submitted
+      << ", \"triangles_rasterized\": " << r.triangles_rasterized
+      << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
+      << ", \"tile_entries\": " << r.tile_entries << ", \"pixels_shaded\": " << r.pixels_shaded
+      << ", \"total_ms\": " << r.total_ms << ", \"cpu_record_ms\": " << r.cpu_record_ms
+      << ", \"triangles_per_s\": " << r.triangles_per_second() << ", \"batches\": " << r.batches
+      << ", \"frames\": " << r.frames << ", \"passes_ms\": {";
+    for (size_t p = 0; p < kPassCount; ++p)
+      f << (p ? ", " : "") << json_string(pass_name(Pass(p))) << ": " << r.pass_ms[p];
+    f << "}, \"note\": " << json_string(r.note) << "}";
+    first = false;
+  }
+  f << "\n  ],\n  \"compute_over_hardware\": [";
+  const auto& ratios = results.compute_over_hardware;
+  for (size_t i = 0; i < ratios.size(); ++i) {
+    f << (i ? ", " : "") << "{\"objects\": " << ratios[i].first
+      << ", \"ratio\": " << ratios[i].second << "}";
+  }
+  f << "]\n}\n";
+  if (!f) throw Error("cannot write JSON '" + path + "'");
+}
+
+void write_bench_chart(const std::string& path, const BenchResults& results, const BenchArgs& a) {
+  ChartSpec spec;
+  spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
+               std::to_string(a.height) + ", " + results.device + " (medians of " +
+               std::to_string(a.repeat) + " frames)";
+  spec.x_label = "objects";
+  spec.y_label = "frame time (ms)";
+  for (const std::string& backend : a.backends) {
+    Series s;
+    s.name = backend == "reference" ? "reference (CPU wall)" : backend;
+    for (const BenchRow& r : results.rows) {
+      if (r.backend != backend) continue;
+      s.x.push_back(r.objects);
+      s.y.push_back(r.skipped ? 0.0 : r.total_ms);
+    }
+    spec.lines.push_back(s);
+  }
+  if (std::find(a.backends.begin(), a.backends.end(), "compute") != a.backends.end()) {
+    spec.bars_title = "compute path, GPU time per pass";
+    spec.bars_y_label = "ms";
+    for (size_t p = 0; p < kPassCount; ++p) spec.bars.layers.push_back(pass_name(Pass(p)));
+    for (const BenchRow& r : results.rows) {
+      if (r.backend != "compute") continue;
+      spec.bars.categories.push_back(human_count(r.objects));
+      spec.bars.values.push_back(std::vector<double>(r.pass_ms.begin(), r.pass_ms.end()));
+    }
+  }
+  write_chart(path, spec);
+}
+
+}  // namespace tessera

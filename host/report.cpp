@@ -1,0 +1,43 @@
+#include "host/report.h"
+
+#include <cstdio>
+
+#include "core/check.h"
+#include "core/statistics.h"
+#include "host/cli.h"
+
+namespace tessera {
+
+std::array<double, kPassCount> pass_medians(const std::vector<FrameStats>& frames) {
+  std::array<double, kPassCount> out{};
+  for (size_t p = 0; p < kPassCount; ++p) {
+    std::vector<double> times;
+    for (const FrameStats& f : frames) times.push_back(f.pass_ms[p]);
+    out[p] = median(times);
+  }
+  return out;
+}
+
+void print_pass_times(const std::string& label, const std::vector<FrameStats>& frames) {
+  TESSERA_CHECK(!frames.empty());
+  std::printf("%s (ms):", label.c_str());
+  const std::array<double, kPassCount> passes = pass_medians(frames);
+  for (size_t p = 0; p < kPassCount; ++p) std::printf(" %s %.3f", pass_name(Pass(p)), passes[p]);
+  std::vector<double> totals;
+  for (const FrameStats& f : frames) totals.push_back(f.gpu_total_ms);
+  const Summary total = summarize(totals);
+  std::printf(" | total %.3f", total.median);
+  if (total.count > 1) std::printf(" (min %.3f, max %.3f)", total.min, total.max);
+  std::printf("\n");
+}
+
+int validation_exit_status(const Context* ctx) {
+  if (!ctx || !ctx->validation || (!ctx->validation->errors && !ctx->validation->warnings)) {
+    return 0;
+  }
+  std::fprintf(stderr, "tessera: validation reported %u errors and %u warnings\n",
+               ctx->validation->errors.load(), ctx->validation->warnings.load());
+  return kExitValidationError;
+}
+
+}  // namespace tessera

@@ -1,0 +1,78 @@
+#include "host/scene_source.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "core/builtin_scenes.h"
+#include "core/check.h"
+
+namespace tessera {
+namespace fs = std::filesystem;
+
+std::vector<std::string> scene_folders() {
+  std::vector<std::string> folders;
+  if (const char* env = std::getenv("TESSERA_SCENES"); env && *env) folders.push_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) folders.push_back((exe.parent_path().parent_path() / "share/tessera/scenes").string());
+  folders.push_back(TESSERA_SOURCE_SCENES_DIR);
+  return folders;
+}
+
+bool is_scene_path(const std::string& argument) {
+  return argument.find('/') != std::string::npos || fs::path(argument).extension() == ".json";
+}
+
+SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
+  SceneFileOptions options;
+  options.strict = strict;
+  std::string path = is_scene_path(name_or_file) ? name_or_file : "";
+  for (const std::string& folder : scene_folders()) {
+    if (!path.empty()) break;
+    if (fs::is_regular_file(fs::path(folder) / (name_or_file + ".json")))
+      path = (fs::path(folder) / (name_or_file + ".json")).string();
+  }
+  SceneFile file;
+  if (path.empty()) {
+    // No scenes folder (a binary moved without share/): the same scene from code.
+    file.scene = make_builtin_scene(name_or_file);
+    return file;
+  }
+  file = load_scene_file(path, options);
+  if (!quiet)
+    for (const std::string& w : file.warnings)
+      std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+  return file;
+}
+
+std::string scene_listing() {
+  for (const std::string& folder : scene_folders()) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) continue;
+    std::set<fs::path> files;
+    for (const auto& e : fs::directory_iterator(folder, ec))
+      if (e.path().extension() == ".json") files.insert(e.path());
+    if (files.empty()) continue;
+    std::string out = "scene files in " + folder + ":\n";
+    for (const fs::path& f : files) {
+      char line[512];
+      std::snprintf(line, sizeof line, "%-12s %s\n", f.stem().string().c_str(),
+                    read_scene_description(f.string()).c_str());
+      out += line;
+    }
+    return out;
+  }
+  std::string out;
+  for (const auto& s : builtin_scenes()) {
+    char line[512];
+    std::snprintf(line, sizeof line, "%-12s %s\n", std::string(s.name).c_str(),
+                  std::string(s.description).c_str());
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,30 @@
+#pragma once
+// Where `--scene NAME|FILE` comes from: a built-in scene's file in the scenes folder (scenes/
+// of the source tree, or share/tessera/scenes of an installation), or any scene file.
+
+#include <string>
+#include <vector>
+
+#include "core/scene_file.h"
+
+namespace tessera {
+
+/// The folders searched for built-in scene files, in order: $TESSERA_SCENES, the installed
+/// folder (../share/tessera/scenes beside the executable), the source tree's scenes/.
+std::vector<std::string> scene_folders();
+
+/// True if `argument` names a file rather than a scene: it has a '/' or ends in .json.
+bool is_scene_path(const std::string& argument);
+
+/// Loads `name_or_file`: a path (anything with a '/' or ending in .json) is read as a scene
+/// file; a name is NAME.json in the first scene folder that has it, or, when no folder has
+/// it, the built-in scene of that name made in code (the same scene, core/builtin_scenes.h).
+/// Throws Error for an unknown name (listing the known ones) and anything load_scene_file
+/// refuses. Warnings are printed to stderr unless `quiet`.
+SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
+
+/// `tessera scenes`: each scene file of the first scene folder found, with its description;
+/// the built-in scenes when there is none.
+std::string scene_listing();
+
+}  // namespace tessera

@@ -1,0 +1,70 @@
+// Constants of the rendering model shared by the GLSL shaders, the C++ host and the
+// double-precision reference renderer (core/), which includes this header and nothing else of
+// shaders/. Plain #defines with no type, so each language reads them in its own precision
+// (float in GLSL, double in C++): a constant is defined here once and restated nowhere.
+#ifndef TESSERA_CONSTANTS_H
+#define TESSERA_CONSTANTS_H
+
+// Fixed-point screen coordinates: 8 sub-pixel bits, as in common hardware rasterizers.
+#define TS_SUBPIXEL_BITS 8
+#define TS_SUBPIXEL_ONE 256
+// Snapped coordinates stay inside +-TS_GUARD_BAND_PX so that edge products fit easily in int64
+// and the coordinates themselves in int32 (2^15 px * 2^8 = 2^23).
+#define TS_GUARD_BAND_PX 32768.0
+// Largest image side the renderer accepts: box corners are packed as two 16-bit halves.
+#define TS_MAX_IMAGE_SIDE 16384
+// Largest finite fp16 value: the HDR image is RGBA16F and anything above would become Inf.
+#define TS_MAX_HALF 65504.0
+
+// Guards of the shading model. They are part of the model, not of one implementation, so the
+// compute path, the hardware baseline and the reference apply the same ones.
+// Smallest perceptual roughness used: below it alpha^2 underflows the GGX denominator in fp32
+// and a point light's highlight collapses to a single sample (Filament uses 0.045 for fp32).
+#define TS_MIN_PERCEPTUAL_ROUGHNESS 0.045
+// Smallest N.V used: at a silhouette N.V reaches 0 and the specular term divides by it.
+#define TS_MIN_N_DOT_V 1e-4
+// Smallest squared light distance, in m^2 (1 cm): a light on the surface would divide by zero.
+#define TS_MIN_LIGHT_DISTANCE_SQUARED 1e-4
+// Smallest classic attenuation denominator Kc + Kl d + Kq d^2: it is 0 at d = 0 when Kc = 0.
+#define TS_MIN_ATTENUATION_DENOMINATOR 1e-4
+// Smallest cos(inner) - cos(outer) of a spot cone: equal angles would divide by zero, and this
+// makes the cone's edge a hard step instead.
+#define TS_MIN_SPOT_COSINE_GAP 1e-4
+// Smallest N.V a normal map may leave. A mapped normal can face away from the viewer (a steep
+// bump near a silhouette); shading it would light the surface from below its horizon and make
+// the clamped N.V of the specular term blow up. Such a normal is bent back towards V until
+// N.V = 0.01 (about 0.6 degrees above the horizon), which keeps the image continuous.
+#define TS_MIN_MAPPED_N_DOT_V 0.01
+// Specular reflectance at normal incidence of every dielectric (an index of refraction of 1.5).
+#define TS_DIELECTRIC_F0 0.04
+
+// Light kinds (GpuLight.kind, the values of tessera::LightKind). Lights are uploaded sorted by
+// kind in this order, and the shading pipeline is specialized to the number of each kind
+// (specialization constant TS_SPEC_LIGHT_COUNT_BASE + kind). A new kind takes the next value
+// and raises TS_LIGHT_KIND_COUNT.
+#define TS_LIGHT_POINT 0u
+#define TS_LIGHT_SPOT 1u
+#define TS_LIGHT_DIRECTIONAL 2u
+#define TS_LIGHT_KIND_COUNT 3
+// How a point or spot light fades with distance (GpuLight.falloff, tessera::Falloff).
+#define TS_FALLOFF_INVERSE_SQUARE 0u
+#define TS_FALLOFF_CLASSIC 1u
+
+// BRDF variants (tessera::Brdf; specialization constant TS_SPEC_BRDF of the shading stages).
+#define TS_BRDF_CLASSIC 0u
+#define TS_BRDF_FILAMENT 1u
+#define TS_BRDF_BLINN_PHONG 2u
+
+// Tone-mapping operators (GpuFrame.tonemap).
+#define TS_TONEMAP_ACES 0u
+#define TS_TONEMAP_REINHARD 1u
+#define TS_TONEMAP_CLAMP 2u
+
+// What the shading pass writes (GpuFrame.view): shaded colour, or a debug view.
+#define TS_VIEW_SHADED 0u
+#define TS_VIEW_NORMAL 1u    // world normal * 0.5 + 0.5
+#define TS_VIEW_UV 2u        // (u, v, 0)
+#define TS_VIEW_TRIANGLE 3u  // a colour hashed from the triangle-instance id
+#define TS_VIEW_OBJECT 4u    // a colour hashed from the object slot
+
+#endif  // TESSERA_CONSTANTS_H

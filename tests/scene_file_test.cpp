@@ -1,0 +1,311 @@
+// Scene files (core/scene_file.h): hand-derived values of small files, the built-in scenes'
+// files against make_builtin_scene (every field, exact floats) and against the golden images,
+// the benchmark grid file against make_bench_scene, and the bad-file corpus of tests/data/bad/.
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/bench_scenes.h"
+#include "core/builtin_scenes.h"
+#include "core/check.h"
+#include "core/image.h"
+#include "core/model_import.h"
+#include "core/scene_file.h"
+#include "tests/golden.h"
+#include "tests/support/bad_corpus.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+const std::string kScenes = TESSERA_SCENES_DIR;
+const std::string kData = TESSERA_TEST_DATA_DIR;
+
+SceneFile load(const std::string& text, SceneFileOptions options = {}) {
+  return load_scene_text(text, "test.json", kData, options);
+}
+
+std::string load_error(const std::string& text, SceneFileOptions options = {}) {
+  try {
+    load(text, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every field of two scenes, floats compared exactly.
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.camera.position, b.camera.position);
+  EXPECT_EQ(a.camera.target, b.camera.target);
+  EXPECT_EQ(a.camera.up, b.camera.up);
+  EXPECT_EQ(a.camera.vertical_fov, b.camera.vertical_fov);
+  EXPECT_EQ(a.camera.near_plane, b.camera.near_plane);
+  EXPECT_EQ(a.background, b.background);
+  EXPECT_EQ(a.ambient, b.ambient);
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  for (size_t i = 0; i < a.meshes.size(); ++i) {
+    EXPECT_EQ(a.meshes[i].positions, b.meshes[i].positions) << "mesh " << i;
+    EXPECT_EQ(a.meshes[i].normals, b.meshes[i].normals) << "mesh " << i;
+    EXPECT_EQ(a.meshes[i].uvs, b.meshes[i].uvs) << "mesh " << i;
+    EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices) << "mesh " << i;
+    EXPECT_EQ(a.meshes[i].tangents, b.meshes[i].tangents) << "mesh " << i;
+  }
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    const Material &x = a.materials[i], &y = b.materials[i];
+    EXPECT_EQ(x.base_color, y.base_color) << "material " << i;
+    EXPECT_EQ(x.metallic, y.metallic) << "material " << i;
+    EXPECT_EQ(x.roughness, y.roughness) << "material " << i;
+    EXPECT_EQ(x.emissive, y.emissive) << "material " << i;
+    EXPECT_EQ(x.occlusion, y.occlusion) << "material " << i;
+    EXPECT_EQ(x.base_color_map, y.base_color_map) << "material " << i;
+    EXPECT_EQ(x.metallic_roughness_map, y.metallic_roughness_map) << "material " << i;
+    EXPECT_EQ(x.normal_map, y.normal_map) << "material " << i;
+    EXPECT_EQ(x.occlusion_map, y.occlusion_map) << "material " << i;
+    EXPECT_EQ(x.normal_scale, y.normal_scale) << "material " << i;
+  }
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (size_t i = 0; i < a.objects.size(); ++i) {
+    EXPECT_EQ(a.objects[i].mesh, b.objects[i].mesh) << "object " << i;
+    EXPECT_EQ(a.objects[i].material, b.objects[i].material) << "object " << i;
+    EXPECT_EQ(a.objects[i].transform, b.objects[i].transform) << "object " << i;
+  }
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    const Light &x = a.lights[i], &y = b.lights[i];
+    EXPECT_EQ(x.kind, y.kind) << "light " << i;
+    EXPECT_EQ(x.position, y.position) << "light " << i;
+    EXPECT_EQ(x.direction, y.direction) << "light " << i;
+    EXPECT_EQ(x.color, y.color) << "light " << i;
+    EXPECT_EQ(x.intensity, y.intensity) << "light " << i;
+    EXPECT_EQ(x.falloff, y.falloff) << "light " << i;
+    EXPECT_EQ(x.range, y.range) << "light " << i;
+    EXPECT_EQ(x.attenuation, y.attenuation) << "light " << i;
+    EXPECT_EQ(x.inner_angle, y.inner_angle) << "light " << i;
+    EXPECT_EQ(x.outer_angle, y.outer_angle) << "light " << i;
+  }
+  ASSERT_EQ(a.textures.size(), b.textures.size());
+  for (size_t i = 0; i < a.textures.size(); ++i) {
+    EXPECT_EQ(a.textures[i].width, b.textures[i].width) << "texture " << i;
+    EXPECT_EQ(a.textures[i].height, b.textures[i].height) << "texture " << i;
+    EXPECT_EQ(a.textures[i].srgb, b.textures[i].srgb) << "texture " << i;
+    EXPECT_TRUE(a.textures[i].texels == b.textures[i].texels) << "texture " << i;
+  }
+  ASSERT_EQ(a.environment == nullptr, b.environment == nullptr);
+  if (a.environment) {
+    EXPECT_EQ(a.environment->radiance.width, b.environment->radiance.width);
+    EXPECT_TRUE(a.environment->radiance.pixels == b.environment->radiance.pixels);
+  }
+}
+
+TEST(SceneFile, BuiltinScenesFilesGiveTheSameScenes) {
+  for (const BuiltinSceneInfo& info : builtin_scenes()) {
+    SCOPED_TRACE(std::string(info.name));
+    const SceneFile file = load_scene_file(kScenes + "/" + std::string(info.name) + ".json",
+                                           SceneFileOptions{.strict = true});
+    EXPECT_TRUE(file.warnings.empty());
+    EXPECT_EQ(file.description, info.description);
+    expect_same_scene(file.scene, make_builtin_scene(info.name));
+  }
+}
+
+TEST(SceneFile, BenchGridFileGivesTheBenchmarkGrid) {
+  const SceneFile file =
+      load_scene_file(kScenes + "/bench-grid.json", SceneFileOptions{.strict = true});
+  expect_same_scene(file.scene, make_bench_scene("grid", 1000, 32, 1.0f));
+}
+
+TEST(SceneFile, ValuesReadByHand) {
+  const SceneFile f = load(R"({
+    "camera": {"position": [0, 0, 10], "vertical_fov_degrees": 90, "near": 0.5},
+    "materials": [{"name": "gold", "preset": "gold", "roughness": 0.25},
+                  {"name": "glow", "base_color": [0.1, 0.2, 0.3], "emissive": [2, 0, 0]}],
+    "meshes": [{"name": "box", "type": "cube"}],
+    "objects": [{"mesh": "box", "material": "gold", "translation": [1, 2, 3],
+                 "rotation": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2},
+                {"mesh": "box", "material": "glow", "scale": [-1, 1, 1]}],
+    "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -2, 0],
+                "inner_angle_degrees": 30, "outer_angle_degrees": 60, "intensity": 40}],
+    "render": {"width": 640, "height": 480, "exposure_ev": -1, "tonemap": "reinhard",
+               "brdf": "filament"}
+  })");
+  EXPECT_FLOAT_EQ(f.scene.camera.vertical_fov, 1.5707963f);  // pi / 2
+  EXPECT_EQ(f.scene.camera.near_plane, 0.5f);
+  // Gold's F0 in Filament's table: (1.00, 0.85, 0.57), metallic.
+  EXPECT_EQ(f.scene.materials[0].base_color, glm::vec3(1.0f, 0.85f, 0.57f));
+  EXPECT_EQ(f.scene.materials[0].metallic, 1.0f);
+  EXPECT_EQ(f.scene.materials[0].roughness, 0.25f);
+  EXPECT_EQ(f.scene.materials[1].emissive, glm::vec3(2, 0, 0));
+  EXPECT_EQ(f.scene.materials[1].roughness, 0.5f);  // the default
+  // T R S: (1, 0, 0) scaled to (2, 0, 0), turned to (0, 2, 0), moved to (1, 4, 3).
+  const glm::vec4 p = f.scene.objects[0].transform * glm::vec4(1, 0, 0, 1);
+  EXPECT_NEAR(p.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(p.y, 4.0f, 1e-6f);
+  EXPECT_NEAR(p.z, 3.0f, 1e-6f);
+  // A negative scale mirrors (allowed).
+  EXPECT_LT(glm::determinant(f.scene.objects[1].transform), 0.0f);
+  const Light& spot = f.scene.lights[0];
+  EXPECT_EQ(spot.kind, LightKind::spot);
+  EXPECT_EQ(spot.direction, glm::vec3(0, -1, 0));  // normalized
+  EXPECT_FLOAT_EQ(spot.inner_angle, 0.52359878f);  // pi / 6
+  EXPECT_FLOAT_EQ(spot.outer_angle, 1.0471976f);   // pi / 3
+  EXPECT_EQ(*f.render.width, 640u);
+  EXPECT_EQ(*f.render.height, 480u);
+  EXPECT_EQ(*f.render.exposure_ev, -1.0f);
+  EXPECT_EQ(*f.render.tonemap, ToneMap::reinhard);
+  EXPECT_EQ(*f.render.brdf, Brdf::filament);
+}
+
+TEST(SceneFile, GridLayoutAndMaterialTiling) {
+  const SceneFile f = load(R"({
+    "materials": [{"name": "a"}, {"name": "b"}, {"name": "c"}, {"name": "d"}],
+    "meshes": [{"name": "s", "type": "sphere", "segments": 8}],
+    "objects": [{"mesh": "s", "materials": ["a", "b", "c", "d"], "tile_columns": 2,
+                 "grid": {"count": [3, 2, 1], "spacing": [3, 2, 1], "limit": 5},
+                 "translation": [0, 0, -10]}]
+  })");
+  ASSERT_EQ(f.scene.objects.size(), 5u);  // 6 cells, limited to 5
+  // Centred: x in {-3, 0, 3}, y in {-1, 1}; then moved to z = -10.
+  EXPECT_EQ(glm::vec3(f.scene.objects[0].transform[3]), glm::vec3(-3, -1, -10));
+  EXPECT_EQ(glm::vec3(f.scene.objects[4].transform[3]), glm::vec3(0, 1, -10));
+  // Materials as 2 columns x 2 rows: cell (x, y) takes (y % 2) * 2 + x % 2.
+  const uint32_t want[] = {0, 1, 0, 2, 3};
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(f.scene.objects[i].material, want[i]) << i;
+}
+
+TEST(SceneFile, RandomGeneratorIsMt19937WithAFixedMapping) {
+  // std::mt19937's first output for seed 5489 is 3499211612 (the C++ standard fixes the
+  // sequence); 3499211612 / 2^32 = 0.81472369...
+  EXPECT_NEAR(uniform_float(3499211612u), 0.81472369f, 1e-7f);
+  EXPECT_LT(uniform_float(0xFFFFFFFFu), 1.0f);
+  EXPECT_EQ(uniform_float(0), 0.0f);
+  const std::string text = R"({
+    "materials": [{"name": "a"}],
+    "meshes": [{"name": "s", "type": "cube"}],
+    "objects": [{"mesh": "s", "material": "a",
+                 "random": {"count": 100, "seed": 5489, "min": [0, 0, 0], "max": [1, 2, 4]}}]
+  })";
+  const SceneFile f = load(text);
+  ASSERT_EQ(f.scene.objects.size(), 100u);
+  EXPECT_NEAR(f.scene.objects[0].transform[3].x, 0.81472369f, 1e-7f);
+  for (const Object& o : f.scene.objects) {
+    const glm::vec3 p(o.transform[3]);
+    EXPECT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 2 && p.z >= 0 && p.z < 4);
+  }
+  expect_same_scene(load(text).scene, f.scene);  // the same seed, the same scene
+}
+
+TEST(SceneFile, ModelFilesArePlacedAsAUnit) {
+  const ImportedModel model = import_gltf(kData + "/features.gltf");
+  const SceneFile f = load(R"({
+    "models": [{"name": "features", "file": "features.gltf"}],
+    "objects": [{"model": "features", "translation": [10, 0, 0]},
+                {"model": "features", "translation": [-10, 0, 0]}]
+  })");
+  EXPECT_EQ(f.scene.meshes.size(), model.scene.meshes.size());  // shared by both placements
+  EXPECT_EQ(f.scene.materials.size(), model.scene.materials.size());
+  ASSERT_EQ(f.scene.objects.size(), 2 * model.scene.objects.size());
+  for (size_t i = 0; i < model.scene.objects.size(); ++i) {
+    const glm::vec4 origin = model.scene.objects[i].transform * glm::vec4(0, 0, 0, 1);
+    const glm::vec4 moved = f.scene.objects[i].transform * glm::vec4(0, 0, 0, 1);
+    EXPECT_NEAR(moved.x, origin.x + 10.0f, 1e-4f);
+    EXPECT_EQ(moved.y, origin.y);
+  }
+}
+
+TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {
+  const std::string text = R"({
+  "camera": {"position": [0, 0, 5]},
+  "colour": [1, 0, 0]
+})";
+  const SceneFile f = load(text);
+  ASSERT_EQ(f.warnings.size(), 1u);
+  EXPECT_EQ(f.warnings[0], "test.json:3:3: colour: unknown key 'colour' (ignored)");
+  EXPECT_NE(load_error(text, {.strict = true}).find("test.json:3:3: colour: unknown key"),
+            std::string::npos);
+}
+
+TEST(SceneFile, LimitsAreOptions) {
+  const std::string grid =
+      R"({"materials": [{"name": "a"}], "meshes": [{"name": "s", "type": "cube"}],
+    "objects": [{"mesh": "s", "material": "a", "grid": {"count": [10, 10, 1]}}]})";
+  EXPECT_EQ(load(grid).scene.objects.size(), 100u);
+  EXPECT_NE(load_error(grid, {.max_objects = 99}).find("makes 100 objects, over the limit of 99"),
+            std::string::npos);
+  EXPECT_NE(load_error(grid, {.max_file_bytes = 20}).find("over the limit of 20 bytes"),
+            std::string::npos);
+  EXPECT_NE(load_error(R"({"meshes": [{"name": "s", "type": "sphere", "segments": 1000,
+    "rings": 1000}]})",
+                       {.max_mesh_vertices = 1000})
+                .find("1002001 vertices, over the limit"),
+            std::string::npos);
+}
+
+// Each tests/data/bad/scene_NAME.json must fail (strict, files over 16 KiB refused) with the
+// text of scene_NAME.expected.
+TEST(SceneFile, BadFilesGiveTheirExpectedErrors) {
+  const auto error_of = [](const std::string& path) -> std::string {
+    try {
+      load_scene_file(path, {.strict = true, .max_file_bytes = 16384});
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_GE(testing::expect_bad_corpus(kData + "/bad", "scene_", ".json", error_of), 20);
+}
+
+// `tessera render --scene FILE` takes the file's render defaults unless the command line sets
+// them; a bad file exits with status 1 and the place; `tessera scenes` lists the files.
+TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
+  const std::string scene = test::output_path("small.json");
+  std::ofstream(scene)
+      << R"({"materials": [{"name": "m"}], "meshes": [{"name": "c", "type": "cube"}],
+    "objects": [{"mesh": "c", "material": "m"}], "render": {"width": 40, "height": 30}})";
+  const std::string png = test::output_path("small.png");
+  std::string out;
+  ASSERT_EQ(
+      test::run_command(
+          std::string(TESSERA_BINARY) + " render --quiet --scene " + scene + " --out " + png, out),
+      0)
+      << out;
+  EXPECT_EQ(read_png(png).width, 40u);
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --quiet --size 20x10 --scene " + scene + " --out " + png,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(read_png(png).width, 20u);
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --scene " + kData +
+                                  "/bad/scene_range.json --out " + png,
+                              out),
+            1);
+  EXPECT_NE(out.find("scene_range.json:4:19: materials.gold.roughness: 1.5 is outside [0, 1]"),
+            std::string::npos)
+      << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " scenes", out), 0);
+  for (const BuiltinSceneInfo& info : builtin_scenes())
+    EXPECT_NE(out.find(std::string(info.name) + " "), std::string::npos) << out;
+}
+
+class SceneFileRender : public test::VulkanTest {};
+
+// The built-in scenes' files render to the golden images, bit for bit.
+TEST_F(SceneFileRender, BuiltinFilesMatchTheGoldenImages) {
+  for (const BuiltinSceneInfo& info : builtin_scenes()) {
+    SCOPED_TRACE(std::string(info.name));
+    Renderer renderer(context(), RendererOptions{});
+    renderer.set_scene(load_scene_file(kScenes + "/" + std::string(info.name) + ".json").scene);
+    FrameSettings settings;
+    settings.width = 96;  // as tests/golden_test.cpp
+    settings.height = 72;
+    renderer.render(settings);
+    test::expect_golden(renderer, std::string(info.name));
+  }
+}
+
+}  // namespace
+}  // namespace tessera
