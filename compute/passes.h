@@ -260,8 +260,9 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_HDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
     {TS_BINDING_LDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
     {TS_BINDING_CLIP_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 4},
+    // Two tables, then a row of cosine-weighted means per variant (shaders/dfg.comp).
     {TS_BINDING_DFG, kStorageBuffer, Source::sized, Scale::fixed,
-     2 * TS_DFG_SIZE* TS_DFG_SIZE * sizeof(glm::vec4)},
+     2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4)},
     {TS_BINDING_TEXELS, kStorageBuffer, Source::scene},
     {TS_BINDING_TEXTURES, kStorageBuffer, Source::scene},
     {TS_BINDING_ENV_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},

@@ -406,10 +406,9 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
 namespace {
 
 void record_dfg(Renderer::State& s, VkCommandBuffer cmd) {
-  const uint32_t groups = (TS_DFG_SIZE + 7) / 8;
   for (Pipeline p : {Pipeline::dfg_classic, Pipeline::dfg_filament}) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[p]);
-    vkCmdDispatch(cmd, groups, groups, 1);
+    vkCmdDispatch(cmd, 1, TS_DFG_SIZE, 1);  // a workgroup per roughness row
   }
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
@@ -625,6 +624,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .environment = s.env.source ? 1u : 0u,
                         .env_levels = specular_levels(s.env),
                         .anisotropy = settings.max_anisotropy};
+  // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
+  s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
 }
 
@@ -766,8 +767,11 @@ ImageF Renderer::read_hdr() const {
   TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE);
   std::vector<uint16_t> halves = download_image<uint16_t>(s.ctx, s.hdr, 4);
   ImageF out{s.width, s.height, std::vector<glm::vec4>(size_t(s.width) * s.height)};
+  // The image holds radiance times the pre-exposure: divided back out (alpha excepted), a
+  // stored 65504 reads as 65504 / 2^EV, the largest radiance the frame can carry.
   for (size_t i = 0; i < out.pixels.size(); ++i) {
     for (int c = 0; c < 4; ++c) out.pixels[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+    out.pixels[i] /= glm::vec4(glm::vec3(s.hdr_pre_exposure), 1.0f);
   }
   return out;
 }
@@ -795,7 +799,7 @@ std::vector<glm::vec4> Renderer::read_dfg_table() const {
   if (!s_->dfg_ready)
     throw Error("the DFG table is computed by the first frame with energy compensation");
   return download_buffer<glm::vec4>(s_->ctx, s_->buffer(TS_BINDING_DFG),
-                                    2 * TS_DFG_SIZE * TS_DFG_SIZE);
+                                    2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE);
 }
 
 const StorageImage& Renderer::output_image() const {
@@ -834,7 +838,8 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   f.height = s.height;
   f.indices = s.buffer(TS_BINDING_INDICES).buffer;
   f.objects = s.uploaded.objects;
-  f.background = s.background;
+  // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
+  f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
   f.cull = s.options.cull;
   return f;
 }

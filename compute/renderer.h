@@ -101,7 +101,9 @@ class Renderer {
   /// Schlick-weighted, y the whole specular albedo with F = 1, z the cosine-weighted mean of
   /// the Schlick factor (1 - V.H)^5 over light directions (the classic diffuse term under a
   /// uniform environment), at N.V and roughness
-  /// i / (TS_DFG_SIZE - 1). Computed by the first frame with energy compensation; throws
+  /// i / (TS_DFG_SIZE - 1). Then TS_DFG_SIZE rows per variant (classic, filament), one per
+  /// roughness: the cosine-weighted means over N.V of E (x), E_Fc (y) and E_Fc / E (z).
+  /// Computed by the first frame with energy compensation; throws
   /// Error before that.
   std::vector<glm::vec4> read_dfg_table() const;
 

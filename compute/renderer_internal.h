@@ -28,7 +28,7 @@ class RendererInternal {
     uint32_t width = 0, height = 0;
     VkBuffer indices = VK_NULL_HANDLE;        // the scene's uint32 indices (index-buffer usage too)
     std::span<const gpu::GpuObject> objects;  // the scene's objects in slot order (the GPU's)
-    glm::vec3 background{0.0f};
+    glm::vec3 background{0.0f};  // as the HDR image holds it: pre-exposed, clamped to 65504
     CullMode cull = CullMode::back;
   };
 

@@ -40,6 +40,9 @@ struct Renderer::State {
   // Sized by the image.
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   StorageImage hdr, ldr;
+  // What the last frame multiplied the HDR image by (pre-exposure, shaders/bindings.glsl):
+  // 2^EV for shaded frames, 1 for debug views. read_hdr divides it back out.
+  float hdr_pre_exposure = 1.0f;
   uint64_t images_generation = 0;  // counts the times hdr and ldr were (re)created
 
   // Scratch, sized by capacities that grow on demand.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -11,6 +12,16 @@
 
 namespace tessera {
 namespace {
+
+// `d` (non-zero, finite) normalised. Where |d|^2 is not a normal float (|d| below 1e-19 or
+// above 1e19) float arithmetic would give 0, Inf or NaN: double then.
+glm::vec3 unit_direction(glm::vec3 d) {
+  const float length2 = glm::dot(d, d);
+  if (length2 >= std::numeric_limits<float>::min() && length2 <= std::numeric_limits<float>::max())
+    return glm::normalize(d);
+  return glm::vec3(glm::normalize(glm::dvec3(d)));
+}
+
 
 gpu::GpuMaterial gpu_material(const Material& m) {
   return {.base_color = m.base_color,
@@ -30,13 +41,13 @@ gpu::GpuMaterial gpu_material(const Material& m) {
 // The same conversion for every kind: each kind's shader branch reads the fields it needs.
 gpu::GpuLight gpu_light(const Light& l) {
   // A point light's direction may be zero (validation allows it).
-  const float length = glm::length(l.direction);
+  const bool has_direction = l.direction != glm::vec3(0.0f);
   // Spot cone as saturate(cos * scale + offset): 1 inside the inner cone, 0 outside the outer.
   const float cos_inner = std::cos(l.inner_angle), cos_outer = std::cos(l.outer_angle);
   const float scale = 1.0f / std::max(cos_inner - cos_outer, float(TS_MIN_SPOT_COSINE_GAP));
   return {.position = l.position,
           .kind = uint32_t(l.kind),
-          .direction = length > 0.0f ? glm::normalize(l.direction) : glm::vec3(0.0f),
+          .direction = has_direction ? unit_direction(l.direction) : glm::vec3(0.0f),
           .falloff = uint32_t(l.falloff),
           .radiance = l.color * l.intensity,
           .inv_range4 = l.range > 0.0f ? 1.0f / (l.range * l.range * l.range * l.range) : 0.0f,

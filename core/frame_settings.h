@@ -12,11 +12,14 @@ namespace tessera {
 struct FrameSettings {
   uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
   uint32_t height = 512;
-  float exposure_ev = 0.0f;  // the HDR image is multiplied by 2^exposure_ev before tone mapping
+  /// Radiance is multiplied by 2^exposure_ev before it is stored in the fp16 HDR image
+  /// (pre-exposure) and tone mapped; read_hdr / --hdr-out divide it back out.
+  float exposure_ev = 0.0f;
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;  // debug views are written as they are, without exposure or curve
   Brdf brdf = Brdf::classic;
-  /// Multiple-scattering energy compensation of the specular lobe (classic and filament).
+  /// Energy-conserving layering (classic and filament): multiple-scattering compensation of
+  /// the specular lobe and a diffuse layer that takes only what it leaves (Kulla & Conty 2017).
   bool energy_compensation = false;
   /// Texture filtering: 1 is trilinear; 2 to 16 take up to that many trilinear probes along
   /// the footprint's longer axis (anisotropic filtering).

@@ -171,7 +171,17 @@ AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, i
   r.components = tinygltf::GetNumComponentsInType(uint32_t(a.type));
   // An accessor over no buffer view is all zeros (before its sparse values).
   if (a.bufferView < 0) {
-    r.values.assign(checked_span(ctx, name, a.count, r.components, 0), 0.0);
+    // Zeros cost no file bytes, so the count alone could ask for any amount of memory: it is
+    // held to the size a buffer of these elements could have (found by fuzzing).
+    const uint64_t bytes =
+        checked_span(ctx, name, a.count, component_size(a.componentType) * r.components, 0);
+    if (bytes > ctx.options.max_file_bytes) {
+      ctx.fail(name, "has no bufferView and " + std::to_string(a.count) + " elements (" +
+                         std::to_string(bytes) + " bytes), over the limit of " +
+                         std::to_string(ctx.options.max_file_bytes) +
+                         " bytes (ImportOptions::max_file_bytes)");
+    }
+    r.values.assign(size_t(a.count) * r.components, 0.0);
   } else {
     read_elements(ctx, model, a.bufferView, a.byteOffset, a.count, a.componentType, r.components,
                   a.normalized, kViewStride, name, r.values);

@@ -47,15 +47,19 @@ void check_index(const Context& ctx, const std::string& where, int64_t index, si
 
 namespace {
 
-std::vector<unsigned char> read_file(const Context& ctx, const std::string& path) {
-  std::error_code error;
-  const uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) ctx.fail("", "cannot read the file: " + error.message());
+void check_file_size(const Context& ctx, uintmax_t size) {
   if (size > ctx.options.max_file_bytes) {
     ctx.fail("", "is " + std::to_string(size) + " bytes, over the limit of " +
                      std::to_string(ctx.options.max_file_bytes));
   }
   if (size > UINT32_MAX) ctx.fail("", "is over 4 GiB, more than glTF files may be");
+}
+
+std::vector<unsigned char> read_file(const Context& ctx, const std::string& path) {
+  std::error_code error;
+  const uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) ctx.fail("", "cannot read the file: " + error.message());
+  check_file_size(ctx, size);
   std::vector<unsigned char> bytes(size);
   std::ifstream in(path, std::ios::binary);
   if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) {
@@ -348,11 +352,11 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
 
 namespace tessera {
 
-ImportedModel import_gltf(const std::string& path, const ImportOptions& options) {
+namespace {
+
+ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
+                               const std::vector<unsigned char>& bytes) {
   using namespace gltf;
-  ImportedModel out;
-  Context ctx{path, std::filesystem::path(path).parent_path().string(), options, out.warnings};
-  const std::vector<unsigned char> bytes = read_file(ctx, path);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const std::string text = binary ? glb_json(ctx, bytes) : std::string(bytes.begin(), bytes.end());
   json doc;
@@ -376,7 +380,24 @@ ImportedModel import_gltf(const std::string& path, const ImportOptions& options)
     ctx.fail("", "TinyGLTF cannot read it: " + error);
   }
   instantiate_nodes(ctx, doc, model, out);
-  return out;
+  return std::move(out);
+}
+
+}  // namespace
+
+ImportedModel import_gltf(const std::string& path, const ImportOptions& options) {
+  ImportedModel out;
+  gltf::Context ctx{path, std::filesystem::path(path).parent_path().string(), options,
+                    out.warnings};
+  return import_gltf_from(ctx, out, gltf::read_file(ctx, path));
+}
+
+ImportedModel import_gltf_bytes(const std::vector<unsigned char>& bytes, const std::string& name,
+                                const std::string& base_dir, const ImportOptions& options) {
+  ImportedModel out;
+  gltf::Context ctx{name, base_dir, options, out.warnings};
+  gltf::check_file_size(ctx, bytes.size());
+  return import_gltf_from(ctx, out, bytes);
 }
 
 }  // namespace tessera

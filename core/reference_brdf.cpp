@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
 namespace tessera {
 
@@ -83,7 +86,7 @@ dvec3 reference_brdf(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m)
   return lobes.diffuse + lobes.specular;
 }
 
-double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
+glm::dvec2 reference_specular_albedo_terms(Brdf variant, double n_dot_v, double roughness) {
   roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
   n_dot_v = std::clamp(n_dot_v, TS_MIN_N_DOT_V, 1.0);
   const double alpha = roughness * roughness;
@@ -99,7 +102,7 @@ double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness)
   // u = 1 - t^2: the estimator's 1 / cos(theta_h) grows like 1 / sqrt(1 - u) near grazing half
   // vectors, which the substitution's du = 2t dt cancels (midpoint sums then converge fast).
   const double t_min = std::sqrt(std::max(0.0, 1.0 - u_max));
-  double sum = 0.0;
+  glm::dvec2 sum(0.0);
   for (int i = 0; i < kSteps; ++i) {
     const double t = t_min + (1.0 - t_min) * (i + 0.5) / kSteps;
     const double u = 1.0 - t * t;
@@ -129,11 +132,82 @@ double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness)
           variant == Brdf::filament
               ? smith_ggx_correlated_visibility(n_dot_v, l.z, alpha)
               : smith_schlick_ggx(n_dot_v, l.z, roughness) / (4.0 * l.z * n_dot_v);
-      sum += jacobian * visibility * 4.0 * l.z * v_dot_h / cos_h *
-             (phi_max / kPi);  // arc share of 2 pi
+      const double w = jacobian * visibility * 4.0 * l.z * v_dot_h / cos_h *
+                       (phi_max / kPi);  // arc share of 2 pi
+      sum += glm::dvec2(w * std::pow(1.0 - v_dot_h, 5.0), w);
     }
   }
-  return sum / (kSteps * kSteps);
+  return sum / double(kSteps * kSteps);
+}
+
+double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness) {
+  return reference_specular_albedo_terms(variant, n_dot_v, roughness).y;
+}
+
+const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double roughness) {
+  roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  static std::mutex mutex;
+  static std::map<std::pair<Brdf, double>, std::unique_ptr<SpecularAlbedoTable>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  std::unique_ptr<SpecularAlbedoTable>& slot = cache[{variant, roughness}];
+  if (slot) return *slot;
+  auto table = std::make_unique<SpecularAlbedoTable>();
+  constexpr int kPoints = SpecularAlbedoTable::kPoints;
+  for (int i = 0; i < kPoints; ++i) {
+    const double t = double(i) / (kPoints - 1);
+    table->terms[i] = reference_specular_albedo_terms(variant, t * t, roughness);
+  }
+  // Means 2 int g(mu) mu dmu by a 64-point midpoint rule on the quadrature itself (not on the
+  // table), so they do not inherit its interpolation.
+  constexpr int kMeanSteps = 64;
+  for (int i = 0; i < kMeanSteps; ++i) {
+    const double mu = (i + 0.5) / kMeanSteps;
+    const glm::dvec2 t = reference_specular_albedo_terms(variant, mu, roughness);
+    table->means += 2.0 * mu / kMeanSteps * dvec3(t.y, t.x, t.x / t.y);
+  }
+  slot = std::move(table);
+  return *slot;
+}
+
+glm::dvec2 SpecularAlbedoTable::at(double n_dot_v) const {
+  const double p = std::sqrt(std::clamp(n_dot_v, 0.0, 1.0)) * (kPoints - 1);
+  const int i = std::min(int(p), kPoints - 2);
+  return glm::mix(terms[i], terms[i + 1], p - i);
+}
+
+namespace {
+
+// Es: the compensated specular layer's directional albedo with Schlick Fresnel, per channel.
+dvec3 specular_layer_albedo(glm::dvec2 terms, dvec3 f0) {
+  const dvec3 single = f0 * (terms.y - terms.x) + terms.x;
+  return glm::min(single * (1.0 + f0 * (1.0 / terms.y - 1.0)), dvec3(1.0));
+}
+
+}  // namespace
+
+BrdfLobes reference_compensated_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m) {
+  const double n_dot_l = glm::dot(n, l);
+  if (n_dot_l <= 0.0 || variant == Brdf::blinn_phong)
+    return reference_brdf_lobes(variant, n, v, l, m);
+  const SpecularAlbedoTable& table = reference_specular_albedo_table(variant, m.roughness);
+  const double n_dot_v = std::max(glm::dot(n, v), TS_MIN_N_DOT_V);
+  const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
+  const dvec3 f0 = glm::mix(dvec3(TS_DIELECTRIC_F0), dvec3(m.base_color), metallic);
+  const glm::dvec2 terms_v = table.at(n_dot_v);
+  BrdfLobes lobes = reference_brdf_lobes(Brdf::filament, n, v, l, m);  // plain Lambert diffuse
+  if (variant == Brdf::classic) {
+    // The classic specular lobe (the diffuse's 1 - F weight is replaced below).
+    lobes.specular = reference_brdf_lobes(Brdf::classic, n, v, l, m).specular;
+  }
+  lobes.specular *= 1.0 + f0 * (1.0 / terms_v.y - 1.0);
+  // (f0 E + (1 - f0) E_Fc)(1 - f0 + f0 / E), averaged term by term.
+  const dvec3 g = 1.0 - f0;
+  const dvec3 average =
+      f0 * g * table.means.x + f0 * f0 + g * g * table.means.y + f0 * g * table.means.z;
+  lobes.diffuse *= (1.0 - specular_layer_albedo(terms_v, f0)) *
+                   (1.0 - specular_layer_albedo(table.at(n_dot_l), f0)) /
+                   glm::max(1.0 - average, dvec3(1e-12));
+  return lobes;
 }
 
 }  // namespace tessera

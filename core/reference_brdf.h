@@ -47,13 +47,39 @@ glm::dvec3 reference_brdf(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l
 /// distributed as GGX. The reference's independent counterpart of the GPU's DFG table.
 double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness);
 
+/// The same quadrature, also weighted by the Schlick factor (1 - v.h)^5: (E_Fc, E).
+glm::dvec2 reference_specular_albedo_terms(Brdf variant, double n_dot_v, double roughness);
+
+/// (E_Fc, E) of one variant and roughness at kPoints cosines (i / (kPoints - 1))^2, denser at
+/// grazing angles where E bends most, read with linear interpolation in sqrt(cosine), and the
+/// cosine-weighted means 2 int g(mu) mu dmu of E, E_Fc and E_Fc / E (a 64-point midpoint rule over
+/// mu of the quadrature itself).
+struct SpecularAlbedoTable {
+  static constexpr int kPoints = 129;
+  glm::dvec2 terms[kPoints];
+  glm::dvec3 means{0.0};
+  glm::dvec2 at(double n_dot_v) const;
+};
+/// Built on first use per (variant, roughness >= 0.045 applied) and cached; thread-safe.
+const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double roughness);
+
+/// The lobes with energy compensation (Kulla & Conty 2017): the specular lobe times
+/// 1 + F0 (1 / E(n.v) - 1), and a Lambert diffuse lobe (for classic too, whose 1 - F weight it
+/// replaces) times (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg), Es the compensated specular
+/// layer's albedo with Schlick Fresnel and Es_avg its cosine-weighted mean. Reciprocal in its
+/// diffuse lobe; a white material's directional albedo is 1. Blinn-Phong: the plain lobes.
+BrdfLobes reference_compensated_lobes(Brdf variant, glm::dvec3 n, glm::dvec3 v, glm::dvec3 l,
+                                      const Material& m);
+
 /// Radiance reflected towards unit v by a surface with unit normal n and material m lit by
 /// `environment` alone: the integral of f(l, v) L(l) (n.l) over the hemisphere, estimated with
 /// `samples` stratified (Hammersley) directions per lobe: cosine-distributed for the diffuse
 /// lobe, GGX-distributed half vectors for the specular lobe (times `specular_scale`). No
 /// split-sum, no prefiltering: the yardstick for the GPU's image-based lighting.
+/// With `energy_compensation` the lobes are reference_compensated_lobes' (specular_scale is
+/// then ignored).
 glm::dvec3 reference_environment_light(const Environment& environment, Brdf variant, glm::dvec3 n,
                                        glm::dvec3 v, const Material& m, glm::dvec3 specular_scale,
-                                       uint32_t samples);
+                                       uint32_t samples, bool energy_compensation = false);
 
 }  // namespace tessera

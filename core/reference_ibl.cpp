@@ -25,8 +25,14 @@ dvec2 hammersley(uint32_t i, uint32_t n) {
 }  // namespace
 
 dvec3 reference_environment_light(const Environment& environment, Brdf variant, dvec3 n, dvec3 v,
-                                  const Material& m, dvec3 specular_scale, uint32_t samples) {
+                                  const Material& m, dvec3 specular_scale, uint32_t samples,
+                                  bool energy_compensation) {
   samples = std::max(samples, 1u);
+  if (energy_compensation) specular_scale = dvec3(1.0);
+  auto lobes = [&](dvec3 l) {
+    return energy_compensation ? reference_compensated_lobes(variant, n, v, l, m)
+                               : reference_brdf_lobes(variant, n, v, l, m);
+  };
   // Orthonormal basis around n (Duff et al. 2017).
   const double sign = std::copysign(1.0, n.z);
   const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
@@ -43,8 +49,7 @@ dvec3 reference_environment_light(const Environment& environment, Brdf variant, 
     {
       const double r = std::sqrt(u.x);
       const dvec3 l = to_world({r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - u.x)});
-      diffuse += reference_brdf_lobes(variant, n, v, l, m).diffuse * kPi *
-                 environment_radiance(environment, l);
+      diffuse += lobes(l).diffuse * kPi * environment_radiance(environment, l);
     }
     // Specular lobe: half vectors distributed as D(h) (n.h), pdf_l = D (n.h) / (4 v.h).
     {
@@ -59,8 +64,7 @@ dvec3 reference_environment_light(const Environment& environment, Brdf variant, 
       const double a2 = alpha * alpha;
       const double denom = cos2 * (a2 - 1.0) + 1.0;
       const double pdf = a2 / (kPi * denom * denom) * cos_h / (4.0 * v_dot_h);
-      specular += reference_brdf_lobes(variant, n, v, l, m).specular * n_dot_l / pdf *
-                  environment_radiance(environment, l);
+      specular += lobes(l).specular * n_dot_l / pdf * environment_radiance(environment, l);
     }
   }
   return (diffuse + specular * specular_scale) / double(samples);

@@ -284,14 +284,15 @@ void rasterize_rows(const std::vector<RasterTriangle>& tris, uint32_t width, int
 }  // namespace
 namespace {
 
-// Reflected radiance towards v from light arriving along l with radiance `incident`; the
-// specular lobe scaled by `specular_scale` (energy compensation).
+// Reflected radiance towards v from light arriving along l with radiance `incident`, with or
+// without energy compensation.
 dvec3 reflected(Brdf variant, dvec3 n, dvec3 v, dvec3 l, const Material& m, dvec3 incident,
-                dvec3 specular_scale) {
+                bool energy_compensation) {
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0) return dvec3(0.0);
-  const BrdfLobes lobes = reference_brdf_lobes(variant, n, v, l, m);
-  return (lobes.diffuse + lobes.specular * specular_scale) * incident * n_dot_l;
+  const BrdfLobes lobes = energy_compensation ? reference_compensated_lobes(variant, n, v, l, m)
+                                              : reference_brdf_lobes(variant, n, v, l, m);
+  return (lobes.diffuse + lobes.specular) * incident * n_dot_l;
 }
 
 // Incident radiance scale of a light with a position at squared distance d2 (its Falloff).
@@ -478,24 +479,19 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
       break;
   }
   const dvec3 v = -dir;
-  dvec3 specular_scale(1.0);
-  if (c.settings.frame.energy_compensation && brdf != Brdf::blinn_phong) {
-    // Kulla & Conty 2017 in Filament's form: 1 + F0 (1 / E - 1).
-    const double e = reference_specular_albedo(brdf, glm::dot(s.normal, v), m.roughness);
-    specular_scale = 1.0 + reference_shading_params(m).f0 * (1.0 / e - 1.0);
-  }
   dvec3 color =
       dvec3(scene.ambient) * dvec3(m.base_color) * double(m.occlusion) + dvec3(m.emissive);
   for (const Light& light : scene.lights) {
     const LightArrival a = light_arrival(light, s.position, s.normal);
-    color += reflected(brdf, s.normal, v, a.l, m, a.incident, specular_scale);
+    color += reflected(brdf, s.normal, v, a.l, m, a.incident, c.settings.frame.energy_compensation);
   }
   if (scene.environment) {
     color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
-                                                               v, m, specular_scale,
-                                                               c.settings.environment_samples);
+                                                               v, m, dvec3(1.0),
+                                                               c.settings.environment_samples,
+                                                               c.settings.frame.energy_compensation);
   }
-  return glm::min(color, dvec3(TS_MAX_HALF));
+  return color;
 }
 
 // --- Resolve -------------------------------------------------------------------------------
@@ -593,15 +589,17 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
         if (f.owner[i] != kNoTriangle) {
           c = shade_pixel(context, f.owner[i], x, y);
         } else if (scene.environment && settings.frame.view == View::shaded) {
-          c = glm::min(environment_radiance(*scene.environment, camera_ray(cam, x, y)),
-                       dvec3(TS_MAX_HALF));
+          c = environment_radiance(*scene.environment, camera_ray(cam, x, y));
         } else {
           c = dvec3(scene.background);
         }
-        f.hdr.pixels[i] = glm::vec4(glm::vec3(c), 1.0f);
+        // Pre-exposure, as the compute path: the exposed value meets the fp16 clamp, and the
+        // HDR output divides the exposure back out.
+        const dvec3 exposed = glm::min(c * exposure, dvec3(TS_MAX_HALF));
+        f.hdr.pixels[i] = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
         glm::u8vec4 out(0, 0, 0, 255);
         for (int ch = 0; ch < 3; ++ch) {
-          const double display = srgb_encode(tone_curve(std::max(c[ch], 0.0) * exposure, op));
+          const double display = srgb_encode(tone_curve(std::max(exposed[ch], 0.0), op));
           out[ch] = uint8_t(std::floor(std::clamp(display, 0.0, 1.0) * 255.0 + 0.5));
         }
         f.ldr.pixels[i] = out;

@@ -22,8 +22,8 @@
 namespace tessera {
 
 struct ReferenceSettings {
-  /// As for the compute path; energy compensation scales specular by 1 + F0 (1/E - 1), with E
-  /// integrated by quadrature rather than read from a table.
+  /// As for the compute path; energy compensation is reference_compensated_lobes (Kulla &
+  /// Conty layering, E from the reference's own quadrature rather than the GPU's table).
   FrameSettings frame;
   CullMode cull = CullMode::back;
   /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
@@ -34,7 +34,9 @@ struct ReferenceSettings {
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 struct ReferenceFrame {
-  ImageF hdr;  // linear HDR in the model of the compute path (clamped to 65504), as float
+  /// Linear HDR radiance in the model of the compute path: pre-exposed, clamped to 65504 (the
+  /// fp16 maximum), divided by the exposure again; as float.
+  ImageF hdr;
   Image8 ldr;  // exposure, tone curve, sRGB, rounded to nearest
   std::vector<uint32_t> owner;     // triangle-instance id per pixel, kNoTriangle where empty
   std::vector<double> depth;       // the owner's near / w at the pixel centre, 0 where empty

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -80,6 +81,42 @@ bool content_less(const Object& a, const Object& b) {
   return false;
 }
 
+bool within_coordinates(glm::vec3 p) {
+  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxSceneCoordinate)));
+}
+
+void validate_light(const Light& light, size_t l) {
+  const std::string name = "light " + std::to_string(l);
+  require(finite(light.position) && finite(light.direction) && finite(light.color) &&
+              finite(light.intensity),
+          name + " has a NaN or infinite value");
+  const bool positioned = light.kind != LightKind::directional;
+  require(!positioned || within_coordinates(light.position),
+          name + " position is outside +-" + number(kMaxSceneCoordinate) + " m per coordinate");
+  // Zero only when every component is: a direction of length 1e-30 is still a direction (the
+  // upload normalises it without underflow).
+  require(light.kind == LightKind::point || light.direction != glm::vec3(0.0f),
+          name + " has a zero direction");
+  require(glm::all(glm::greaterThanEqual(light.color, glm::vec3(0.0f))) && light.intensity >= 0.0f,
+          name + " has a negative color or intensity");
+  const float brightest = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  require(brightest <= kMaxLightIntensity, name + " intensity times color is " + number(brightest) +
+                                               ", above " + number(kMaxLightIntensity) +
+                                               (positioned ? " W/sr" : " W/m^2"));
+  require(finite(light.range) && (light.range == 0.0f ||
+                                  (light.range >= kMinLightRange && light.range <= kMaxLightRange)),
+          name + " range is " + number(light.range) + " m; it must be 0 (no fade) or within [" +
+              number(kMinLightRange) + ", " + number(kMaxLightRange) + "] m");
+  require(finite(light.attenuation) && light.attenuation.x >= 0.0f && light.attenuation.y >= 0.0f &&
+              light.attenuation.z >= 0.0f && light.attenuation != glm::vec3(0.0f),
+          name + " needs attenuation Kc, Kl, Kq >= 0 and not all zero");
+  require(glm::all(glm::lessThanEqual(light.attenuation, glm::vec3(kMaxAttenuation))),
+          name + " attenuation Kc, Kl, Kq must each be at most " + number(kMaxAttenuation));
+  require(finite(light.inner_angle) && finite(light.outer_angle) && light.inner_angle >= 0.0f &&
+              light.inner_angle <= light.outer_angle && light.outer_angle < 1.5707963f,
+          name + " needs spot angles with 0 <= inner <= outer < pi/2");
+}
+
 }  // namespace
 
 ObjectNumbering number_objects(const Scene& scene) {
@@ -108,6 +145,8 @@ void validate_scene(const Scene& scene) {
   const Camera& c = scene.camera;
   require(finite(c.position) && finite(c.target) && finite(c.up),
           "the camera has a NaN or infinite coordinate");
+  require(within_coordinates(c.position), "the camera's position is outside +-" +
+                                              number(kMaxSceneCoordinate) + " m per coordinate");
   require(glm::length(c.target - c.position) > 0.0f, "the camera's target equals its position");
   require(glm::length(glm::cross(c.target - c.position, c.up)) > 0.0f,
           "the camera's up vector is zero or parallel to its view direction");
@@ -160,6 +199,15 @@ void validate_scene(const Scene& scene) {
       throw Error(std::string("invalid scene: ") + e.what());
     }
   }
+  std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // per mesh, object space
+  for (const Mesh& mesh : scene.meshes) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    boxes.emplace_back(lo, hi);
+  }
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];
     const std::string name = "object " + std::to_string(o);
@@ -169,25 +217,18 @@ void validate_scene(const Scene& scene) {
                                                        std::to_string(obj.material) + " of " +
                                                        std::to_string(scene.materials.size()));
     require(finite(obj.transform), name + " has a NaN or infinite transform");
+    // The world-space box of the mesh's box contains every vertex.
+    if (scene.meshes[obj.mesh].positions.empty()) continue;
+    const auto [lo, hi] = boxes[obj.mesh];
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                        (corner & 4) ? hi.z : lo.z);
+      require(within_coordinates(glm::vec3(obj.transform * glm::vec4(p, 1.0f))),
+              name + " reaches outside +-" + number(kMaxSceneCoordinate) +
+                  " m per coordinate in world space");
+    }
   }
-  for (size_t l = 0; l < scene.lights.size(); ++l) {
-    const Light& light = scene.lights[l];
-    const std::string name = "light " + std::to_string(l);
-    require(finite(light.position) && finite(light.direction) && finite(light.color) &&
-                finite(light.intensity),
-            name + " has a NaN or infinite value");
-    require(light.kind == LightKind::point || glm::length(light.direction) > 0.0f,
-            name + " has a zero direction");
-    require(finite(light.range) && light.range >= 0.0f,
-            name + " has a negative or non-finite range");
-    require(finite(light.attenuation) && light.attenuation.x >= 0.0f &&
-                light.attenuation.y >= 0.0f && light.attenuation.z >= 0.0f &&
-                glm::length(light.attenuation) > 0.0f,
-            name + " needs attenuation Kc, Kl, Kq >= 0 and not all zero");
-    require(finite(light.inner_angle) && finite(light.outer_angle) && light.inner_angle >= 0.0f &&
-                light.inner_angle <= light.outer_angle && light.outer_angle < 1.5707963f,
-            name + " needs spot angles with 0 <= inner <= outer < pi/2");
-  }
+  for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);
 }
 
 bool is_mirroring(const glm::mat4& transform) {

@@ -136,6 +136,18 @@ enum class CullMode { back, front, none };
 /// What an image shows: the shaded scene, or a debug view of what the rasterizer produced.
 enum class View { shaded, normal, uv, triangle, object };
 
+/// The ranges validate_scene accepts for lights and positions (docs/shading.md, "Accepted
+/// ranges"). Within them every intermediate of the light arithmetic stays finite in fp32.
+/// Positions: every light, the camera and every vertex in world space, per coordinate, in m.
+inline constexpr float kMaxSceneCoordinate = 1e15f;
+/// Intensity times the largest colour component: W/sr (point, spot) or W/m^2 (directional).
+inline constexpr float kMaxLightIntensity = 1e26f;
+/// Inverse-square range, in m: 0 (no fade) or within [kMinLightRange, kMaxLightRange].
+inline constexpr float kMinLightRange = 1e-3f;
+inline constexpr float kMaxLightRange = 1e9f;
+/// Classic falloff: each of Kc, Kl, Kq within [0, kMaxAttenuation], not all 0.
+inline constexpr float kMaxAttenuation = 1e6f;
+
 struct Scene {
   Camera camera;
   std::vector<Mesh> meshes;
@@ -152,7 +164,8 @@ struct Scene {
 
 /// Checks `scene` for bad input: out-of-range mesh, material or vertex indices, NaN or
 /// infinite values in positions, normals, transforms, materials, lights or the camera, a
-/// degenerate camera. Throws tessera::Error naming the first problem found (which mesh,
+/// degenerate camera, positions, light intensities, ranges and attenuations outside the
+/// accepted ranges above. Throws tessera::Error naming the first problem found (which mesh,
 /// object, vertex or field).
 void validate_scene(const Scene& scene);
 

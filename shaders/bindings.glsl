@@ -73,3 +73,12 @@ vec2 equirect_uv(vec3 d) {
 uint pixel_index(ivec2 pixel) {
   return uint(pixel.y) * frame.image_size.x + uint(pixel.x);
 }
+
+// The factor the shading stages multiply radiance by before it meets the fp16 HDR image
+// (pre-exposure: Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering",
+// 5.1; Filament does the same): the camera's exposure 2^EV, so that scenes in physical units
+// (sunlight ~1e5 W/m^2) keep their exposed range inside fp16. Renderer::read_hdr divides it back
+// out. Debug views are written as they are.
+float pre_exposure() {
+  return frame.view == TS_VIEW_SHADED ? frame.exposure_scale : 1.0;
+}

@@ -26,6 +26,9 @@ struct PixelParams {
   float roughness;      // perceptual, clamped to [TS_MIN_PERCEPTUAL_ROUGHNESS, 1]
   float alpha;          // roughness^2
   vec3 specular_scale;  // multiplies the specular lobe: the energy compensation factor, or 1
+  // With ENERGY_COMPENSATION: the diffuse layer's weight, which replaces the classic 1 - F
+  // (Kulla & Conty's (1 - Es(mu_o))(1 - Es(mu_i)) / (1 - Es_avg), lighting.glsl); else unused.
+  vec3 diffuse_layer;
 };
 
 // The light arriving at a point from one light.
@@ -45,6 +48,7 @@ PixelParams metallic_roughness_params(vec3 base_color, float metallic, float rou
   p.f0 = mix(vec3(TS_DIELECTRIC_F0), base_color, m);
   p.diffuse_color = (1.0 - m) * base_color;
   p.specular_scale = vec3(1.0);
+  p.diffuse_layer = vec3(1.0);
   return p;
 }
 
@@ -98,6 +102,12 @@ float Fd_Lambert() {
 // The BRDF variant, chosen when the pipeline is built (TS_BRDF_*).
 layout(constant_id = TS_SPEC_BRDF) const uint BRDF_VARIANT = TS_BRDF_CLASSIC;
 
+// Energy-conserving layering (--energy-compensation): the specular lobe is scaled up for its
+// lost multiple scattering and the diffuse layer takes only the energy the specular layer
+// leaves (PixelParams' specular_scale and diffuse_layer, from the DFG table in lighting.glsl).
+// Not for Blinn-Phong.
+layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION = false;
+
 // Outgoing radiance towards s.V from one light: f(L, V) * radiance * N.L.
 vec3 surface_response(ShadingPoint s, PixelParams p, LightSample light) {
   vec3 N = s.N, V = s.V, L = light.L;
@@ -118,7 +128,11 @@ vec3 surface_response(ShadingPoint s, PixelParams p, LightSample light) {
   } else {
     vec3 F = F_Schlick(VoH, p.f0);
     float D = D_GGX(NoH, p.alpha);
-    if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
+    if (ENERGY_COMPENSATION) {
+      float vis = BRDF_VARIANT == TS_BRDF_FILAMENT ? V_SmithGGXCorrelated(s.NoV, NoL, p.alpha)
+                                                   : V_SmithSchlickGGX(s.NoV, NoL, p.roughness);
+      f = p.diffuse_layer * p.diffuse_color * Fd_Lambert() + D * vis * F * p.specular_scale;
+    } else if (BRDF_VARIANT == TS_BRDF_FILAMENT) {
       f = p.diffuse_color * Fd_Lambert() + D * V_SmithGGXCorrelated(s.NoV, NoL, p.alpha) * F * p.specular_scale;
     } else {
       f = (vec3(1.0) - F) * p.diffuse_color * Fd_Lambert() +

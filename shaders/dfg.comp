@@ -6,11 +6,16 @@
 // Engine 4"). One table per visibility term: classic (Schlick-GGX) and filament (height-
 // correlated Smith), selected by the specialization constant TS_SPEC_BRDF. z: the mean of the
 // Schlick factor (1 - V.H)^5 over cosine-distributed light directions, which weights the
-// classic model's (1 - F) Lambert lobe under a uniform environment.
+// classic model's (1 - F) Lambert lobe under a uniform environment. After both tables, one row
+// per variant: per roughness, the cosine-weighted means 2 int g(mu) mu dmu of E, E_Fc and
+// E_Fc / E over N.V (trapezoid rule on the table's own points), for energy compensation's
+// diffuse layer (lighting.glsl). One workgroup per roughness, so the row can be summed.
 #include "bindings.glsl"
 #include "brdf.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = TS_DFG_SIZE, local_size_y = 1) in;
+
+shared vec3 row_terms[TS_DFG_SIZE];
 
 const uint SAMPLES = 4096u;
 
@@ -20,8 +25,7 @@ vec2 hammersley(uint i, uint n) {
 }
 
 void main() {
-  uvec2 cell = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(cell, uvec2(TS_DFG_SIZE)))) return;
+  uvec2 cell = gl_GlobalInvocationID.xy;  // the dispatch is exactly TS_DFG_SIZE^2
   // Grid points from 0 to 1 inclusive, with the shading pass's own clamps.
   float NoV = max(float(cell.x) / float(TS_DFG_SIZE - 1), TS_MIN_N_DOT_V);
   float roughness = max(float(cell.y) / float(TS_DFG_SIZE - 1), TS_MIN_PERCEPTUAL_ROUGHNESS);
@@ -57,6 +61,15 @@ void main() {
     diffuse_fc += pow(1.0 - clamp(dot(V, H), 0.0, 1.0), 5.0);
   }
   uint table = BRDF_VARIANT == TS_BRDF_FILAMENT ? 1u : 0u;
-  dfg[(table * TS_DFG_SIZE + cell.y) * TS_DFG_SIZE + cell.x] =
-      vec4(sum / float(SAMPLES), diffuse_fc / float(SAMPLES), 0.0);
+  vec2 terms = sum / float(SAMPLES);
+  dfg[(table * TS_DFG_SIZE + cell.y) * TS_DFG_SIZE + cell.x] = vec4(terms, diffuse_fc / float(SAMPLES), 0.0);
+
+  // E >= ~0.07 everywhere (classic, grazing, alpha = 1), so E_Fc / E is safe.
+  row_terms[cell.x] = NoV * vec3(terms.y, terms.x, terms.x / terms.y);
+  barrier();
+  if (cell.x != 0u) return;
+  vec3 integral = 0.5 * (row_terms[0] + row_terms[TS_DFG_SIZE - 1]);
+  for (uint i = 1u; i + 1u < TS_DFG_SIZE; ++i) integral += row_terms[i];
+  dfg[2u * TS_DFG_SIZE * TS_DFG_SIZE + table * TS_DFG_SIZE + cell.y] =
+      vec4(2.0 * integral / float(TS_DFG_SIZE - 1), 0.0);
 }

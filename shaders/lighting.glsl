@@ -4,10 +4,11 @@
 // bindings.glsl (frame, lights, environment) and material.glsl (MaterialSample, and through
 // it brdf.glsl).
 
-// Multiple-scattering energy compensation (Kulla & Conty 2017, in Filament's form): scales the
-// specular lobe by 1 + F0 (1 / E - 1), E the lobe's directional albedo with F = 1 from the DFG
-// table, so a white furnace keeps its energy at every roughness. Not for Blinn-Phong.
-layout(constant_id = TS_SPEC_ENERGY_COMPENSATION) const bool ENERGY_COMPENSATION = false;
+// Multiple-scattering energy compensation (ENERGY_COMPENSATION, brdf.glsl; Kulla & Conty 2017,
+// "Revisiting Physically Based Shading at Imageworks"): the specular lobe is scaled by
+// 1 + F0 (1 / E - 1) (Filament's form), E its directional albedo with F = 1 from the DFG table,
+// and the diffuse layer by (1 - Es(mu_o)) (1 - Es(mu_i)) / (1 - Es_avg), Es the specular layer's
+// albedo with Fresnel and that scale: reciprocal, and a white material reflects exactly 1.
 
 // Image-based lighting: off, on, or decided per frame (the generic pipeline).
 layout(constant_id = TS_SPEC_IBL) const uint IBL_MODE = TS_IBL_RUNTIME;
@@ -31,8 +32,36 @@ vec3 dfg_lookup(float NoV, float roughness) {
   return mix(mix(e00, e10, t.x), mix(e01, e11, t.x), t.y);
 }
 
-float specular_albedo(float NoV, float roughness) {
-  return dfg_lookup(NoV, roughness).y;
+// Cosine-weighted means 2 int g(mu) mu dmu of the table's terms at this roughness (the rows
+// after the two tables, dfg.comp): x of E, y of E_Fc, z of E_Fc / E.
+vec3 dfg_average(float roughness) {
+  uint base = 2u * TS_DFG_SIZE * TS_DFG_SIZE + (BRDF_VARIANT == TS_BRDF_FILAMENT ? TS_DFG_SIZE : 0u);
+  float p = clamp(roughness, 0.0, 1.0) * float(TS_DFG_SIZE - 1);
+  uint i0 = uint(p);
+  uint i1 = min(i0 + 1u, TS_DFG_SIZE - 1u);
+  return mix(dfg[base + i0].xyz, dfg[base + i1].xyz, p - float(i0));
+}
+
+// Directional albedo Es of the compensated specular layer at one cosine, per channel: the
+// Schlick-weighted albedo f0 (E - E_Fc) + E_Fc times the compensation 1 + f0 (1 / E - 1).
+// At most 1 in exact arithmetic; the table's noise is clamped away.
+vec3 specular_layer_albedo(vec3 dfg_terms, vec3 f0) {
+  vec3 single = f0 * (dfg_terms.y - dfg_terms.x) + dfg_terms.x;
+  return min(single * (1.0 + f0 * (1.0 / dfg_terms.y - 1.0)), vec3(1.0));
+}
+
+// Its cosine-weighted mean Es_avg, expanded in f0 so that one table of means per roughness
+// serves every f0: (f0 E + (1 - f0) E_Fc)(1 - f0 + f0 / E) averaged term by term.
+vec3 specular_layer_average(vec3 means, vec3 f0) {
+  vec3 g = 1.0 - f0;
+  return f0 * g * means.x + f0 * f0 + g * g * means.y + f0 * g * means.z;
+}
+
+// The view's half of the diffuse layer's weight, (1 - Es(mu_o)) / (1 - Es_avg). Es_avg reaches 1
+// only for f0 = 1, a metal without diffuse colour: the floor keeps 0 / 0 away.
+vec3 diffuse_layer_view(vec3 dfg_terms, vec3 f0, float roughness) {
+  vec3 average = specular_layer_average(dfg_average(roughness), f0);
+  return (1.0 - specular_layer_albedo(dfg_terms, f0)) / max(1.0 - average, vec3(1e-4));
 }
 
 // Irradiance / pi at normal n from the environment's 9 spherical-harmonic coefficients, the
@@ -61,17 +90,28 @@ layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_POINT) const uint POINT
 layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_SPOT) const uint SPOT_LIGHTS = 0u;
 layout(constant_id = TS_SPEC_LIGHT_COUNT_BASE + TS_LIGHT_DIRECTIONAL) const uint DIRECTIONAL_LIGHTS = 0u;
 
-// Distance falloff of a light with a position at squared distance d2 (TS_FALLOFF_*).
+// Smooth fade of an inverse-square light to zero at its range r (Karis 2013):
+// saturate(1 - (d/r)^4)^2, with `inv_range4` = 1 / r^4 (0: no range, no fade). d^4 overflows
+// fp32 beyond d = 1.4e9 m, and 0 * Inf is NaN: so no range means no arithmetic at all, and
+// beyond the range (d^2 >= r^2 = inversesqrt(1 / r^4), at most 1e18 m^2 as r <= 1e9 m) the
+// fade is 0 without forming d^4.
+float range_fade(float d2, float inv_range4) {
+  if (inv_range4 == 0.0) return 1.0;
+  if (d2 >= inversesqrt(inv_range4)) return 0.0;
+  float fade = clamp(1.0 - d2 * d2 * inv_range4, 0.0, 1.0);
+  return fade * fade;
+}
+
+// Distance falloff of a light with a position at squared distance d2 (TS_FALLOFF_*). Kc, Kl,
+// Kq <= 1e6 and d^2 <= 1.2e31 m^2 (positions within 1e15 m, docs/shading.md) keep every term
+// finite.
 float distance_attenuation(GpuLight light, float d2) {
   if (light.falloff == TS_FALLOFF_CLASSIC) {
     // A classic light with Kc = 0 would divide by zero at distance 0.
     float d = sqrt(d2);
     return 1.0 / max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d2, TS_MIN_ATTENUATION_DENOMINATOR);
   }
-  float attenuation = 1.0 / max(d2, TS_MIN_LIGHT_DISTANCE_SQUARED);
-  // Smooth fade to zero at the light's range (Karis 2013): saturate(1 - (d/r)^4)^2.
-  float fade = clamp(1.0 - d2 * d2 * light.inv_range4, 0.0, 1.0);
-  return attenuation * (fade * fade);
+  return 1.0 / max(d2, TS_MIN_LIGHT_DISTANCE_SQUARED) * range_fade(d2, light.inv_range4);
 }
 
 // What `light` of kind `kind` (a compile-time constant in the specialized loops) sends to the
@@ -84,7 +124,7 @@ LightSample light_sample(GpuLight light, uint kind, vec3 P, vec3 N) {
     return ls;
   }
   vec3 to_light = light.position - P;
-  float d2 = dot(to_light, to_light);
+  float d2 = dot(to_light, to_light);  // <= 1.2e31 m^2 for the accepted positions
   // A light exactly on the surface has no direction: treat it as arriving along N.
   ls.L = d2 > 0.0 ? to_light * inversesqrt(d2) : N;
   float attenuation = distance_attenuation(light, d2);
@@ -99,7 +139,12 @@ LightSample light_sample(GpuLight light, uint kind, vec3 P, vec3 N) {
 
 // Light i's contribution; `kind` is a compile-time constant in the specialized loops.
 vec3 light_contribution(ShadingPoint s, PixelParams p, uint i, uint kind) {
-  return surface_response(s, p, light_sample(lights[i], kind, s.P, s.N));
+  LightSample light = light_sample(lights[i], kind, s.P, s.N);
+  if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
+    // The light's half of the reciprocal diffuse weight: 1 - Es(mu_i).
+    p.diffuse_layer *= 1.0 - specular_layer_albedo(dfg_lookup(dot(s.N, light.L), p.roughness), p.f0);
+  }
+  return surface_response(s, p, light);
 }
 
 // The environment's light reflected towards V with the split-sum approximation (Karis 2013):
@@ -124,6 +169,9 @@ vec3 environment_light(ShadingPoint s, PixelParams p) {
   // The classic model weights diffuse by 1 - F(V.H), F averaged over the cosine lobe:
   // 1 - (f0 + (1 - f0) mean(Fc)) = (1 - f0) (1 - mean(Fc)).
   vec3 kd = BRDF_VARIANT == TS_BRDF_CLASSIC ? (vec3(1.0) - p.f0) * (1.0 - dfg_terms.z) : vec3(1.0);
+  // Compensated: the diffuse layer's weight integrated over a uniform sky of cosine-weighted
+  // light directions, (1 - Es(mu_o)) (1 - Es_avg) / (1 - Es_avg) = 1 - Es(mu_o).
+  if (ENERGY_COMPENSATION) kd = 1.0 - specular_layer_albedo(dfg_terms, p.f0);
   return kd * p.diffuse_color * irradiance + specular;
 }
 
@@ -138,7 +186,9 @@ vec3 shade_surface(vec3 P, vec3 V, MaterialSample ms) {
   PixelParams p = ms.pixel;
   if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
     // E is at least ~0.07 (classic, grazing, alpha = 1), so the division is safe.
-    p.specular_scale = 1.0 + p.f0 * (1.0 / specular_albedo(s.NoV, p.roughness) - 1.0);
+    vec3 dfg_terms = dfg_lookup(s.NoV, p.roughness);
+    p.specular_scale = 1.0 + p.f0 * (1.0 / dfg_terms.y - 1.0);
+    p.diffuse_layer = diffuse_layer_view(dfg_terms, p.f0, p.roughness);
   }
 
   // Constant ambient and the environment, dimmed by the material's occlusion, plus what the

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Resolve: exposure, tone mapping and sRGB encoding of the HDR image into the RGBA8 image.
+// Resolve: tone mapping and sRGB encoding of the HDR image into the RGBA8 image.
 #include "bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -26,10 +26,10 @@ vec3 srgb_encode(vec3 c) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
+  // The shading pass already applied the exposure (pre-exposure, bindings.glsl).
   vec3 hdr = max(imageLoad(hdr_image, pixel).rgb, vec3(0.0));
-  // Debug views hold values in [0, 1] meant to be seen as they are: no exposure, no curve.
+  // Debug views hold values in [0, 1] meant to be seen as they are: no curve.
   bool shaded = frame.view == TS_VIEW_SHADED;
-  hdr *= shaded ? frame.exposure_scale : 1.0;
   uint op = shaded ? frame.tonemap : TS_TONEMAP_CLAMP;
   vec3 mapped = op == TS_TONEMAP_ACES       ? tonemap_aces(hdr)
                 : op == TS_TONEMAP_REINHARD ? tonemap_reinhard(hdr)

@@ -130,5 +130,5 @@ void main() {
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
   uint64_t key = visibility[pixel_index(pixel)];
   vec3 color = key == TS_VIS_EMPTY ? background(pixel) : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
-  imageStore(hdr_image, pixel, vec4(min(color, vec3(TS_MAX_HALF)), 1.0));
+  imageStore(hdr_image, pixel, vec4(min(color * pre_exposure(), vec3(TS_MAX_HALF)), 1.0));
 }

@@ -136,6 +136,43 @@ size_t triangles(const Scene& s) {
   return n;
 }
 
+// import_gltf_bytes (the fuzzer's entry point): a .gltf's text and a .glb from memory, external
+// files found through base_dir, give the file's scene; messages name the given name.
+TEST(GltfImport, FromMemoryGivesTheFilesScene) {
+  const auto bytes_of = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* file :
+       {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb"}) {
+    const std::string path = kModels + file;
+    const ImportedModel from_file = import_gltf(path);
+    const ImportedModel from_memory = import_gltf_bytes(
+        bytes_of(path), "memory box", std::filesystem::path(path).parent_path().string());
+    ASSERT_EQ(from_memory.scene.meshes.size(), 1u) << file;
+    EXPECT_EQ(from_memory.scene.meshes[0].positions, from_file.scene.meshes[0].positions);
+    EXPECT_EQ(from_memory.scene.meshes[0].indices, from_file.scene.meshes[0].indices);
+    ASSERT_EQ(from_memory.scene.textures.size(), 1u) << file;
+    EXPECT_EQ(from_memory.scene.textures[0].width, 211u);
+  }
+  // The .gltf's BoxTextured0.bin is not in /nonexistent; the size limit holds as for files.
+  const std::vector<unsigned char> text = bytes_of(kModels + "BoxTextured-glTF/BoxTextured.gltf");
+  for (uint64_t limit : {uint64_t(1) << 30, uint64_t(1000)}) {
+    ImportOptions options;
+    options.max_file_bytes = limit;
+    try {
+      import_gltf_bytes(text, "memory box", "/nonexistent", options);
+      ADD_FAILURE() << "imported without its buffer, limit " << limit;
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("memory box: ", 0), 0u) << m;
+      EXPECT_NE(m.find(limit == 1000 ? "over the limit of 1000" : "/nonexistent/BoxTextured0.bin"),
+                std::string::npos)
+          << m;
+    }
+  }
+}
+
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
   const ImportedModel gltf = import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf");
   const ImportedModel glb = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");

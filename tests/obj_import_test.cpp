@@ -381,6 +381,32 @@ TEST(ObjImportAssimpModels, SpiderCounts) {
   EXPECT_NO_THROW(validate_scene(s));
 }
 
+// import_obj_text (the fuzzer's entry point): the spider from memory, its materials and
+// textures found through base_dir, gives the counts above; messages name the given name.
+TEST(ObjImportAssimpModels, SpiderFromMemory) {
+  const std::string text = read_text(kAssimpObj + "spider.obj");
+  const ImportedModel model = import_obj_text(text, "memory spider", kAssimpObj);
+  EXPECT_EQ(model.scene.meshes.size(), 19u);
+  EXPECT_EQ(model.scene.materials.size(), 5u);
+  EXPECT_EQ(model.scene.textures.size(), 5u);
+  ASSERT_EQ(model.warnings.size(), 1u) << all_warnings(model);
+  EXPECT_NE(model.warnings[0].find("'memory spider' line 1560"), std::string::npos)
+      << model.warnings[0];
+  // Without its folder, the material library is missing (a warning, as for a file).
+  const ImportedModel alone = import_obj_text(text, "memory spider", "/nonexistent");
+  EXPECT_NE(all_warnings(alone).find("material library '/nonexistent/spider.mtl' not found"),
+            std::string::npos)
+      << all_warnings(alone);
+  ImportOptions options;
+  options.max_file_bytes = 1000;
+  try {
+    import_obj_text(text, "memory spider", kAssimpObj, options);
+    ADD_FAILURE() << "the size limit was not applied";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'memory spider' is "), std::string::npos) << e.what();
+  }
+}
+
 // awk '$1=="f"{t+=NF-3} END{print t}' WusonOBJ.obj                 -> 3732
 // awk '$1=="f"{for(i=2;i<=NF;i++) u[$i]=1} END{...}' WusonOBJ.obj -> 2117 (one group, no usemtl)
 TEST(ObjImportAssimpModels, WusonCounts) {

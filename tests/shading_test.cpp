@@ -234,8 +234,8 @@ TEST_F(Shading, EnergyCompensationRestoresTheFurnaceWithinOnePercent) {
   fs.energy_compensation = true;
   renderer.render(fs);  // computes the tables
   const std::vector<glm::vec4> table = renderer.read_dfg_table();
-  const int n = 64;  // TS_DFG_SIZE
-  ASSERT_EQ(table.size(), size_t(2 * n * n));
+  const int n = 64;                                  // TS_DFG_SIZE
+  ASSERT_EQ(table.size(), size_t(2 * (n + 1) * n));  // two tables, then a row of means each
   auto lookup = [&](int variant, double n_dot_v, double roughness) {
     const double px = std::clamp(n_dot_v, 0.0, 1.0) * (n - 1),
                  py = std::clamp(roughness, 0.0, 1.0) * (n - 1);
@@ -264,6 +264,18 @@ TEST_F(Shading, EnergyCompensationRestoresTheFurnaceWithinOnePercent) {
         "%s: compensated white furnace within %.2f %% of 1 (uncompensated energy down to %.3f)\n",
         variant_name(brdf), worst * 100.0, lowest_e);
     EXPECT_LT(worst, 0.01) << variant_name(brdf);
+    // The means over N.V that the diffuse layer divides by (rows after the tables), against
+    // the reference's own quadrature of them.
+    double worst_mean = 0.0;
+    for (int row : {3, 16, 32, 48, 63}) {
+      const glm::dvec3 expected = reference_specular_albedo_table(brdf, row / 63.0).means;
+      const glm::vec4 got = table[size_t(2 * n * n + variant * n + row)];
+      for (int c = 0; c < 3; ++c)
+        worst_mean = std::max(worst_mean, std::abs(got[c] / expected[c] - 1.0));
+    }
+    std::printf("%s: means of E, E_Fc, E_Fc / E within %.2f %% of the reference\n",
+                variant_name(brdf), worst_mean * 100.0);
+    EXPECT_LT(worst_mean, 0.01) << variant_name(brdf);
   }
 }
 

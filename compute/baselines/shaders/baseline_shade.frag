@@ -30,5 +30,5 @@ void main() {
   // The pipeline's front face accounts for mirroring.
   g = face_viewer(material, g, !gl_FrontFacing);
   MaterialSample ms = evaluate_material(material, g, V);
-  color = vec4(min(shade_surface(world_position, V, ms), vec3(TS_MAX_HALF)), 1.0);
+  color = vec4(min(shade_surface(world_position, V, ms) * pre_exposure(), vec3(TS_MAX_HALF)), 1.0);
 }
