@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "compute/vk_check.h"
+#include "compute/vulkan_loader.h"
 #include "core/check.h"
 
 namespace tessera {
@@ -38,6 +39,7 @@ bool has_layer(const char* name) {
 }
 
 VkInstance create_instance(const ContextOptions& options, bool validation) {
+  load_vulkan();
   uint32_t version = 0;
   if (vkEnumerateInstanceVersion(&version) != VK_SUCCESS || version < VK_API_VERSION_1_2) {
     throw Error("the Vulkan loader is older than 1.2; Tessera needs Vulkan 1.2");

@@ -7,7 +7,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-for d in /.gl/ /.device-build/; do grep -qx "$d" .git/info/exclude || echo "$d" >> .git/info/exclude; done
+# In a fresh clone .git/info/ may not exist yet, and in a worktree the file lives elsewhere.
+exclude=$(git rev-parse --git-path info/exclude)
+mkdir -p "$(dirname "$exclude")"
+touch "$exclude"
+for d in /.gl/ /.device-build/; do grep -qx "$d" "$exclude" || echo "$d" >> "$exclude"; done
 if [[ ! -f .gl/libvulkan1_1.3.239.0-1_amd64.deb || ! -f .gl/libglvnd0_1.6.0-1_amd64.deb ]]; then
   lists=$(mktemp -d)
   mkdir -p .gl "$lists/partial"
