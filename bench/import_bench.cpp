@@ -2,11 +2,21 @@
 // import_obj (scan, parse, triangulate, build de-duplicated meshes). The file is
 // bench/large_obj.h's grid with TESSERA_OBJ_BENCH_TRIANGLES triangles (default 10^6), written
 // once to $TMPDIR. Counters: MB/s of OBJ text and triangles/s.
+// glTF: tinygltf alone (LoadBinaryFromFile, images decoded by its stb_image loader) against
+// import_gltf, on $TESSERA_GLB_BENCH_FILE (default the largest sample glb of Debian's assimp
+// models, 2CylinderEngine.glb).
+// Each case also reports peak_MB, the process's peak resident memory (getrusage ru_maxrss):
+// it only grows, so run one case per process (--benchmark_filter) to read it for that case.
+// Times are process CPU time (MeasureProcessCPUTime): the importers use several threads, and
+// the machine may be shared, so wall time would mislead.
+#include <sys/resource.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
 #include <benchmark/benchmark.h>
+#include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
 
 #include "bench/large_obj.h"
@@ -41,6 +51,9 @@ void set_counters(benchmark::State& state, const BenchFile& f) {
   state.counters["triangles/s"] =
       benchmark::Counter(double(f.triangles), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["triangles"] = double(f.triangles);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_MB"] = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
 }
 
 void BM_TinyObjLoaderAlone(benchmark::State& state) {
@@ -59,7 +72,7 @@ void BM_TinyObjLoaderAlone(benchmark::State& state) {
   }
   set_counters(state, f);
 }
-BENCHMARK(BM_TinyObjLoaderAlone)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TinyObjLoaderAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 void BM_ImportObj(benchmark::State& state) {
   const BenchFile& f = bench_file();
@@ -69,7 +82,49 @@ void BM_ImportObj(benchmark::State& state) {
   }
   set_counters(state, f);
 }
-BENCHMARK(BM_ImportObj)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ImportObj)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+const BenchFile& glb_file() {
+  static const BenchFile file = [] {
+    const char* env = std::getenv("TESSERA_GLB_BENCH_FILE");
+    BenchFile f;
+    f.path = env ? env
+                 : "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/"
+                   "2CylinderEngine.glb";
+    f.bytes = std::filesystem::file_size(f.path);
+    const tessera::ImportedModel model = tessera::import_gltf(f.path);
+    for (const tessera::Object& o : model.scene.objects)
+      f.triangles += model.scene.meshes[o.mesh].triangle_count();
+    return f;
+  }();
+  return file;
+}
+
+void BM_TinyGltfAlone(benchmark::State& state) {
+  const BenchFile& f = glb_file();
+  for (auto _ : state) {
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string warn, err;
+    if (!loader.LoadBinaryFromFile(&model, &err, &warn, f.path)) {
+      state.SkipWithError(err.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(model.buffers.data());
+  }
+  set_counters(state, f);
+}
+BENCHMARK(BM_TinyGltfAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+void BM_ImportGltf(benchmark::State& state) {
+  const BenchFile& f = glb_file();
+  for (auto _ : state) {
+    tessera::ImportedModel model = tessera::import_gltf(f.path);
+    benchmark::DoNotOptimize(model.scene.meshes.data());
+  }
+  set_counters(state, f);
+}
+BENCHMARK(BM_ImportGltf)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 }  // namespace
 

@@ -177,9 +177,10 @@ void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>
 
 UploadStats Renderer::set_scene(const Scene& scene) {
   validate_scene(scene);
-  GpuSceneArrays next = flatten_scene(scene);
   State& s = *s_;
+  GpuSceneArrays next = flatten_scene(scene, &s.texture_cache);
   UploadStats stats;
+  stats.mip_chains_built = next.mip_chains_built;
   std::vector<PendingCopy> copies;
   const GpuSceneArrays& prev = s.uploaded;
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), prev.vertices, next.vertices, copies,

@@ -49,7 +49,6 @@ struct RendererOptions {
   EnvironmentOptions environment;
 };
 
-
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
   std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches
@@ -73,6 +72,7 @@ struct UploadStats {
   uint64_t bytes = 0;                // bytes copied to the GPU
   uint32_t buffers_created = 0;      // buffers (re)allocated because they were too small
   bool environment_changed = false;  // the environment was uploaded and will be precomputed
+  uint32_t mip_chains_built = 0;     // textures whose content the previous scene did not have
 };
 
 class Renderer {

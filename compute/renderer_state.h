@@ -26,6 +26,7 @@ struct Renderer::State {
   // The scene as it is on the GPU.
   bool has_scene = false;
   GpuSceneArrays uploaded;
+  TextureCache texture_cache;  // mip chains of the uploaded textures, reused by the next scene
   Camera camera;
   glm::vec3 background{0.0f};
   glm::vec3 ambient{0.0f};

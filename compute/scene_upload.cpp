@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
+#include "core/parallel.h"
 #include "core/texture.h"
 
 namespace tessera {
@@ -56,9 +58,105 @@ gpu::GpuLight gpu_light(const Light& l) {
           .cone_offset = -cos_outer * scale};
 }
 
+// Builds e.texels and e.descriptor from e.source.
+void pack_texture(TextureCache::Entry& e) {
+  const Texture& t = e.source;
+  const MipChain chain = build_mip_chain(t);
+  TESSERA_CHECK(chain.levels.size() <= TS_MAX_TEXTURE_LEVELS);
+  e.descriptor.size = glm::uvec2(t.width, t.height);
+  e.descriptor.levels = uint32_t(chain.levels.size());
+  size_t total = 0;
+  for (const MipChain::Level& level : chain.levels) total += level.texels.size();
+  e.texels.reserve(total);
+  for (size_t l = 0; l < chain.levels.size(); ++l) {
+    e.descriptor.level_offset[l / 4][l % 4] = uint32_t(e.texels.size());
+    for (const glm::vec4& c : chain.levels[l].texels) {
+      e.texels.push_back({glm::packHalf2x16({c.r, c.g}), glm::packHalf2x16({c.b, c.a})});
+    }
+  }
+}
+
+bool same_texture(const Texture& a, const Texture& b) {
+  return a.width == b.width && a.height == b.height && a.srgb == b.srgb &&
+         a.texels.size() == b.texels.size() &&
+         std::memcmp(a.texels.data(), b.texels.data(), a.texels.size() * sizeof(glm::u8vec4)) == 0;
+}
+
+// Index of the entry holding `t` (hash first, then the whole texture), or entries.size().
+size_t find_entry(const std::vector<TextureCache::Entry>& entries, const Texture& t,
+                  uint64_t hash) {
+  for (size_t k = 0; k < entries.size(); ++k) {
+    if (entries[k].hash == hash && same_texture(entries[k].source, t)) return k;
+  }
+  return entries.size();
+}
+
+// Appends every texture's packed chain to out.texels and its descriptor to out.textures. Chains
+// missing from `cache` are built in parallel, each distinct content once.
+void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, GpuSceneArrays& out) {
+  std::vector<uint64_t> hashes(textures.size());
+  parallel_for(textures.size(), [&](size_t i) { hashes[i] = texture_hash(textures[i]); });
+  TextureCache next;
+  std::vector<size_t> entry_of(textures.size());
+  std::vector<size_t> to_build;  // texture indices, one per distinct missing content
+  for (size_t i = 0; i < textures.size(); ++i) {
+    // A content seen earlier in this scene shares that texture's entry.
+    entry_of[i] = find_entry(next.entries, textures[i], hashes[i]);
+    if (entry_of[i] < next.entries.size()) continue;
+    const size_t hit = cache ? find_entry(cache->entries, textures[i], hashes[i]) : 0;
+    if (cache && hit < cache->entries.size()) {
+      next.entries.push_back(std::move(cache->entries[hit]));
+      // Moved from: a later texture with the same content finds it in next.entries instead.
+      cache->entries[hit].hash = ~hashes[i];
+    } else {
+      next.entries.push_back({.hash = hashes[i], .source = textures[i]});
+      to_build.push_back(i);
+    }
+  }
+  parallel_for(to_build.size(),
+               [&](size_t b) { pack_texture(next.entries[entry_of[to_build[b]]]); });
+  out.mip_chains_built = uint32_t(to_build.size());
+  for (size_t i = 0; i < textures.size(); ++i) {
+    const TextureCache::Entry& e = next.entries[entry_of[i]];
+    if (out.texels.size() > 0xFFFFFFFFull - e.texels.size()) {
+      throw Error("the scene's textures have more than 2^32 texels with their mip levels");
+    }
+    gpu::GpuTexture g = e.descriptor;
+    for (uint32_t l = 0; l < g.levels; ++l)
+      g.level_offset[l / 4][l % 4] += uint32_t(out.texels.size());
+    out.texels.insert(out.texels.end(), e.texels.begin(), e.texels.end());
+    out.textures.push_back(g);
+  }
+  if (cache) *cache = std::move(next);
+}
+
 }  // namespace
 
-GpuSceneArrays flatten_scene(const Scene& scene) {
+uint64_t texture_hash(const Texture& texture) {
+  // 64-bit multiply-xorshift mixing of 8 bytes (two texels) at a time.
+  auto mix = [](uint64_t h, uint64_t v) {
+    h ^= v + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ull;
+    return h ^ (h >> 31);
+  };
+  uint64_t h = mix(mix(0, texture.width), (uint64_t(texture.height) << 1) | texture.srgb);
+  const auto* bytes = reinterpret_cast<const unsigned char*>(texture.texels.data());
+  const size_t n = texture.texels.size() * sizeof(glm::u8vec4);
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t v;
+    std::memcpy(&v, bytes + i, 8);
+    h = mix(h, v);
+  }
+  if (i < n) {
+    uint64_t v = 0;
+    std::memcpy(&v, bytes + i, n - i);
+    h = mix(h, v);
+  }
+  return mix(h, n);
+}
+
+GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
   std::vector<uint32_t> base_vertex(scene.meshes.size());
@@ -116,23 +214,7 @@ GpuSceneArrays flatten_scene(const Scene& scene) {
       if (map != kNoTexture) out.texture_maps |= bit;
     }
   }
-  for (const Texture& t : scene.textures) {
-    const MipChain chain = build_mip_chain(t);
-    gpu::GpuTexture g{};
-    g.size = glm::uvec2(t.width, t.height);
-    g.levels = uint32_t(chain.levels.size());
-    TESSERA_CHECK(chain.levels.size() <= TS_MAX_TEXTURE_LEVELS);
-    for (size_t l = 0; l < chain.levels.size(); ++l) {
-      if (out.texels.size() > 0xFFFFFFFFull - chain.levels[l].texels.size()) {
-        throw Error("the scene's textures have more than 2^32 texels with their mip levels");
-      }
-      g.level_offset[l / 4][l % 4] = uint32_t(out.texels.size());
-      for (const glm::vec4& c : chain.levels[l].texels) {
-        out.texels.push_back({glm::packHalf2x16({c.r, c.g}), glm::packHalf2x16({c.b, c.a})});
-      }
-    }
-    out.textures.push_back(g);
-  }
+  pack_textures(scene.textures, cache, out);
   // Sorted by kind (stably), in TS_LIGHT_* order, so a shading pipeline specialized to the
   // counts of each kind can loop over each kind separately.
   std::vector<const Light*> sorted;

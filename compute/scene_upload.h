@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "core/texture.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -22,13 +23,34 @@ struct GpuSceneArrays {
   uint32_t texture_maps = 0;             // TS_MAP_* bits of the maps any material uses
   std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
   uint64_t triangle_count = 0;           // triangle instances over all objects
+  uint32_t mip_chains_built = 0;         // textures whose mip chain was built, not reused
 };
+
+/// Packed mip chains of the textures of the last flattened scene, by content, so that
+/// flattening an edited scene rebuilds only the chains of textures that changed. A hit
+/// compares the whole texture, not only its hash, so a hash collision cannot reuse a wrong
+/// chain. Holds a copy of each texture it caches (its RGBA8 texels) besides the chain.
+struct TextureCache {
+  struct Entry {
+    uint64_t hash = 0;
+    Texture source;                  // the texture the chain was built from
+    gpu::GpuTexture descriptor{};    // level_offset relative to the start of `texels`
+    std::vector<glm::uvec2> texels;  // every level, fp16 RGBA, as GpuSceneArrays::texels
+  };
+  std::vector<Entry> entries;
+};
+
+/// A hash of a texture's size, sRGB flag and texels (not cryptographic: TextureCache compares
+/// the texture itself on a hit).
+uint64_t texture_hash(const Texture& texture);
 
 /// Flattens `scene` (which must have passed validate_scene). Objects are uploaded in the order
 /// of number_objects (core/scene.h), so the image does not depend on submission order.
 /// Tangents missing from a mesh are generated (generate_tangents) when a material has a normal
-/// map; texture mip chains are built (build_mip_chain) and packed as fp16.
+/// map; texture mip chains are built (build_mip_chain, textures in parallel) and packed as
+/// fp16. With a `cache`, chains of textures it holds are reused rather than built, and the cache
+/// is left holding exactly the textures of `scene`; the arrays are the same either way.
 /// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels.
-GpuSceneArrays flatten_scene(const Scene& scene);
+GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache = nullptr);
 
 }  // namespace tessera

@@ -1,6 +1,8 @@
 #include "core/bench_scenes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -38,6 +40,39 @@ void add_four_lights(Scene& s, float distance) {
   }
 }
 
+// The grid family's layout: cells of side kGridSpacing, each holding a unit sphere, centred on
+// the origin in the z = 0 plane, rows by cols filling an image of aspect `aspect`.
+constexpr float kGridSpacing = 2.5f;
+struct GridLayout {
+  uint32_t cols = 1, rows = 1;
+  float camera_distance = 0.0f;  // on +z, looking at the origin, with the whole grid in view
+  glm::vec3 cell(uint32_t i) const {
+    return {(float(i % cols) - (cols - 1) / 2.0f) * kGridSpacing,
+            (float(i / cols) - (rows - 1) / 2.0f) * kGridSpacing, 0.0f};
+  }
+};
+
+GridLayout grid_layout(uint32_t objects, float aspect) {
+  GridLayout g;
+  g.cols = std::max(1u, uint32_t(std::ceil(std::sqrt(double(objects) * aspect))));
+  g.rows = (objects + g.cols - 1) / g.cols;
+  // Far enough that the whole grid fits: half extents over tan of the half angles.
+  const float tan_half = std::tan(glm::radians(45.0f) / 2.0f);
+  const float half_w = g.cols * kGridSpacing / 2.0f, half_h = g.rows * kGridSpacing / 2.0f;
+  g.camera_distance = std::max(half_h / tan_half, half_w / (tan_half * aspect)) + 1.0f;
+  return g;
+}
+
+void place_grid_camera(Scene& s, const GridLayout& g) {
+  s.camera.position = {0.0f, 0.0f, g.camera_distance};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  s.camera.near_plane = std::max(0.1f, g.camera_distance * 1e-3f);
+}
+
+void check_aspect(float aspect) {
+  if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error("the image aspect must be positive");
+}
+
 }  // namespace
 
 std::span<const BenchFamilyInfo> bench_families() {
@@ -48,7 +83,7 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
   if (objects == 0) throw Error("a benchmark scene needs at least one object");
   if (segments < 4)
     throw Error("spheres need at least 4 segments (got " + std::to_string(segments) + ")");
-  if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error("the image aspect must be positive");
+  check_aspect(aspect);
   Scene s;
   s.background = {0.02f, 0.02f, 0.025f};
   s.ambient = glm::vec3(0.03f);
@@ -57,21 +92,13 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
 
   if (family == "grid") {
     s.meshes.push_back(make_uv_sphere(segments, segments / 2));
-    const uint32_t cols = std::max(1u, uint32_t(std::ceil(std::sqrt(double(objects) * aspect))));
-    const uint32_t rows = (objects + cols - 1) / cols;
-    const float spacing = 2.5f;
+    const GridLayout g = grid_layout(objects, aspect);
     for (uint32_t i = 0; i < objects; ++i) {
-      const float x = (float(i % cols) - (cols - 1) / 2.0f) * spacing;
-      const float y = (float(i / cols) - (rows - 1) / 2.0f) * spacing;
       s.objects.push_back(
-          {0, (i / cols % 7) * 7 + i % cols % 7, glm::translate(glm::mat4(1.0f), {x, y, 0.0f})});
+          {0, (i / g.cols % 7) * 7 + i % g.cols % 7, glm::translate(glm::mat4(1.0f), g.cell(i))});
     }
-    // Far enough that the whole grid fits: half extents over tan of the half angles.
-    const float half_w = cols * spacing / 2.0f, half_h = rows * spacing / 2.0f;
-    const float distance = std::max(half_h / tan_half, half_w / (tan_half * aspect)) + 1.0f;
-    s.camera.position = {0.0f, 0.0f, distance};
-    s.camera.near_plane = std::max(0.1f, distance * 1e-3f);
-    add_four_lights(s, std::max(10.0f, distance * 0.5f));
+    place_grid_camera(s, g);
+    add_four_lights(s, std::max(10.0f, g.camera_distance * 0.5f));
     return s;
   }
   if (family == "scatter") {
@@ -112,6 +139,66 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
   std::string known;
   for (const auto& f : kFamilies) known += (known.empty() ? "" : ", ") + std::string(f.name);
   throw Error("unknown benchmark scene '" + std::string(family) + "' (known: " + known + ")");
+}
+
+Sphere bounding_sphere(const Scene& scene) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Object& o : scene.objects) {
+    for (const glm::vec3& p : scene.meshes[o.mesh].positions) {
+      const glm::vec3 w = glm::vec3(o.transform * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  }
+  if (lo.x > hi.x) throw Error("the scene has no vertices to place");
+  Sphere b{(lo + hi) * 0.5f, 0.0f};
+  for (const Object& o : scene.objects) {
+    for (const glm::vec3& p : scene.meshes[o.mesh].positions) {
+      b.radius =
+          std::max(b.radius, glm::distance(b.center, glm::vec3(o.transform * glm::vec4(p, 1.0f))));
+    }
+  }
+  return b;
+}
+
+Scene make_instanced_bench_scene(const Scene& content, uint32_t copies, float aspect) {
+  if (copies == 0) throw Error("a benchmark scene needs at least one copy");
+  check_aspect(aspect);
+  const Sphere bound = bounding_sphere(content);
+  // A flat or point-like model still gets a finite scale.
+  const float scale = 1.0f / std::max(bound.radius, 1e-20f);
+  const glm::mat4 normalise =
+      glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(scale)), -bound.center);
+  Scene s = content;
+  s.objects.clear();
+  s.objects.reserve(size_t(copies) * content.objects.size());
+  const GridLayout g = grid_layout(copies, aspect);
+  for (uint32_t i = 0; i < copies; ++i) {
+    const glm::mat4 cell = glm::translate(glm::mat4(1.0f), g.cell(i)) * normalise;
+    for (const Object& o : content.objects)
+      s.objects.push_back({o.mesh, o.material, cell * o.transform});
+  }
+  s.camera = Camera{};  // the grid's field of view, not the file's
+  place_grid_camera(s, g);
+  if (content.lights.empty()) {
+    add_four_lights(s, std::max(10.0f, g.camera_distance * 0.5f));
+    return s;
+  }
+  // The file's lights, moved with the content to the grid: centred, and scaled so that its
+  // bounding sphere covers the grid's (half diagonal), which keeps each light where it was
+  // relative to the model. Inverse-square intensities grow with the squared scale so the
+  // irradiance on the content is unchanged; ranges and classic attenuation scale with length.
+  const float grid_radius =
+      0.5f * kGridSpacing * std::sqrt(float(g.cols * g.cols + g.rows * g.rows));
+  const float k = grid_radius * scale;
+  for (Light& l : s.lights) {
+    l.position = (l.position - bound.center) * k;
+    if (l.falloff == Falloff::inverse_square && l.kind != LightKind::directional)
+      l.intensity *= k * k;
+    l.range *= k;
+    l.attenuation = {l.attenuation.x, l.attenuation.y / k, l.attenuation.z / (k * k)};
+  }
+  return s;
 }
 
 }  // namespace tessera

@@ -26,4 +26,21 @@ std::span<const BenchFamilyInfo> bench_families();
 ///  - huge: N triangles, each many times the screen, stacked in depth: the large-triangle path.
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect);
 
+struct Sphere {
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+};
+
+/// A sphere around every vertex of every object of `scene`, in world space: centred on their
+/// bounding box, its radius the farthest vertex. Throws Error if no object has a vertex.
+Sphere bounding_sphere(const Scene& scene);
+
+/// `copies` copies of `content` (all its objects, keeping their relative transforms) on the
+/// grid family's layout for aspect `aspect`: each copy is scaled and moved so its bounding
+/// sphere is the unit sphere of one grid cell. Meshes, materials, textures, the environment and
+/// the lights are the content's (lights moved with the content to the whole grid; four lights
+/// as the grid family's when it has none); the camera is the grid family's. Throws Error for
+/// zero copies, a bad aspect or content without vertices.
+Scene make_instanced_bench_scene(const Scene& content, uint32_t copies, float aspect);
+
 }  // namespace tessera

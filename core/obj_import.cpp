@@ -110,6 +110,23 @@ void for_each_line(std::string_view text, F&& f) {
   }
 }
 
+/// True if `s` is [+-]digits[.digits] with 1 to 15 integer digits (or none before a fraction)
+/// and at least one digit: a number from_chars accepts, finite and within float range, so the
+/// full parse can be skipped. Almost every number of an exported OBJ is one. `zero`: all its
+/// digits are 0.
+bool simple_decimal(std::string_view s, bool& zero) {
+  size_t i = s.size() > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  size_t integer = 0, digits = 0;
+  zero = true;
+  for (; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++integer) zero &= s[i] == '0';
+  if (integer > 15) return false;
+  digits = integer;
+  if (i < s.size() && s[i] == '.') {
+    for (++i; i < s.size() && s[i] >= '0' && s[i] <= '9'; ++i, ++digits) zero &= s[i] == '0';
+  }
+  return i == s.size() && digits > 0;
+}
+
 /// A finite number that fits a float (tinyobjloader stores floats), or an Error at its place.
 float parse_number(const std::string& file, size_t line, const Token& t) {
   std::string_view s = t.text;
@@ -179,12 +196,14 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
         index > INT32_MAX) {
       fail(file, line, column, "'" + std::string(part) + "' is not a valid index");
     }
-    const std::string name = kAttributeName[k];
-    if (index == 0) fail(file, line, column, name + " index 0 is invalid (OBJ counts from 1)");
+    const std::string_view name = kAttributeName[k];
+    if (index == 0) {
+      fail(file, line, column, std::string(name) + " index 0 is invalid (OBJ counts from 1)");
+    }
     if (index < 0 && scan.count[k] + index < 0) {
       fail(file, line, column,
-           name + " index " + std::to_string(index) + " reaches before the first " + name + " (" +
-               std::to_string(scan.count[k]) + " defined above)");
+           std::string(name) + " index " + std::to_string(index) + " reaches before the first " +
+               std::string(name) + " (" + std::to_string(scan.count[k]) + " defined above)");
     }
     if (index > scan.largest[k]) {
       scan.largest[k] = index;
@@ -205,11 +224,12 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
     const std::string_view k = key->text;
     if (k == "v" || k == "vn" || k == "vt") {
       const Attribute a = k == "v" ? kPosition : k == "vt" ? kTexcoord : kNormal;
-      float values[3] = {0, 0, 0};
+      bool zero[3] = {true, true, true};
       int n = 0;
       while (const std::optional<Token> t = tokens.next()) {
-        const float x = parse_number(file, line, *t);
-        if (n < 3) values[n] = x;
+        bool is_zero = false;
+        if (!simple_decimal(t->text, is_zero)) is_zero = parse_number(file, line, *t) == 0.0f;
+        if (n < 3) zero[n] = is_zero;
         ++n;
       }
       // v: x y z [w] or x y z r g b; vt: u [v [w]]; vn: x y z.
@@ -223,7 +243,7 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
                   : a == kTexcoord ? "1 to 3"
                                    : "3"));
       }
-      if (a == kNormal && values[0] == 0 && values[1] == 0 && values[2] == 0) {
+      if (a == kNormal && zero[0] && zero[1] && zero[2]) {
         if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
       }
       ++scan.count[a];
@@ -666,10 +686,55 @@ struct VertexKeyHash {
   }
 };
 
+// Corner key -> vertex index, open addressing with linear probing: one flat array, no node per
+// vertex (a std::unordered_map's allocation and pointer chasing were most of the import's own
+// time). Load factor at most 1/2. Values are stored plus one, 0 marking an empty slot.
+class VertexTable {
+ public:
+  // The vertex of `key`, and whether it was just added with value `next`.
+  std::pair<uint32_t, bool> emplace(const VertexKey& key, uint32_t next) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    size_t i = VertexKeyHash{}(key) & (slots_.size() - 1);
+    for (;; i = (i + 1) & (slots_.size() - 1)) {
+      Slot& s = slots_[i];
+      if (s.value_plus_one == 0) {
+        s = {key, next + 1};
+        ++size_;
+        return {next, true};
+      }
+      if (s.key == key) return {s.value_plus_one - 1, false};
+    }
+  }
+
+ private:
+  struct Slot {
+    VertexKey key{};
+    uint32_t value_plus_one = 0;
+  };
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(std::max<size_t>(64, old.size() * 2), Slot{});
+    size_ = 0;
+    for (const Slot& s : old)
+      if (s.value_plus_one != 0) emplace(s.key, s.value_plus_one - 1);
+  }
+  std::vector<Slot> slots_;
+  size_t size_ = 0;
+};
+
 struct MeshBuilder {
   int material = -1;
   Mesh mesh;
-  std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertices;
+  VertexTable vertices;
+};
+
+// An istream over text held elsewhere, so tinyobjloader reads the file without a copy of it.
+class TextBuffer : public std::streambuf {
+ public:
+  explicit TextBuffer(std::string_view text) {
+    char* begin = const_cast<char*>(text.data());  // only read: a get area is non-const
+    setg(begin, begin, begin + text.size());
+  }
 };
 
 }  // namespace
@@ -696,7 +761,8 @@ ImportedModel import_obj_text(const std::string& text, const std::string& path,
   std::vector<tinyobj::material_t> materials;
   std::string tiny_warn, tiny_err;
   MtlReader reader(path, base_dir, scan, options.max_file_bytes);
-  std::istringstream in(text);
+  TextBuffer text_buffer(text);
+  std::istream in(&text_buffer);
   const bool ok =
       tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in, &reader,
                        /*triangulate=*/false, /*default_vcols_fallback=*/false);
@@ -808,7 +874,8 @@ ImportedModel import_obj_text(const std::string& text, const std::string& path,
         const std::optional<glm::vec3> given = file_normal(index);
         VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index};
         if (!given) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
-        const auto [it, inserted] = b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
+        const auto [vertex, inserted] =
+            b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
         if (inserted) {
           if (b->mesh.positions.size() == UINT32_MAX) {
             throw Error(quoted(path) + ": a mesh has more than 2^32 - 1 vertices");
@@ -830,7 +897,7 @@ ImportedModel import_obj_text(const std::string& text, const std::string& path,
           }
           b->mesh.uvs.push_back(uv);
         }
-        corner_vertex[c] = it->second;
+        corner_vertex[c] = vertex;
       }
       triangles.clear();
       if (!triangulate(corners, face_normal, triangles)) {

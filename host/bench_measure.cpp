@@ -133,14 +133,20 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   fs.height = a.height;
   const float aspect = float(a.width) / float(a.height);
 
-  // A built-in scene or a scene file has a fixed object count: it is one point of the sweep.
-  const bool builtin = is_builtin_scene(a.scene) || is_scene_path(a.scene);
-  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene : Scene{};
+  // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
+  // file is content that each point places N times on the grid family's layout.
+  const bool file = is_scene_path(a.scene) || is_model_path(a.scene);
+  const bool builtin = !file && is_builtin_scene(a.scene);
+  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene
+                      : file  ? load_bench_content(a.scene, false, a.quiet)
+                              : Scene{};
   const std::vector<uint32_t> counts =
       builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
   Progress progress(counts.size() * a.backends.size(), !a.quiet);
   for (uint32_t n : counts) {
-    const Scene scene = builtin ? fixed : make_bench_scene(a.scene, n, a.segments, aspect);
+    const Scene scene = builtin ? fixed
+                        : file  ? make_instanced_bench_scene(fixed, n, aspect)
+                                : make_bench_scene(a.scene, n, a.segments, aspect);
     uint64_t triangles = 0;
     for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
     uint64_t pixels_shaded = 0;
@@ -161,7 +167,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
       } else {
         row.skipped = true;
       }
-      row.objects = n;
+      row.objects = file ? uint32_t(scene.objects.size()) : n;  // N copies of the file's objects
       row.backend = backend;
       row.triangles_submitted = triangles;
       row.pixels_shaded = pixels_shaded;

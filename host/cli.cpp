@@ -23,7 +23,8 @@ CLI::Validator builtin_scene() {
 
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name)) make_bench_scene(name, 1, 8, 1.0f);
+    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_model_path(name))
+      make_bench_scene(name, 1, 8, 1.0f);
   });
 }
 
@@ -140,8 +141,9 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
 void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--scene", a.scene,
                  "grid (default), scatter or huge; or a\n"
-                 "built-in scene of `tessera scenes` or a scene\nfile (one point:\n"
-                 "its own object count)")
+                 "built-in scene of `tessera scenes` (one point:\n"
+                 "its own object count); or a scene file or\n"
+                 ".gltf/.glb/.obj model placed N times on the\ngrid")
       ->type_name("NAME")
       ->check(bench_scene());
   app.add_option("--objects", a.objects, "object counts, e.g. 1,10,100,1000 (default\n1,10,100)")

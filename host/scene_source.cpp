@@ -8,6 +8,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/check.h"
+#include "core/model_import.h"
 
 namespace tessera {
 namespace fs = std::filesystem;
@@ -24,6 +25,23 @@ std::vector<std::string> scene_folders() {
 
 bool is_scene_path(const std::string& argument) {
   return argument.find('/') != std::string::npos || fs::path(argument).extension() == ".json";
+}
+
+bool is_model_path(const std::string& argument) {
+  const std::string ext = fs::path(argument).extension().string();
+  return ext == ".gltf" || ext == ".glb" || ext == ".obj";
+}
+
+Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
+  if (!is_model_path(path)) return load_scene_argument(path, strict, quiet).scene;
+  ImportOptions options;
+  options.strict = strict;
+  ImportedModel model =
+      fs::path(path).extension() == ".obj" ? import_obj(path, options) : import_gltf(path, options);
+  if (!quiet)
+    for (const std::string& w : model.warnings)
+      std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+  return std::move(model.scene);
 }
 
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {

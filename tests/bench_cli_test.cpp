@@ -4,10 +4,12 @@
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/bench_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
+#include "core/mesh.h"
 #include "host/cli.h"
 #include "tests/vulkan_fixture.h"
 
@@ -54,6 +56,58 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
       << out;
   Image8 chart = read_png(png);
   EXPECT_EQ(chart.width, 1300u);
+}
+
+// Two objects: "a" one triangle, "b" a quad (2 triangles) and a triangle; bounding box [0, 1]^3.
+constexpr const char* kTwoObjects =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
+    "o a\nf 1 2 3\no b\nf 1 2 3 4\nf 1 2 5\n";
+
+TEST(BenchCli, ModelFileIsPlacedNTimesOnTheGrid) {
+  const std::string obj = test::output_path("two_objects.obj");
+  std::ofstream(obj) << kTwoObjects;
+  const std::string csv_path = test::output_path("two_objects.csv");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " bench --device lavapipe --validate " +
+                                  "--scene " + obj +
+                                  " --objects 1,3 --size 32x32 --backends compute,reference "
+                                  "--repeat 1 --warmup 0 --quiet --csv " +
+                                  csv_path,
+                              out),
+            0)
+      << out;
+  const std::string csv = read_text(csv_path);
+  // N copies: 2 N objects and 4 N triangles (columns objects, backend, size, submitted).
+  EXPECT_NE(csv.find(",2,compute,32,32,4,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",6,compute,32,32,12,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",6,reference,32,32,12,"), std::string::npos) << csv;
+}
+
+TEST(BenchCli, InstancedCopiesFillGridCells) {
+  Scene content;
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  m.normals.assign(3, {0, 0, 1});
+  m.uvs.assign(3, {0, 0});
+  m.indices = {0, 1, 2};
+  content.meshes.push_back(m);
+  content.materials.push_back({});
+  content.objects.push_back({0, 0, glm::mat4(1.0f)});
+  // A second object: the same triangle moved up by 1 in z, so the box is [0, 1]^3.
+  content.objects.push_back({0, 0, glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, 1.0f})});
+  const Scene s = make_instanced_bench_scene(content, 3, 1.0f);
+  ASSERT_EQ(s.objects.size(), 6u);
+  EXPECT_EQ(s.meshes.size(), 1u) << "copies share the content's meshes";
+  // Centre (0.5, 0.5, 0.5), radius sqrt(3) / 2 -> unit sphere. 3 copies at aspect 1: 2 x 2
+  // cells 2.5 apart, the first at (-1.25, -1.25, 0); the origin vertex of its first object
+  // lands at the cell centre minus 0.5 / (sqrt(3) / 2) = 1 / sqrt(3) on each axis.
+  const float d = 1.0f / std::sqrt(3.0f);
+  const glm::vec3 p0 = glm::vec3(s.objects[0].transform * glm::vec4(0, 0, 0, 1));
+  EXPECT_NEAR(glm::distance(p0, glm::vec3(-1.25f - d, -1.25f - d, -d)), 0.0f, 1e-5f);
+  // Copy 2 (third cell: column 0, row 1), second object: vertex (1, 1, 0) + z 1.
+  const glm::vec3 p5 = glm::vec3(s.objects[5].transform * glm::vec4(1, 1, 0, 1));
+  EXPECT_NEAR(glm::distance(p5, glm::vec3(-1.25f + d, 1.25f + d, d)), 0.0f, 1e-5f);
+  EXPECT_EQ(s.lights.size(), 4u) << "content without lights gets the grid's four";
 }
 
 TEST(BenchCli, ParsesEveryOption) {

@@ -1,5 +1,6 @@
 // Bad scenes are rejected with a message that names the problem, before anything reaches the GPU.
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,39 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   FrameSettings settings;
   settings.width = settings.height = 64;
   renderer.render(settings);  // and it still renders after partial updates
+}
+
+TEST_F(SceneUpload, RebuildsOnlyTheMipChainsOfChangedTextures) {
+  Scene scene = make_textured_scene();
+  ASSERT_EQ(scene.textures.size(), 6u) << "six distinct textures (core/builtin_scenes.cpp)";
+  FrameSettings settings;
+  settings.width = settings.height = 96;
+  Renderer renderer(context());
+  EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 6u) << "nothing cached yet";
+  EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 0u) << "unchanged textures";
+  renderer.render(settings);
+
+  // A texel of texture 5 (the second checker) changes: only its chain is built again.
+  scene.textures[5].texels[17] = glm::u8vec4(200, 10, 30, 255);
+  EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 1u);
+  renderer.render(settings);
+  const ImageF cached = renderer.read_hdr();
+
+  Renderer fresh(context());
+  EXPECT_EQ(fresh.set_scene(scene).mip_chains_built, 6u);
+  fresh.render(settings);
+  const ImageF built = fresh.read_hdr();
+  ASSERT_EQ(cached.pixels.size(), built.pixels.size());
+  EXPECT_EQ(std::memcmp(cached.pixels.data(), built.pixels.data(),
+                        built.pixels.size() * sizeof(glm::vec4)),
+            0)
+      << "reused chains give the image of chains built from scratch";
+
+  // The same content twice in one scene is built once; flipping the sRGB flag is a change.
+  scene.textures.push_back(scene.textures[0]);
+  EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 0u);
+  scene.textures[6].srgb = !scene.textures[6].srgb;
+  EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 1u);
 }
 
 }  // namespace
