@@ -136,7 +136,8 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
   // file is content that each point places N times on the grid family's layout.
   const bool file = is_scene_path(a.scene) || is_model_path(a.scene);
-  const bool builtin = !file && is_builtin_scene(a.scene);
+  // A scene by name (built in, or NAME.json of the scenes folder) is one point of the sweep.
+  const bool builtin = !file && (is_builtin_scene(a.scene) || is_named_scene(a.scene));
   const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene
                       : file  ? load_bench_content(a.scene, false, a.quiet)
                               : Scene{};

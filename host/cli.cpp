@@ -17,13 +17,15 @@ const std::vector<std::string> kCommands = {"render", "bench", "devices", "scene
 // A scene file (a path) is read when the command runs, where its errors name file and place.
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name)) make_builtin_scene(name);
+    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_named_scene(name))
+      make_builtin_scene(name);
   });
 }
 
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_model_path(name))
+    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_model_path(name) &&
+        !is_named_scene(name))
       make_bench_scene(name, 1, 8, 1.0f);
   });
 }

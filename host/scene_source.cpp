@@ -27,6 +27,12 @@ bool is_scene_path(const std::string& argument) {
   return argument.find('/') != std::string::npos || fs::path(argument).extension() == ".json";
 }
 
+bool is_named_scene(const std::string& name) {
+  for (const std::string& folder : scene_folders())
+    if (fs::is_regular_file(fs::path(folder) / (name + ".json"))) return true;
+  return false;
+}
+
 bool is_model_path(const std::string& argument) {
   const std::string ext = fs::path(argument).extension().string();
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
@@ -45,6 +51,11 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
 }
 
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
+  if (is_model_path(name_or_file)) {
+    throw Error(name_or_file +
+                ": a model file (glTF or OBJ), not a scene file: place it under \"models\" in "
+                "a scene file (docs/scene-format.md), or sweep it with `tessera bench --scene`");
+  }
   SceneFileOptions options;
   options.strict = strict;
   std::string path = is_scene_path(name_or_file) ? name_or_file : "";

@@ -16,6 +16,10 @@ std::vector<std::string> scene_folders();
 /// True if `argument` names a file rather than a scene: it has a '/' or ends in .json.
 bool is_scene_path(const std::string& argument);
 
+/// True if `name` is a scene file NAME.json in one of scene_folders() (what `tessera scenes`
+/// lists).
+bool is_named_scene(const std::string& name);
+
 /// True if `argument` names a model file an importer reads: it ends in .gltf, .glb or .obj.
 bool is_model_path(const std::string& argument);
 

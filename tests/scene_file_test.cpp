@@ -299,6 +299,27 @@ TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
     EXPECT_NE(out.find(std::string(info.name) + " "), std::string::npos) << out;
 }
 
+// Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
+// file is expected is refused with a message saying where a model belongs.
+TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
+  const std::string png = test::output_path("named.png");
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --quiet --size 32x32 --scene bench-grid --out " + png,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(read_png(png).width, 32u);
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --scene " + kData +
+                                  "/features.gltf --out " + png,
+                              out),
+            1);
+  EXPECT_NE(out.find("features.gltf: a model file (glTF or OBJ), not a scene file: place it under "
+                     "\"models\""),
+            std::string::npos)
+      << out;
+}
+
 class SceneFileRender : public test::VulkanTest {};
 
 // The built-in scenes' files render to the golden images, bit for bit.
