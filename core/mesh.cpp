@@ -60,6 +60,7 @@ Mesh make_uv_sphere(uint32_t segments, uint32_t rings) {
       if (r != rings - 1) add_triangle(mesh, d, b, c);
     }
   }
+  mesh.analytic_sphere = AnalyticSphere{};
   mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }
@@ -103,6 +104,7 @@ Mesh make_icosphere(uint32_t level) {
     add_vertex(mesh, n, n, glm::vec2(float(u), float(v)));
   }
   for (auto [a, b, c] : faces) add_triangle(mesh, a, b, c);
+  mesh.analytic_sphere = AnalyticSphere{glm::vec3(0.0f), 1.0f, 0.5f};
   mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
   return mesh;
 }

@@ -171,28 +171,40 @@ int64_t edge_threshold(FixedPoint a, FixedPoint b) {
   return (top || left) ? 0 : 1;
 }
 
-int64_t floor_shift(int64_t v) {
-  return v >= 0 ? v / kSubpixelOne : -((-v + kSubpixelOne - 1) / kSubpixelOne);
+int64_t floor_div(int64_t v, int64_t one) {
+  return v >= 0 ? v / one : -((-v + one - 1) / one);
 }
+int64_t floor_shift(int64_t v) {
+  return floor_div(v, kSubpixelOne);
+}
+
+// Where a triangle's samples are: the compute path's, one at each pixel centre, or the ground
+// truth's N x N per pixel (GroundTruthOptions) on a finer grid.
+struct SampleGrid {
+  int64_t one = kSubpixelOne;  // fixed-point units per pixel
+  bool centres = true;
+};
 
 struct RasterTriangle {
   FixedPoint v[3];  // positively oriented
   double depth[3];  // near / w
   int64_t box_min_x, box_min_y, box_max_x, box_max_y;
   uint32_t id;
+  uint32_t slot;  // its object's
 };
 
-// Snaps, culls by facing and area, and computes the pixel box; false if nothing remains.
-// `mirrored`: the object's transform has a negative determinant.
+// Snaps to `grid`, culls by facing and area, and computes the box of pixels that may hold a
+// covered sample; false if nothing remains. `mirrored`: the object's transform has a negative
+// determinant.
 bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4 c1, dvec4 c2,
-                          uint32_t id, bool mirrored, RasterTriangle& t) {
+                          uint32_t id, bool mirrored, SampleGrid grid, RasterTriangle& t) {
   const dvec4 c[3] = {c0, c1, c2};
   FixedPoint v[3];
   double d[3];
+  const double one = double(grid.one);
   for (int k = 0; k < 3; ++k) {
     dvec2 p = to_pixels(cam, c[k]);
-    v[k] = {int64_t(std::floor(p.x * kSubpixelOne + 0.5)),
-            int64_t(std::floor(p.y * kSubpixelOne + 0.5))};
+    v[k] = {int64_t(std::floor(p.x * one + 0.5)), int64_t(std::floor(p.y * one + 0.5))};
     d[k] = cam.near_plane / c[k].w;
   }
   const int64_t area = edge(v[0], v[1], v[2]);
@@ -210,9 +222,16 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   t.depth[1] = d[second];
   t.depth[2] = d[third];
   t.id = id;
-  const int64_t half = kSubpixelOne / 2;
   int64_t lo_x = std::min({v[0].x, v[1].x, v[2].x}), hi_x = std::max({v[0].x, v[1].x, v[2].x});
   int64_t lo_y = std::min({v[0].y, v[1].y, v[2].y}), hi_y = std::max({v[0].y, v[1].y, v[2].y});
+  if (!grid.centres) {  // any pixel the snapped box touches
+    t.box_min_x = std::max<int64_t>(floor_div(lo_x, grid.one), 0);
+    t.box_min_y = std::max<int64_t>(floor_div(lo_y, grid.one), 0);
+    t.box_max_x = std::min<int64_t>(floor_div(hi_x, grid.one), int64_t(cam.width) - 1);
+    t.box_max_y = std::min<int64_t>(floor_div(hi_y, grid.one), int64_t(cam.height) - 1);
+    return t.box_min_x <= t.box_max_x && t.box_min_y <= t.box_max_y;
+  }
+  const int64_t half = kSubpixelOne / 2;
   t.box_min_x = std::max<int64_t>(floor_shift(lo_x - half + kSubpixelOne - 1), 0);
   t.box_min_y = std::max<int64_t>(floor_shift(lo_y - half + kSubpixelOne - 1), 0);
   t.box_max_x = std::min<int64_t>(floor_shift(hi_x - half), int64_t(cam.width) - 1);
@@ -229,23 +248,25 @@ std::array<dvec4, 3> clip_coords(const CameraModel& cam, const Instance& inst, u
 }
 
 void setup_triangle(const CameraModel& cam, CullMode cull, const Instance& inst, uint64_t id,
-                    std::vector<RasterTriangle>& out) {
+                    SampleGrid grid, std::vector<RasterTriangle>& out) {
   const std::array<dvec4, 3> c = clip_coords(cam, inst, id);
   const CullMode facing_cull = inst.material->double_sided ? CullMode::none : cull;
   RasterTriangle t;
+  t.slot = inst.slot;
   bool inside = true;
   for (const dvec4& v : c) {
     for (int plane = 0; plane < 5; ++plane) inside = inside && plane_distance(cam, v, plane) >= 0;
   }
   if (inside) {
-    if (make_raster_triangle(cam, facing_cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, t))
+    if (make_raster_triangle(cam, facing_cull, c[0], c[1], c[2], uint32_t(id), inst.mirrored, grid,
+                             t))
       out.push_back(t);
     return;
   }
   std::vector<dvec4> poly = clipped_polygon(cam, c);
   for (size_t k = 1; k + 1 < poly.size(); ++k) {
     if (make_raster_triangle(cam, facing_cull, poly[0], poly[k], poly[k + 1], uint32_t(id),
-                             inst.mirrored, t))
+                             inst.mirrored, grid, t))
       out.push_back(t);
   }
 }
@@ -458,13 +479,12 @@ Material resolve_material(const ShadeContext& c, const Material& base, Surface& 
   return m;
 }
 
-dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
+// Radiance towards the camera from surface point `s` of triangle-instance `id` of `inst`,
+// seen along the unit ray `dir`.
+dvec3 shade_surface(const ShadeContext& c, const Instance& inst, uint64_t id, Surface s,
+                    dvec3 dir) {
   const Scene& scene = c.scene;
   const Brdf brdf = c.settings.frame.brdf;
-  const Instance& inst = instance_of(c.instances, id);
-  const dvec3 dir = camera_ray(c.cam, x, y);
-  Surface s = surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
-                         camera_ray_at(c.cam, x + 0.5, y + 1.5));
   const Material m = resolve_material(c, *inst.material, s, -dir);
   switch (c.settings.frame.view) {
     case View::normal:
@@ -486,12 +506,21 @@ dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
     color += reflected(brdf, s.normal, v, a.l, m, a.incident, c.settings.frame.energy_compensation);
   }
   if (scene.environment) {
-    color += double(m.occlusion) * reference_environment_light(*scene.environment, brdf, s.normal,
-                                                               v, m, dvec3(1.0),
-                                                               c.settings.environment_samples,
-                                                               c.settings.frame.energy_compensation);
+    color += double(m.occlusion) *
+             reference_environment_light(*scene.environment, brdf, s.normal, v, m, dvec3(1.0),
+                                         c.settings.environment_samples,
+                                         c.settings.frame.energy_compensation);
   }
   return color;
+}
+
+dvec3 shade_pixel(const ShadeContext& c, uint64_t id, uint32_t x, uint32_t y) {
+  const Instance& inst = instance_of(c.instances, id);
+  const dvec3 dir = camera_ray(c.cam, x, y);
+  const Surface s =
+      surface_at(inst, id, c.cam.position, dir, camera_ray_at(c.cam, x + 1.5, y + 0.5),
+                 camera_ray_at(c.cam, x + 0.5, y + 1.5));
+  return shade_surface(c, inst, id, s, dir);
 }
 
 // --- Resolve -------------------------------------------------------------------------------
@@ -524,6 +553,313 @@ void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
   for (std::thread& th : pool) th.join();
 }
 
+// The display pixel of linear radiance `c`: pre-exposure, as the compute path (the exposed
+// value meets the fp16 clamp, and the HDR output divides the exposure back out), tone curve,
+// sRGB.
+void resolve_pixel(const FrameSettings& frame, dvec3 c, glm::vec4& hdr, glm::u8vec4& ldr) {
+  const bool shaded = frame.view == View::shaded;
+  const double exposure = shaded ? std::exp2(double(frame.exposure_ev)) : 1.0;
+  const ToneMap op = shaded ? frame.tonemap : ToneMap::clamp;
+  const dvec3 exposed = glm::min(c * exposure, dvec3(TS_MAX_HALF));
+  hdr = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
+  ldr = glm::u8vec4(0, 0, 0, 255);
+  for (int ch = 0; ch < 3; ++ch) {
+    const double display = srgb_encode(tone_curve(std::max(exposed[ch], 0.0), op));
+    ldr[ch] = uint8_t(std::floor(std::clamp(display, 0.0, 1.0) * 255.0 + 0.5));
+  }
+}
+
+// Radiance of a ray that meets no surface.
+dvec3 miss_radiance(const Scene& scene, const ReferenceSettings& settings, dvec3 dir) {
+  if (scene.environment && settings.frame.view == View::shaded)
+    return environment_radiance(*scene.environment, dir);
+  return dvec3(scene.background);
+}
+
+// --- Ground truth (GroundTruthOptions) -------------------------------------------------------
+
+// Fixed-point units per pixel of the ground truth's snapping: vertices move by at most
+// 1/8192 px, far below the errors it measures, and edge products of coordinates within the
+// guard band (2^28 units) stay within int64.
+constexpr int64_t kTruthOne = 4096;
+
+// An object drawn as the exact ellipsoid its transform makes of its mesh's sphere.
+struct AnalyticObject {
+  const Instance* inst;
+  dmat4 to_object;  // world -> object
+  dvec3 centre;
+  double radius, u_at_plus_x;
+  bool front_visible, back_visible;                    // not culled by facing
+  int64_t box_min_x, box_min_y, box_max_x, box_max_y;  // pixels its projection may touch
+};
+
+AnalyticObject make_analytic_object(const CameraModel& cam, CullMode cull, const Instance& inst) {
+  const AnalyticSphere& sphere = *inst.mesh->analytic_sphere;
+  AnalyticObject a{&inst,
+                   glm::inverse(inst.model),
+                   dvec3(sphere.centre),
+                   double(sphere.radius),
+                   double(sphere.u_at_plus_x),
+                   true,
+                   true,
+                   0,
+                   0,
+                   int64_t(cam.width) - 1,
+                   int64_t(cam.height) - 1};
+  // The outside is the front, mirrored or not: a mirroring transform reverses the winding
+  // and the rule for which winding is in front alike.
+  if (!inst.material->double_sided) {
+    a.front_visible = cull != CullMode::front;
+    a.back_visible = cull != CullMode::back;
+  }
+  // Box: the projection of the cube around the sphere, which holds the ellipsoid, is the hull
+  // of its corners' projections while all are in front of the camera.
+  dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (int k = 0; k < 8; ++k) {
+    const dvec3 corner =
+        a.centre + a.radius * dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+    const dvec4 c = cam.view_proj * inst.model * dvec4(corner, 1.0);
+    if (!(c.w > 0.0)) return a;  // reaches behind the camera: the whole image
+    const dvec2 p = to_pixels(cam, c);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  a.box_min_x = int64_t(std::max(std::floor(lo.x), 0.0));
+  a.box_min_y = int64_t(std::max(std::floor(lo.y), 0.0));
+  a.box_max_x = int64_t(std::min(std::floor(hi.x), cam.width - 1.0));
+  a.box_max_y = int64_t(std::min(std::floor(hi.y), cam.height - 1.0));
+  return a;
+}
+
+// The ray parameters where `origin + t dir` enters and leaves the ellipsoid, t_in <= t_out;
+// false if it misses. In object space the ellipsoid is the sphere, and t is the same there
+// because the transform is affine.
+bool ellipsoid_hits(const AnalyticObject& a, dvec3 origin, dvec3 dir, double& t_in, double& t_out) {
+  const dvec3 o = dvec3(a.to_object * dvec4(origin, 1.0)) - a.centre;
+  const dvec3 d = dmat3(a.to_object) * dir;
+  const double qa = glm::dot(d, d), qb = glm::dot(o, d), qc = glm::dot(o, o) - a.radius * a.radius;
+  const double disc = qb * qb - qa * qc;
+  if (!(disc >= 0.0) || qa == 0.0) return false;
+  // The root formula without cancellation between qb and the square root (pbrt-v4, 6.2.2).
+  const double q = -(qb + std::copysign(std::sqrt(disc), qb));
+  if (q == 0.0) {  // the origin on the surface, the ray tangent to it
+    t_in = t_out = 0.0;
+    return true;
+  }
+  t_in = q / qa;
+  t_out = qc / q;
+  if (t_in > t_out) std::swap(t_in, t_out);
+  return true;
+}
+
+// The surface point of the analytic object at ray parameter t, with make_uv_sphere's uv
+// parametrisation, its footprint from the neighbouring rays' hits on the tangent plane, and
+// the tangent along +u. `back`: the ray leaves the ellipsoid there.
+Surface analytic_surface(const AnalyticObject& a, dvec3 origin, dvec3 dir, double t, bool back,
+                         dvec3 dir_dx, dvec3 dir_dy) {
+  const Instance& inst = *a.inst;
+  auto uv_of = [&](dvec3 world) {
+    const dvec3 n = glm::normalize(dvec3(a.to_object * dvec4(world, 1.0)) - a.centre);
+    const double u = std::atan2(-n.z, n.x) / (2.0 * std::numbers::pi) + a.u_at_plus_x;
+    return dvec2(u - std::floor(u), std::acos(std::clamp(n.y, -1.0, 1.0)) / std::numbers::pi);
+  };
+  Surface s;
+  s.position = origin + t * dir;
+  const dvec3 n_object = (dvec3(a.to_object * dvec4(s.position, 1.0)) - a.centre) / a.radius;
+  s.normal = glm::normalize(inst.normal_matrix * n_object);
+  s.uv = uv_of(s.position);
+  const double inf = std::numeric_limits<double>::infinity();
+  auto footprint = [&](dvec3 d) {
+    const double denom = glm::dot(s.normal, d);
+    if (denom == 0.0) return dvec2(inf);
+    const double tp = glm::dot(s.normal, s.position - origin) / denom;
+    dvec2 delta = uv_of(origin + tp * d) - s.uv;
+    delta.x -= std::round(delta.x);  // across the seam, the short way round
+    return delta;
+  };
+  s.duv_dx = footprint(dir_dx);
+  s.duv_dy = footprint(dir_dy);
+  s.tangent = glm::dvec4(0.0);
+  if (inst.tangents) {
+    // d/du of (sin v cos u, cos v, -sin v sin u), up to a positive factor; the frame
+    // (t, n x t) has bitangent along -v, hence w = -1, flipped again by a mirroring transform.
+    const dvec3 t_object(n_object.z, 0.0, -n_object.x);
+    s.tangent = glm::dvec4(dmat3(inst.model) * t_object, inst.mirrored ? 1.0 : -1.0);
+  }
+  if (back) {  // only visible if double-sided or front faces culled
+    if (inst.material->double_sided) {
+      s.normal = -s.normal;
+      s.tangent = -s.tangent;
+    }
+  }
+  return s;
+}
+
+// What one sample sees: the nearest surface (near / w largest, ties to the lower id).
+struct SampleHit {
+  double depth = 0.0;
+  uint32_t id = kNoTriangle;
+  uint32_t slot = kNoObject;
+  int32_t analytic = -1;  // index into the analytic objects, or -1 for a triangle
+  double t = 0.0;         // ray parameter of an analytic hit
+  bool back = false;      // an analytic hit on the side facing away
+  uint32_t covered = 0;   // surfaces covering the sample, culled ones not counted
+};
+
+// Counts a surface covering the sample and keeps it if it is nearer; true if it was kept.
+bool keep_nearest(SampleHit& h, double depth, uint32_t id, uint32_t slot) {
+  h.covered++;
+  if (!(depth > h.depth || (depth == h.depth && id < h.id))) return false;
+  h.depth = depth;
+  h.id = id;
+  h.slot = slot;
+  h.analytic = -1;
+  return true;
+}
+
+// Rasterizes every triangle into the samples of pixel row y (hits[x * n * n + j * n + i] is
+// sample (i, j) of pixel x). `offsets`: the sample positions within a pixel, in kTruthOne units.
+void rasterize_samples(const std::vector<RasterTriangle>& tris, int64_t y,
+                       const std::vector<int64_t>& offsets, std::vector<SampleHit>& hits) {
+  const size_t n = offsets.size();
+  for (const RasterTriangle& t : tris) {
+    if (y < t.box_min_y || y > t.box_max_y) continue;
+    const int64_t th0 = edge_threshold(t.v[1], t.v[2]);
+    const int64_t th1 = edge_threshold(t.v[2], t.v[0]);
+    const int64_t th2 = edge_threshold(t.v[0], t.v[1]);
+    for (int64_t x = t.box_min_x; x <= t.box_max_x; ++x) {
+      for (size_t j = 0; j < n; ++j) {
+        for (size_t i = 0; i < n; ++i) {
+          const FixedPoint p{x * kTruthOne + offsets[i], y * kTruthOne + offsets[j]};
+          const int64_t e0 = edge(t.v[1], t.v[2], p), e1 = edge(t.v[2], t.v[0], p),
+                        e2 = edge(t.v[0], t.v[1], p);
+          if (e0 < th0 || e1 < th1 || e2 < th2) continue;
+          const double d =
+              (double(e0) * t.depth[0] + double(e1) * t.depth[1] + double(e2) * t.depth[2]) /
+              double(e0 + e1 + e2);
+          keep_nearest(hits[size_t(x) * n * n + j * n + i], d, t.id, t.slot);
+        }
+      }
+    }
+  }
+}
+
+// Intersects every analytic object with the rays of the samples of pixel row y.
+void intersect_analytic(const CameraModel& cam, const std::vector<AnalyticObject>& objects,
+                        int64_t y, const std::vector<int64_t>& offsets,
+                        std::vector<SampleHit>& hits) {
+  const size_t n = offsets.size();
+  for (size_t k = 0; k < objects.size(); ++k) {
+    const AnalyticObject& a = objects[k];
+    if (y < a.box_min_y || y > a.box_max_y) continue;
+    const uint32_t id = uint32_t(a.inst->first_triangle);
+    for (int64_t x = a.box_min_x; x <= a.box_max_x; ++x) {
+      for (size_t j = 0; j < n; ++j) {
+        for (size_t i = 0; i < n; ++i) {
+          const dvec3 dir = camera_ray_at(cam, double(x) + double(offsets[i]) / kTruthOne,
+                                          double(y) + double(offsets[j]) / kTruthOne);
+          double t[2];
+          if (!ellipsoid_hits(a, cam.position, dir, t[0], t[1])) continue;
+          SampleHit& h = hits[size_t(x) * n * n + j * n + i];
+          for (int side = 0; side < 2; ++side) {
+            // Kept where the rasterizer keeps triangles: on or beyond the near plane.
+            const double w = t[side] * glm::dot(dir, cam.forward);
+            if (!(side == 0 ? a.front_visible : a.back_visible) || !(w >= cam.near_plane)) continue;
+            if (keep_nearest(h, cam.near_plane / w, id, a.inst->slot)) {
+              h.analytic = int32_t(k);
+              h.t = t[side];
+              h.back = side == 1;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+// Radiance of one sample at (px, py) in pixels; `step`: the distance to the next sample.
+dvec3 shade_sample(const ShadeContext& c, const std::vector<AnalyticObject>& objects,
+                   const SampleHit& h, double px, double py, double step) {
+  const dvec3 dir = camera_ray_at(c.cam, px, py);
+  if (h.id == kNoTriangle) return miss_radiance(c.scene, c.settings, dir);
+  const dvec3 dir_dx = camera_ray_at(c.cam, px + step, py),
+              dir_dy = camera_ray_at(c.cam, px, py + step);
+  if (h.analytic >= 0) {
+    const AnalyticObject& a = objects[size_t(h.analytic)];
+    return shade_surface(c, *a.inst, h.id,
+                         analytic_surface(a, c.cam.position, dir, h.t, h.back, dir_dx, dir_dy),
+                         dir);
+  }
+  const Instance& inst = instance_of(c.instances, h.id);
+  return shade_surface(c, inst, h.id, surface_at(inst, h.id, c.cam.position, dir, dir_dx, dir_dy),
+                       dir);
+}
+
+// Ownership shares of one pixel from its samples' objects (`slots` is reordered).
+void append_shares(std::vector<uint32_t>& slots, std::vector<OwnerShare>& out) {
+  std::sort(slots.begin(), slots.end());
+  for (size_t k = 0; k < slots.size(); ++k) {
+    if (k > 0 && slots[k] == slots[k - 1])
+      out.back().samples++;
+    else
+      out.push_back({slots[k], 1});
+  }
+}
+
+// Renders rows [y0, y1) of the ground truth into f; `shares[y]` receives row y's ownership
+// shares, `share_counts` how many each pixel has.
+void render_truth_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris,
+                       const std::vector<AnalyticObject>& objects, uint32_t y0, uint32_t y1,
+                       std::vector<std::vector<OwnerShare>>& shares,
+                       std::vector<uint32_t>& share_counts, ReferenceFrame& f) {
+  const uint32_t w = c.settings.frame.width, n = c.settings.ground_truth.supersampling;
+  std::vector<int64_t> offsets(n);
+  for (uint32_t i = 0; i < n; ++i)
+    offsets[i] = int64_t(std::floor((i + 0.5) / n * double(kTruthOne) + 0.5));
+  std::vector<SampleHit> hits(size_t(w) * n * n);
+  std::vector<uint32_t> slots(size_t(n) * n);
+  std::vector<std::pair<uint32_t, uint32_t>> ids;  // (id, samples)
+  for (uint32_t y = y0; y < y1; ++y) {
+    std::fill(hits.begin(), hits.end(), SampleHit{});
+    rasterize_samples(tris, y, offsets, hits);
+    intersect_analytic(c.cam, objects, y, offsets, hits);
+    for (uint32_t x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      dvec3 sum(0.0);
+      ids.clear();
+      for (uint32_t j = 0; j < n; ++j) {
+        for (uint32_t k = 0; k < n; ++k) {
+          const SampleHit& h = hits[(size_t(x) * n + j) * n + k];
+          sum += shade_sample(c, objects, h, x + double(offsets[k]) / kTruthOne,
+                              y + double(offsets[j]) / kTruthOne, 1.0 / n);
+          slots[j * n + k] = h.slot;
+          f.coverage[i] += h.covered;
+          auto it = std::find_if(ids.begin(), ids.end(), [&](auto& p) { return p.first == h.id; });
+          if (it == ids.end())
+            ids.push_back({h.id, 1});
+          else
+            it->second++;
+        }
+      }
+      // Most samples, ties to the lower id (kNoTriangle is the highest).
+      const auto best = std::min_element(ids.begin(), ids.end(), [](auto& a, auto& b) {
+        return a.second != b.second ? a.second > b.second : a.first < b.first;
+      });
+      f.owner[i] = best->first;
+      if (f.owner[i] != kNoTriangle) {
+        for (size_t s = 0; s < size_t(n) * n; ++s) {
+          const SampleHit& h = hits[size_t(x) * n * n + s];
+          if (h.id == f.owner[i]) f.depth[i] = std::max(f.depth[i], h.depth);
+        }
+      }
+      resolve_pixel(c.settings.frame, sum / double(n * n), f.hdr.pixels[i], f.ldr.pixels[i]);
+      const size_t before = shares[y].size();
+      append_shares(slots, shares[y]);
+      share_counts[i] = uint32_t(shares[y].size() - before);
+    }
+  }
+}
+
 void check_size(const ReferenceSettings& settings) {
   if (settings.frame.width == 0 || settings.frame.height == 0 ||
       settings.frame.width > TS_MAX_IMAGE_SIDE || settings.frame.height > TS_MAX_IMAGE_SIDE) {
@@ -538,6 +874,12 @@ void check_size(const ReferenceSettings& settings) {
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings) {
   validate_scene(scene);
   check_size(settings);
+  const GroundTruthOptions& truth = settings.ground_truth;
+  if (truth.supersampling < 1 || truth.supersampling > 32) {
+    throw Error("supersampling " + std::to_string(truth.supersampling) +
+                " is outside 1..32 samples per pixel side");
+  }
+  const bool ground_truth = truth.analytic_spheres || truth.supersampling > 1;
   const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
@@ -563,10 +905,16 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
 
+  const SampleGrid grid = ground_truth ? SampleGrid{kTruthOne, false} : SampleGrid{};
   std::vector<RasterTriangle> tris;
+  std::vector<AnalyticObject> analytic;
   for (const Instance& inst : instances) {
+    if (truth.analytic_spheres && inst.mesh->analytic_sphere) {
+      analytic.push_back(make_analytic_object(cam, settings.cull, inst));
+      continue;
+    }
     for (uint64_t t = 0; t < inst.mesh->triangle_count(); ++t) {
-      setup_triangle(cam, settings.cull, inst, inst.first_triangle + t, tris);
+      setup_triangle(cam, settings.cull, inst, inst.first_triangle + t, grid, tris);
     }
   }
 
@@ -577,36 +925,48 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   f.coverage.assign(pixels, 0);
   f.hdr = {w, h, std::vector<glm::vec4>(pixels)};
   f.ldr = {w, h, std::vector<glm::u8vec4>(pixels)};
+  if (ground_truth) {
+    std::vector<std::vector<OwnerShare>> shares(h);
+    std::vector<uint32_t> share_counts(pixels);
+    parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
+      render_truth_rows(context, tris, analytic, y0, y1, shares, share_counts, f);
+    });
+    Ownership& o = f.ownership;
+    o = {w, h, truth.supersampling * truth.supersampling, {}, {}};
+    o.first.reserve(pixels + 1);
+    o.first.push_back(0);
+    for (uint32_t count : share_counts) o.first.push_back(o.first.back() + count);
+    for (const std::vector<OwnerShare>& row : shares)
+      o.shares.insert(o.shares.end(), row.begin(), row.end());
+    return f;
+  }
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
     rasterize_rows(tris, w, y0, y1, f);
-    const bool shaded = settings.frame.view == View::shaded;
-    const double exposure = shaded ? std::exp2(double(settings.frame.exposure_ev)) : 1.0;
-    const ToneMap op = shaded ? settings.frame.tonemap : ToneMap::clamp;
     for (uint32_t y = y0; y < y1; ++y) {
       for (uint32_t x = 0; x < w; ++x) {
         const size_t i = size_t(y) * w + x;
-        dvec3 c;
-        if (f.owner[i] != kNoTriangle) {
-          c = shade_pixel(context, f.owner[i], x, y);
-        } else if (scene.environment && settings.frame.view == View::shaded) {
-          c = environment_radiance(*scene.environment, camera_ray(cam, x, y));
-        } else {
-          c = dvec3(scene.background);
-        }
-        // Pre-exposure, as the compute path: the exposed value meets the fp16 clamp, and the
-        // HDR output divides the exposure back out.
-        const dvec3 exposed = glm::min(c * exposure, dvec3(TS_MAX_HALF));
-        f.hdr.pixels[i] = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
-        glm::u8vec4 out(0, 0, 0, 255);
-        for (int ch = 0; ch < 3; ++ch) {
-          const double display = srgb_encode(tone_curve(std::max(exposed[ch], 0.0), op));
-          out[ch] = uint8_t(std::floor(std::clamp(display, 0.0, 1.0) * 255.0 + 0.5));
-        }
-        f.ldr.pixels[i] = out;
+        const dvec3 c = f.owner[i] != kNoTriangle
+                            ? shade_pixel(context, f.owner[i], x, y)
+                            : miss_radiance(scene, settings, camera_ray(cam, x, y));
+        resolve_pixel(settings.frame, c, f.hdr.pixels[i], f.ldr.pixels[i]);
       }
     }
   });
   return f;
+}
+
+std::vector<uint32_t> object_ids(const ObjectNumbering& numbering,
+                                 const std::vector<uint32_t>& triangle_ids) {
+  std::vector<uint32_t> out(triangle_ids.size(), kNoObject);
+  for (size_t i = 0; i < triangle_ids.size(); ++i) {
+    const uint32_t id = triangle_ids[i];
+    if (id == kNoTriangle) continue;
+    TESSERA_CHECK(id < numbering.triangle_count);
+    const auto it = std::upper_bound(numbering.first_triangle.begin(),
+                                     numbering.first_triangle.end(), uint64_t(id));
+    out[i] = uint32_t(it - numbering.first_triangle.begin() - 1);
+  }
+  return out;
 }
 
 ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& settings,

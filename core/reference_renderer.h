@@ -16,10 +16,26 @@
 
 #include "core/frame_settings.h"
 #include "core/image.h"
+#include "core/image_metrics.h"
 #include "core/reference_brdf.h"
 #include "core/scene.h"
 
 namespace tessera {
+
+/// Ground truth to measure speed-against-accuracy settings against (docs/accuracy.md, "Ground
+/// truth"). The defaults render exactly as without them, bit for bit; any other setting
+/// renders every triangle with vertices snapped to 1/4096 px instead of the compute path's
+/// 1/256, so ownership is no longer comparable with the compute path's exactly.
+struct GroundTruthOptions {
+  /// Objects whose mesh has Mesh::analytic_sphere are intersected exactly, as the ellipsoid
+  /// their transform makes of that sphere (ray-quadric in object space, normals by the
+  /// inverse transpose), instead of through their triangles.
+  bool analytic_spheres = false;
+  /// N: N x N samples per pixel, sample (i, j) at (x + (i + 0.5) / N, y + (j + 0.5) / N)
+  /// rounded to 1/4096 px (exact for N a power of 2), each shaded on its own, averaged with
+  /// equal weights (a box filter). 1 to 32 (throws Error otherwise); cost grows as N^2.
+  uint32_t supersampling = 1;
+};
 
 struct ReferenceSettings {
   /// As for the compute path; energy compensation is reference_compensated_lobes (Kulla &
@@ -29,24 +45,40 @@ struct ReferenceSettings {
   /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
   uint32_t environment_samples = 1024;
   unsigned threads = 0;  // rows are split over this many threads; 0: one per hardware thread
+  GroundTruthOptions ground_truth;
 };
 
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
+/// With supersampling N > 1, "the pixel" below means its N^2 samples: `hdr` is their mean,
+/// `owner` the id seen by most of them (ties to the lower id, empty samples count as
+/// kNoTriangle), `depth` the owner's largest near / w among them, `coverage` counts covered
+/// samples. An analytic sphere's id is its object's first triangle-instance id; its coverage
+/// counts each side a sample's ray meets that is not culled, as a closed mesh's would.
 struct ReferenceFrame {
   /// Linear HDR radiance in the model of the compute path: pre-exposed, clamped to 65504 (the
   /// fp16 maximum), divided by the exposure again; as float.
   ImageF hdr;
-  Image8 ldr;  // exposure, tone curve, sRGB, rounded to nearest
-  std::vector<uint32_t> owner;     // triangle-instance id per pixel, kNoTriangle where empty
-  std::vector<double> depth;       // the owner's near / w at the pixel centre, 0 where empty
+  Image8 ldr;                   // exposure, tone curve, sRGB of the pixel's hdr, rounded to nearest
+  std::vector<uint32_t> owner;  // triangle-instance id per pixel, kNoTriangle where empty
+  std::vector<double> depth;    // the owner's near / w at the pixel centre, 0 where empty
   std::vector<uint32_t> coverage;  // samples covered per pixel, over all triangles not culled
   uint64_t raster_triangles = 0;   // triangles after culling and clipping
+  /// Ground truth only (empty otherwise, to spare memory: make it with make_ownership(width,
+  /// height, 1, object_ids(number_objects(scene), owner))): which object, by its
+  /// ObjectNumbering slot, each sample shows, kNoObject where none.
+  Ownership ownership;
 };
 
 /// Renders `scene` (which must pass validate_scene; throws Error otherwise) at the settings'
 /// size. Sizes follow the compute path's limits: 1 to 16384 per side (throws Error otherwise).
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings);
+
+/// The object (ObjectNumbering slot) of each triangle-instance id, kNoObject for kNoTriangle;
+/// for turning the compute path's visibility buffer into an Ownership (make_ownership). Ids
+/// must be below numbering.triangle_count or kNoTriangle (checked).
+std::vector<uint32_t> object_ids(const ObjectNumbering& numbering,
+                                 const std::vector<uint32_t>& triangle_ids);
 
 /// Geometry of one triangle instance as the reference sees it, for explaining differences:
 /// the exact (unsnapped) distance in pixels from the centre of pixel (x, y) to the nearest edge

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,15 @@ struct Camera {
   float near_plane = 0.1f;                   // > 0; there is no far plane
 };
 
+/// The exact surface a mesh tessellates, for ground truth (docs/accuracy.md, "Ground truth"):
+/// the sphere of `centre` and `radius` in object space, parametrised as make_uv_sphere's is
+/// (v = theta / pi from +y, u growing from +x towards -z) with u = `u_at_plus_x` at +x.
+struct AnalyticSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 1.0f;
+  float u_at_plus_x = 0.0f;
+};
+
 /// Triangle mesh with one normal and uv per vertex. Triangles wind counter-clockwise seen from
 /// outside (their front side); back faces are culled.
 struct Mesh {
@@ -35,6 +45,11 @@ struct Mesh {
   /// the handedness (bitangent = w cross(normal, tangent)). Empty: generated from the uvs
   /// (generate_tangents) when the scene is uploaded or rendered.
   std::vector<glm::vec4> tangents;
+  /// Set by the sphere builders (make_uv_sphere, make_icosphere, so also the scene file's
+  /// "sphere" and "icosphere" meshes): the triangles approximate this sphere, and the reference
+  /// renderer may intersect it exactly instead (ReferenceSettings::ground_truth). Code that
+  /// moves the vertices of such a mesh must reset it. Nothing else reads it.
+  std::optional<AnalyticSphere> analytic_sphere;
   size_t triangle_count() const { return indices.size() / 3; }
 };
 

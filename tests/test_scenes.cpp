@@ -74,6 +74,7 @@ Mesh bumpy_sphere(uint32_t level, float bumpiness, uint32_t seed) {
   std::uniform_real_distribution<float> u(1.0f - bumpiness, 1.0f + bumpiness);
   Mesh m = make_icosphere(level);
   for (glm::vec3& p : m.positions) p *= u(rng);
+  m.analytic_sphere.reset();  // no longer a sphere
   return m;
 }
 
