@@ -10,6 +10,7 @@
 #include "core/check.h"
 #include "core/image_metrics.h"
 #include "core/mesh.h"
+#include "core/procedural_textures.h"
 #include "core/reference_renderer.h"
 
 namespace tessera {
@@ -234,51 +235,72 @@ TEST(GroundTruth, SupersampledDiskIntegratesItsAreaPerPixel) {
   EXPECT_NEAR(total, kPi * r * r, stratified_area_bound(2.0 * r, n));
 }
 
-// The lit ellipsoid as a finely tessellated mesh (interpolated normals, default raster) and
-// as the analytic surface: the same shading within the tessellation's normal error.
+// A lit ellipsoid, mirrored or not, optionally with bevelled tiles (base colour and normal
+// maps), shaded from a finely tessellated mesh (interpolated normals, the compute path's
+// raster) and from the analytic surface. Returns the relative radiance error between them away
+// from the outline, where both see the ellipsoid in every neighbouring pixel.
+RadianceError analytic_against_tessellated(glm::vec3 scale, bool textured) {
+  const uint32_t size = 96;
+  Scene s;
+  s.camera.position = {0.0f, 0.0f, 5.0f};
+  s.camera.vertical_fov = glm::radians(40.0f);
+  s.meshes.push_back(make_uv_sphere(512, 256));
+  Material m{glm::vec3(0.7f, 0.5f, 0.3f), 0.0f, 0.6f};
+  if (textured) {
+    TileMaps maps = make_tile_maps(256, 4, glm::vec3(0.8f, 0.6f, 0.4f), 1.0f);
+    s.textures = {std::move(maps.base_color), std::move(maps.normal)};
+    m.base_color = glm::vec3(1.0f);
+    m.base_color_map = 0;
+    m.normal_map = 1;
+  }
+  s.materials.push_back(m);
+  glm::mat4 t = glm::rotate(glm::mat4(1.0f), 0.5f, glm::normalize(glm::vec3(1, 2, 0.5f)));
+  s.objects.push_back({0, 0, glm::scale(t, scale)});
+  Light sun;
+  sun.kind = LightKind::directional;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
+  sun.intensity = 3.0f;
+  s.lights.push_back(sun);
+  s.ambient = glm::vec3(0.02f);
+  ReferenceSettings rs = truth_settings(size, 1, false);
+  const ReferenceFrame tess = render_reference(s, rs);
+  rs.ground_truth.analytic_spheres = true;
+  const ReferenceFrame exact = render_reference(s, rs);
+  std::vector<uint8_t> mask(tess.owner.size(), 0);
+  size_t compared = 0;
+  for (uint32_t y = 1; y + 1 < size; ++y) {
+    for (uint32_t x = 1; x + 1 < size; ++x) {
+      bool inside = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const size_t j = size_t(y + dy) * size + (x + dx);
+          inside = inside && tess.owner[j] != kNoTriangle && exact.owner[j] != kNoTriangle;
+        }
+      mask[size_t(y) * size + x] = inside;
+      compared += inside;
+    }
+  }
+  EXPECT_GT(compared, 1500u);
+  const RadianceError e = radiance_error(tess.hdr, exact.hdr, &mask);
+  std::printf("GROUND_TRUTH ellipsoid scale.x %.1f%s: relative error mean %.2e, p99 %.2e\n",
+              scale.x, textured ? ", textured" : "", e.mean_relative, e.p99_relative);
+  return e;
+}
+
 TEST(GroundTruth, AnalyticEllipsoidShadesLikeAFineTessellation) {
   for (glm::vec3 scale : {glm::vec3(1.3f, 0.8f, 1.1f), glm::vec3(-1.3f, 0.8f, 1.1f)}) {
-    Scene s;
-    s.camera.position = {0.0f, 0.0f, 5.0f};
-    s.camera.vertical_fov = glm::radians(40.0f);
-    s.meshes.push_back(make_uv_sphere(512, 256));
-    s.materials.push_back({glm::vec3(0.7f, 0.5f, 0.3f), 0.0f, 0.6f});
-    glm::mat4 t = glm::rotate(glm::mat4(1.0f), 0.5f, glm::normalize(glm::vec3(1, 2, 0.5f)));
-    s.objects.push_back({0, 0, glm::scale(t, scale)});
-    Light sun;
-    sun.kind = LightKind::directional;
-    sun.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
-    sun.intensity = 3.0f;
-    s.lights.push_back(sun);
-    s.ambient = glm::vec3(0.02f);
-    ReferenceSettings rs = truth_settings(96, 1, false);
-    const ReferenceFrame tess = render_reference(s, rs);
-    rs.ground_truth.analytic_spheres = true;
-    const ReferenceFrame exact = render_reference(s, rs);
-    // Compare away from the outline, where both see the ellipsoid in every neighbour.
-    std::vector<uint8_t> mask(tess.owner.size(), 0);
-    size_t compared = 0;
-    for (uint32_t y = 1; y + 1 < 96; ++y) {
-      for (uint32_t x = 1; x + 1 < 96; ++x) {
-        bool inside = true;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const size_t j = size_t(y + dy) * 96 + (x + dx);
-            inside = inside && tess.owner[j] != kNoTriangle && exact.owner[j] != kNoTriangle;
-          }
-        mask[size_t(y) * 96 + x] = inside;
-        compared += inside;
-      }
-    }
-    ASSERT_GT(compared, 1500u);
-    // 512 segments: normals 0.7 degrees apart, so the interpolated normal is off by ~1e-4 rad,
-    // a relative radiance error of ~1e-4 / tan(angle to the light's horizon).
-    const RadianceError e = radiance_error(tess.hdr, exact.hdr, &mask);
-    std::printf("GROUND_TRUTH ellipsoid scale.x %.1f: relative error mean %.2e, p99 %.2e\n",
-                scale.x, e.mean_relative, e.p99_relative);
+    // 512 segments: normals 0.7 degrees apart, so the interpolated normal is off by ~1e-4
+    // rad, a relative radiance error of ~1e-4 / tan(angle to the light's horizon).
+    const RadianceError e = analytic_against_tessellated(scale, false);
     EXPECT_LT(e.mean_relative, 1e-3) << "scale " << scale.x;
     EXPECT_LT(e.p99_relative, 5e-3) << "scale " << scale.x;
   }
+  // With texture maps the two differ also in the texture footprint (the triangle's plane
+  // against the tangent plane) and at the tiles' sharp bevels; a wrong uv (a seam moved) or a
+  // wrong tangent frame (the bevels lit from the other side) would be tens of per cent.
+  const RadianceError e = analytic_against_tessellated(glm::vec3(1.3f, 0.8f, 1.1f), true);
+  EXPECT_LT(e.mean_relative, 1e-2);
+  EXPECT_LT(e.p99_relative, 1e-1);
 }
 
 TEST(GroundTruth, DefaultsAndLimits) {
