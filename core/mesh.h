@@ -14,9 +14,10 @@ namespace tessera {
 /// Unit sphere (radius 1, centre at the origin) as `segments` slices around the y axis and
 /// `rings` stacks from pole to pole. Requires segments >= 3 and rings >= 2 (throws Error).
 /// Triangle count: 2 * segments * (rings - 1). Marks the mesh as the unit sphere
-/// (Mesh::analytic_sphere). Its silhouette seen across the axis is a regular 2 * rings-gon
-/// inscribed in the sphere's outline: with rings = segments / 2 its chord error (the largest
-/// gap to the true outline) is 1 - cos(pi / segments).
+/// (Mesh::analytic_sphere). Seen from afar along z (segments even), its outline is the
+/// regular 2 * rings-gon of the meridians at u = 0 and 1/2, inscribed in the sphere's: with
+/// rings = segments / 2 its chord error (the largest gap to the true outline) is
+/// 1 - cos(pi / segments).
 Mesh make_uv_sphere(uint32_t segments, uint32_t rings);
 
 /// Unit icosphere: an icosahedron subdivided `level` times (0..8, throws Error otherwise),

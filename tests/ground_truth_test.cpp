@@ -256,11 +256,8 @@ RadianceError analytic_against_tessellated(glm::vec3 scale, bool textured) {
   s.materials.push_back(m);
   glm::mat4 t = glm::rotate(glm::mat4(1.0f), 0.5f, glm::normalize(glm::vec3(1, 2, 0.5f)));
   s.objects.push_back({0, 0, glm::scale(t, scale)});
-  Light sun;
-  sun.kind = LightKind::directional;
-  sun.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
-  sun.intensity = 3.0f;
-  s.lights.push_back(sun);
+  s.lights.push_back({LightKind::directional, glm::vec3(0.0f),
+                      glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f)), glm::vec3(1.0f), 3.0f});
   s.ambient = glm::vec3(0.02f);
   ReferenceSettings rs = truth_settings(size, 1, false);
   const ReferenceFrame tess = render_reference(s, rs);
