@@ -126,7 +126,8 @@ TEST(SceneFile, ValuesReadByHand) {
     "materials": [{"name": "gold", "preset": "gold", "roughness": 0.25},
                   {"name": "glow", "base_color": [0.1, 0.2, 0.3], "emissive": [2, 0, 0],
                    "emissive_map": "squares", "double_sided": true}],
-    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2}],
+    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2,
+                  "wrap": ["clamp_to_edge", "mirrored_repeat"]}],
     "meshes": [{"name": "box", "type": "cube"}],
     "objects": [{"mesh": "box", "material": "gold", "translation": [1, 2, 3],
                  "rotation": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2},
@@ -146,6 +147,8 @@ TEST(SceneFile, ValuesReadByHand) {
   EXPECT_EQ(f.scene.materials[0].metallic, 1.0f);
   EXPECT_EQ(f.scene.materials[0].roughness, 0.25f);
   EXPECT_EQ(f.scene.materials[1].emissive, glm::vec3(2, 0, 0));
+  EXPECT_EQ(f.scene.textures[0].wrap_u, TextureWrap::clamp_to_edge);
+  EXPECT_EQ(f.scene.textures[0].wrap_v, TextureWrap::mirrored_repeat);
   EXPECT_EQ(f.scene.materials[1].roughness, 0.5f);  // the default
   EXPECT_EQ(f.scene.materials[1].emissive_map, 0u);
   EXPECT_TRUE(f.scene.materials[1].double_sided);
