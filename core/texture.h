@@ -20,6 +20,7 @@ struct Texture {
   uint32_t height = 0;
   std::vector<glm::u8vec4> texels;  // width * height
   bool srgb = false;
+  bool operator==(const Texture&) const = default;
 };
 
 /// Largest texture side: the GPU descriptor stores at most TS_MAX_TEXTURE_LEVELS levels.
