@@ -200,7 +200,8 @@ void save_scene_file(const Scene& scene, const std::string& path, const RenderDe
   const std::filesystem::path file(path);
   const std::filesystem::path folder = file.parent_path();
   const std::string stem = file.stem().string();
-  if (!can_write_file(path)) throw Error("cannot write the scene file '" + path + "'");
+  if (const std::string reason = unwritable_reason(path); !reason.empty())
+    throw Error("cannot write the scene file '" + path + "': " + reason);
 
   Json root = {{"version", 1}};
   const Camera& c = scene.camera;
