@@ -189,7 +189,7 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
     throw Error("the scene has " + std::to_string(numbering.triangle_count) +
                 " triangle instances, more than the 2^32 - 1 Tessera can number");
   }
-  out.object_of_slot = numbering.objects;
+  out.numbering = numbering;
   out.triangle_count = numbering.triangle_count;
   for (size_t slot = 0; slot < numbering.objects.size(); ++slot) {
     const Object& o = scene.objects[numbering.objects[slot]];

@@ -40,6 +40,14 @@ struct Node {
   std::string path;
 };
 
+// `v` normalized, or as it is when it is unit length already to within float rounding (as
+// every normalized float vector is), so that the normals and directions save_scene_file writes
+// read back bit for bit: normalizing again could move them by an ulp.
+glm::vec3 unit_vector(glm::vec3 v) {
+  const double length2 = glm::dot(glm::dvec3(v), glm::dvec3(v));
+  return std::fabs(length2 - 1.0) <= 1e-6 ? v : glm::normalize(v);
+}
+
 std::string format_number(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.9g", v);
@@ -306,7 +314,7 @@ void Reader::read_light(const Node& n) {
     const glm::vec3 v = vector<3>(d);
     if (glm::dot(v, v) == 0.0f || !std::isfinite(glm::dot(v, v)))
       fail(d, "a direction must be non-zero (and not so long that its length overflows)");
-    l.direction = glm::normalize(v);
+    l.direction = unit_vector(v);
   }
   l.color = vec3_or(n, "color", l.color, 0.0);
   l.intensity = real_or(n, "intensity", l.intensity, 0.0);
@@ -449,7 +457,7 @@ void Reader::read_material(const Node& n) {
 
 void Reader::read_mesh(const Node& n) {
   object(n, {"name", "type", "segments", "rings", "level", "nx", "ny", "positions", "normals",
-             "uvs", "indices"});
+             "uvs", "indices", "tangents"});
   declare(n, mesh_names, uint32_t(out.scene.meshes.size()), "mesh");
   if (!has(n, "type"))
     fail(n, "a mesh needs a \"type\": sphere, icosphere, cube, plane or triangles");
@@ -504,7 +512,7 @@ void Reader::read_mesh(const Node& n) {
       if (glm::dot(nor, nor) == 0.0f)
         fail(element(nn, 3 * i), "normal " + std::to_string(i) + " is zero");
       mesh.positions.push_back(pos);
-      mesh.normals.push_back(glm::normalize(nor));
+      mesh.normals.push_back(unit_vector(nor));
       mesh.uvs.push_back({real(element(uv, 2 * i)), real(element(uv, 2 * i + 1))});
     }
     const Node ix = child(n, "indices");
@@ -515,6 +523,19 @@ void Reader::read_mesh(const Node& n) {
       const Node e = element(ix, i);
       if (vertices == 0) fail(e, "an index, but the mesh has no vertices");
       mesh.indices.push_back(uint32_t(integer(e, 0, vertices - 1)));
+    }
+    if (has(n, "tangents")) {
+      // Taken as written (saved meshes keep their imported or generated frames exactly);
+      // validate_scene checks them.
+      const Node t = flat("tangents", 4);
+      if (t.json->size() / 4 != vertices)
+        fail(t, std::to_string(t.json->size() / 4) + " tangents for " + std::to_string(vertices) +
+                    " vertices");
+      for (size_t i = 0; i < vertices; ++i) {
+        glm::vec4 v;
+        for (int k = 0; k < 4; ++k) v[k] = real(element(t, 4 * i + k));
+        mesh.tangents.push_back(v);
+      }
     }
   }
   out.scene.meshes.push_back(std::move(mesh));

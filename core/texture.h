@@ -26,6 +26,7 @@ struct Texture {
   bool srgb = false;
   TextureWrap wrap_u = TextureWrap::repeat;  // along rows
   TextureWrap wrap_v = TextureWrap::repeat;  // along columns
+  bool operator==(const Texture&) const = default;
 };
 
 /// Largest texture side: the GPU descriptor stores at most TS_MAX_TEXTURE_LEVELS levels.

@@ -29,8 +29,6 @@ using glm::vec4;
 
 // Screen tiles used by binning and the per-tile rasterizer, in pixels per side.
 #define TS_TILE_SIZE 16
-// Visibility buffer value of a pixel no triangle covers (all bits set: larger than any key).
-#define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
 // Threads per workgroup of the one-thread-per-item passes.
 #define TS_GROUP_SIZE 64
 // Workgroup size of the setup pass: its cull counters are summed per workgroup, so larger
