@@ -19,9 +19,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -96,18 +98,42 @@ class Tokens {
   size_t pos_ = 0;
 };
 
-/// Calls f(line_number, line) for each line of `text`. Lines end as tinyobjloader ends them
-/// (its safeGetline): at "\n", "\r\n" or a lone "\r"; otherwise the scan and tinyobjloader would
-/// see different statements (a "\rv" line is a vertex to tinyobjloader; found by fuzzing).
+/// Calls f(line_number, line) for each complete line of `text`, numbering on from `line`, and
+/// returns how many bytes those lines took. Lines end as tinyobjloader ends them (its
+/// safeGetline): at "\n", "\r\n" or a lone "\r"; otherwise the scan and tinyobjloader would see
+/// different statements (a "\rv" line is a vertex to tinyobjloader; found by fuzzing). Unless
+/// `last`, an unterminated final line, or one ending in a final "\r" (the start of "\r\n"?),
+/// waits for more text.
+template <typename F>
+size_t split_lines(std::string_view text, bool last, size_t& line, F&& f) {
+  const char* const data = text.data();
+  const size_t size = text.size();
+  // memchr for each terminator (a search for either byte is a loop per byte); where the next
+  // '\r' is is kept, since most files have none.
+  const char* cr = static_cast<const char*>(std::memchr(data, '\r', size));
+  size_t start = 0;
+  while (start < size) {
+    if (cr && cr < data + start)
+      cr = static_cast<const char*>(std::memchr(data + start, '\r', size - start));
+    const char* lf = static_cast<const char*>(std::memchr(data + start, '\n', size - start));
+    const char* eol = lf && (!cr || lf < cr) ? lf : cr;
+    if (!eol) {
+      if (!last) break;
+      f(++line, text.substr(start));
+      return size;
+    }
+    const size_t end = size_t(eol - data);
+    if (*eol == '\r' && end + 1 == size && !last) break;
+    f(++line, text.substr(start, end - start));
+    start = end + (*eol == '\r' && end + 1 < size && data[end + 1] == '\n' ? 2 : 1);
+  }
+  return start;
+}
+
 template <typename F>
 void for_each_line(std::string_view text, F&& f) {
-  size_t line = 0, start = 0;
-  while (start < text.size()) {
-    size_t end = text.find_first_of("\r\n", start);
-    if (end == std::string_view::npos) end = text.size();
-    f(++line, text.substr(start, end - start));
-    start = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
-  }
+  size_t line = 0;
+  split_lines(text, /*last=*/true, line, f);
 }
 
 /// True if `s` is [+-]digits[.digits] with 1 to 15 integer digits (or none before a fraction)
@@ -168,6 +194,7 @@ struct ObjScan {
   uint64_t faces = 0;
   uint64_t zero_normals = 0;  // `vn 0 0 0` (exporters write them for degenerate faces)
   size_t first_zero_normal_line = 0;
+  std::map<std::string, size_t> ignored;  // unsupported keyword -> first line
 };
 
 /// One corner of `f`: v, v/vt, v//vn or v/vt/vn (1-based, or negative: relative to the end).
@@ -213,68 +240,70 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
   }
 }
 
-ObjScan scan_obj(const std::string& file, std::string_view text,
-                 std::vector<std::string>& warnings) {
-  ObjScan scan;
-  std::map<std::string, size_t> ignored;  // keyword -> first line
-  for_each_line(text, [&](size_t line, std::string_view s) {
-    Tokens tokens(s);
-    const std::optional<Token> key = tokens.next();
-    if (!key || key->text[0] == '#') return;
-    const std::string_view k = key->text;
-    if (k == "v" || k == "vn" || k == "vt") {
-      const Attribute a = k == "v" ? kPosition : k == "vt" ? kTexcoord : kNormal;
-      bool zero[3] = {true, true, true};
-      int n = 0;
-      while (const std::optional<Token> t = tokens.next()) {
-        bool is_zero = false;
-        if (!simple_decimal(t->text, is_zero)) is_zero = parse_number(file, line, *t) == 0.0f;
-        if (n < 3) zero[n] = is_zero;
-        ++n;
-      }
-      // v: x y z [w] or x y z r g b; vt: u [v [w]]; vn: x y z.
-      const bool ok = a == kPosition   ? (n == 3 || n == 4 || n == 6)
-                      : a == kTexcoord ? (n >= 1 && n <= 3)
-                                       : n == 3;
-      if (!ok) {
-        fail(file, line, key->column,
-             "'" + std::string(k) + "' has " + std::to_string(n) + " numbers, expected " +
-                 (a == kPosition   ? "3 (x y z), 4 or 6"
-                  : a == kTexcoord ? "1 to 3"
-                                   : "3"));
-      }
-      if (a == kNormal && zero[0] && zero[1] && zero[2]) {
-        if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
-      }
-      ++scan.count[a];
-    } else if (k == "f") {
-      int corners = 0;
-      while (const std::optional<Token> t = tokens.next()) {
-        scan_corner(file, line, *t, scan);
-        ++corners;
-      }
-      if (corners < 3) {
-        fail(file, line, key->column,
-             "face has " + std::to_string(corners) + " vertices, fewer than 3");
-      }
-      if (corners > 255) {
-        // tinyobjloader counts corners in an unsigned char.
-        fail(file, line, key->column,
-             "face has " + std::to_string(corners) + " vertices, more than 255");
-      }
-      if (corners > 3) scan.polygon_lines.push_back(line);
-      ++scan.faces;
-    } else if (k == "usemtl") {
-      const std::optional<Token> name = tokens.next();
-      scan.usemtl.emplace_back(line, name ? std::string(name->text) : std::string());
-    } else if (k == "mtllib") {
-      while (const std::optional<Token> t = tokens.next()) {
-        scan.mtllib_line.emplace(std::string(t->text), line);
-      }
-    } else if (k != "g" && k != "o" && k != "s") {
-      ignored.emplace(std::string(k), line);
+/// Checks one line of an OBJ file and records what it declares in `scan`.
+void scan_obj_line(const std::string& file, size_t line, std::string_view s, ObjScan& scan) {
+  Tokens tokens(s);
+  const std::optional<Token> key = tokens.next();
+  if (!key || key->text[0] == '#') return;
+  const std::string_view k = key->text;
+  if (k == "v" || k == "vn" || k == "vt") {
+    const Attribute a = k == "v" ? kPosition : k == "vt" ? kTexcoord : kNormal;
+    bool zero[3] = {true, true, true};
+    int n = 0;
+    while (const std::optional<Token> t = tokens.next()) {
+      bool is_zero = false;
+      if (!simple_decimal(t->text, is_zero)) is_zero = parse_number(file, line, *t) == 0.0f;
+      if (n < 3) zero[n] = is_zero;
+      ++n;
     }
-  });
+    // v: x y z [w] or x y z r g b; vt: u [v [w]]; vn: x y z.
+    const bool ok = a == kPosition   ? (n == 3 || n == 4 || n == 6)
+                    : a == kTexcoord ? (n >= 1 && n <= 3)
+                                     : n == 3;
+    if (!ok) {
+      fail(file, line, key->column,
+           "'" + std::string(k) + "' has " + std::to_string(n) + " numbers, expected " +
+               (a == kPosition   ? "3 (x y z), 4 or 6"
+                : a == kTexcoord ? "1 to 3"
+                                 : "3"));
+    }
+    if (a == kNormal && zero[0] && zero[1] && zero[2]) {
+      if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
+    }
+    ++scan.count[a];
+  } else if (k == "f") {
+    int corners = 0;
+    while (const std::optional<Token> t = tokens.next()) {
+      scan_corner(file, line, *t, scan);
+      ++corners;
+    }
+    if (corners < 3) {
+      fail(file, line, key->column,
+           "face has " + std::to_string(corners) + " vertices, fewer than 3");
+    }
+    if (corners > 255) {
+      // tinyobjloader counts corners in an unsigned char.
+      fail(file, line, key->column,
+           "face has " + std::to_string(corners) + " vertices, more than 255");
+    }
+    if (corners > 3) scan.polygon_lines.push_back(line);
+    ++scan.faces;
+  } else if (k == "usemtl") {
+    const std::optional<Token> name = tokens.next();
+    scan.usemtl.emplace_back(line, name ? std::string(name->text) : std::string());
+  } else if (k == "mtllib") {
+    while (const std::optional<Token> t = tokens.next()) {
+      scan.mtllib_line.emplace(std::string(t->text), line);
+    }
+  } else if (k != "g" && k != "o" && k != "s") {
+    scan.ignored.emplace(std::string(k), line);
+  }
+}
+
+/// The checks that need the whole file (indices against the final counts), and the scan's
+/// warnings.
+void finish_obj_scan(const std::string& file, const ObjScan& scan,
+                     std::vector<std::string>& warnings) {
   for (int a = 0; a < 3; ++a) {
     if (scan.largest[a] > scan.count[a]) {
       const std::string name = kAttributeName[a];
@@ -289,14 +318,13 @@ ObjScan scan_obj(const std::string& file, std::string_view text,
                        "direction (" + std::to_string(scan.zero_normals) +
                        " such in the file); corners using it get generated normals");
   }
-  for (const auto& [keyword, line] : ignored) {
+  for (const auto& [keyword, line] : scan.ignored) {
     warnings.push_back(place(file, line) + ": '" + keyword +
                        "' statements are not supported and were ignored (" +
                        (keyword == "l" || keyword == "p" ? "Tessera draws only faces"
                                                          : "not a polygon statement") +
                        ")");
   }
-  return scan;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -728,44 +756,121 @@ struct MeshBuilder {
   VertexTable vertices;
 };
 
-// An istream over text held elsewhere, so tinyobjloader reads the file without a copy of it.
-class TextBuffer : public std::streambuf {
+// The OBJ text as tinyobjloader reads it, scanned line by line (scan_obj_line) just before
+// tinyobjloader gets each line: one pass over a file, read in chunks and never held whole, and
+// the scan has seen a `mtllib` line when tinyobjloader asks for the library. The scan's first
+// error ends the text (tinyobjloader sees the end of the file) and is kept in `error`, never
+// thrown through tinyobjloader.
+class ScanningBuffer : public std::streambuf {
  public:
-  explicit TextBuffer(std::string_view text) {
-    char* begin = const_cast<char*>(text.data());  // only read: a get area is non-const
-    setg(begin, begin, begin + text.size());
+  // Text held by the caller for the buffer's lifetime.
+  ScanningBuffer(const std::string& path, std::string_view text, ObjScan& scan)
+      : path_(path), scan_(scan), text_(text) {}
+  // A file read from its start (owned by the caller).
+  ScanningBuffer(const std::string& path, FILE* file, ObjScan& scan)
+      : path_(path), scan_(scan), file_(file), chunk_(size_t(1) << 20) {}
+
+  std::optional<std::string> error;
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (error || done_) return traits_type::eof();
+    try {
+      if (!file_) {
+        // All at once: the text is in memory already.
+        const size_t used = split_lines(text_, /*last=*/true, line_, [&](size_t n, auto s) {
+          scan_obj_line(path_, n, s, scan_);
+        });
+        char* begin = const_cast<char*>(text_.data());  // only read: a get area is non-const
+        setg(begin, begin, begin + used);
+        done_ = true;
+      } else {
+        // The part of the chunk after the last complete line moves to the front, and reading
+        // continues until at least one line is complete (a line longer than the chunk grows it).
+        size_t used = 0;
+        while (used == 0 && !done_) {
+          held_ -= scanned_;
+          std::memmove(chunk_.data(), chunk_.data() + scanned_, held_);
+          scanned_ = 0;
+          if (held_ == chunk_.size()) chunk_.resize(2 * chunk_.size());
+          held_ += std::fread(chunk_.data() + held_, 1, chunk_.size() - held_, file_);
+          if (std::ferror(file_)) throw Error("cannot read " + quoted(path_));
+          done_ = std::feof(file_) != 0;
+          used = split_lines(std::string_view(chunk_.data(), held_), done_, line_,
+                             [&](size_t n, auto s) { scan_obj_line(path_, n, s, scan_); });
+        }
+        scanned_ = used;
+        setg(chunk_.data(), chunk_.data(), chunk_.data() + used);
+      }
+    } catch (const Error& e) {
+      error = e.what();
+      setg(nullptr, nullptr, nullptr);
+      return traits_type::eof();
+    }
+    return gptr() < egptr() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
   }
+
+ private:
+  const std::string& path_;
+  ObjScan& scan_;
+  std::string_view text_;
+  FILE* file_ = nullptr;
+  std::vector<char> chunk_;
+  size_t held_ = 0;     // bytes of chunk_ read from the file
+  size_t scanned_ = 0;  // of those, the complete lines handed to tinyobjloader
+  size_t line_ = 0;     // lines scanned so far
+  bool done_ = false;   // the whole text is scanned
 };
+
+ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const std::string& path,
+                                 const std::string& base_dir, const ImportOptions& options);
 
 }  // namespace
 
 ImportedModel import_obj(const std::string& path, const ImportOptions& options) {
-  const std::optional<std::string> text = read_limited(path, options.max_file_bytes);
-  if (!text) throw Error("OBJ file " + quoted(path) + " not found");
-  return import_obj_text(*text, path, fs::path(path).parent_path().string(), options);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error("OBJ file " + quoted(path) + " not found");
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) throw Error("cannot read " + quoted(path) + ": " + ec.message());
+  check_size(path, size, options.max_file_bytes);
+  std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+  if (!file) throw Error("cannot read " + quoted(path));
+  ObjScan scan;
+  ScanningBuffer buffer(path, file.get(), scan);
+  return import_obj_scanned(buffer, scan, path, fs::path(path).parent_path().string(), options);
 }
 
 ImportedModel import_obj_text(const std::string& text, const std::string& path,
                               const std::string& base_dir, const ImportOptions& options) {
   check_size(path, text.size(), options.max_file_bytes);
-  Importer im{path, options, {}, {}};
-  std::vector<std::string> scan_warnings;
-  const ObjScan scan = scan_obj(path, text, scan_warnings);
-  for (const std::string& w : scan_warnings) im.warn(w);
-  if (scan.faces == 0) {
-    throw Error(quoted(path) + " has no faces ('f' statements); Tessera draws only faces");
-  }
+  ObjScan scan;
+  ScanningBuffer buffer(path, text, scan);
+  return import_obj_scanned(buffer, scan, path, base_dir, options);
+}
 
+namespace {
+
+ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const std::string& path,
+                                 const std::string& base_dir, const ImportOptions& options) {
+  Importer im{path, options, {}, {}};
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string tiny_warn, tiny_err;
   MtlReader reader(path, base_dir, scan, options.max_file_bytes);
-  TextBuffer text_buffer(text);
-  std::istream in(&text_buffer);
+  std::istream in(&buffer);
   const bool ok =
       tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in, &reader,
                        /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  // The scan's errors come first, as if it had read the whole file before tinyobjloader.
+  if (buffer.error) throw Error(*buffer.error);
+  std::vector<std::string> scan_warnings;
+  finish_obj_scan(path, scan, scan_warnings);
+  for (const std::string& w : scan_warnings) im.warn(w);
+  if (scan.faces == 0) {
+    throw Error(quoted(path) + " has no faces ('f' statements); Tessera draws only faces");
+  }
   if (reader.error) throw Error(*reader.error);
   if (!ok || !tiny_err.empty()) throw Error(quoted(path) + ": tinyobjloader: " + tiny_err);
   for (const std::string& w : reader.warnings) im.warn(w);
@@ -918,5 +1023,7 @@ ImportedModel import_obj_text(const std::string& text, const std::string& path,
   }
   return std::move(im.model);
 }
+
+}  // namespace
 
 }  // namespace tessera
