@@ -634,7 +634,10 @@ bool triangulate(const std::vector<glm::vec3>& corners, glm::vec3 normal,
   const int axis = a.x > a.y && a.x > a.z ? 0 : a.y > a.z ? 1 : 2;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   const bool flip = normal[axis] < 0.0f;
-  std::vector<glm::dvec2> p(n);
+  // On the stack for the usual few corners: an allocation per quad was a tenth of the import.
+  glm::dvec2 few[16];
+  std::vector<glm::dvec2> many(n > 16 ? n : 0);
+  glm::dvec2* const p = n > 16 ? many.data() : few;
   for (size_t i = 0; i < n; ++i) {
     p[i] =
         flip ? glm::dvec2(corners[i][v], corners[i][u]) : glm::dvec2(corners[i][u], corners[i][v]);
@@ -695,10 +698,11 @@ glm::vec3 unit_or_z(glm::vec3 n) {
   return length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
-/// What makes two corners one vertex: position, uv and normal source.
+/// What makes two corners one vertex: the mesh being built, position, uv and normal source.
 struct VertexKey {
   int32_t v, vt;
   int64_t normal;  // >= 0: a file normal; else -1 - smoothing group, or flat: kFlat - face
+  uint32_t builder;
   bool operator==(const VertexKey&) const = default;
 };
 constexpr int64_t kFlat = INT64_MIN / 2;
@@ -707,7 +711,7 @@ struct VertexKeyHash {
   size_t operator()(const VertexKey& k) const {
     // splitmix64 finalizer over the packed fields
     uint64_t x = (uint64_t(uint32_t(k.v)) << 32 | uint32_t(k.vt)) ^
-                 (uint64_t(k.normal) * 0x9E3779B97F4A7C15ull);
+                 (uint64_t(k.normal) * 0x9E3779B97F4A7C15ull) ^ (uint64_t(k.builder) << 17);
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
     return size_t(x ^ (x >> 31));
@@ -715,8 +719,7 @@ struct VertexKeyHash {
 };
 
 // Corner key -> vertex index, open addressing with linear probing: one flat array, no node per
-// vertex (a std::unordered_map's allocation and pointer chasing were most of the import's own
-// time). Load factor at most 1/2. Values are stored plus one, 0 marking an empty slot.
+// vertex. Load factor at most 1/2. Values are stored plus one, 0 marking an empty slot.
 class VertexTable {
  public:
   // The vertex of `key`, and whether it was just added with value `next`.
@@ -750,10 +753,64 @@ class VertexTable {
   size_t size_ = 0;
 };
 
+// Corner key -> vertex index for the meshes of one shape: a chain per position index of the
+// vertices made from it. Faces refer to nearby positions, so the chains' heads are read almost
+// in order, where a hash of the key missed the cache on nearly every corner (the conversion's
+// largest cost at 10^7 triangles). A position with more than kLongChain vertices (the centre
+// of a flat-shaded fan) moves to a hash table, so that no walk is long.
+class VertexIndex {
+ public:
+  explicit VertexIndex(size_t positions) : head_(positions, kNone) {}
+
+  // The vertex of `key`, and whether it was just added with value `next`.
+  std::pair<uint32_t, bool> emplace(const VertexKey& key, uint32_t next) {
+    uint32_t& head = head_[size_t(key.v)];
+    if (head == kCrowded) return crowded_.emplace(key, next);
+    uint32_t length = 0;
+    for (uint32_t n = head; n != kNone; n = nodes_[n].next, ++length) {
+      const Node& node = nodes_[n];
+      if (node.vt == key.vt && node.normal == key.normal && node.builder == key.builder) {
+        return {node.vertex, false};
+      }
+    }
+    if (length >= kLongChain) {
+      for (uint32_t n = head; n != kNone; n = nodes_[n].next) {
+        const Node& node = nodes_[n];
+        crowded_.emplace({key.v, node.vt, node.normal, node.builder}, node.vertex);
+      }
+      head = kCrowded;
+      return crowded_.emplace(key, next);
+    }
+    if (nodes_.size() >= kCrowded) throw Error("an OBJ shape has more than 2^32 - 2 vertices");
+    nodes_.push_back({key.vt, key.builder, key.normal, next, head});
+    head = uint32_t(nodes_.size() - 1);
+    return {next, true};
+  }
+
+  // Forgets the vertices of `mesh`'s corners, before the next shape.
+  void clear(const tinyobj::mesh_t& mesh) {
+    for (const tinyobj::index_t& index : mesh.indices) head_[size_t(index.vertex_index)] = kNone;
+    nodes_.clear();
+    crowded_ = {};
+  }
+
+ private:
+  static constexpr uint32_t kNone = UINT32_MAX, kCrowded = UINT32_MAX - 1, kLongChain = 16;
+  struct Node {
+    int32_t vt;
+    uint32_t builder;
+    int64_t normal;
+    uint32_t vertex, next;
+  };
+  std::vector<uint32_t> head_;  // per position index: its newest node, kNone or kCrowded
+  std::vector<Node> nodes_;
+  VertexTable crowded_;
+};
+
 struct MeshBuilder {
   int material = -1;
   Mesh mesh;
-  VertexTable vertices;
+  size_t corners = 0, triangles = 0;  // of its faces, for reserving
 };
 
 // The OBJ text as tinyobjloader reads it, scanned line by line (scan_obj_line) just before
@@ -958,11 +1015,13 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
   size_t polygon = 0;  // faces with more than 3 corners so far (scan.polygon_lines)
   int64_t face_serial = 0;
   std::vector<uint32_t> triangles, corner_vertex;
-  for (const tinyobj::shape_t& shape : shapes) {
-    std::vector<MeshBuilder> builders;  // one per material, in order of first use
-    size_t offset = 0;
-    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_serial) {
-      const size_t n = shape.mesh.num_face_vertices[f];
+  VertexIndex vertices(attrib.vertices.size() / 3);
+  const size_t position_count = attrib.vertices.size() / 3;
+  for (tinyobj::shape_t& shape : shapes) {
+    // One mesh per material, in order of first use; sizes counted first to reserve them.
+    std::vector<MeshBuilder> builders;
+    std::vector<uint32_t> face_builder(shape.mesh.num_face_vertices.size());
+    for (size_t f = 0; f < face_builder.size(); ++f) {
       const int material = shape.mesh.material_ids[f];
       auto b = std::find_if(builders.begin(), builders.end(),
                             [&](const MeshBuilder& x) { return x.material == material; });
@@ -970,6 +1029,21 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
         builders.emplace_back().material = material;
         b = builders.end() - 1;
       }
+      face_builder[f] = uint32_t(b - builders.begin());
+      b->corners += shape.mesh.num_face_vertices[f];
+      b->triangles += shape.mesh.num_face_vertices[f] - 2u;
+    }
+    for (MeshBuilder& b : builders) {
+      const size_t estimate = std::min(b.corners, position_count);
+      b.mesh.positions.reserve(estimate);
+      b.mesh.normals.reserve(estimate);
+      b.mesh.uvs.reserve(estimate);
+      b.mesh.indices.reserve(3 * b.triangles);
+    }
+    size_t offset = 0;
+    for (size_t f = 0; f < face_builder.size(); ++f, ++face_serial) {
+      const size_t n = shape.mesh.num_face_vertices[f];
+      MeshBuilder* const b = &builders[face_builder[f]];
       gather(shape.mesh, offset, n);
       const glm::vec3 face_normal = newell_normal(corners);
       const uint32_t group = shape.mesh.smoothing_group_ids[f];
@@ -977,10 +1051,10 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
       for (size_t c = 0; c < n; ++c) {
         const tinyobj::index_t& index = shape.mesh.indices[offset + c];
         const std::optional<glm::vec3> given = file_normal(index);
-        VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index};
+        VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index,
+                      face_builder[f]};
         if (!given) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
-        const auto [vertex, inserted] =
-            b->vertices.emplace(key, uint32_t(b->mesh.positions.size()));
+        const auto [vertex, inserted] = vertices.emplace(key, uint32_t(b->mesh.positions.size()));
         if (inserted) {
           if (b->mesh.positions.size() == UINT32_MAX) {
             throw Error(quoted(path) + ": a mesh has more than 2^32 - 1 vertices");
@@ -1013,7 +1087,15 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
       for (uint32_t t : triangles) b->mesh.indices.push_back(corner_vertex[t]);
       offset += n;
     }
+    vertices.clear(shape.mesh);
+    shape.mesh = {};  // converted: its memory goes before the next shape's meshes are made
     for (MeshBuilder& b : builders) {
+      // The estimate overshoots when positions are shared between materials.
+      if (b.mesh.positions.capacity() > b.mesh.positions.size() + b.mesh.positions.size() / 8) {
+        b.mesh.positions.shrink_to_fit();
+        b.mesh.normals.shrink_to_fit();
+        b.mesh.uvs.shrink_to_fit();
+      }
       Object object;
       object.mesh = uint32_t(scene.meshes.size());
       object.material = material_index(b.material);
