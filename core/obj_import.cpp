@@ -34,6 +34,7 @@
 
 #include "core/check.h"
 #include "core/model_import.h"
+#include "core/parallel.h"
 
 namespace tessera {
 
@@ -525,7 +526,57 @@ struct Importer {
   std::string path;
   ImportOptions options;
   ImportedModel model;
-  std::map<std::string, uint32_t> texture_cache;  // key -> index into scene.textures
+  std::map<std::string, uint32_t> texture_cache;            // key -> index into scene.textures
+  std::map<std::pair<std::string, bool>, Texture> decoded;  // (file, srgb) -> decode_maps' image
+
+  /// The file a map statement names, relative to its library.
+  static std::string map_file(const MtlInfo& info, const std::string& name) {
+    std::string relative = name;
+    std::replace(relative.begin(), relative.end(), '\\', '/');
+    return (fs::path(info.file).parent_path() / fs::path(relative)).lexically_normal().string();
+  }
+
+  /// Decodes the images of every map that the materials name, in parallel on every core, into
+  /// `decoded`. Files that load_map would refuse (missing, too large) are left to it, so its
+  /// warnings and errors stay where they were.
+  void decode_maps(const std::vector<tinyobj::material_t>& materials,
+                   const std::map<std::string, MtlInfo>& info) {
+    std::vector<std::pair<std::string, bool>> wanted;
+    for (const tinyobj::material_t& m : materials) {
+      const auto library = info.find(m.name);
+      if (library == info.end()) continue;
+      const std::pair<const std::string*, bool> maps[] = {
+          {&m.diffuse_texname, true},   {&m.emissive_texname, true}, {&m.roughness_texname, false},
+          {&m.metallic_texname, false}, {&m.normal_texname, false},  {&m.bump_texname, false}};
+      for (const auto& [name, srgb] : maps) {
+        if (name->empty()) continue;
+        const std::string file = map_file(library->second, *name);
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > options.max_file_bytes) {
+          continue;
+        }
+        int w = 0, h = 0, channels = 0;
+        if (!stbi_info(file.c_str(), &w, &h, &channels) || uint32_t(w) > options.max_texture_side ||
+            uint32_t(h) > options.max_texture_side) {
+          continue;
+        }
+        wanted.emplace_back(file, srgb);
+      }
+    }
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    std::vector<std::optional<Texture>> images(wanted.size());
+    parallel_for(wanted.size(), [&](size_t i) {
+      try {
+        images[i] = load_texture(wanted[i].first, wanted[i].second);
+      } catch (const Error&) {
+        // Left to load_map, which fails the same way naming the material.
+      }
+    });
+    for (size_t i = 0; i < wanted.size(); ++i) {
+      if (images[i]) decoded.emplace(wanted[i], std::move(*images[i]));
+    }
+  }
 
   void warn(const std::string& message) {
     if (options.strict) throw Error(message + " (a warning, an error in strict import)");
@@ -544,10 +595,7 @@ struct Importer {
   std::optional<Texture> load_map(const MtlInfo& info, const std::string& keyword,
                                   const std::string& material, const std::string& name,
                                   const tinyobj::texture_option_t& option, bool srgb) {
-    std::string relative = name;
-    std::replace(relative.begin(), relative.end(), '\\', '/');
-    const std::string file =
-        (fs::path(info.file).parent_path() / fs::path(relative)).lexically_normal().string();
+    const std::string file = map_file(info, name);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) {
       warn(where(info, keyword, material) + ": texture " + quoted(file) +
@@ -576,6 +624,12 @@ struct Importer {
            ": texture options -s, -o and -clamp are not supported and were ignored");
     }
     try {
+      // Taken, not copied: a second use of the file decodes it again.
+      if (const auto it = decoded.find({file, srgb}); it != decoded.end()) {
+        Texture t = std::move(it->second);
+        decoded.erase(it);
+        return t;
+      }
       return load_texture(file, srgb);
     } catch (const Error& e) {
       throw Error(where(info, keyword, material) + ": " + e.what());
@@ -1053,6 +1107,7 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
 
   // Materials, in the libraries' order; one default material for faces without one.
   Scene& scene = im.model.scene;
+  im.decode_maps(materials, reader.info);
   for (const tinyobj::material_t& m : materials) {
     const auto it = reader.info.find(m.name);
     TESSERA_CHECK(it != reader.info.end());
