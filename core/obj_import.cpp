@@ -1,6 +1,7 @@
 // Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses; this file checks what
 // it does not (it drops bad faces and clamps nothing, reporting out-of-range indices once per
-// file without the line) by scanning each file first, so every error names its line and column.
+// file without the line) by scanning each line just before tinyobjloader reads it (MTL files:
+// each file first), so every error names its line and column.
 //
 // Conventions chosen here, each because the format leaves it open:
 // - Polygons are split by this file, not by tinyobjloader: convex ones as a fan from their first
