@@ -1,0 +1,228 @@
+#include "host/view_command.h"
+
+#include <cinttypes>
+#include <cstdio>
+
+#include <GLFW/glfw3.h>
+
+#include "compute/context.h"
+#include "compute/present.h"
+#include "compute/renderer.h"
+#include "compute/swapchain.h"
+#include "compute/vk_check.h"
+#include "core/check.h"
+#include "host/report.h"
+#include "host/scene_source.h"
+#include "host/view_camera.h"
+#include "host/view_script.h"
+#include "host/window.h"
+#include "shaders/shared/gpu_types.h"
+
+namespace tessera {
+namespace {
+
+struct Viewer {
+  ViewArgs args;
+  Scene scene;
+  FrameSettings frame;
+  std::vector<ScriptEvent> script;
+  size_t next_script_event = 0;
+  uint64_t frame_number = 0;
+
+  std::unique_ptr<Window> window;
+  std::unique_ptr<Context> ctx;
+  std::unique_ptr<Renderer> renderer;
+  Swapchain chain;
+  Presenter presenter;
+  bool recreate = true;
+
+  int selected = -1;           // index into scene.objects, or -1
+  bool scene_changed = false;  // set_scene before the next frame
+  bool minimised = false;      // by the script (a real window reports a 0 x 0 framebuffer)
+  bool exit = false;
+  std::string screenshot;  // written from the next presented frame
+
+  ~Viewer() { release(); }
+  // Destroys the Vulkan objects of the window, the renderer's too, leaving the context.
+  void release() {
+    if (ctx) {
+      vkDeviceWaitIdle(ctx->device);
+      destroy_presenter(*ctx, presenter);
+      destroy_swapchain(*ctx, chain);
+      if (chain.surface) vkDestroySurfaceKHR(ctx->instance, chain.surface, nullptr);
+      renderer.reset();
+      chain.surface = VK_NULL_HANDLE;
+    }
+  }
+};
+
+void print_camera(const Viewer& v) {
+  const Camera& c = v.scene.camera;
+  std::printf("frame %" PRIu64 ": camera position %.9g %.9g %.9g target %.9g %.9g %.9g\n",
+              v.frame_number, c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
+              c.target.z);
+}
+
+// The framebuffer pixel under window position `at`, if inside the last frame.
+bool pixel_under(const Viewer& v, glm::vec2 at, uint32_t& x, uint32_t& y) {
+  int window_w = 0, window_h = 0;
+  glfwGetWindowSize(v.window->handle, &window_w, &window_h);
+  if (window_w <= 0 || window_h <= 0 || v.chain.extent.width == 0) return false;
+  const float sx = float(v.chain.extent.width) / float(window_w);
+  const float sy = float(v.chain.extent.height) / float(window_h);
+  if (at.x < 0.0f || at.y < 0.0f) return false;
+  x = uint32_t(at.x * sx);
+  y = uint32_t(at.y * sy);
+  return x < v.chain.extent.width && y < v.chain.extent.height;
+}
+
+void pick(Viewer& v, glm::vec2 at) {
+  uint32_t x = 0, y = 0;
+  v.selected = -1;
+  if (pixel_under(v, at, x, y)) {
+    const uint64_t key = v.renderer->read_visibility_at(x, y);
+    // The key's low 32 bits are the triangle-instance id (shaders/raster_common.glsl).
+    if (key != TS_VIS_EMPTY) v.selected = int(v.renderer->object_of_triangle(uint32_t(key)));
+  }
+  std::printf("frame %" PRIu64 ": click at %g %g: selected %s%d\n", v.frame_number, at.x, at.y,
+              v.selected < 0 ? "nothing " : "object ", v.selected);
+}
+
+// In the working folder, named by frame so that screenshots of one session never collide.
+std::string default_screenshot_name(const Viewer& v) {
+  return "tessera_view_" + std::to_string(v.frame_number) + ".png";
+}
+
+void handle_key(Viewer& v, const InputEvent& e) {
+  switch (e.key) {
+    case GLFW_KEY_P:
+      v.screenshot = default_screenshot_name(v);
+      break;
+    case GLFW_KEY_ESCAPE:
+      v.selected = -1;
+      break;
+    default:
+      break;
+  }
+}
+
+void handle(Viewer& v, const InputEvent& e) {
+  switch (e.kind) {
+    case EventKind::key:
+      handle_key(v, e);
+      break;
+    case EventKind::drag: {
+      const glm::vec2 d = e.to - e.from;
+      if (e.button == MouseButton::middle || (e.button == MouseButton::left && e.shift)) {
+        pan_camera(v.scene.camera, d.x, d.y, float(std::max(v.chain.extent.height, 1u)));
+      } else if (e.button == MouseButton::left) {
+        orbit_camera(v.scene.camera, d.x, d.y);
+      }
+      print_camera(v);
+      break;
+    }
+    case EventKind::click:
+      pick(v, e.from);
+      break;
+    case EventKind::wheel:
+      zoom_camera(v.scene.camera, e.wheel);
+      print_camera(v);
+      break;
+    case EventKind::resize:
+      set_window_size(*v.window, e.width, e.height);
+      break;
+    case EventKind::minimise:
+      v.minimised = true;
+      break;
+    case EventKind::restore:
+      v.minimised = false;
+      break;
+    case EventKind::screenshot:
+      v.screenshot = e.path;
+      break;
+    case EventKind::save:
+      std::fprintf(stderr, "tessera view: saving is not available yet\n");
+      break;
+    case EventKind::exit:
+      v.exit = true;
+      break;
+  }
+}
+
+// Renders and presents one frame at the framebuffer's size; false if nothing was shown.
+bool draw(Viewer& v, uint32_t width, uint32_t height) {
+  if (v.recreate || v.chain.extent.width != width || v.chain.extent.height != height) {
+    VK_CHECK(vkDeviceWaitIdle(v.ctx->device));
+    create_swapchain(*v.ctx, v.chain, width, height, v.args.vsync);
+    v.recreate = false;
+  }
+  if (v.scene_changed) {
+    v.renderer->set_scene(v.scene);
+    v.scene_changed = false;
+  }
+  v.frame.width = v.chain.extent.width;
+  v.frame.height = v.chain.extent.height;
+  v.renderer->render(v.frame);
+  Image8 shot;
+  const bool wants_shot = !v.screenshot.empty();
+  const PresentResult result = present_frame(
+      *v.ctx, v.presenter, v.chain, v.renderer->output_image(), {}, wants_shot ? &shot : nullptr);
+  if (result != PresentResult::presented) v.recreate = true;
+  if (result == PresentResult::out_of_date) return false;
+  if (wants_shot) {
+    write_png(v.screenshot, shot);
+    std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
+                shot.width, shot.height);
+    v.screenshot.clear();
+  }
+  return true;
+}
+
+void run_loop(Viewer& v) {
+  const bool scripted = !v.args.script.empty();
+  for (;; v.frame_number++) {
+    uint32_t width = 0, height = 0;
+    framebuffer_size(*v.window, width, height);
+    const bool hidden = v.minimised || width == 0 || height == 0;
+    // A minimised window waits for events instead of spinning; a script keeps counting frames.
+    std::vector<InputEvent> events = poll_window(*v.window, hidden && !scripted);
+    while (v.next_script_event < v.script.size() &&
+           v.script[v.next_script_event].frame <= v.frame_number) {
+      events.push_back(v.script[v.next_script_event++].event);
+    }
+    for (const InputEvent& e : events) handle(v, e);
+    if (window_should_close(*v.window)) break;
+    framebuffer_size(*v.window, width, height);
+    if (!v.minimised && width > 0 && height > 0) draw(v, width, height);
+    if (v.exit) break;
+  }
+}
+
+}  // namespace
+
+int run_view(const ViewArgs& args) {
+  Viewer v;
+  v.args = args;
+  v.frame = args.frame;
+  if (!args.script.empty()) v.script = load_view_script(args.script);
+  SceneFile file = load_scene_argument(args.scene, false, false);
+  apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
+  v.scene = std::move(file.scene);
+
+  v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
+  ContextOptions options;
+  options.device = args.device;
+  options.validation = args.validate;
+  options.instance_extensions = window_instance_extensions();
+  options.swapchain = true;
+  v.ctx = create_context(options);
+  v.chain.surface = create_window_surface(v.ctx->instance, *v.window);
+  create_presenter(*v.ctx, v.presenter);
+  v.renderer = std::make_unique<Renderer>(*v.ctx);
+  v.renderer->set_scene(v.scene);
+  run_loop(v);
+  v.release();
+  return validation_exit_status(v.ctx.get());
+}
+
+}  // namespace tessera
