@@ -3,6 +3,8 @@
 #include <cinttypes>
 #include <cstdio>
 
+#include <unistd.h>
+
 #include <GLFW/glfw3.h>
 
 #include "compute/context.h"
@@ -56,11 +58,27 @@ struct Viewer {
   }
 };
 
-void print_camera(const Viewer& v) {
+// The renderer takes the camera with the scene (set_scene uploads only what changed).
+void camera_moved(Viewer& v) {
+  v.scene_changed = true;
   const Camera& c = v.scene.camera;
   std::printf("frame %" PRIu64 ": camera position %.9g %.9g %.9g target %.9g %.9g %.9g\n",
               v.frame_number, c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
               c.target.z);
+}
+
+// From /proc/self/statm: its second number is the resident set in pages.
+void print_resident_memory(const Viewer& v) {
+  unsigned long long pages_total = 0, pages_resident = 0;
+  FILE* statm = std::fopen("/proc/self/statm", "r");
+  const bool read = statm && std::fscanf(statm, "%llu %llu", &pages_total, &pages_resident) == 2;
+  if (statm) std::fclose(statm);
+  if (!read) {
+    std::printf("frame %" PRIu64 ": resident memory unknown\n", v.frame_number);
+    return;
+  }
+  std::printf("frame %" PRIu64 ": resident memory %llu KiB\n", v.frame_number,
+              pages_resident * (unsigned long long)sysconf(_SC_PAGESIZE) / 1024);
 }
 
 // The framebuffer pixel under window position `at`, if inside the last frame.
@@ -118,7 +136,7 @@ void handle(Viewer& v, const InputEvent& e) {
       } else if (e.button == MouseButton::left) {
         orbit_camera(v.scene.camera, d.x, d.y);
       }
-      print_camera(v);
+      camera_moved(v);
       break;
     }
     case EventKind::click:
@@ -126,7 +144,7 @@ void handle(Viewer& v, const InputEvent& e) {
       break;
     case EventKind::wheel:
       zoom_camera(v.scene.camera, e.wheel);
-      print_camera(v);
+      camera_moved(v);
       break;
     case EventKind::resize:
       set_window_size(*v.window, e.width, e.height);
@@ -145,6 +163,9 @@ void handle(Viewer& v, const InputEvent& e) {
       break;
     case EventKind::exit:
       v.exit = true;
+      break;
+    case EventKind::memory:
+      print_resident_memory(v);
       break;
   }
 }

@@ -20,6 +20,7 @@ enum class EventKind {
   screenshot,  // the next presented frame written to `path` as PNG
   save,        // the scene saved to `path` (empty: to the scene's own file)
   exit,        // leave after this frame, as if the window were closed
+  memory,      // print the process's resident memory (script only: leak checks)
 };
 
 enum class MouseButton { left, middle, right };

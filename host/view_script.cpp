@@ -142,9 +142,13 @@ InputEvent parse_event(Line& line) {
   } else if (kind == "exit") {
     e.kind = EventKind::exit;
     line.end();
+  } else if (kind == "memory") {
+    e.kind = EventKind::memory;
+    line.end();
   } else {
-    line.fail("unknown event '" + kind +
-              "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit)");
+    line.fail(
+        "unknown event '" + kind +
+        "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit, memory)");
   }
   return e;
 }

@@ -12,6 +12,7 @@
 //   FRAME screenshot PATH                the frame presented at FRAME, as PNG
 //   FRAME save [PATH]                    the scene, as a scene file
 //   FRAME exit
+//   FRAME memory                         prints the resident memory, for leak checks
 //
 // FRAME counts presented-or-skipped loop iterations from 0; frames never decrease from one line
 // to the next. Positions are window pixels from the top left. '#' starts a comment.

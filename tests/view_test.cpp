@@ -1,0 +1,231 @@
+// `tessera view` in a real window on a virtual X server (xvfb-run), on lavapipe with the
+// validation layer: what it presents, read back from the swapchain image before the overlay,
+// against headless renders of the same scene and camera; scripted camera moves against hand
+// calculation; picking against projected object centres; resizes, minimising and a long run.
+// Without an X server the tests are skipped, naming why.
+#include <cmath>
+#include <fstream>
+#include <regex>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "compute/renderer.h"
+#include "host/scene_source.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera::test {
+namespace {
+
+// Why no viewer can run here, or "" if one can.
+const std::string& no_display_reason() {
+  static const std::string reason = [] {
+    std::string out;
+    if (run_command("command -v xvfb-run", out) != 0) {
+      return std::string("xvfb-run is not installed (Debian package xvfb)");
+    }
+    if (run_command("xvfb-run -a true", out) != 0) return "Xvfb does not start: " + out;
+    return std::string();
+  }();
+  return reason;
+}
+
+#define SKIP_WITHOUT_X_SERVER() \
+  if (!no_display_reason().empty()) GTEST_SKIP() << no_display_reason()
+
+struct ViewRun {
+  int status = -1;
+  std::string output;
+};
+
+// Runs the viewer on lavapipe with validation, replaying `script`.
+ViewRun run_view(const std::string& script, const std::string& options) {
+  const std::string path = output_path("script.txt");
+  std::ofstream(path) << script;
+  ViewRun run;
+  run.status = run_command("XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} xvfb-run -a " TESSERA_BINARY
+                           " view --device lavapipe --validate --vsync off --script " +
+                               path + " " + options,
+                           run.output);
+  return run;
+}
+
+// The last camera the viewer printed ("frame N: camera position x y z target x y z").
+bool last_camera(const std::string& output, Camera& camera) {
+  static const std::regex line("camera position (\\S+) (\\S+) (\\S+) target (\\S+) (\\S+) (\\S+)");
+  bool found = false;
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), line);
+       it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    camera.position = {std::stof(m[1]), std::stof(m[2]), std::stof(m[3])};
+    camera.target = {std::stof(m[4]), std::stof(m[5]), std::stof(m[6])};
+    found = true;
+  }
+  return found;
+}
+
+std::vector<uint64_t> numbers_after(const std::string& output, const std::string& label) {
+  std::vector<uint64_t> values;
+  const std::regex pattern(label + " (\\d+)");
+  for (auto it = std::sregex_iterator(output.begin(), output.end(), pattern);
+       it != std::sregex_iterator(); ++it) {
+    values.push_back(std::stoull((*it)[1]));
+  }
+  return values;
+}
+
+class View : public VulkanTest {
+ protected:
+  // The scene `name` as the viewer loads it, and its frame settings at `width` x `height`.
+  static Scene scene_named(const std::string& name, FrameSettings& frame, uint32_t width,
+                           uint32_t height) {
+    SceneFile file = load_scene_argument(name, false, true);
+    frame.width = width;
+    frame.height = height;
+    apply_render_defaults(file.render, frame, true, false, false, false);
+    return std::move(file.scene);
+  }
+
+  Image8 headless(const Scene& scene, const FrameSettings& frame) {
+    Renderer renderer(context());
+    renderer.set_scene(scene);
+    renderer.render(frame);
+    return renderer.read_ldr();
+  }
+
+  void expect_same_image(const std::string& png, const Image8& expected) {
+    const Image8 shown = read_png(png);
+    ASSERT_EQ(shown.width, expected.width) << png;
+    ASSERT_EQ(shown.height, expected.height) << png;
+    size_t differing = 0;
+    for (size_t i = 0; i < shown.pixels.size(); ++i)
+      differing += shown.pixels[i] != expected.pixels[i];
+    EXPECT_EQ(differing, 0u) << png << ": pixels differing from the headless render";
+  }
+};
+
+TEST_F(View, PresentedImageEqualsTheHeadlessRender) {
+  SKIP_WITHOUT_X_SERVER();
+  for (const std::string name : {"spheres", "lights"}) {
+    const std::string png = output_path(name + ".png");
+    const ViewRun run =
+        run_view("2 screenshot " + png + "\n2 exit\n", "--scene " + name + " --size 160x120");
+    ASSERT_EQ(run.status, 0) << run.output;
+    FrameSettings frame;
+    const Scene scene = scene_named(name, frame, 160, 120);
+    expect_same_image(png, headless(scene, frame));
+  }
+}
+
+TEST_F(View, ResizesToOddSizesMinimisesAndRestores) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string tiny = output_path("1x1.png"), odd = output_path("333x77.png"),
+                    back = output_path("restored.png");
+  const ViewRun run = run_view(
+      "1 resize 1 1\n"
+      "4 screenshot " +
+          tiny +
+          "\n"
+          "5 resize 333 77\n"
+          "8 screenshot " +
+          odd +
+          "\n"
+          "9 minimise\n"
+          "15 restore\n"
+          "16 resize 96 64\n"
+          "19 screenshot " +
+          back +
+          "\n"
+          "19 exit\n",
+      "--scene spheres --size 160x120");
+  ASSERT_EQ(run.status, 0) << run.output;
+  FrameSettings frame;
+  const Scene scene = scene_named("spheres", frame, 1, 1);
+  expect_same_image(tiny, headless(scene, frame));
+  frame.width = 333;
+  frame.height = 77;
+  expect_same_image(odd, headless(scene, frame));
+  frame.width = 96;
+  frame.height = 64;
+  expect_same_image(back, headless(scene, frame));
+}
+
+TEST_F(View, ScriptedOrbitMovesTheCameraAsComputedByHand) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string png = output_path("orbit.png");
+  // 100 px right: -0.5 rad about +y (0.005 rad per pixel); then 40 px up: 0.2 rad higher.
+  const ViewRun run = run_view(
+      "1 drag left 10 50 110 50\n"
+      "2 drag left 110 50 110 10\n"
+      "4 screenshot " +
+          png + "\n4 exit\n",
+      "--scene spheres --size 128x96");
+  ASSERT_EQ(run.status, 0) << run.output;
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  // The spheres camera stands at (0, 0, 22) looking at the origin. Turning it by -0.5 rad
+  // about +y puts it at 22 (sin -0.5, 0, cos -0.5); raising it by 0.2 rad about the target
+  // gives elevation 0.2 at the same distance and azimuth.
+  const float d = 22.0f, azimuth = -0.5f, elevation = 0.2f;
+  const glm::vec3 expected{d * std::cos(elevation) * std::sin(azimuth), d * std::sin(elevation),
+                           d * std::cos(elevation) * std::cos(azimuth)};
+  EXPECT_NEAR(camera.position.x, expected.x, 1e-4f);
+  EXPECT_NEAR(camera.position.y, expected.y, 1e-4f);
+  EXPECT_NEAR(camera.position.z, expected.z, 1e-4f);
+  EXPECT_EQ(camera.target, glm::vec3(0.0f));
+  // And the window showed that camera's image.
+  FrameSettings frame;
+  Scene scene = scene_named("spheres", frame, 128, 96);
+  scene.camera.position = camera.position;
+  scene.camera.target = camera.target;
+  expect_same_image(png, headless(scene, frame));
+}
+
+TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
+  SKIP_WITHOUT_X_SERVER();
+  FrameSettings frame;
+  const Scene scene = scene_named("spheres", frame, 160, 120);
+  // Each sphere's centre, projected by hand-built matrices; spheres do not overlap on screen
+  // from the front, so the centre's pixel shows that sphere.
+  const glm::mat4 clip =
+      projection_matrix(scene.camera, 160.0f / 120.0f) * view_matrix(scene.camera);
+  std::string script;
+  std::vector<uint32_t> expected;
+  for (uint32_t i : {0u, 8u, 24u, 48u}) {
+    const glm::vec4 c = clip * scene.objects[i].transform * glm::vec4(0, 0, 0, 1);
+    const float x = (c.x / c.w * 0.5f + 0.5f) * 160.0f, y = (c.y / c.w * 0.5f + 0.5f) * 120.0f;
+    script += std::to_string(expected.size() + 1) + " click " + std::to_string(int(x)) + " " +
+              std::to_string(int(y)) + "\n";
+    expected.push_back(i);
+  }
+  script += "9 click 0 0\n10 exit\n";  // the background
+  const ViewRun run = run_view(script, "--scene spheres --size 160x120");
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::vector<uint64_t> selected = numbers_after(run.output, "selected object");
+  ASSERT_EQ(selected.size(), expected.size()) << run.output;
+  for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(selected[i], expected[i]);
+  EXPECT_NE(run.output.find("selected nothing"), std::string::npos) << run.output;
+}
+
+TEST_F(View, AThousandFramesLeaveMemoryFlat) {
+  SKIP_WITHOUT_X_SERVER();
+  // A small scene, so that 1,000 frames take seconds on lavapipe.
+  const std::string scene = output_path("ball.json");
+  std::ofstream(scene) << R"({"version": 1,
+    "camera": {"position": [0, 0, 4], "target": [0, 0, 0]},
+    "materials": [{"name": "red", "base_color": [0.8, 0.1, 0.1], "roughness": 0.4}],
+    "meshes": [{"name": "ball", "type": "sphere", "segments": 8}],
+    "objects": [{"mesh": "ball", "material": "red"}],
+    "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 60}]})";
+  const ViewRun run =
+      run_view("100 memory\n1000 memory\n1000 exit\n", "--scene " + scene + " --size 32x24");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::vector<uint64_t> kib = numbers_after(run.output, "resident memory");
+  ASSERT_EQ(kib.size(), 2u) << run.output;
+  // Allocator noise is a few hundred KiB; a leak of one small object per frame would be more.
+  EXPECT_LT(int64_t(kib[1]) - int64_t(kib[0]), 1024)
+      << kib[0] << " KiB at frame 100, " << kib[1] << " KiB at frame 1000";
+}
+
+}  // namespace
+}  // namespace tessera::test
