@@ -274,7 +274,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       app.add_subcommand("bench", "sweep a benchmark scene over object counts and backends");
   add_bench_options(*bench, line.bench);
   CLI::App* view =
-      app.add_subcommand("view", "show a scene in a window: camera, picking, edits (needs X11)");
+      app.add_subcommand("view", "show a scene in a window: camera, picking, live edits");
   add_view_options(*view, line.view);
   CLI::App* devices =
       app.add_subcommand("devices", "list the Vulkan devices and whether Tessera can use them");

@@ -1,5 +1,6 @@
 #include "host/view_command.h"
 
+#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 
@@ -13,9 +14,11 @@
 #include "compute/swapchain.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "host/overlay.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 #include "host/view_camera.h"
+#include "host/view_panel.h"
 #include "host/view_script.h"
 #include "host/window.h"
 #include "shaders/shared/gpu_types.h"
@@ -36,7 +39,14 @@ struct Viewer {
   std::unique_ptr<Renderer> renderer;
   Swapchain chain;
   Presenter presenter;
+  Overlay overlay;
   bool recreate = true;
+  bool overlay_visible = true;
+  FrameStats last_stats;
+  double frame_ms = 0.0;
+  std::chrono::steady_clock::time_point last_present{};
+  std::shared_ptr<const Environment> environment;  // the scene's, kept while switched off
+  bool unsaved = false;
 
   int selected = -1;           // index into scene.objects, or -1
   bool scene_changed = false;  // set_scene before the next frame
@@ -49,6 +59,7 @@ struct Viewer {
   void release() {
     if (ctx) {
       vkDeviceWaitIdle(ctx->device);
+      destroy_overlay(*ctx, overlay);
       destroy_presenter(*ctx, presenter);
       destroy_swapchain(*ctx, chain);
       if (chain.surface) vkDestroySurfaceKHR(ctx->instance, chain.surface, nullptr);
@@ -119,6 +130,9 @@ void handle_key(Viewer& v, const InputEvent& e) {
     case GLFW_KEY_ESCAPE:
       v.selected = -1;
       break;
+    case GLFW_KEY_F1:
+      v.overlay_visible = !v.overlay_visible;
+      break;
     default:
       break;
   }
@@ -170,26 +184,74 @@ void handle(Viewer& v, const InputEvent& e) {
   }
 }
 
+void apply_panel_changes(Viewer& v, const PanelChanges& c) {
+  if (c.material && v.selected >= 0) {
+    v.scene.materials[v.scene.objects[size_t(v.selected)].material] = *c.material;
+    v.scene_changed = v.unsaved = true;
+  }
+  if (c.light) {
+    v.scene.lights[c.light_index] = *c.light;
+    v.scene_changed = v.unsaved = true;
+  }
+  if (c.toggle_environment) {
+    v.scene.environment = v.scene.environment ? nullptr : v.environment;
+    v.scene_changed = true;
+  }
+}
+
+// Builds this frame's panel; its changes apply to the frame about to be rendered.
+void build_panel(Viewer& v) {
+  begin_overlay_frame();
+  PanelInput in;
+  in.scene = &v.scene;
+  in.stats = &v.last_stats;
+  in.frame_ms = v.frame_ms;
+  in.selected = v.selected;
+  in.has_environment = v.environment != nullptr;
+  in.environment_on = v.scene.environment != nullptr;
+  in.unsaved = v.unsaved;
+  apply_panel_changes(v, draw_view_panel(in, v.frame));
+}
+
 // Renders and presents one frame at the framebuffer's size; false if nothing was shown.
 bool draw(Viewer& v, uint32_t width, uint32_t height) {
   if (v.recreate || v.chain.extent.width != width || v.chain.extent.height != height) {
     VK_CHECK(vkDeviceWaitIdle(v.ctx->device));
     create_swapchain(*v.ctx, v.chain, width, height, v.args.vsync);
+    if (v.args.overlay) prepare_overlay(*v.ctx, *v.window, v.chain, v.overlay);
     v.recreate = false;
   }
+  const bool overlay = v.args.overlay && v.overlay_visible;
+  if (overlay) build_panel(v);
+  v.window->wants_input_elsewhere = overlay && overlay_wants_input();
   if (v.scene_changed) {
     v.renderer->set_scene(v.scene);
     v.scene_changed = false;
   }
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
-  v.renderer->render(v.frame);
+  v.last_stats = v.renderer->render(v.frame);
   Image8 shot;
   const bool wants_shot = !v.screenshot.empty();
-  const PresentResult result = present_frame(
-      *v.ctx, v.presenter, v.chain, v.renderer->output_image(), {}, wants_shot ? &shot : nullptr);
+  bool overlay_drawn = false;
+  OverlayRecorder recorder;
+  if (overlay) {
+    recorder = [&](VkCommandBuffer cmd, uint32_t index) {
+      record_overlay(v.overlay, v.chain, cmd, index);
+      overlay_drawn = true;
+    };
+  }
+  const PresentResult result =
+      present_frame(*v.ctx, v.presenter, v.chain, v.renderer->output_image(), recorder,
+                    wants_shot ? &shot : nullptr);
+  if (overlay && !overlay_drawn) discard_overlay_frame();
   if (result != PresentResult::presented) v.recreate = true;
   if (result == PresentResult::out_of_date) return false;
+  const auto now = std::chrono::steady_clock::now();
+  if (v.last_present != std::chrono::steady_clock::time_point{}) {
+    v.frame_ms = std::chrono::duration<double, std::milli>(now - v.last_present).count();
+  }
+  v.last_present = now;
   if (wants_shot) {
     write_png(v.screenshot, shot);
     std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
@@ -229,6 +291,7 @@ int run_view(const ViewArgs& args) {
   SceneFile file = load_scene_argument(args.scene, false, false);
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
   v.scene = std::move(file.scene);
+  v.environment = v.scene.environment;
 
   v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
   ContextOptions options;

@@ -11,7 +11,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "compute/renderer.h"
+#include "core/check.h"
 #include "host/scene_source.h"
+#include "host/view_script.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera::test {
@@ -103,6 +105,58 @@ class View : public VulkanTest {
     EXPECT_EQ(differing, 0u) << png << ": pixels differing from the headless render";
   }
 };
+
+TEST(ViewScript, ReadsEveryEvent) {
+  const std::vector<ScriptEvent> events = parse_view_script(
+      "# a comment\n"
+      "0 key Z ctrl\n1 drag middle 1 2 3 4 shift\n2 click 5 6\n2 wheel -1.5\n"
+      "3 resize 333 77\n4 minimise\n5 restore\n6 screenshot a.png\n7 save b.json\n"
+      "7 memory\n8 exit # the end\n",
+      "s.txt");
+  ASSERT_EQ(events.size(), 11u);
+  EXPECT_EQ(events[0].event.kind, EventKind::key);
+  EXPECT_EQ(events[0].event.key, 'Z');
+  EXPECT_TRUE(events[0].event.ctrl);
+  EXPECT_EQ(events[1].event.button, MouseButton::middle);
+  EXPECT_EQ(events[1].event.from, glm::vec2(1, 2));
+  EXPECT_EQ(events[1].event.to, glm::vec2(3, 4));
+  EXPECT_TRUE(events[1].event.shift);
+  EXPECT_EQ(events[2].frame, 2u);
+  EXPECT_EQ(events[3].event.wheel, -1.5f);
+  EXPECT_EQ(events[4].event.width, 333u);
+  EXPECT_EQ(events[4].event.height, 77u);
+  EXPECT_EQ(events[7].event.path, "a.png");
+  EXPECT_EQ(events[8].event.path, "b.json");
+  EXPECT_EQ(events[10].event.kind, EventKind::exit);
+  EXPECT_EQ(events[10].frame, 8u);
+}
+
+TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"1 exit\n0 exit\n", "s.txt:2: frame 0 comes before the previous line's frame 1"},
+      {"x exit\n", "s.txt:1: expects a frame number first, got 'x'"},
+      {"1 jump\n", "s.txt:1: unknown event 'jump'"},
+      {"\n1 key\n", "s.txt:2: missing key name"},
+      {"1 key Tab\n", "s.txt:1: unknown key 'Tab'"},
+      {"1 drag left 1 2 3\n", "s.txt:1: missing y"},
+      {"1 drag up 1 2 3 4\n", "s.txt:1: unknown button 'up'"},
+      {"1 click 1 2 3\n", "s.txt:1: unexpected '3'"},
+      {"1 resize 0 5\n", "s.txt:1: width expects a number from 1 to 16384, got '0'"},
+      {"1 resize 2.5 5\n", "s.txt:1: width expects a whole number"},
+      {"1 screenshot a.jpg\n", "s.txt:1: screenshot expects a .png path"},
+      {"1 key A alt\n", "s.txt:1: unexpected 'alt'"},
+  };
+  for (const auto& [text, message] : cases) {
+    try {
+      parse_view_script(text, "s.txt");
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos)
+          << "'" << e.what() << "' lacks '" << message << "'";
+    }
+  }
+  EXPECT_THROW(load_view_script("no/such/script.txt"), Error);
+}
 
 TEST_F(View, PresentedImageEqualsTheHeadlessRender) {
   SKIP_WITHOUT_X_SERVER();
