@@ -14,6 +14,7 @@
 #include "compute/swapchain.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "core/materials.h"
 #include "host/overlay.h"
 #include "host/report.h"
 #include "host/scene_source.h"
@@ -122,6 +123,34 @@ std::string default_screenshot_name(const Viewer& v) {
   return "tessera_view_" + std::to_string(v.frame_number) + ".png";
 }
 
+void set_selected_material(Viewer& v, const Material& m) {
+  if (v.selected < 0) {
+    std::printf("frame %" PRIu64 ": no object selected; material unchanged\n", v.frame_number);
+    return;
+  }
+  v.scene.materials[v.scene.objects[size_t(v.selected)].material] = m;
+  v.scene_changed = v.unsaved = true;
+}
+
+// A scripted material edit, as the panel's editor would make it.
+void edit_material(Viewer& v, const InputEvent& e) {
+  if (v.selected < 0) return set_selected_material(v, {});
+  Material m = v.scene.materials[v.scene.objects[size_t(v.selected)].material];
+  if (e.field == "preset") {
+    m.base_color = find_metal_preset(e.path)->f0;
+    m.metallic = 1.0f;
+  } else if (e.field == "base_color") {
+    m.base_color = e.value;
+  } else if (e.field == "emissive") {
+    m.emissive = e.value;
+  } else if (e.field == "metallic") {
+    m.metallic = e.value.x;
+  } else if (e.field == "roughness") {
+    m.roughness = e.value.x;
+  }
+  set_selected_material(v, m);
+}
+
 void handle_key(Viewer& v, const InputEvent& e) {
   switch (e.key) {
     case GLFW_KEY_P:
@@ -181,14 +210,14 @@ void handle(Viewer& v, const InputEvent& e) {
     case EventKind::memory:
       print_resident_memory(v);
       break;
+    case EventKind::material:
+      edit_material(v, e);
+      break;
   }
 }
 
 void apply_panel_changes(Viewer& v, const PanelChanges& c) {
-  if (c.material && v.selected >= 0) {
-    v.scene.materials[v.scene.objects[size_t(v.selected)].material] = *c.material;
-    v.scene_changed = v.unsaved = true;
-  }
+  if (c.material) set_selected_material(v, *c.material);
   if (c.light) {
     v.scene.lights[c.light_index] = *c.light;
     v.scene_changed = v.unsaved = true;

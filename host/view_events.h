@@ -21,6 +21,8 @@ enum class EventKind {
   save,        // the scene saved to `path` (empty: to the scene's own file)
   exit,        // leave after this frame, as if the window were closed
   memory,      // print the process's resident memory (script only: leak checks)
+  material,    // the selected object's material: `field` set to `value` or preset `path`
+               // (script only: what the panel's material editor does)
 };
 
 enum class MouseButton { left, middle, right };
@@ -37,6 +39,8 @@ struct InputEvent {
   uint32_t width = 0;
   uint32_t height = 0;
   std::string path;
+  std::string field;  // material: preset, base_color, metallic, roughness or emissive
+  glm::vec3 value{0.0f};
 };
 
 }  // namespace tessera

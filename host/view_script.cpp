@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/materials.h"
 #include "shaders/shared/constants.h"
 
 namespace tessera {
@@ -142,13 +143,29 @@ InputEvent parse_event(Line& line) {
   } else if (kind == "exit") {
     e.kind = EventKind::exit;
     line.end();
+  } else if (kind == "material") {
+    e.kind = EventKind::material;
+    e.field = line.word("material field");
+    if (e.field == "preset") {
+      e.path = line.word("preset name");
+      if (!find_metal_preset(e.path)) line.fail("unknown metal preset '" + e.path + "'");
+    } else if (e.field == "base_color" || e.field == "emissive") {
+      const float limit = e.field == "emissive" ? 1e6f : 1.0f;
+      for (int c = 0; c < 3; ++c) e.value[c] = float(line.number_of("colour component", 0, limit));
+    } else if (e.field == "metallic" || e.field == "roughness") {
+      e.value.x = float(line.number_of(e.field.c_str(), 0, 1));
+    } else {
+      line.fail("unknown material field '" + e.field +
+                "' (preset, base_color, metallic, roughness or emissive)");
+    }
+    line.end();
   } else if (kind == "memory") {
     e.kind = EventKind::memory;
     line.end();
   } else {
-    line.fail(
-        "unknown event '" + kind +
-        "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit, memory)");
+    line.fail("unknown event '" + kind +
+              "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit, "
+              "memory, material)");
   }
   return e;
 }

@@ -13,6 +13,9 @@
 //   FRAME save [PATH]                    the scene, as a scene file
 //   FRAME exit
 //   FRAME memory                         prints the resident memory, for leak checks
+//   FRAME material preset NAME           the selected object's material, as the panel edits
+//   FRAME material base_color|emissive R G B
+//   FRAME material metallic|roughness X
 //
 // FRAME counts presented-or-skipped loop iterations from 0; frames never decrease from one line
 // to the next. Positions are window pixels from the top left. '#' starts a comment.

@@ -12,6 +12,7 @@
 
 #include "compute/renderer.h"
 #include "core/check.h"
+#include "core/materials.h"
 #include "host/scene_source.h"
 #include "host/view_script.h"
 #include "tests/vulkan_fixture.h"
@@ -259,6 +260,26 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
   ASSERT_EQ(selected.size(), expected.size()) << run.output;
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(selected[i], expected[i]);
   EXPECT_NE(run.output.find("selected nothing"), std::string::npos) << run.output;
+}
+
+TEST_F(View, MaterialEditGivesTheEditedScenesImage) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string png = output_path("gold.png");
+  // The centre pixel shows sphere 24, the middle of the 7x7 grid.
+  const ViewRun run = run_view(
+      "1 click 80 60\n2 material preset gold\n3 material roughness 0.2\n"
+      "4 screenshot " +
+          png + "\n4 exit\n",
+      "--scene spheres --size 160x120");
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_NE(run.output.find("selected object 24"), std::string::npos) << run.output;
+  FrameSettings frame;
+  Scene scene = scene_named("spheres", frame, 160, 120);
+  Material& m = scene.materials[scene.objects[24].material];
+  m.base_color = find_metal_preset("gold")->f0;
+  m.metallic = 1.0f;
+  m.roughness = 0.2f;
+  expect_same_image(png, headless(scene, frame));
 }
 
 TEST_F(View, AThousandFramesLeaveMemoryFlat) {
