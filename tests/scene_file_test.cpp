@@ -138,8 +138,11 @@ TEST(SceneFile, ValuesReadByHand) {
   })");
   EXPECT_FLOAT_EQ(f.scene.camera.vertical_fov, 1.5707963f);  // pi / 2
   EXPECT_EQ(f.scene.camera.near_plane, 0.5f);
-  // Gold's F0 in Filament's table: (1.00, 0.85, 0.57), metallic.
-  EXPECT_EQ(f.scene.materials[0].base_color, glm::vec3(1.0f, 0.85f, 0.57f));
+  // Gold's F0 in Filament's table, sRGB (1.00, 0.85, 0.57), decoded by hand:
+  // ((0.85 + 0.055) / 1.055)^2.4 = 0.69203, ((0.57 + 0.055) / 1.055)^2.4 = 0.28466; metallic.
+  EXPECT_NEAR(f.scene.materials[0].base_color.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(f.scene.materials[0].base_color.g, 0.69203f, 1e-4f);
+  EXPECT_NEAR(f.scene.materials[0].base_color.b, 0.28466f, 1e-4f);
   EXPECT_EQ(f.scene.materials[0].metallic, 1.0f);
   EXPECT_EQ(f.scene.materials[0].roughness, 0.25f);
   EXPECT_EQ(f.scene.materials[1].emissive, glm::vec3(2, 0, 0));
