@@ -51,7 +51,11 @@ struct Viewer {
 
   int selected = -1;           // index into scene.objects, or -1
   bool scene_changed = false;  // set_scene before the next frame
-  bool minimised = false;      // by the script (a real window reports a 0 x 0 framebuffer)
+  std::string change;          // what changed it ("camera", "material", ...), for the log
+  std::chrono::steady_clock::time_point changed_at{};
+  uint64_t frames_presented = 0;
+  std::chrono::steady_clock::time_point first_present{};
+  bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
   bool exit = false;
   std::string screenshot;  // written from the next presented frame
 
@@ -70,9 +74,22 @@ struct Viewer {
   }
 };
 
+// The scene changed by `what` ("camera", "material", ...); an edit (not a camera move) leaves
+// unsaved changes. The renderer takes it with set_scene before the next frame.
+void mark_changed(Viewer& v, const std::string& what, bool edit) {
+  if (!v.scene_changed) {
+    v.changed_at = std::chrono::steady_clock::now();
+    v.change = what;
+  } else if (v.change.find(what) == std::string::npos) {
+    v.change.append("+").append(what);
+  }
+  v.scene_changed = true;
+  v.unsaved |= edit;
+}
+
 // The renderer takes the camera with the scene (set_scene uploads only what changed).
 void camera_moved(Viewer& v) {
-  v.scene_changed = true;
+  mark_changed(v, "camera", false);
   const Camera& c = v.scene.camera;
   std::printf("frame %" PRIu64 ": camera position %.9g %.9g %.9g target %.9g %.9g %.9g\n",
               v.frame_number, c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
@@ -129,7 +146,7 @@ void set_selected_material(Viewer& v, const Material& m) {
     return;
   }
   v.scene.materials[v.scene.objects[size_t(v.selected)].material] = m;
-  v.scene_changed = v.unsaved = true;
+  mark_changed(v, "material", true);
 }
 
 // A scripted material edit, as the panel's editor would make it.
@@ -220,11 +237,11 @@ void apply_panel_changes(Viewer& v, const PanelChanges& c) {
   if (c.material) set_selected_material(v, *c.material);
   if (c.light) {
     v.scene.lights[c.light_index] = *c.light;
-    v.scene_changed = v.unsaved = true;
+    mark_changed(v, "light", true);
   }
   if (c.toggle_environment) {
     v.scene.environment = v.scene.environment ? nullptr : v.environment;
-    v.scene_changed = true;
+    mark_changed(v, "environment", true);
   }
 }
 
@@ -253,10 +270,8 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   const bool overlay = v.args.overlay && v.overlay_visible;
   if (overlay) build_panel(v);
   v.window->wants_input_elsewhere = overlay && overlay_wants_input();
-  if (v.scene_changed) {
-    v.renderer->set_scene(v.scene);
-    v.scene_changed = false;
-  }
+  UploadStats upload;
+  if (v.scene_changed) upload = v.renderer->set_scene(v.scene);
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
   v.last_stats = v.renderer->render(v.frame);
@@ -281,6 +296,14 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     v.frame_ms = std::chrono::duration<double, std::milli>(now - v.last_present).count();
   }
   v.last_present = now;
+  if (v.frames_presented++ == 0) v.first_present = now;
+  if (v.scene_changed) {
+    // The edit is on screen: this frame was rendered from it and has been presented.
+    std::printf("frame %" PRIu64 ": %s: uploaded %llu bytes, %.2f ms from the change to present\n",
+                v.frame_number, v.change.c_str(), (unsigned long long)upload.bytes,
+                std::chrono::duration<double, std::milli>(now - v.changed_at).count());
+    v.scene_changed = false;
+  }
   if (wants_shot) {
     write_png(v.screenshot, shot);
     std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
@@ -334,6 +357,11 @@ int run_view(const ViewArgs& args) {
   v.renderer = std::make_unique<Renderer>(*v.ctx);
   v.renderer->set_scene(v.scene);
   run_loop(v);
+  if (v.frames_presented > 1) {
+    const double seconds = std::chrono::duration<double>(v.last_present - v.first_present).count();
+    std::printf("%llu frames presented, %.1f frames per second after the first\n",
+                (unsigned long long)v.frames_presented, double(v.frames_presented - 1) / seconds);
+  }
   v.release();
   return validation_exit_status(v.ctx.get());
 }
