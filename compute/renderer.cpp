@@ -15,6 +15,7 @@
 #include "compute/scene_upload.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "core/pick.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -814,14 +815,7 @@ const StorageImage& Renderer::output_image() const {
 }
 
 uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
-  const auto& objects = s_->uploaded.objects;
-  auto it =
-      std::upper_bound(objects.begin(), objects.end(), triangle_id,
-                       [](uint32_t id, const gpu::GpuObject& o) { return id < o.first_triangle; });
-  TESSERA_CHECK(it != objects.begin());
-  const size_t slot = size_t(it - objects.begin()) - 1;
-  TESSERA_CHECK(triangle_id - objects[slot].first_triangle < objects[slot].triangle_count);
-  return s_->uploaded.object_of_slot[slot];
+  return tessera::object_of_triangle(s_->uploaded.numbering, triangle_id);
 }
 
 RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,

@@ -19,11 +19,11 @@ struct GpuSceneArrays {
   std::vector<gpu::GpuLight> lights;                         // sorted by kind (TS_LIGHT_* order)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // lights of each kind, by TS_LIGHT_*
   std::vector<gpu::GpuTexture> textures;                     // per Scene::textures entry
-  std::vector<glm::uvec2> texels;        // every mip level of every texture, fp16 RGBA
-  uint32_t texture_maps = 0;             // TS_MAP_* bits of the maps any material uses
-  std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
-  uint64_t triangle_count = 0;           // triangle instances over all objects
-  uint32_t mip_chains_built = 0;         // textures whose mip chain was built, not reused
+  std::vector<glm::uvec2> texels;  // every mip level of every texture, fp16 RGBA
+  uint32_t texture_maps = 0;       // TS_MAP_* bits of the maps any material uses
+  ObjectNumbering numbering;       // GPU object slot i is Scene::objects[numbering.objects[i]]
+  uint64_t triangle_count = 0;     // triangle instances over all objects
+  uint32_t mip_chains_built = 0;   // textures whose mip chain was built, not reused
 };
 
 /// Packed mip chains of the textures of the last flattened scene, by content, so that

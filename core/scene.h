@@ -22,6 +22,8 @@ struct Camera {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float vertical_fov = glm::radians(45.0f);  // full angle
   float near_plane = 0.1f;                   // > 0; there is no far plane
+  // Memberwise, floats compared exactly (as are those of Mesh, Material, Light, Object).
+  bool operator==(const Camera&) const = default;
 };
 
 /// Triangle mesh with one normal and uv per vertex. Triangles wind counter-clockwise seen from
@@ -36,6 +38,7 @@ struct Mesh {
   /// (generate_tangents) when the scene is uploaded or rendered.
   std::vector<glm::vec4> tangents;
   size_t triangle_count() const { return indices.size() / 3; }
+  bool operator==(const Mesh&) const = default;
 };
 
 /// Material::*_map value for "no texture".
@@ -59,6 +62,7 @@ struct Material {
   // Never culled by facing (whatever FrameSettings::cull says); back faces are shaded with the
   // normal and tangent frame flipped toward the viewer (glTF 2.0 doubleSided).
   bool double_sided = false;
+  bool operator==(const Material&) const = default;
 };
 
 /// A scalar parameter of Material and the values validate_scene accepts for it (inclusive;
@@ -109,6 +113,7 @@ struct Light {
   glm::vec3 attenuation{1.0f, 0.0f, 0.0f};  // classic falloff: Kc, Kl, Kq (>= 0, not all 0)
   float inner_angle = 0.35f;                // spot: half angles in radians, 0 <= inner <= outer
   float outer_angle = 0.5f;                 //       < pi/2; full intensity inside the inner cone
+  bool operator==(const Light&) const = default;
 };
 
 /// One placed instance of a mesh; many objects may share a mesh and a material.
@@ -116,6 +121,7 @@ struct Object {
   uint32_t mesh = 0;
   uint32_t material = 0;
   glm::mat4 transform{1.0f};  // object -> world
+  bool operator==(const Object&) const = default;
 };
 
 enum class ToneMap { aces, reinhard, clamp };

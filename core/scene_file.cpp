@@ -40,6 +40,14 @@ struct Node {
   std::string path;
 };
 
+// `v` normalized, or as it is when it is unit length already to within float rounding (as
+// every normalized float vector is), so that the normals and directions save_scene_file writes
+// read back bit for bit: normalizing again could move them by an ulp.
+glm::vec3 unit_vector(glm::vec3 v) {
+  const double length2 = glm::dot(glm::dvec3(v), glm::dvec3(v));
+  return std::fabs(length2 - 1.0) <= 1e-6 ? v : glm::normalize(v);
+}
+
 std::string format_number(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.9g", v);
@@ -73,6 +81,7 @@ struct TextureDecl {
   Node node;
   std::string file;  // "" for procedural textures (already made)
   std::optional<bool> srgb;
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
 };
 
 // A model file's content, placed as a unit by each object that names it.
@@ -265,6 +274,7 @@ struct Reader {
   void read_camera(const Node& n);
   void read_light(const Node& n);
   void read_texture(const Node& n);
+  std::pair<TextureWrap, TextureWrap> wrap_modes(const Node& n) const;
   void load_textures();
   void read_material(const Node& n);
   void read_mesh(const Node& n);
@@ -304,7 +314,7 @@ void Reader::read_light(const Node& n) {
     const glm::vec3 v = vector<3>(d);
     if (glm::dot(v, v) == 0.0f || !std::isfinite(glm::dot(v, v)))
       fail(d, "a direction must be non-zero (and not so long that its length overflows)");
-    l.direction = glm::normalize(v);
+    l.direction = unit_vector(v);
   }
   l.color = vec3_or(n, "color", l.color, 0.0);
   l.intensity = real_or(n, "intensity", l.intensity, 0.0);
@@ -325,9 +335,25 @@ void Reader::read_light(const Node& n) {
   out.scene.lights.push_back(l);
 }
 
+// "wrap": one mode for both axes, or [u, v].
+std::pair<TextureWrap, TextureWrap> Reader::wrap_modes(const Node& n) const {
+  if (!has(n, "wrap")) return {TextureWrap::repeat, TextureWrap::repeat};
+  const Node w = child(n, "wrap");
+  auto mode = [&](const Node& m) {
+    return choice(m, {std::pair{"repeat", TextureWrap::repeat},
+                      {"clamp_to_edge", TextureWrap::clamp_to_edge},
+                      {"mirrored_repeat", TextureWrap::mirrored_repeat}});
+  };
+  if (w.json->is_string()) return {mode(w), mode(w)};
+  expect(w, w.json->is_array() && w.json->size() == 2, "a wrap mode or an array of 2 (u, v)");
+  return {mode(element(w, 0)), mode(element(w, 1))};
+}
+
 void Reader::read_texture(const Node& n) {
   object(n, {"name", "type", "file", "srgb", "size", "cells", "color_a", "color_b", "tiles",
-             "color", "strength"});
+             "color", "strength", "wrap"});
+  const auto [wrap_u, wrap_v] = wrap_modes(n);
+  const size_t first_new = out.scene.textures.size();
   const uint32_t index = uint32_t(out.scene.textures.size());
   const std::string name = declare(n, texture_names, index, "texture");
   if (!has(n, "type")) fail(n, "a texture needs a \"type\": file, checker or tiles");
@@ -336,7 +362,7 @@ void Reader::read_texture(const Node& n) {
   const uint32_t side = options.max_texture_side;
   if (kind == 0) {
     if (!has(n, "file")) fail(n, "a file texture needs a \"file\"");
-    TextureDecl d{n, resolve(child(n, "file")), std::nullopt};
+    TextureDecl d{n, resolve(child(n, "file")), std::nullopt, wrap_u, wrap_v};
     if (has(n, "srgb")) d.srgb = boolean(child(n, "srgb"));
     texture_decls.push_back(d);
     out.scene.textures.emplace_back();  // loaded by load_textures
@@ -362,6 +388,10 @@ void Reader::read_texture(const Node& n) {
       texture_decls.push_back({n, "", std::nullopt});
     }
   }
+  for (size_t i = first_new; i < out.scene.textures.size(); ++i) {
+    out.scene.textures[i].wrap_u = wrap_u;
+    out.scene.textures[i].wrap_v = wrap_v;
+  }
 }
 
 // File textures are sRGB where a material uses them as colour (base colour or emission),
@@ -378,6 +408,8 @@ void Reader::load_textures() {
     const bool srgb = d.srgb.value_or(colour[i]);
     out.scene.textures[i] = loading(child(d.node, "file"), [&] {
       Texture t = load_texture(d.file, srgb);
+      t.wrap_u = d.wrap_u;
+      t.wrap_v = d.wrap_v;
       if (t.width > options.max_texture_side || t.height > options.max_texture_side)
         throw Error(d.file + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                     ", over the largest side of " + std::to_string(options.max_texture_side));
@@ -425,7 +457,7 @@ void Reader::read_material(const Node& n) {
 
 void Reader::read_mesh(const Node& n) {
   object(n, {"name", "type", "segments", "rings", "level", "nx", "ny", "positions", "normals",
-             "uvs", "indices"});
+             "uvs", "indices", "tangents"});
   declare(n, mesh_names, uint32_t(out.scene.meshes.size()), "mesh");
   if (!has(n, "type"))
     fail(n, "a mesh needs a \"type\": sphere, icosphere, cube, plane or triangles");
@@ -480,7 +512,7 @@ void Reader::read_mesh(const Node& n) {
       if (glm::dot(nor, nor) == 0.0f)
         fail(element(nn, 3 * i), "normal " + std::to_string(i) + " is zero");
       mesh.positions.push_back(pos);
-      mesh.normals.push_back(glm::normalize(nor));
+      mesh.normals.push_back(unit_vector(nor));
       mesh.uvs.push_back({real(element(uv, 2 * i)), real(element(uv, 2 * i + 1))});
     }
     const Node ix = child(n, "indices");
@@ -491,6 +523,19 @@ void Reader::read_mesh(const Node& n) {
       const Node e = element(ix, i);
       if (vertices == 0) fail(e, "an index, but the mesh has no vertices");
       mesh.indices.push_back(uint32_t(integer(e, 0, vertices - 1)));
+    }
+    if (has(n, "tangents")) {
+      // Taken as written (saved meshes keep their imported or generated frames exactly);
+      // validate_scene checks them.
+      const Node t = flat("tangents", 4);
+      if (t.json->size() / 4 != vertices)
+        fail(t, std::to_string(t.json->size() / 4) + " tangents for " + std::to_string(vertices) +
+                    " vertices");
+      for (size_t i = 0; i < vertices; ++i) {
+        glm::vec4 v;
+        for (int k = 0; k < 4; ++k) v[k] = real(element(t, 4 * i + k));
+        mesh.tangents.push_back(v);
+      }
     }
   }
   out.scene.meshes.push_back(std::move(mesh));

@@ -5,6 +5,10 @@
 #ifndef TESSERA_CONSTANTS_H
 #define TESSERA_CONSTANTS_H
 
+// Visibility buffer value of a pixel no triangle covers (all bits set: larger than any key;
+// core/pick.h reads keys on the CPU).
+#define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
+
 // Fixed-point screen coordinates: 8 sub-pixel bits, as in common hardware rasterizers.
 #define TS_SUBPIXEL_BITS 8
 #define TS_SUBPIXEL_ONE 256

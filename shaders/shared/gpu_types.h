@@ -29,8 +29,6 @@ using glm::vec4;
 
 // Screen tiles used by binning and the per-tile rasterizer, in pixels per side.
 #define TS_TILE_SIZE 16
-// Visibility buffer value of a pixel no triangle covers (all bits set: larger than any key).
-#define TS_VIS_EMPTY 0xFFFFFFFFFFFFFFFFul
 // Threads per workgroup of the one-thread-per-item passes.
 #define TS_GROUP_SIZE 64
 // Workgroup size of the setup pass: its cull counters are summed per workgroup, so larger
@@ -102,7 +100,15 @@ using glm::vec4;
 #define TS_MAP_NORMAL 4u
 #define TS_MAP_OCCLUSION 8u
 #define TS_MAP_EMISSIVE 16u
-#define TS_MAP_ALL 31u
+// Not a map: some texture wraps other than by repeating (GpuTexture.wrap is read only then).
+#define TS_MAP_WRAP_MODES 32u
+#define TS_MAP_ALL 63u
+
+// GpuTexture.wrap: the mode of u in bits 0-1, of v in bits 2-3 (glTF 2.0 sampler wrapS/wrapT,
+// as OpenGL's REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT).
+#define TS_WRAP_REPEAT 0u
+#define TS_WRAP_CLAMP_TO_EDGE 1u
+#define TS_WRAP_MIRRORED_REPEAT 2u
 #define TS_NO_TEXTURE 0xFFFFFFFFu
 // Mip levels a GpuTexture can describe: sides up to 2^15 (the largest accepted is 16384).
 #define TS_MAX_TEXTURE_LEVELS 16
@@ -159,7 +165,7 @@ struct GpuMaterial {
 struct GpuTexture {
   uvec2 size;   // texels of level 0
   uint levels;  // in the mip chain
-  uint pad0;
+  uint wrap;    // TS_WRAP_* of u | (of v << 2)
   uvec4 level_offset[TS_MAX_TEXTURE_LEVELS / 4];
 };
 
@@ -284,6 +290,7 @@ static_assert(offsetof(GpuMaterial, base_color_map) == 48);
 static_assert(offsetof(GpuMaterial, occlusion_map) == 60);
 static_assert(sizeof(GpuTexture) == 80);
 static_assert(offsetof(GpuTexture, levels) == 8);
+static_assert(offsetof(GpuTexture, wrap) == 12);
 static_assert(offsetof(GpuTexture, level_offset) == 16);
 static_assert(sizeof(GpuLight) == 80);
 static_assert(offsetof(GpuLight, kind) == 12);

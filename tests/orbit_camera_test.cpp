@@ -1,0 +1,180 @@
+// The viewer's orbit camera (core/orbit_camera.h): expected values from the documented
+// formulas, worked by hand, and pan checked through the renderers' own projection.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/check.h"
+#include "core/mesh.h"
+#include "core/orbit_camera.h"
+
+namespace tessera {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+void expect_near(glm::vec3 a, glm::vec3 b, float tolerance) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+TEST(OrbitCamera, ToCameraPlacesTheEyeByYawAndPitch) {
+  OrbitCamera o;  // yaw 0, pitch 0, distance 5: the default Camera, on +z looking down -z
+  const Camera c = to_camera(o);
+  EXPECT_EQ(c, Camera{});
+  o.target = {1, 0, 0};
+  o.distance = 2;
+  o.yaw = kPi / 2;  // toward +x
+  expect_near(to_camera(o).position, {3, 0, 0}, 1e-6f);
+  o.yaw = 0;
+  o.pitch = kPi / 4;  // raised: (0, 2 sin 45, 2 cos 45) from the target
+  expect_near(to_camera(o).position, {1, std::sqrt(2.0f), std::sqrt(2.0f)}, 1e-6f);
+  o.up = {0, 0, 1};  // z up: back is then +x, right = up x back = +y
+  o.pitch = 0;
+  o.yaw = kPi / 2;
+  expect_near(to_camera(o).position, {1, 2, 0}, 1e-6f);
+}
+
+TEST(OrbitCamera, FromCameraRoundTrips) {
+  Camera a;
+  a.position = {1.5f, 2.25f, -3.0f};
+  a.target = {0.25f, -0.5f, 0.75f};
+  a.vertical_fov = glm::radians(60.0f);
+  a.near_plane = 0.01f;
+  Camera b;
+  b.position = {0.0f, -4.0f, 10.0f};
+  b.target = {0.0f, 0.0f, 0.0f};
+  b.up = {0.0f, 0.0f, 2.0f};  // not unit, not +y: copied as it is
+  for (const Camera& c : {a, b, Camera{}}) {
+    const Camera back = to_camera(from_camera(c));
+    EXPECT_EQ(back.target, c.target);
+    EXPECT_EQ(back.up, c.up);
+    EXPECT_EQ(back.vertical_fov, c.vertical_fov);
+    EXPECT_EQ(back.near_plane, c.near_plane);
+    expect_near(back.position, c.position, 1e-5f * glm::length(c.position - c.target));
+  }
+  // And the other way: yaw, pitch and distance come back.
+  OrbitCamera o;
+  o.yaw = -2.0f;
+  o.pitch = 0.7f;
+  o.distance = 3.5f;
+  o.target = {4, 5, 6};
+  const OrbitCamera r = from_camera(to_camera(o));
+  EXPECT_NEAR(r.yaw, o.yaw, 1e-5f);
+  EXPECT_NEAR(r.pitch, o.pitch, 1e-5f);
+  EXPECT_NEAR(r.distance, o.distance, 1e-5f);
+}
+
+TEST(OrbitCamera, OrbitTurnsByPixelsOverHeight) {
+  OrbitCamera o;  // pi radians per viewport height
+  const Viewport v{800, 600};
+  orbit(o, 150.0f, 60.0f, v);
+  EXPECT_NEAR(o.yaw, -150.0f * kPi / 600.0f, 1e-6f);  // -pi/4
+  EXPECT_NEAR(o.pitch, 60.0f * kPi / 600.0f, 1e-6f);  // pi/10
+  o.orbit_radians_per_height = 1.0f;
+  orbit(o, -300.0f, 0.0f, v);
+  EXPECT_NEAR(o.yaw, -kPi / 4 + 0.5f, 1e-6f);
+  // Pitch stops short of the poles.
+  orbit(o, 0.0f, 1e6f, v);
+  EXPECT_EQ(o.pitch, kMaxOrbitPitch);
+  orbit(o, 0.0f, -1e7f, v);
+  EXPECT_EQ(o.pitch, -kMaxOrbitPitch);
+  EXPECT_THROW(orbit(o, 1.0f, 1.0f, Viewport{800, 0}), Error);
+}
+
+// Pixel of world point p seen by `camera` in a w x h image (pixel centres at half integers).
+glm::vec2 pixel_of(const Camera& camera, glm::vec3 p, float w, float h) {
+  const glm::vec4 clip =
+      projection_matrix(camera, w / h) * view_matrix(camera) * glm::vec4(p, 1.0f);
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return (ndc * 0.5f + 0.5f) * glm::vec2(w, h);
+}
+
+TEST(OrbitCamera, PanKeepsThePointUnderTheCursor) {
+  OrbitCamera o;
+  o.target = {0.5f, 1.0f, -2.0f};
+  o.distance = 7.0f;
+  o.yaw = 0.6f;
+  o.pitch = -0.3f;
+  o.vertical_fov = glm::radians(50.0f);
+  const Viewport v{640, 480};
+  const glm::vec3 grabbed = o.target;  // at the target's depth, under the centre pixel
+  const glm::vec2 before = pixel_of(to_camera(o), grabbed, 640, 480);
+  expect_near(glm::vec3(before, 0), {320, 240, 0}, 1e-3f);
+  pan(o, 37.0f, -22.0f, v);
+  const glm::vec2 after = pixel_of(to_camera(o), grabbed, 640, 480);
+  EXPECT_NEAR(after.x, 320.0f + 37.0f, 1e-3f);
+  EXPECT_NEAR(after.y, 240.0f - 22.0f, 1e-3f);
+  EXPECT_EQ(o.distance, 7.0f);
+}
+
+TEST(OrbitCamera, ZoomIsMultiplicative) {
+  OrbitCamera o;  // distance 5, ratio 0.9 per step
+  zoom(o, 2.0f);
+  EXPECT_NEAR(o.distance, 5.0f * 0.81f, 1e-6f);
+  zoom(o, -3.0f);
+  EXPECT_NEAR(o.distance, 5.0f / 0.9f, 1e-5f);
+  zoom(o, 1e6f);
+  EXPECT_EQ(o.distance, kMinOrbitDistance);
+  zoom(o, -1e6f);
+  EXPECT_EQ(o.distance, kMaxOrbitDistance);
+  EXPECT_EQ(o.target, glm::vec3(0.0f));
+}
+
+TEST(OrbitCamera, FlyMovesTargetAndEyeTogether) {
+  OrbitCamera o;  // looking down -z from distance 5; 1 distance per second
+  fly(o, FlyKeys{.forward = true}, 1.0f);
+  expect_near(o.target, {0, 0, -5}, 1e-5f);
+  expect_near(to_camera(o).position, {0, 0, 0}, 1e-5f);
+  o.target = glm::vec3(0.0f);
+  fly(o, FlyKeys{.forward = true, .right = true}, 0.5f);  // diagonal, not faster
+  expect_near(o.target, glm::vec3(1, 0, -1) * (2.5f / std::sqrt(2.0f)), 1e-5f);
+  o.target = glm::vec3(0.0f);
+  fly(o, FlyKeys{.down = true}, 0.2f);
+  expect_near(o.target, {0, -1, 0}, 1e-6f);
+  fly(o, FlyKeys{.forward = true, .back = true}, 1.0f);  // cancel
+  expect_near(o.target, {0, -1, 0}, 1e-6f);
+  EXPECT_THROW(fly(o, FlyKeys{}, -1.0f), Error);
+}
+
+TEST(OrbitCamera, FrameSceneFitsTheBoundingSphere) {
+  Scene s;
+  s.meshes = {make_uv_sphere(64, 32)};
+  s.materials = {Material{}};
+  s.objects = {Object{}};
+  OrbitCamera o;
+  o.yaw = 0.4f;
+  o.vertical_fov = glm::radians(45.0f);
+  ASSERT_TRUE(frame_scene(o, s, 16.0f / 9.0f));
+  // A unit sphere just fits the vertical field of view at 1 / sin(fov / 2).
+  EXPECT_NEAR(o.distance, 1.0f / std::sin(glm::radians(22.5f)), 1e-5f);
+  expect_near(o.target, glm::vec3(0.0f), 1e-6f);
+  EXPECT_EQ(o.yaw, 0.4f);
+  // Portrait: the horizontal half angle atan(tan(22.5 deg) / 2) is the narrower.
+  ASSERT_TRUE(frame_scene(o, s, 0.5f));
+  EXPECT_NEAR(o.distance, 1.0f / std::sin(std::atan(std::tan(glm::radians(22.5f)) * 0.5f)), 1e-5f);
+  // Two spheres of radius 1 at x = -2 and x = 2 make one of radius 3 about the origin.
+  s.objects = {Object{.transform = glm::translate(glm::mat4(1.0f), {-2, 0, 0})},
+               Object{.transform = glm::translate(glm::mat4(1.0f), {2, 0, 0})}};
+  ASSERT_TRUE(frame_scene(o, s, 1.0f));
+  EXPECT_NEAR(o.distance, 3.0f / std::sin(glm::radians(22.5f)), 1e-4f);
+  expect_near(o.target, glm::vec3(0.0f), 1e-6f);
+  // Scaled by 2 and moved: radius 2 about (3, 0, 0).
+  s.objects = {
+      Object{.transform = glm::scale(glm::translate(glm::mat4(1.0f), {3, 0, 0}), glm::vec3(2.0f))}};
+  ASSERT_TRUE(frame_scene(o, s, 1.0f));
+  EXPECT_NEAR(o.distance, 2.0f / std::sin(glm::radians(22.5f)), 1e-4f);
+  expect_near(o.target, {3, 0, 0}, 1e-5f);
+  // Nothing to frame: unchanged.
+  s.objects.clear();
+  const OrbitCamera kept = o;
+  EXPECT_FALSE(frame_scene(o, s, 1.0f));
+  EXPECT_EQ(o.distance, kept.distance);
+  EXPECT_THROW(frame_scene(o, s, 0.0f), Error);
+}
+
+}  // namespace
+}  // namespace tessera
