@@ -41,6 +41,7 @@ struct InputEvent {
   std::string path;
   std::string field;  // material: preset, base_color, metallic, roughness or emissive
   glm::vec3 value{0.0f};
+  bool scripted = false;  // from a script: a key of the fly set moves one step (no key is held)
 };
 
 }  // namespace tessera

@@ -97,10 +97,15 @@ void draw_lights(const PanelInput& in, PanelChanges& changes) {
         changes.light = light;
         changes.light_index = uint32_t(i);
       }
+      if (ImGui::Button("delete")) {
+        changes.delete_light = true;
+        changes.light_index = uint32_t(i);
+      }
       ImGui::TreePop();
     }
     ImGui::PopID();
   }
+  if (ImGui::Button("add a light at the eye (L)")) changes.add_light = true;
 }
 
 void draw_options(const PanelInput& in, FrameSettings& frame, PanelChanges& changes) {
@@ -139,7 +144,10 @@ PanelChanges draw_view_panel(const PanelInput& in, FrameSettings& frame) {
     if (ImGui::CollapsingHeader("lights")) draw_lights(in, changes);
     if (ImGui::CollapsingHeader("render options", ImGuiTreeNodeFlags_DefaultOpen))
       draw_options(in, frame, changes);
-    ImGui::TextUnformatted("F1 hides this panel");
+    ImGui::TextUnformatted(
+        "click selects; Delete deletes; C copies, N adds a sphere, M moves\n"
+        "the selection to the pointer; Ctrl+Z/Y undo/redo; Ctrl+S saves;\n"
+        "P screenshot; F frames the scene; F1 hides this panel");
   }
   ImGui::End();
   return changes;

@@ -27,6 +27,8 @@ struct PanelChanges {
   std::optional<Material> material;  // new material of the selected object
   std::optional<Light> light;        // new value of light `light_index`
   uint32_t light_index = 0;
+  bool delete_light = false;  // light `light_index`
+  bool add_light = false;
   bool toggle_environment = false;
 };
 

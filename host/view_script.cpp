@@ -193,6 +193,7 @@ std::vector<ScriptEvent> parse_view_script(const std::string& text, const std::s
                 std::to_string(events.back().frame));
     }
     event.event = parse_event(line);
+    event.event.scripted = true;
     events.push_back(std::move(event));
   }
   return events;
