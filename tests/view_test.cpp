@@ -4,6 +4,7 @@
 // calculation; picking against projected object centres; resizes, minimising and a long run.
 // Without an X server the tests are skipped, naming why.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 
@@ -208,7 +209,8 @@ TEST_F(View, ResizesToOddSizesMinimisesAndRestores) {
 TEST_F(View, ScriptedOrbitMovesTheCameraAsComputedByHand) {
   SKIP_WITHOUT_X_SERVER();
   const std::string png = output_path("orbit.png");
-  // 100 px right: -0.5 rad about +y (0.005 rad per pixel); then 40 px up: 0.2 rad higher.
+  // core/orbit_camera.h: a drag turns pi per window height (96 px here): yaw -= dx pi / 96,
+  // pitch += dy pi / 96. So 100 px right, then 40 px up.
   const ViewRun run = run_view(
       "1 drag left 10 50 110 50\n"
       "2 drag left 110 50 110 10\n"
@@ -218,10 +220,11 @@ TEST_F(View, ScriptedOrbitMovesTheCameraAsComputedByHand) {
   ASSERT_EQ(run.status, 0) << run.output;
   Camera camera;
   ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
-  // The spheres camera stands at (0, 0, 22) looking at the origin. Turning it by -0.5 rad
-  // about +y puts it at 22 (sin -0.5, 0, cos -0.5); raising it by 0.2 rad about the target
-  // gives elevation 0.2 at the same distance and azimuth.
-  const float d = 22.0f, azimuth = -0.5f, elevation = 0.2f;
+  // The spheres camera stands at (0, 0, 22) looking at the origin: yaw 0, pitch 0, with the
+  // orbit basis r = +x, u = +y, b = +z. The eye goes to
+  // 22 (cos(pitch) sin(yaw), sin(pitch), cos(pitch) cos(yaw)).
+  const float pi = 3.14159265358979f;
+  const float d = 22.0f, azimuth = -100.0f * pi / 96.0f, elevation = -40.0f * pi / 96.0f;
   const glm::vec3 expected{d * std::cos(elevation) * std::sin(azimuth), d * std::sin(elevation),
                            d * std::cos(elevation) * std::cos(azimuth)};
   EXPECT_NEAR(camera.position.x, expected.x, 1e-4f);
@@ -282,9 +285,35 @@ TEST_F(View, MaterialEditGivesTheEditedScenesImage) {
   expect_same_image(png, headless(scene, frame));
 }
 
-TEST_F(View, AThousandFramesLeaveMemoryFlat) {
+TEST_F(View, DeleteUndoAndSaveGiveTheHeadlessImages) {
   SKIP_WITHOUT_X_SERVER();
-  // A small scene, so that 1,000 frames take seconds on lavapipe.
+  const std::string before = output_path("before.png"), deleted = output_path("deleted.png"),
+                    undone = output_path("undone.png"), saved = output_path("saved.json");
+  const ViewRun run = run_view("0 screenshot " + before +
+                                   "\n"
+                                   "1 click 80 60\n2 key Delete\n3 screenshot " +
+                                   deleted + "\n4 key Z ctrl\n5 screenshot " + undone +
+                                   "\n6 key Y ctrl\n7 save " + saved + "\n7 exit\n",
+                               "--scene spheres --size 160x120");
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_NE(run.output.find("selected object 24"), std::string::npos) << run.output;
+  FrameSettings frame;
+  Scene scene = scene_named("spheres", frame, 160, 120);
+  const Image8 original = headless(scene, frame);
+  expect_same_image(before, original);
+  expect_same_image(undone, original);
+  scene.objects.erase(scene.objects.begin() + 24);
+  const Image8 without = headless(scene, frame);
+  expect_same_image(deleted, without);
+  // The saved scene (the redone deletion) reloads to the same image.
+  SceneFile reloaded = load_scene_file(saved);
+  EXPECT_EQ(reloaded.scene.objects.size(), 48u);
+  const Image8 again = headless(reloaded.scene, frame);
+  EXPECT_EQ(again.pixels, without.pixels);
+}
+
+// A small scene, so that many frames take seconds on lavapipe.
+std::string write_ball_scene() {
   const std::string scene = output_path("ball.json");
   std::ofstream(scene) << R"({"version": 1,
     "camera": {"position": [0, 0, 4], "target": [0, 0, 0]},
@@ -292,6 +321,26 @@ TEST_F(View, AThousandFramesLeaveMemoryFlat) {
     "meshes": [{"name": "ball", "type": "sphere", "segments": 8}],
     "objects": [{"mesh": "ball", "material": "red"}],
     "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 60}]})";
+  return scene;
+}
+
+TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const std::string autosave = output_path("ball.autosave.json");
+  std::filesystem::remove(autosave);
+  const ViewRun run =
+      run_view("1 click 32 24\n2 key Delete\n3 exit\n", "--scene " + scene + " --size 64x48");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("unsaved edits written to " + autosave), std::string::npos)
+      << run.output;
+  EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());
+  EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);  // the scene file is untouched
+}
+
+TEST_F(View, AThousandFramesLeaveMemoryFlat) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
   const ViewRun run =
       run_view("100 memory\n1000 memory\n1000 exit\n", "--scene " + scene + " --size 32x24");
   ASSERT_EQ(run.status, 0) << run.output;
