@@ -88,9 +88,12 @@ void run_loop(Viewer& v) {
   for (;; v.frame_number++) {
     uint32_t width = 0, height = 0;
     framebuffer_size(*v.window, width, height);
-    const bool hidden = v.minimised || width == 0 || height == 0;
+    // X11 keeps an iconified window's size, so both the flag and a 0 x 0 framebuffer count.
+    auto hidden = [&] {
+      return v.minimised || window_iconified(*v.window) || width == 0 || height == 0;
+    };
     // A minimised window waits for events instead of spinning; a script keeps counting frames.
-    std::vector<InputEvent> events = poll_window(*v.window, hidden && !scripted);
+    std::vector<InputEvent> events = poll_window(*v.window, hidden() && !scripted);
     while (v.next_script_event < v.script.size() &&
            v.script[v.next_script_event].frame <= v.frame_number) {
       events.push_back(v.script[v.next_script_event++].event);
@@ -99,7 +102,7 @@ void run_loop(Viewer& v) {
     fly_held_keys(v, float(v.frame_ms) * 1e-3f);
     if (window_should_close(*v.window)) break;
     framebuffer_size(*v.window, width, height);
-    if (!v.minimised && width > 0 && height > 0) draw(v, width, height);
+    if (!hidden()) draw(v, width, height);
     if (v.exit) break;
   }
 }

@@ -148,6 +148,10 @@ bool window_should_close(const Window& window) {
   return glfwWindowShouldClose(window.handle);
 }
 
+bool window_iconified(const Window& window) {
+  return glfwGetWindowAttrib(window.handle, GLFW_ICONIFIED);
+}
+
 void set_window_size(Window& window, uint32_t width, uint32_t height) {
   glfwSetWindowSize(window.handle, int(width), int(height));
 }

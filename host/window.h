@@ -50,6 +50,7 @@ void framebuffer_size(const Window& window, uint32_t& width, uint32_t& height);
 std::vector<InputEvent> poll_window(Window& window, bool wait);
 
 bool window_should_close(const Window& window);
+bool window_iconified(const Window& window);
 void set_window_size(Window& window, uint32_t width, uint32_t height);
 void set_window_title(Window& window, const std::string& title);
 
