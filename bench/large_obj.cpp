@@ -1,5 +1,6 @@
 #include "bench/large_obj.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -8,9 +9,19 @@
 
 namespace tessera::bench {
 
+namespace {
+constexpr uint64_t nx = 1024;
+uint64_t rows(uint64_t triangles) {
+  return std::max<uint64_t>(1, (triangles / 2 + nx - 1) / nx);
+}
+}  // namespace
+
+uint64_t large_obj_triangles(uint64_t triangles) {
+  return 2 * nx * rows(triangles);
+}
+
 uint64_t write_large_obj(const std::string& path, uint64_t triangles) {
-  const uint64_t nx = 1024;
-  const uint64_t ny = std::max<uint64_t>(1, (triangles / 2 + nx - 1) / nx);
+  const uint64_t ny = rows(triangles);
   std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
   if (!f) throw Error("cannot write '" + path + "'");
   std::fprintf(f.get(), "# Tessera benchmark grid: %llu x %llu quads\n", (unsigned long long)nx,

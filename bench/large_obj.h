@@ -13,4 +13,7 @@ namespace tessera::bench {
 /// the number of triangles. Throws Error if the file cannot be written.
 uint64_t write_large_obj(const std::string& path, uint64_t triangles);
 
+/// The number of triangles write_large_obj writes for `triangles`.
+uint64_t large_obj_triangles(uint64_t triangles);
+
 }  // namespace tessera::bench

@@ -82,6 +82,11 @@ struct MaterialTable {
   std::map<std::tuple<int, bool, float, int>, uint32_t> textures;
 };
 
+/// Decodes every image that a texture names, in parallel on every core, into table.images. An
+/// image that fails is left out (decoded_image, reached through material_index, then fails
+/// naming it, where and as it would have without this step).
+void decode_images(const Context& ctx, const tinygltf::Model& model, MaterialTable& table);
+
 /// Scene::materials index of glTF material `material` (-1: the glTF default material), adding
 /// it and its textures to `scene` on first use; fills table.uv_options for it. `doc` is the
 /// checked JSON document (check_document), `model` TinyGLTF's reading of it.

@@ -261,6 +261,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
           : json::array();
 
   MaterialTable table;
+  decode_images(ctx, model, table);
   std::map<std::tuple<int, int, bool>, uint32_t> meshes;  // (mesh, primitive, mirrored)
   std::map<int, glm::dmat4> camera_placements;
   std::vector<bool> on_path(nodes.size(), false);

@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
+#include "core/parallel.h"
 
 namespace tessera::gltf {
 namespace {
@@ -32,9 +33,7 @@ TextureWrap wrap_mode(const Context& ctx, const json& sampler, const char* key,
 
 // Decodes images[index] (from its file, data uri or buffer view) to RGBA8, refusing sides over
 // options.max_texture_side before decoding.
-const Texture& decoded_image(const Context& ctx, const tinygltf::Model& model, int index,
-                             MaterialTable& table) {
-  if (auto it = table.images.find(index); it != table.images.end()) return it->second;
+Texture decode_image(const Context& ctx, const tinygltf::Model& model, int index) {
   const tinygltf::Image& image = model.images[index];
   const std::string where = at("images", index);
   const unsigned char* bytes = image.image.data();
@@ -61,7 +60,13 @@ const Texture& decoded_image(const Context& ctx, const tinygltf::Model& model, i
   t.height = uint32_t(h);
   const auto* texels = reinterpret_cast<const glm::u8vec4*>(data.get());
   t.texels.assign(texels, texels + size_t(w) * h);
-  return table.images.emplace(index, std::move(t)).first->second;
+  return t;
+}
+
+const Texture& decoded_image(const Context& ctx, const tinygltf::Model& model, int index,
+                             MaterialTable& table) {
+  if (auto it = table.images.find(index); it != table.images.end()) return it->second;
+  return table.images.emplace(index, decode_image(ctx, model, index)).first->second;
 }
 
 // What textures[index] refers to: an image and its sampler's wrap modes.
@@ -149,6 +154,26 @@ float factor(const Context& ctx, const json& object, const char* key, double fal
 }
 
 }  // namespace
+
+void decode_images(const Context& ctx, const tinygltf::Model& model, MaterialTable& table) {
+  std::vector<int> sources;
+  for (const tinygltf::Texture& t : model.textures) {
+    if (t.source >= 0 && size_t(t.source) < model.images.size()) sources.push_back(t.source);
+  }
+  std::sort(sources.begin(), sources.end());
+  sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
+  std::vector<std::optional<Texture>> decoded(sources.size());
+  parallel_for(sources.size(), [&](size_t i) {
+    try {
+      decoded[i] = decode_image(ctx, model, sources[i]);
+    } catch (const Error&) {
+      // Left out: decoded_image fails the same way where a material uses the image.
+    }
+  });
+  for (size_t i = 0; i < sources.size(); ++i) {
+    if (decoded[i]) table.images.emplace(sources[i], std::move(*decoded[i]));
+  }
+}
 
 uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Model& model,
                         int index, MaterialTable& table, Scene& scene) {

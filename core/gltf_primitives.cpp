@@ -38,9 +38,9 @@ void require_finite(const Context& ctx, const AccessorValues& v, const std::stri
 
 // Triangle list of a strip or fan, as the glTF 2.0 specification (3.7.2.1) orders them, so that
 // every triangle keeps the strip's (or fan's) winding.
-std::vector<uint32_t> triangulate(int mode, const std::vector<uint32_t>& v) {
-  std::vector<uint32_t> out;
+std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
   if (mode == TINYGLTF_MODE_TRIANGLES) return v;
+  std::vector<uint32_t> out;
   for (size_t i = 0; i + 2 < v.size(); ++i) {
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
       const size_t odd = i % 2;
@@ -160,7 +160,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
              "has " + std::to_string(vertices.size()) +
                  " elements, not a multiple of 3 as TRIANGLES need");
   }
-  mesh.indices = triangulate(prim.mode, vertices);
+  mesh.indices = triangulate(prim.mode, std::move(vertices));
   if (options.flip_winding) {
     for (size_t t = 0; t < mesh.indices.size(); t += 3) {
       std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);

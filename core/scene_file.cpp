@@ -5,6 +5,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -22,6 +23,7 @@
 #include "core/materials.h"
 #include "core/mesh.h"
 #include "core/model_import.h"
+#include "core/parallel.h"
 #include "core/procedural_textures.h"
 
 namespace tessera {
@@ -402,12 +404,24 @@ void Reader::load_textures() {
   for (const Material& m : out.scene.materials)
     for (uint32_t map : {m.base_color_map, m.emissive_map})
       if (map != kNoTexture) colour[map] = true;
+  // Decoded in parallel on every core; the first failure in file order is the one reported.
+  std::vector<std::exception_ptr> failed(texture_decls.size());
+  std::vector<Texture> decoded(texture_decls.size());
+  parallel_for(texture_decls.size(), [&](size_t i) {
+    const TextureDecl& d = texture_decls[i];
+    if (d.file.empty()) return;
+    try {
+      decoded[i] = load_texture(d.file, d.srgb.value_or(colour[i]));
+    } catch (const Error&) {
+      failed[i] = std::current_exception();
+    }
+  });
   for (size_t i = 0; i < texture_decls.size(); ++i) {
     const TextureDecl& d = texture_decls[i];
     if (d.file.empty()) continue;
-    const bool srgb = d.srgb.value_or(colour[i]);
     out.scene.textures[i] = loading(child(d.node, "file"), [&] {
-      Texture t = load_texture(d.file, srgb);
+      if (failed[i]) std::rethrow_exception(failed[i]);
+      Texture t = std::move(decoded[i]);
       t.wrap_u = d.wrap_u;
       t.wrap_v = d.wrap_v;
       if (t.width > options.max_texture_side || t.height > options.max_texture_side)

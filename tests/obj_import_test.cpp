@@ -123,6 +123,53 @@ TEST(ObjImportLimits, MissingFileNamesIt) {
 }
 
 // A unit quad with uvs: fanned from its first corner, (0 1 2) (0 2 3); OBJ's v flipped.
+// A file is read in 1 MiB chunks, each line scanned as tinyobjloader gets it: lines across
+// chunk boundaries, a "\r\n" split by one, and a line longer than a chunk must give the scene
+// of the same text imported from memory (one piece), and an error beyond the first chunk its
+// line number.
+TEST(ObjImportChunks, FileReadInChunksGivesTheTextsScene) {
+  const int n = 300;  // n x n quads: about 4 MB of text, several chunks
+  std::string text = "#" + std::string(3 << 19, 'x') + "\r\n";  // 1.5 MiB comment line
+  size_t lines = 1;                                             // lines written so far
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i, ++lines) {
+      text += "v " + std::to_string(i) + ".25 " + std::to_string(j) + ".5 -0.125\r\n";
+    }
+  }
+  text += "vn 0 0 1\r\n";
+  ++lines;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i, ++lines) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, c = b + n + 1, d = a + n + 1;
+      text += "f " + std::to_string(a) + "//1 " + std::to_string(b) + "//1 " + std::to_string(c) +
+              "//1 " + std::to_string(d) + "//1\r\n";
+    }
+  }
+  // The long first line makes the buffer grow to 2 MiB before any line is complete; padding it
+  // puts a "\r" as the last byte of those 2 MiB and its "\n" after them.
+  const size_t boundary = size_t(2) << 20;
+  const size_t cr = text.rfind('\r', boundary - 1);
+  text.insert(1, boundary - 1 - cr, 'x');
+  ASSERT_EQ(text.substr(boundary - 1, 2), "\r\n");
+  ASSERT_GT(text.size(), size_t(3) << 20);
+  const ImportedModel from_file = import_text("chunks.obj", text);
+  const ImportedModel from_text = import_obj_text(text, "chunks.obj", "");
+  ASSERT_EQ(from_file.scene.meshes.size(), 1u);
+  const Mesh& mesh = from_file.scene.meshes[0];
+  EXPECT_EQ(mesh.positions.size(), size_t(n + 1) * (n + 1));  // one vertex per position
+  EXPECT_EQ(mesh.triangle_count(), size_t(2) * n * n);
+  EXPECT_EQ(mesh.positions.back(), glm::vec3(n + 0.25f, n + 0.5f, -0.125f));
+  ASSERT_EQ(from_text.scene.meshes.size(), 1u);
+  EXPECT_EQ(mesh.positions, from_text.scene.meshes[0].positions);
+  EXPECT_EQ(mesh.indices, from_text.scene.meshes[0].indices);
+  EXPECT_EQ(mesh.normals, from_text.scene.meshes[0].normals);
+  EXPECT_TRUE(from_file.warnings.empty()) << all_warnings(from_file);
+
+  const std::string bad = write_file("chunks_bad.obj", text + "v 1 2\r\n");
+  EXPECT_EQ(error_of(bad), "'" + bad + "' line " + std::to_string(lines + 1) +
+                               ", column 1: 'v' has 2 numbers, expected 3 (x y z), 4 or 6");
+}
+
 TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
   const ImportedModel model = import_text("quad.obj",
                                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
