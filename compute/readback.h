@@ -8,9 +8,10 @@
 
 namespace tessera {
 
-/// Copies the first `count` elements of `src` to the host (waits for the copy).
+/// Copies `count` elements of `src` from element `first` on to the host (waits for the copy).
 template <typename T>
-std::vector<T> download_buffer(const Context& ctx, const Buffer& src, uint64_t count) {
+std::vector<T> download_buffer(const Context& ctx, const Buffer& src, uint64_t count,
+                               uint64_t first = 0) {
   std::vector<T> out(count);
   if (count == 0) return out;
   const VkDeviceSize bytes = count * sizeof(T);
@@ -19,7 +20,7 @@ std::vector<T> download_buffer(const Context& ctx, const Buffer& src, uint64_t c
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferCopy region{0, 0, bytes};
+    VkBufferCopy region{first * sizeof(T), 0, bytes};
     vkCmdCopyBuffer(cmd, src.buffer, staging.buffer, 1, &region);
     memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);

@@ -791,6 +791,12 @@ std::vector<uint64_t> Renderer::read_visibility() const {
   return download_buffer<uint64_t>(s_->ctx, visibility, uint64_t(s_->width) * s_->height);
 }
 
+uint64_t Renderer::read_visibility_at(uint32_t x, uint32_t y) const {
+  const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
+  TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE && x < s_->width && y < s_->height);
+  return download_buffer<uint64_t>(s_->ctx, visibility, 1, uint64_t(y) * s_->width + x)[0];
+}
+
 std::vector<uint32_t> Renderer::read_coverage() const {
   const Buffer& coverage = s_->buffer(TS_BINDING_COVERAGE);
   TESSERA_CHECK(s_->options.debug_coverage && coverage.buffer != VK_NULL_HANDLE);

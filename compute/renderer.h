@@ -96,6 +96,9 @@ class Renderer {
   Image8 read_ldr() const;
   std::vector<uint64_t> read_visibility() const;
   std::vector<uint32_t> read_coverage() const;
+  /// The last frame's visibility key at pixel (x, y) (< the frame's size; TS_VIS_EMPTY where
+  /// no triangle covers it): an 8-byte read-back, for picking.
+  uint64_t read_visibility_at(uint32_t x, uint32_t y) const;
 
   /// The DFG tables (classic, then filament; TS_DFG_SIZE^2 each, rows by roughness): x the
   /// Schlick-weighted, y the whole specular albedo with F = 1, z the cosine-weighted mean of

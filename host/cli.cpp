@@ -11,7 +11,7 @@
 namespace tessera {
 namespace {
 
-const std::vector<std::string> kCommands = {"render", "bench", "devices", "scenes"};
+const std::vector<std::string> kCommands = {"render", "bench", "view", "devices", "scenes"};
 
 // Checks that a scene exists; the builders throw Error naming the known scenes otherwise.
 // A scene file (a path) is read when the command runs, where its errors name file and place.
@@ -201,6 +201,32 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_flag("--quiet", a.quiet, "no progress bar or table");
 }
 
+void add_view_options(CLI::App& app, ViewArgs& a) {
+  app.add_option("--scene", a.scene,
+                 "built-in scene (default spheres; see\n"
+                 "`tessera scenes`) or a scene file; Ctrl+S\n"
+                 "saves it")
+      ->type_name("NAME|FILE")
+      ->check(builtin_scene());
+  app.add_option("--device", a.device,
+                 "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
+      ->type_name("D");
+  add_size(app, a.frame.width, a.frame.height,
+           "window size in pixels at the start (default:\nthe scene's, else 512x512)");
+  add_choice(app, "--vsync", a.vsync, {{"on", true}, {"off", false}},
+             "on (default): present at the display's rate;\n"
+             "off: as fast as frames are rendered");
+  app.add_option("--script", a.script,
+                 "replay input events at frame numbers from\n"
+                 "FILE (keys, drags, clicks, resizes,\n"
+                 "screenshots, exit; see README)")
+      ->type_name("FILE");
+  add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
+             "the Dear ImGui panel (default on; F1 toggles\nit)");
+  app.add_flag("--validate", a.validate,
+               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+}
+
 // CLI11's message, reworded where it is unclear for a missing value.
 std::string message_of(const CLI::ParseError& e) {
   const std::string what = e.what();
@@ -247,6 +273,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::App* bench =
       app.add_subcommand("bench", "sweep a benchmark scene over object counts and backends");
   add_bench_options(*bench, line.bench);
+  CLI::App* view =
+      app.add_subcommand("view", "show a scene in a window: camera, picking, live edits");
+  add_view_options(*view, line.view);
   CLI::App* devices =
       app.add_subcommand("devices", "list the Vulkan devices and whether Tessera can use them");
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes");
@@ -254,7 +283,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "Exit status: 0 success, 1 a failure while running, 2 a bad command line,\n"
       "3 reports of the validation layer (--validate).";
   app.footer("Run `tessera COMMAND --help` for a command's options.\n" + exit_statuses);
-  for (CLI::App* sub : {render, bench, devices, scenes}) {
+  for (CLI::App* sub : {render, bench, view, devices, scenes}) {
     sub->allow_extras();
     sub->footer(exit_statuses);
   }
@@ -277,15 +306,17 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   } catch (const CLI::ParseError& e) {
     throw UsageError(message_of(e), help_command);
   }
-  for (CLI::App* sub : {render, bench, devices, scenes}) reject_extras(*sub, help_command);
+  for (CLI::App* sub : {render, bench, view, devices, scenes}) reject_extras(*sub, help_command);
   RenderArgs& r = line.render;
   r.size_given = render->count("--size") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
   r.brdf_given = render->count("--brdf") > 0;
+  line.view.size_given = view->count("--size") > 0;
   reject_extras(app, help_command);
   line.command = render->parsed()    ? Command::render
                  : bench->parsed()   ? Command::bench
+                 : view->parsed()    ? Command::view
                  : devices->parsed() ? Command::devices
                                      : Command::scenes;
   return line;

@@ -52,7 +52,18 @@ struct BenchArgs {
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
 };
 
-enum class Command { help, render, bench, devices, scenes };
+struct ViewArgs {
+  std::string scene = "spheres";
+  FrameSettings frame;  // --size: the window's starting size; the frame follows the window
+  std::string device = "auto";
+  bool vsync = true;
+  std::string script;  // --script: input events replayed at frame numbers (host/view_script.h)
+  bool overlay = true;
+  bool validate = false;
+  bool size_given = false;
+};
+
+enum class Command { help, render, bench, devices, scenes, view };
 
 /// A parsed command line.
 struct CommandLine {
@@ -60,6 +71,7 @@ struct CommandLine {
   std::string help;  // Command::help: the text asked for (the tool's or a command's)
   RenderArgs render;
   BenchArgs bench;
+  ViewArgs view;
 };
 
 /// A command line that does not parse: an unknown command or option, a missing or bad value.

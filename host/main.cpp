@@ -12,6 +12,7 @@
 #include "host/cli.h"
 #include "host/render_command.h"
 #include "host/scene_source.h"
+#include "host/view_command.h"
 
 namespace {
 
@@ -47,6 +48,8 @@ int run(const tessera::CommandLine& line, const std::string& command_line) {
       return tessera::run_render(line.render);
     case tessera::Command::bench:
       return tessera::run_bench(line.bench, command_line);
+    case tessera::Command::view:
+      return tessera::run_view(line.view);
     case tessera::Command::devices:
       return run_devices();
     case tessera::Command::scenes:

@@ -21,14 +21,8 @@ namespace {
 // command line left unset.
 Scene scene_of(RenderArgs& args) {
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  const RenderDefaults& r = file.render;
-  if (!args.size_given) {
-    args.frame.width = r.width.value_or(args.frame.width);
-    args.frame.height = r.height.value_or(args.frame.height);
-  }
-  if (!args.exposure_given) args.frame.exposure_ev = r.exposure_ev.value_or(args.frame.exposure_ev);
-  if (!args.tonemap_given) args.frame.tonemap = r.tonemap.value_or(args.frame.tonemap);
-  if (!args.brdf_given) args.frame.brdf = r.brdf.value_or(args.frame.brdf);
+  apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
+                        args.tonemap_given, args.brdf_given);
   Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();

@@ -104,4 +104,15 @@ std::string scene_listing() {
   return out;
 }
 
+void apply_render_defaults(const RenderDefaults& r, FrameSettings& frame, bool size_given,
+                           bool exposure_given, bool tonemap_given, bool brdf_given) {
+  if (!size_given) {
+    frame.width = r.width.value_or(frame.width);
+    frame.height = r.height.value_or(frame.height);
+  }
+  if (!exposure_given) frame.exposure_ev = r.exposure_ev.value_or(frame.exposure_ev);
+  if (!tonemap_given) frame.tonemap = r.tonemap.value_or(frame.tonemap);
+  if (!brdf_given) frame.brdf = r.brdf.value_or(frame.brdf);
+}
+
 }  // namespace tessera

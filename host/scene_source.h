@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame_settings.h"
 #include "core/scene_file.h"
 
 namespace tessera {
@@ -34,6 +35,11 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet);
 /// Throws Error for an unknown name (listing the known ones) and anything load_scene_file
 /// refuses. Warnings are printed to stderr unless `quiet`.
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
+
+/// Fills in the frame settings a command line left unset (the `*_given` flags false) from a
+/// scene file's "render" block, where it has them.
+void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame, bool size_given,
+                           bool exposure_given, bool tonemap_given, bool brdf_given);
 
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.

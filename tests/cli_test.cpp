@@ -150,8 +150,10 @@ TEST(Cli, ReadmeQuotesTheHelpTexts) {
   std::ifstream file(TESSERA_README);
   ASSERT_TRUE(file) << TESSERA_README;
   const std::string readme(std::istreambuf_iterator<char>(file), {});
-  for (const auto& args :
-       {std::vector<std::string>{"--help"}, {"render", "--help"}, {"bench", "--help"}}) {
+  for (const auto& args : {std::vector<std::string>{"--help"},
+                           {"render", "--help"},
+                           {"bench", "--help"},
+                           {"view", "--help"}}) {
     std::string command = "$ tessera";
     for (const std::string& arg : args) command += " " + arg;
     EXPECT_NE(readme.find(command + "\n" + help_of(args)), std::string::npos)
@@ -196,7 +198,11 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},
       {{"--verbose"}, "unknown option '--verbose'"},
-      {{}, "a command is required: render, bench, devices or scenes"},
+      {{}, "a command is required: render, bench, view, devices or scenes"},
+      {{"view", "--vsync", "maybe"}, "--vsync: expects on or off, got 'maybe'"},
+      {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
+      {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
+      {{"view", "--scene", "nowhere"}, "--scene: unknown scene 'nowhere'"},
   };
   for (const BadArguments& c : cases) {
     const std::string message = usage_error(c.args);

@@ -1,0 +1,356 @@
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <unistd.h>
+
+#include <GLFW/glfw3.h>
+
+#include "core/check.h"
+#include "core/materials.h"
+#include "core/pick.h"
+#include "core/scene_file_write.h"
+#include "host/scene_source.h"
+#include "host/viewer.h"
+
+namespace tessera {
+namespace {
+
+// A scripted fly key moves the camera as if held this long.
+constexpr float kScriptedFlySeconds = 0.1f;
+
+void log(const Viewer& v, const std::string& what) {
+  std::printf("frame %" PRIu64 ": %s\n", v.frame_number, what.c_str());
+}
+
+Viewport viewport_of(const Viewer& v) {
+  int w = 0, h = 0;
+  glfwGetWindowSize(v.window->handle, &w, &h);
+  return {uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1))};
+}
+
+// The renderer takes the camera with the scene (set_scene uploads only what changed).
+void camera_moved(Viewer& v) {
+  v.scene.camera = to_camera(v.orbit);
+  mark_changed(v, "camera");
+  const Camera& c = v.scene.camera;
+  std::printf("frame %" PRIu64 ": camera position %.9g %.9g %.9g target %.9g %.9g %.9g\n",
+              v.frame_number, c.position.x, c.position.y, c.position.z, c.target.x, c.target.y,
+              c.target.z);
+}
+
+// From /proc/self/statm: its second number is the resident set in pages.
+void print_resident_memory(const Viewer& v) {
+  unsigned long long pages_total = 0, pages_resident = 0;
+  FILE* statm = std::fopen("/proc/self/statm", "r");
+  const bool read = statm && std::fscanf(statm, "%llu %llu", &pages_total, &pages_resident) == 2;
+  if (statm) std::fclose(statm);
+  if (!read) return log(v, "resident memory unknown");
+  log(v, "resident memory " +
+             std::to_string(pages_resident * (unsigned long long)sysconf(_SC_PAGESIZE) / 1024) +
+             " KiB");
+}
+
+// The framebuffer pixel under window position `at`, if inside the last frame.
+bool pixel_under(const Viewer& v, glm::vec2 at, uint32_t& x, uint32_t& y) {
+  const Viewport window = viewport_of(v);
+  if (v.chain.extent.width == 0 || at.x < 0.0f || at.y < 0.0f) return false;
+  x = uint32_t(at.x * float(v.chain.extent.width) / float(window.width));
+  y = uint32_t(at.y * float(v.chain.extent.height) / float(window.height));
+  return x < v.chain.extent.width && y < v.chain.extent.height;
+}
+
+void pick(Viewer& v, glm::vec2 at) {
+  uint32_t x = 0, y = 0;
+  v.selected = -1;
+  if (pixel_under(v, at, x, y)) {
+    if (auto triangle = triangle_of_key(v.renderer->read_visibility_at(x, y)))
+      v.selected = int(v.renderer->object_of_triangle(*triangle));
+  }
+  char text[96];
+  std::snprintf(text, sizeof(text), "click at %g %g: selected %s%d", at.x, at.y,
+                v.selected < 0 ? "nothing " : "object ", v.selected);
+  log(v, text);
+}
+
+// The world point the pixel under `at` shows: from the visibility key's depth (near / w, see
+// shaders/setup_common.glsl), or at the target's depth where no triangle covers it.
+glm::vec3 point_under(const Viewer& v, glm::vec2 at) {
+  const Camera& c = v.scene.camera;
+  const glm::vec3 forward = glm::normalize(c.target - c.position);
+  float w = glm::dot(c.target - c.position, forward);
+  uint32_t x = 0, y = 0;
+  if (!pixel_under(v, at, x, y)) return c.target;
+  const uint64_t key = v.renderer->read_visibility_at(x, y);
+  if (key != kEmptyVisibilityKey) {
+    const uint32_t bits = ~uint32_t(key >> 32);
+    float depth = 0.0f;
+    std::memcpy(&depth, &bits, sizeof(depth));
+    w = c.near_plane / depth;
+  }
+  const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float t = std::tan(c.vertical_fov * 0.5f);
+  const float aspect = float(v.chain.extent.width) / float(v.chain.extent.height);
+  const float ndc_x = (float(x) + 0.5f) / float(v.chain.extent.width) * 2.0f - 1.0f;
+  const float ndc_y = (float(y) + 0.5f) / float(v.chain.extent.height) * 2.0f - 1.0f;
+  // Vulkan's y points down the image; the view's up points up.
+  return c.position + w * (forward + ndc_x * t * aspect * right - ndc_y * t * up);
+}
+
+// Applies `edit` through the history (validated, undoable) and shows it next frame.
+void edit(Viewer& v, const Edit& e) {
+  try {
+    v.history.apply(v.scene, e);
+  } catch (const Error& error) {
+    log(v, std::string("edit refused: ") + error.what());
+    return;
+  }
+  mark_changed(v, e.label);
+}
+
+bool has_selection(const Viewer& v, const char* action) {
+  if (v.selected >= 0) return true;
+  log(v, std::string("no object selected to ") + action);
+  return false;
+}
+
+void set_selected_material(Viewer& v, const Material& m) {
+  if (has_selection(v, "change the material of"))
+    edit(v, set_object_material(v.scene, uint32_t(v.selected), m));
+}
+
+// A scripted material edit, as the panel's editor would make it.
+void edit_material(Viewer& v, const InputEvent& e) {
+  if (!has_selection(v, "change the material of")) return;
+  Material m = v.scene.materials[v.scene.objects[size_t(v.selected)].material];
+  if (e.field == "preset") {
+    m = metal_material(e.path, m.roughness);
+  } else if (e.field == "base_color") {
+    m.base_color = e.value;
+  } else if (e.field == "emissive") {
+    m.emissive = e.value;
+  } else if (e.field == "metallic") {
+    m.metallic = e.value.x;
+  } else if (e.field == "roughness") {
+    m.roughness = e.value.x;
+  }
+  set_selected_material(v, m);
+}
+
+// The selected object's transform with its origin moved to `point`.
+glm::mat4 placed_at(const Viewer& v, uint32_t object, glm::vec3 point) {
+  glm::mat4 transform = v.scene.objects[object].transform;
+  transform[3] = glm::vec4(point, 1.0f);
+  return transform;
+}
+
+void undo_or_redo(Viewer& v, bool redo) {
+  const std::string label = redo ? v.history.redo_label() : v.history.undo_label();
+  if (!(redo ? v.history.redo(v.scene) : v.history.undo(v.scene))) {
+    log(v, redo ? "nothing to redo" : "nothing to undo");
+    return;
+  }
+  // Indices may have shifted: an undone add or redone delete removes an object.
+  if (v.selected >= int(v.scene.objects.size())) v.selected = -1;
+  mark_changed(v, (redo ? "redo " : "undo ") + label);
+}
+
+void save(Viewer& v, const std::string& path) {
+  try {
+    save_scene_file(v.scene, path, &v.render_defaults);
+  } catch (const Error& error) {
+    log(v, std::string("not saved: ") + error.what());
+    return;
+  }
+  v.history.mark_saved();
+  log(v, "saved " + path);
+}
+
+void handle_key(Viewer& v, const InputEvent& e) {
+  const uint32_t selected = uint32_t(v.selected);
+  FlyKeys fly_keys;
+  switch (e.key) {
+    case GLFW_KEY_W:
+    case GLFW_KEY_A:
+    case GLFW_KEY_S:
+    case GLFW_KEY_D:
+    case GLFW_KEY_Q:
+    case GLFW_KEY_E:
+      if (e.key == GLFW_KEY_S && e.ctrl) {
+        save(v, save_path(v));
+      } else if (e.scripted) {  // held keys of a person are polled each frame instead
+        fly_keys = {e.key == GLFW_KEY_W, e.key == GLFW_KEY_S, e.key == GLFW_KEY_A,
+                    e.key == GLFW_KEY_D, e.key == GLFW_KEY_Q, e.key == GLFW_KEY_E};
+        fly(v.orbit, fly_keys, kScriptedFlySeconds);
+        camera_moved(v);
+      }
+      break;
+    case GLFW_KEY_F:
+      if (frame_scene(v.orbit, v.scene, float(viewport_of(v).width) / viewport_of(v).height))
+        camera_moved(v);
+      break;
+    case GLFW_KEY_Z:
+      if (e.ctrl) undo_or_redo(v, e.shift);
+      break;
+    case GLFW_KEY_Y:
+      if (e.ctrl) undo_or_redo(v, true);
+      break;
+    case GLFW_KEY_DELETE:
+    case GLFW_KEY_X:
+      if (has_selection(v, "delete")) {
+        edit(v, delete_object(v.scene, selected));
+        v.selected = -1;
+      }
+      break;
+    case GLFW_KEY_C:
+      if (has_selection(v, "copy"))
+        edit(v,
+             add_object_copy(v.scene, selected, placed_at(v, selected, point_under(v, v.pointer))));
+      break;
+    case GLFW_KEY_M:
+      if (has_selection(v, "move"))
+        edit(v, move_object(v.scene, selected, placed_at(v, selected, point_under(v, v.pointer))));
+      break;
+    case GLFW_KEY_N: {
+      // A sphere a twentieth of the view's distance across, in the selected object's material.
+      const Material m =
+          v.selected >= 0 ? v.scene.materials[v.scene.objects[selected].material] : Material{};
+      edit(v, add_sphere(v.scene, point_under(v, v.pointer), 0.05f * v.orbit.distance, m));
+      break;
+    }
+    case GLFW_KEY_L: {
+      // A point light at the eye, bright enough for irradiance 1 W/m^2 at the target.
+      Light light;
+      light.position = v.scene.camera.position;
+      light.intensity = v.orbit.distance * v.orbit.distance;
+      edit(v, add_light(v.scene, light));
+      break;
+    }
+    case GLFW_KEY_P:
+      v.screenshot = "tessera_view_" + std::to_string(v.frame_number) + ".png";
+      break;
+    case GLFW_KEY_ESCAPE:
+      v.selected = -1;
+      break;
+    case GLFW_KEY_F1:
+      v.overlay_visible = !v.overlay_visible;
+      break;
+    default:
+      break;
+  }
+}
+
+}  // namespace
+
+void Viewer::release() {
+  if (!ctx) return;
+  vkDeviceWaitIdle(ctx->device);
+  destroy_overlay(*ctx, overlay);
+  destroy_presenter(*ctx, presenter);
+  destroy_swapchain(*ctx, chain);
+  if (chain.surface) vkDestroySurfaceKHR(ctx->instance, chain.surface, nullptr);
+  chain.surface = VK_NULL_HANDLE;
+  renderer.reset();
+}
+
+void mark_changed(Viewer& v, const std::string& what) {
+  if (!v.scene_changed) {
+    v.changed_at = std::chrono::steady_clock::now();
+    v.change = what;
+  } else if (v.change.find(what) == std::string::npos) {
+    v.change.append(", ").append(what);
+  }
+  v.scene_changed = true;
+}
+
+void fly_held_keys(Viewer& v, float seconds) {
+  auto held = [&](int key) { return glfwGetKey(v.window->handle, key) == GLFW_PRESS; };
+  if (v.window->wants_input_elsewhere || held(GLFW_KEY_LEFT_CONTROL)) return;
+  const FlyKeys keys{held(GLFW_KEY_W), held(GLFW_KEY_S), held(GLFW_KEY_A),
+                     held(GLFW_KEY_D), held(GLFW_KEY_Q), held(GLFW_KEY_E)};
+  if (!(keys.forward || keys.back || keys.left || keys.right || keys.down || keys.up)) return;
+  fly(v.orbit, keys, seconds);
+  camera_moved(v);
+}
+
+void handle_event(Viewer& v, const InputEvent& e) {
+  switch (e.kind) {
+    case EventKind::key:
+      handle_key(v, e);
+      break;
+    case EventKind::drag: {
+      const glm::vec2 d = e.to - e.from;
+      if (e.button == MouseButton::middle || (e.button == MouseButton::left && e.shift)) {
+        pan(v.orbit, d.x, d.y, viewport_of(v));
+      } else if (e.button == MouseButton::left) {
+        orbit(v.orbit, d.x, d.y, viewport_of(v));
+      }
+      v.pointer = e.to;
+      camera_moved(v);
+      break;
+    }
+    case EventKind::click:
+      v.pointer = e.from;
+      pick(v, e.from);
+      break;
+    case EventKind::wheel:
+      zoom(v.orbit, e.wheel);
+      camera_moved(v);
+      break;
+    case EventKind::resize:
+      set_window_size(*v.window, e.width, e.height);
+      break;
+    case EventKind::minimise:
+      v.minimised = true;
+      break;
+    case EventKind::restore:
+      v.minimised = false;
+      break;
+    case EventKind::screenshot:
+      v.screenshot = e.path;
+      break;
+    case EventKind::save:
+      save(v, e.path.empty() ? save_path(v) : e.path);
+      break;
+    case EventKind::exit:
+      v.exit = true;
+      break;
+    case EventKind::memory:
+      print_resident_memory(v);
+      break;
+    case EventKind::material:
+      edit_material(v, e);
+      break;
+  }
+}
+
+void apply_panel_changes(Viewer& v, const PanelChanges& c) {
+  if (c.material) set_selected_material(v, *c.material);
+  if (c.light) edit(v, set_light(v.scene, c.light_index, *c.light));
+  if (c.delete_light) edit(v, delete_light(v.scene, c.light_index));
+  if (c.add_light) handle_key(v, InputEvent{.kind = EventKind::key, .key = GLFW_KEY_L});
+  if (c.toggle_environment)
+    edit(v, set_environment(v.scene, v.scene.environment ? nullptr : v.environment));
+}
+
+std::string save_path(const Viewer& v) {
+  return is_scene_path(v.args.scene) ? v.args.scene : v.args.scene + ".json";
+}
+
+void autosave_if_unsaved(Viewer& v) {
+  if (!v.history.dirty()) return;
+  std::filesystem::path path = is_scene_path(v.args.scene)
+                                   ? std::filesystem::path(v.args.scene)
+                                   : std::filesystem::path(v.args.scene + ".json");
+  path.replace_extension(".autosave.json");
+  try {
+    save_scene_file(v.scene, path.string(), &v.render_defaults);
+    std::fprintf(stderr, "tessera view: unsaved edits written to %s\n", path.c_str());
+  } catch (const Error& error) {
+    std::fprintf(stderr, "tessera view: unsaved edits lost: %s\n", error.what());
+  }
+}
+
+}  // namespace tessera

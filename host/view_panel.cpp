@@ -1,0 +1,156 @@
+#include "host/view_panel.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "compute/passes.h"
+#include "core/materials.h"
+
+namespace tessera {
+namespace {
+
+void draw_timings(const PanelInput& in) {
+  ImGui::Text("frame %.2f ms (%.1f fps)", in.frame_ms, in.frame_ms > 0 ? 1000.0 / in.frame_ms : 0);
+  const FrameStats& s = *in.stats;
+  if (!s.has_timestamps) {
+    ImGui::TextUnformatted("GPU times: no timestamps on this queue");
+    return;
+  }
+  ImGui::Text("GPU %.2f ms", s.gpu_total_ms);
+  // Each pass as a bar, scaled to the frame's total.
+  for (const PassInfo& p : kPasses) {
+    const double ms = s.pass_ms[size_t(p.pass)];
+    char label[48];
+    std::snprintf(label, sizeof(label), "%.3f ms", ms);
+    ImGui::ProgressBar(s.gpu_total_ms > 0 ? float(ms / s.gpu_total_ms) : 0.0f, ImVec2(120, 0),
+                       label);
+    ImGui::SameLine();
+    ImGui::TextUnformatted(p.name);
+  }
+}
+
+void draw_counts(const FrameStats& s) {
+  ImGui::Text("triangles: %llu submitted, %llu rasterized",
+              (unsigned long long)s.triangles_submitted, (unsigned long long)s.raster_triangles);
+  ImGui::Text("%llu small, %llu binned, %llu back-facing, %llu outside",
+              (unsigned long long)s.small_triangles, (unsigned long long)s.big_triangles,
+              (unsigned long long)s.culled_backface, (unsigned long long)s.culled_frustum);
+}
+
+void draw_material(const PanelInput& in, PanelChanges& changes) {
+  if (in.selected < 0) {
+    ImGui::TextUnformatted("click an object to select it");
+    return;
+  }
+  const Object& object = in.scene->objects[size_t(in.selected)];
+  Material m = in.scene->materials[object.material];
+  ImGui::Text("object %d: mesh %u, material %u", in.selected, object.mesh, object.material);
+  bool changed = false;
+  if (ImGui::BeginCombo("preset", "metal preset...")) {
+    for (const MetalPreset& p : metal_presets()) {
+      const std::string name(p.name);
+      if (ImGui::Selectable(name.c_str())) {
+        m.base_color = p.f0;
+        m.metallic = 1.0f;
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  changed |= ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float);
+  changed |= ImGui::SliderFloat("metallic", &m.metallic, 0.0f, 1.0f);
+  changed |= ImGui::SliderFloat("roughness", &m.roughness, 0.0f, 1.0f);
+  changed |= ImGui::ColorEdit3("emissive", &m.emissive.x,
+                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  if (changed) changes.material = m;
+}
+
+const char* light_kind_name(LightKind kind) {
+  switch (kind) {
+    case LightKind::point:
+      return "point";
+    case LightKind::spot:
+      return "spot";
+    case LightKind::directional:
+      return "directional";
+  }
+  return "?";
+}
+
+void draw_lights(const PanelInput& in, PanelChanges& changes) {
+  const std::vector<Light>& lights = in.scene->lights;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    Light light = lights[i];
+    ImGui::PushID(int(i));
+    const std::string label = std::to_string(i) + " " + light_kind_name(light.kind);
+    if (ImGui::TreeNode(label.c_str())) {
+      bool changed = false;
+      if (light.kind != LightKind::directional) {
+        changed |= ImGui::DragFloat3("position", &light.position.x, 0.05f);
+      }
+      changed |= ImGui::ColorEdit3("colour", &light.color.x, ImGuiColorEditFlags_Float);
+      changed |= ImGui::DragFloat("intensity", &light.intensity, 1.0f, 0.0f, 1e6f);
+      if (changed) {
+        changes.light = light;
+        changes.light_index = uint32_t(i);
+      }
+      if (ImGui::Button("delete")) {
+        changes.delete_light = true;
+        changes.light_index = uint32_t(i);
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+  if (ImGui::Button("add a light at the eye (L)")) changes.add_light = true;
+}
+
+void draw_options(const PanelInput& in, FrameSettings& frame, PanelChanges& changes) {
+  int brdf = int(frame.brdf);
+  const char* brdfs[] = {"classic", "filament", "blinn-phong"};
+  static_assert(uint32_t(Brdf::classic) == 0 && uint32_t(Brdf::filament) == 1 &&
+                uint32_t(Brdf::blinn_phong) == 2);
+  if (ImGui::Combo("BRDF", &brdf, brdfs, 3)) frame.brdf = Brdf(brdf);
+  ImGui::Checkbox("energy compensation", &frame.energy_compensation);
+  if (in.has_environment) {
+    bool on = in.environment_on;
+    if (ImGui::Checkbox("environment", &on)) changes.toggle_environment = true;
+  }
+  int view = int(frame.view);
+  const char* views[] = {"shaded", "normal", "uv", "triangle", "object"};
+  if (ImGui::Combo("view", &view, views, 5)) frame.view = View(view);
+  int tonemap = int(frame.tonemap);
+  const char* tonemaps[] = {"aces", "reinhard", "clamp"};
+  if (ImGui::Combo("tone map", &tonemap, tonemaps, 3)) frame.tonemap = ToneMap(tonemap);
+  ImGui::SliderFloat("exposure (EV)", &frame.exposure_ev, -8.0f, 8.0f);
+}
+
+}  // namespace
+
+PanelChanges draw_view_panel(const PanelInput& in, FrameSettings& frame) {
+  PanelChanges changes;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  const std::string title = std::string("tessera") + (in.unsaved ? " (unsaved edits)" : "") +
+                            "###panel";  // ### keeps the window's identity across titles
+  if (ImGui::Begin(title.c_str())) {
+    if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(in);
+    if (ImGui::CollapsingHeader("triangles")) draw_counts(*in.stats);
+    if (ImGui::CollapsingHeader("material", ImGuiTreeNodeFlags_DefaultOpen))
+      draw_material(in, changes);
+    if (ImGui::CollapsingHeader("lights")) draw_lights(in, changes);
+    if (ImGui::CollapsingHeader("render options", ImGuiTreeNodeFlags_DefaultOpen))
+      draw_options(in, frame, changes);
+    ImGui::TextUnformatted(
+        "click selects; Delete deletes; C copies, N adds a sphere, M moves\n"
+        "the selection to the pointer; Ctrl+Z/Y undo/redo; Ctrl+S saves;\n"
+        "P screenshot; F frames the scene; F1 hides this panel");
+  }
+  ImGui::End();
+  return changes;
+}
+
+}  // namespace tessera

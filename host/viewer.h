@@ -1,0 +1,88 @@
+#pragma once
+// The state of a `tessera view` session and what input does to it (host/view_actions.cpp);
+// the frame loop is host/view_command.cpp. Internal to the tool.
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compute/context.h"
+#include "compute/present.h"
+#include "compute/renderer.h"
+#include "compute/swapchain.h"
+#include "core/orbit_camera.h"
+#include "core/scene_edit.h"
+#include "core/scene_file.h"
+#include "host/cli.h"
+#include "host/overlay.h"
+#include "host/view_panel.h"
+#include "host/view_script.h"
+#include "host/window.h"
+
+namespace tessera {
+
+struct Viewer {
+  ViewArgs args;
+  Scene scene;
+  RenderDefaults render_defaults;  // the scene file's "render" block, written back on save
+  FrameSettings frame;
+  OrbitCamera orbit;  // scene.camera is to_camera(orbit) once the camera has moved
+  EditHistory history;
+  std::shared_ptr<const Environment> environment;  // the scene's, kept while switched off
+  std::vector<ScriptEvent> script;
+  size_t next_script_event = 0;
+  uint64_t frame_number = 0;
+
+  std::unique_ptr<Window> window;
+  std::unique_ptr<Context> ctx;
+  std::unique_ptr<Renderer> renderer;
+  Swapchain chain;
+  Presenter presenter;
+  Overlay overlay;
+  bool recreate = true;
+  bool overlay_visible = true;
+  FrameStats last_stats;
+  double frame_ms = 0.0;
+  std::chrono::steady_clock::time_point last_present{};
+  uint64_t frames_presented = 0;
+  std::chrono::steady_clock::time_point first_present{};
+
+  int selected = -1;           // index into scene.objects, or -1
+  glm::vec2 pointer{0.0f};     // window position where new objects go (last click or drag)
+  bool scene_changed = false;  // set_scene before the next frame
+  std::string change;          // what changed it ("camera", "material", ...), for the log
+  std::chrono::steady_clock::time_point changed_at{};
+  bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
+  bool exit = false;
+  std::string screenshot;  // written from the next presented frame
+
+  ~Viewer() { release(); }
+  /// Destroys the window's Vulkan objects and the renderer, leaving the context.
+  void release();
+};
+
+/// What input event `e` does: camera moves, picking, edits, undo and redo, saving, the
+/// script-only events. Bad edits (a scene that would not validate) are refused with a message.
+void handle_event(Viewer& v, const InputEvent& e);
+
+/// Moves the camera for the fly keys (WASD, Q, E) held now, over `seconds`.
+void fly_held_keys(Viewer& v, float seconds);
+
+/// Applies what the overlay's panel changed.
+void apply_panel_changes(Viewer& v, const PanelChanges& c);
+
+/// The scene changed by `what` ("camera", "delete object 3", ...); the renderer takes it with
+/// set_scene before the next frame, and the log says what it uploaded.
+void mark_changed(Viewer& v, const std::string& what);
+
+/// Where Ctrl+S saves: the scene file itself, or NAME.json in the working folder for a scene
+/// given by name (so the scenes folder is never written).
+std::string save_path(const Viewer& v);
+
+/// Leaving with unsaved edits writes them to the scene's autosave file (FILE.autosave.json
+/// beside a scene file, NAME.autosave.json in the working folder for a named scene) and says
+/// so on stderr.
+void autosave_if_unsaved(Viewer& v);
+
+}  // namespace tessera

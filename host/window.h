@@ -1,0 +1,57 @@
+#pragma once
+// The GLFW window of `tessera view`: created for Vulkan (no OpenGL context), with its input
+// turned into InputEvents (host/view_events.h).
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "host/view_events.h"
+
+struct GLFWwindow;
+
+namespace tessera {
+
+struct Window {
+  GLFWwindow* handle = nullptr;
+  std::vector<InputEvent> events;  // input since the last take_events
+  // Mouse state for turning motion into drags and press-release into clicks.
+  int held = -1;       // GLFW button held, or -1
+  bool moved = false;  // the held button's pointer moved past the click slop
+  glm::vec2 pressed_at{0.0f};
+  glm::vec2 last{0.0f};
+  bool shift = false;
+  bool wants_input_elsewhere = false;  // set while the overlay has the mouse or keyboard
+
+  Window() = default;
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  ~Window();
+};
+
+/// Initialises GLFW and opens a `width` x `height` window titled `title`. Throws Error, with
+/// GLFW's description, when there is no display (no X server, DISPLAY unset) or GLFW finds no
+/// Vulkan loader.
+std::unique_ptr<Window> open_window(uint32_t width, uint32_t height, const std::string& title);
+
+/// The instance extensions GLFW needs for a surface (VK_KHR_surface and the platform's).
+std::vector<std::string> window_instance_extensions();
+
+/// Creates a surface for `window` on `instance`; the caller destroys it. Throws Error.
+VkSurfaceKHR create_window_surface(VkInstance instance, Window& window);
+
+/// The framebuffer's size in pixels: 0 x 0 while minimised.
+void framebuffer_size(const Window& window, uint32_t& width, uint32_t& height);
+
+/// Handles pending window-system events (waiting for one if `wait`) and moves the input
+/// received into the returned list.
+std::vector<InputEvent> poll_window(Window& window, bool wait);
+
+bool window_should_close(const Window& window);
+bool window_iconified(const Window& window);
+void set_window_size(Window& window, uint32_t width, uint32_t height);
+void set_window_title(Window& window, const std::string& title);
+
+}  // namespace tessera
