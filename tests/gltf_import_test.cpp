@@ -1,12 +1,13 @@
 // glTF 2.0 import: the broken files of Debian's assimp-testmodels and tests/data/bad/ each give
 // their specific Error; good files import to the counts, bounds and transforms read by hand
-// from their JSON; BoxTextured and 2CylinderEngine render the same with the compute path and
-// the reference renderer.
+// from their JSON; BoxTextured, 2CylinderEngine and the asset generator's triangle modes render
+// the same with the compute path and the reference renderer, and are kept as golden images.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/check.h"
@@ -349,8 +350,7 @@ TEST(GltfImport, HandMadeFeaturesFile) {
 }
 
 // A lit scene framing the model's world bounds from the front and above.
-Scene framed(ImportedModel model) {
-  Scene s = std::move(model.scene);
+Scene framed(Scene s) {
   glm::vec3 lo, hi;
   world_bounds(s, lo, hi);
   const glm::vec3 centre = 0.5f * (lo + hi);
@@ -369,23 +369,51 @@ Scene framed(ImportedModel model) {
   return s;
 }
 
+// Rendered models are compared with the reference (tests/accuracy_support.h) and then kept
+// as golden images (tests/golden/gltf_*.png), small so that the suite stays fast.
 class GltfRender : public test::VulkanTest {};
 
 TEST_F(GltfRender, BoxTexturedMatchesTheReference) {
-  const Scene scene = framed(import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf"));
-  const test::AccuracyReport r =
-      test::compare_with_reference(context(), scene, 256, 256, "gltf_box_textured");
-  test::expect_meets_bars(r);
-  write_png(test::output_path("gltf_box_textured.png"), render(scene, 256, 256).ldr);
+  const Scene scene = framed(import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf").scene);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 120, "gltf_box_textured");
 }
 
 TEST_F(GltfRender, EngineMatchesTheReference) {
   const Scene scene =
-      framed(import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"));
-  const test::AccuracyReport r =
-      test::compare_with_reference(context(), scene, 256, 256, "gltf_engine");
-  test::expect_meets_bars(r);
-  write_png(test::output_path("gltf_engine.png"), render(scene, 256, 256).ldr);
+      framed(import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").scene);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 120, "gltf_engine");
+}
+
+// The asset generator's triangle modes (strips, fans, lists; indexed by every index type or
+// not) side by side in one frame, 4 by 2 in the order 04, 05, 06, 11 / 12, 13, 14, 15: each
+// file's unit square (one object) moved to its cell.
+TEST_F(GltfRender, PrimitiveModesMatchTheReference) {
+  Scene scene;
+  int cell = 0;
+  for (int m : {4, 5, 6, 11, 12, 13, 14, 15}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "Mesh_PrimitiveMode_%02d.gltf", m);
+    Scene part = import_gltf(kModels + "glTF-Asset-Generator/Mesh_PrimitiveMode/" + name).scene;
+    ASSERT_EQ(part.objects.size(), 1u) << name;
+    Object o = part.objects[0];
+    o.mesh += uint32_t(scene.meshes.size());
+    o.material += uint32_t(scene.materials.size());
+    const glm::vec3 offset(1.25f * (float(cell % 4) - 1.5f), 0.625f - 1.25f * float(cell / 4), 0);
+    o.transform = glm::translate(glm::mat4(1.0f), offset) * o.transform;
+    scene.objects.push_back(o);
+    scene.meshes.insert(scene.meshes.end(), part.meshes.begin(), part.meshes.end());
+    scene.materials.insert(scene.materials.end(), part.materials.begin(), part.materials.end());
+    ++cell;
+  }
+  // The grid spans x in [-2.375, 2.375], y in [-1.125, 1.125]: seen from 4 m in front (and a
+  // little right and above), 45 degrees high and 75 wide fit +-1.66 and +-2.8 m.
+  scene = framed(std::move(scene));
+  scene.camera.target = glm::vec3(0.0f);
+  scene.camera.position = glm::vec3(0.6f, 0.5f, 4.0f);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 96, "gltf_primitive_modes");
 }
 
 }  // namespace
