@@ -2,6 +2,7 @@
 // files against make_builtin_scene (every field, exact floats) and against the golden images,
 // the benchmark grid file against make_bench_scene, and the bad-file corpus of tests/data/bad/.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -222,6 +223,25 @@ TEST(SceneFile, ModelFilesArePlacedAsAUnit) {
     EXPECT_NEAR(moved.x, origin.x + 10.0f, 1e-4f);
     EXPECT_EQ(moved.y, origin.y);
   }
+}
+
+// The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
+// unknown key and place something: they are kept working. Their models' own warnings (the
+// BoxTextured sampler's wrap modes) are allowed.
+TEST(SceneFile, ExampleScenesLoad) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(TESSERA_EXAMPLE_SCENES_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    ++files;
+    const SceneFile f = load_scene_file(entry.path().string());
+    EXPECT_FALSE(f.scene.objects.empty());
+    EXPECT_FALSE(f.description.empty());
+    for (const std::string& w : f.warnings) {
+      EXPECT_EQ(w.find("unknown key"), std::string::npos) << w;
+    }
+  }
+  EXPECT_GE(files, 4);
 }
 
 TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {
