@@ -19,8 +19,12 @@ struct GpuSceneArrays {
   std::vector<gpu::GpuLight> lights;                         // sorted by kind (TS_LIGHT_* order)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // lights of each kind, by TS_LIGHT_*
   std::vector<gpu::GpuTexture> textures;                     // per Scene::textures entry
-  std::vector<glm::uvec2> texels;        // every mip level of every texture, fp16 RGBA
-  uint32_t texture_maps = 0;             // TS_MAP_* bits of the maps any material uses
+  std::vector<glm::uvec2> texels;  // every mip level of every texture, fp16 RGBA
+  uint32_t texture_maps = 0;       // TS_MAP_* bits of the maps any material uses
+  uint32_t uv1_maps = 0;           // TS_MAP_* bits of the maps any material reads with set 1
+  /// Uv set 1 of every vertex (as `vertices`; zero where a mesh has none); empty unless a
+  /// material reads set 1, so a scene without one uploads nothing for it.
+  std::vector<glm::vec2> uv1s;
   std::vector<uint32_t> object_of_slot;  // GPU object slot -> index in Scene::objects
   uint64_t triangle_count = 0;           // triangle instances over all objects
   uint32_t mip_chains_built = 0;         // textures whose mip chain was built, not reused
