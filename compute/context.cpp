@@ -234,10 +234,17 @@ std::vector<DeviceInfo> list_devices() {
   VkInstance instance = create_instance({}, false);
   std::vector<DeviceInfo> infos;
   std::vector<VkPhysicalDevice> devices = physical_devices(instance);
+  VkPhysicalDevice preferred = VK_NULL_HANDLE;
+  try {
+    if (!devices.empty()) preferred = choose_device(instance, "auto");
+  } catch (const Error&) {
+    // The preferred device lacks features: no device is marked as the default.
+  }
   for (uint32_t i = 0; i < devices.size(); ++i) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(devices[i], &props);
-    infos.push_back({i, props.deviceName, props.deviceType, missing_features(devices[i])});
+    infos.push_back({i, props.deviceName, props.deviceType, missing_features(devices[i]),
+                     devices[i] == preferred, is_lavapipe(devices[i])});
   }
   vkDestroyInstance(instance, nullptr);
   return infos;

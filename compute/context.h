@@ -37,7 +37,9 @@ struct DeviceInfo {
   uint32_t index;
   std::string name;
   VkPhysicalDeviceType type;
-  std::string missing;  // features Tessera needs that the device lacks ("" if none)
+  std::string missing;       // features Tessera needs that the device lacks ("" if none)
+  bool is_default = false;   // the device `--device auto` (no --device) picks
+  bool is_lavapipe = false;  // the device `--device lavapipe` picks
 };
 
 struct Context {

@@ -122,6 +122,7 @@ void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, Gp
       throw Error("the scene's textures have more than 2^32 texels with their mip levels");
     }
     gpu::GpuTexture g = e.descriptor;
+    g.wrap = uint32_t(textures[i].wrap_u) | uint32_t(textures[i].wrap_v) << 2;
     for (uint32_t l = 0; l < g.levels; ++l)
       g.level_offset[l / 4][l % 4] += uint32_t(out.texels.size());
     out.texels.insert(out.texels.end(), e.texels.begin(), e.texels.end());
@@ -131,6 +132,10 @@ void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, Gp
 }
 
 }  // namespace
+
+static_assert(uint32_t(TextureWrap::repeat) == TS_WRAP_REPEAT &&
+              uint32_t(TextureWrap::clamp_to_edge) == TS_WRAP_CLAMP_TO_EDGE &&
+              uint32_t(TextureWrap::mirrored_repeat) == TS_WRAP_MIRRORED_REPEAT);
 
 uint64_t texture_hash(const Texture& texture) {
   // 64-bit multiply-xorshift mixing of 8 bytes (two texels) at a time.
@@ -227,6 +232,10 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
     }
   }
   pack_textures(scene.textures, cache, out);
+  for (const Texture& t : scene.textures) {
+    if (t.wrap_u != TextureWrap::repeat || t.wrap_v != TextureWrap::repeat)
+      out.texture_maps |= TS_MAP_WRAP_MODES;
+  }
   // Sorted by kind (stably), in TS_LIGHT_* order, so a shading pipeline specialized to the
   // counts of each kind can loop over each kind separately.
   std::vector<const Light*> sorted;

@@ -81,7 +81,8 @@ struct MaterialTable {
   std::map<int, uint32_t> materials;  // glTF material (-1: the default) -> Scene::materials
   std::map<int, PrimitiveOptions> uv_options;  // glTF material -> its uv set and transform
   std::map<int, Texture> images;               // decoded images (RGBA8, srgb unset)
-  std::map<std::tuple<int, bool, float>, uint32_t> textures;  // (image, srgb, occlusion strength)
+  // (image, srgb, occlusion strength, wrap modes u | v << 2)
+  std::map<std::tuple<int, bool, float, int>, uint32_t> textures;
 };
 
 /// Scene::materials index of glTF material `material` (-1: the glTF default material), adding

@@ -13,7 +13,22 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kRepeat = 10497;  // glTF sampler wrap mode REPEAT, the only one Tessera has
+// glTF 2.0 sampler wrap modes (section 5.26, the OpenGL enum values).
+constexpr int kRepeat = 10497;
+constexpr int kClampToEdge = 33071;
+constexpr int kMirroredRepeat = 33648;
+
+// The TextureWrap of `samplers[sampler].key` ("wrapS" or "wrapT"); fails on any other value.
+TextureWrap wrap_mode(const Context& ctx, const json& sampler, const char* key,
+                      const std::string& where) {
+  const json& v = sampler.contains(key) ? sampler[key] : json(kRepeat);
+  if (v == kRepeat) return TextureWrap::repeat;
+  if (v == kClampToEdge) return TextureWrap::clamp_to_edge;
+  if (v == kMirroredRepeat) return TextureWrap::mirrored_repeat;
+  ctx.fail(where + "." + key, "is " + v.dump() +
+                                  "; glTF allows 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) and "
+                                  "33648 (MIRRORED_REPEAT)");
+}
 
 // Decodes images[index] (from its file, data uri or buffer view) to RGBA8, refusing sides over
 // options.max_texture_side before decoding.
@@ -49,10 +64,15 @@ const Texture& decoded_image(const Context& ctx, const tinygltf::Model& model, i
   return table.images.emplace(index, std::move(t)).first->second;
 }
 
-// images[] index of textures[index], referenced from `where`, after checking the texture and
-// warning for its sampler's wrap modes.
-int texture_source(const Context& ctx, const json& doc, const tinygltf::Model& model, int index,
-                   const std::string& where) {
+// What textures[index] refers to: an image and its sampler's wrap modes.
+struct TextureSource {
+  int image = 0;
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
+};
+
+// textures[index], referenced from `where`, after checking the texture and its sampler.
+TextureSource texture_source(const Context& ctx, const json& doc, const tinygltf::Model& model,
+                             int index, const std::string& where) {
   const json& textures = doc.value("textures", json::array());
   check_index(ctx, where + ".index", index, textures.size(), "textures");
   const json& texture = textures[index];
@@ -62,19 +82,15 @@ int texture_source(const Context& ctx, const json& doc, const tinygltf::Model& m
              "has no source image (images of extensions such as KHR_texture_basisu or "
              "EXT_texture_webp are not supported)");
   }
-  const int source = texture["source"].get<int>();
-  check_index(ctx, name + ".source", source, model.images.size(), "images");
+  TextureSource source;
+  source.image = texture["source"].get<int>();
+  check_index(ctx, name + ".source", source.image, model.images.size(), "images");
   if (texture.contains("sampler")) {
     const int sampler = texture["sampler"].get<int>();
     const json& samplers = doc.value("samplers", json::array());
     check_index(ctx, name + ".sampler", sampler, samplers.size(), "samplers");
-    const int wrap_s = samplers[sampler].value("wrapS", kRepeat);
-    const int wrap_t = samplers[sampler].value("wrapT", kRepeat);
-    if (wrap_s != kRepeat || wrap_t != kRepeat) {
-      ctx.warn(at("samplers", sampler), "wraps with modes " + std::to_string(wrap_s) + ", " +
-                                            std::to_string(wrap_t) +
-                                            "; Tessera always repeats (10497)");
-    }
+    source.wrap_u = wrap_mode(ctx, samplers[sampler], "wrapS", at("samplers", sampler));
+    source.wrap_v = wrap_mode(ctx, samplers[sampler], "wrapT", at("samplers", sampler));
   }
   return source;
 }
@@ -85,11 +101,14 @@ int texture_source(const Context& ctx, const json& doc, const tinygltf::Model& m
 uint32_t texture_index(const Context& ctx, const json& doc, const tinygltf::Model& model, int index,
                        const std::string& where, bool srgb, float strength, MaterialTable& table,
                        Scene& scene) {
-  const int source = texture_source(ctx, doc, model, index, where);
-  const auto key = std::make_tuple(source, srgb, strength);
+  const TextureSource source = texture_source(ctx, doc, model, index, where);
+  const auto key =
+      std::make_tuple(source.image, srgb, strength, int(source.wrap_u) | int(source.wrap_v) << 2);
   if (auto it = table.textures.find(key); it != table.textures.end()) return it->second;
-  Texture t = decoded_image(ctx, model, source, table);
+  Texture t = decoded_image(ctx, model, source.image, table);
   t.srgb = srgb;
+  t.wrap_u = source.wrap_u;
+  t.wrap_v = source.wrap_v;
   if (strength != 1.0f) {
     for (glm::u8vec4& texel : t.texels) {
       texel.r = uint8_t(std::lround(255.0 * (1.0 + strength * (texel.r / 255.0 - 1.0))));

@@ -99,14 +99,21 @@ ImageF read_pfm(const std::string& path) {
   return image;
 }
 
-bool can_write_file(const std::string& path) {
+std::string unwritable_reason(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path p(path);
-  if (p.filename().empty() || fs::is_directory(p, ec)) return false;
-  if (fs::exists(p, ec)) return ::access(path.c_str(), W_OK) == 0;
+  if (p.filename().empty()) return "the path names no file";
+  if (fs::is_directory(p, ec)) return "it is a folder";
+  if (fs::exists(p, ec)) {
+    return ::access(path.c_str(), W_OK) == 0 ? "" : "no permission to write the file";
+  }
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  return fs::is_directory(dir, ec) && ::access(dir.c_str(), W_OK) == 0;
+  if (!fs::exists(dir, ec)) return "folder '" + dir.string() + "' does not exist";
+  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a folder";
+  if (::access(dir.c_str(), W_OK) != 0)
+    return "no permission to write in folder '" + dir.string() + "'";
+  return "";
 }
 
 }  // namespace tessera

@@ -42,8 +42,9 @@ void write_hdr_image(const std::string& path, const ImageF& image);
 /// Reads a PFM written by write_hdr_image (alpha set to 1). Throws Error on a malformed file.
 ImageF read_pfm(const std::string& path);
 
-/// True if a file could be written at `path`: it is writable, or it does not exist and its
-/// folder does and is writable. Creates nothing.
-bool can_write_file(const std::string& path);
+/// Why no file could be written at `path` ("it is a folder", "folder 'out' does not exist",
+/// "no permission to write in folder 'out'", ...), or "" if one could: it is writable, or it
+/// does not exist and its folder does and is writable. Creates nothing.
+std::string unwritable_reason(const std::string& path);
 
 }  // namespace tessera

@@ -187,8 +187,10 @@ void validate_scene(const Scene& scene) {
               name + " uses texture " + std::to_string(index) + " as its " + what + " map, of " +
                   std::to_string(scene.textures.size()));
     }
-    require((mat.uv1_maps & ~TS_MAP_ALL) == 0u,
-            name + " has uv1_maps " + std::to_string(mat.uv1_maps) + ", bits outside TS_MAP_ALL");
+    constexpr uint32_t kMaps = TS_MAP_BASE_COLOR | TS_MAP_METALLIC_ROUGHNESS | TS_MAP_NORMAL |
+                               TS_MAP_OCCLUSION | TS_MAP_EMISSIVE;
+    require((mat.uv1_maps & ~kMaps) == 0u, name + " has uv1_maps " + std::to_string(mat.uv1_maps) +
+                                               ", bits other than the five maps' TS_MAP_*");
   }
   for (size_t t = 0; t < scene.textures.size(); ++t) {
     const Texture& tex = scene.textures[t];

@@ -65,7 +65,7 @@ struct Material {
   bool double_sided = false;
   /// The uv set each map reads (glTF textureInfo.texCoord): a TS_MAP_* bit set here (e.g.
   /// TS_MAP_BASE_COLOR for base_color_map) makes that map read Mesh::uvs1, clear reads
-  /// Mesh::uvs. Bits of TS_MAP_ALL only; every mesh drawn with a material that sets any bit
+  /// Mesh::uvs. Bits of the five maps only; every mesh drawn with a material that sets any bit
   /// must have uvs1 (validate_scene).
   uint32_t uv1_maps = 0;
 };

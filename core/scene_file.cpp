@@ -74,6 +74,7 @@ struct TextureDecl {
   Node node;
   std::string file;  // "" for procedural textures (already made)
   std::optional<bool> srgb;
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
 };
 
 // A model file's content, placed as a unit by each object that names it.
@@ -266,6 +267,7 @@ struct Reader {
   void read_camera(const Node& n);
   void read_light(const Node& n);
   void read_texture(const Node& n);
+  std::pair<TextureWrap, TextureWrap> wrap_modes(const Node& n) const;
   void load_textures();
   void read_material(const Node& n);
   void read_mesh(const Node& n);
@@ -326,9 +328,25 @@ void Reader::read_light(const Node& n) {
   out.scene.lights.push_back(l);
 }
 
+// "wrap": one mode for both axes, or [u, v].
+std::pair<TextureWrap, TextureWrap> Reader::wrap_modes(const Node& n) const {
+  if (!has(n, "wrap")) return {TextureWrap::repeat, TextureWrap::repeat};
+  const Node w = child(n, "wrap");
+  auto mode = [&](const Node& m) {
+    return choice(m, {std::pair{"repeat", TextureWrap::repeat},
+                      {"clamp_to_edge", TextureWrap::clamp_to_edge},
+                      {"mirrored_repeat", TextureWrap::mirrored_repeat}});
+  };
+  if (w.json->is_string()) return {mode(w), mode(w)};
+  expect(w, w.json->is_array() && w.json->size() == 2, "a wrap mode or an array of 2 (u, v)");
+  return {mode(element(w, 0)), mode(element(w, 1))};
+}
+
 void Reader::read_texture(const Node& n) {
   object(n, {"name", "type", "file", "srgb", "size", "cells", "color_a", "color_b", "tiles",
-             "color", "strength"});
+             "color", "strength", "wrap"});
+  const auto [wrap_u, wrap_v] = wrap_modes(n);
+  const size_t first_new = out.scene.textures.size();
   const uint32_t index = uint32_t(out.scene.textures.size());
   const std::string name = declare(n, texture_names, index, "texture");
   if (!has(n, "type")) fail(n, "a texture needs a \"type\": file, checker or tiles");
@@ -337,7 +355,7 @@ void Reader::read_texture(const Node& n) {
   const uint32_t side = options.max_texture_side;
   if (kind == 0) {
     if (!has(n, "file")) fail(n, "a file texture needs a \"file\"");
-    TextureDecl d{n, resolve(child(n, "file")), std::nullopt};
+    TextureDecl d{n, resolve(child(n, "file")), std::nullopt, wrap_u, wrap_v};
     if (has(n, "srgb")) d.srgb = boolean(child(n, "srgb"));
     texture_decls.push_back(d);
     out.scene.textures.emplace_back();  // loaded by load_textures
@@ -363,6 +381,10 @@ void Reader::read_texture(const Node& n) {
       texture_decls.push_back({n, "", std::nullopt});
     }
   }
+  for (size_t i = first_new; i < out.scene.textures.size(); ++i) {
+    out.scene.textures[i].wrap_u = wrap_u;
+    out.scene.textures[i].wrap_v = wrap_v;
+  }
 }
 
 // File textures are sRGB where a material uses them as colour (base colour or emission),
@@ -379,6 +401,8 @@ void Reader::load_textures() {
     const bool srgb = d.srgb.value_or(colour[i]);
     out.scene.textures[i] = loading(child(d.node, "file"), [&] {
       Texture t = load_texture(d.file, srgb);
+      t.wrap_u = d.wrap_u;
+      t.wrap_v = d.wrap_v;
       if (t.width > options.max_texture_side || t.height > options.max_texture_side)
         throw Error(d.file + " is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                     ", over the largest side of " + std::to_string(options.max_texture_side));

@@ -37,6 +37,8 @@ MipChain build_mip_chain(const Texture& texture) {
   TESSERA_CHECK(texture.width > 0 && texture.height > 0 &&
                 texture.texels.size() == size_t(texture.width) * texture.height);
   MipChain chain;
+  chain.wrap_u = texture.wrap_u;
+  chain.wrap_v = texture.wrap_v;
   MipChain::Level base{texture.width, texture.height, {}};
   base.texels.reserve(texture.texels.size());
   for (const glm::u8vec4& t : texture.texels) {
@@ -77,12 +79,31 @@ int64_t wrap(int64_t i, int64_t n) {
   return r < 0 ? r + n : r;
 }
 
-glm::dvec4 bilinear(const MipChain::Level& level, glm::dvec2 uv) {
+// A coordinate folded as shaders/texture.glsl does before a bilinear lookup: mirrored repeat
+// into [0, 1] (period 2), clamp to edge clamped to [0, 1] (beyond, every lookup reads the edge
+// texel alike); repeat is left, its texel indices wrap instead.
+double fold(double u, TextureWrap mode) {
+  if (mode == TextureWrap::mirrored_repeat) {
+    const double t = u - 2.0 * std::floor(0.5 * u);
+    return t > 1.0 ? 2.0 - t : t;
+  }
+  return mode == TextureWrap::clamp_to_edge ? std::clamp(u, 0.0, 1.0) : u;
+}
+
+// Texel index i of a level n texels wide: repeat wraps; the others stay within one texel of
+// [0, n) after fold, where mirroring and clamping both read the edge texel.
+int64_t texel_index(int64_t i, int64_t n, TextureWrap mode) {
+  return mode == TextureWrap::repeat ? wrap(i, n) : std::clamp<int64_t>(i, 0, n - 1);
+}
+
+glm::dvec4 bilinear(const MipChain& chain, const MipChain::Level& level, glm::dvec2 uv) {
+  uv = {fold(uv.x, chain.wrap_u), fold(uv.y, chain.wrap_v)};
   const double x = uv.x * level.width - 0.5, y = uv.y * level.height - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
   const double fx = x - x0, fy = y - y0;
   auto at = [&](double xi, double yi) {
-    const int64_t ix = wrap(int64_t(xi), level.width), iy = wrap(int64_t(yi), level.height);
+    const int64_t ix = texel_index(int64_t(xi), level.width, chain.wrap_u);
+    const int64_t iy = texel_index(int64_t(yi), level.height, chain.wrap_v);
     return glm::dvec4(level.texels[size_t(iy) * level.width + size_t(ix)]);
   };
   return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
@@ -94,7 +115,8 @@ glm::dvec4 trilinear(const MipChain& chain, glm::dvec2 uv, double lod) {
   lod = std::clamp(lod, 0.0, top);
   const double l0 = std::floor(lod);
   const size_t i0 = size_t(l0), i1 = std::min(i0 + 1, chain.levels.size() - 1);
-  return glm::mix(bilinear(chain.levels[i0], uv), bilinear(chain.levels[i1], uv), lod - l0);
+  return glm::mix(bilinear(chain, chain.levels[i0], uv), bilinear(chain, chain.levels[i1], uv),
+                  lod - l0);
 }
 
 }  // namespace
@@ -102,7 +124,8 @@ glm::dvec4 trilinear(const MipChain& chain, glm::dvec2 uv, double lod) {
 glm::dvec4 sample_texture(const MipChain& chain, glm::dvec2 uv, glm::dvec2 duv_dx,
                           glm::dvec2 duv_dy, uint32_t max_anisotropy) {
   // uv far outside [0, 1] lose their fraction in float on the GPU; wrap first, like it does.
-  uv -= glm::floor(uv);
+  if (chain.wrap_u == TextureWrap::repeat) uv.x -= std::floor(uv.x);
+  if (chain.wrap_v == TextureWrap::repeat) uv.y -= std::floor(uv.y);
   const glm::dvec2 size(chain.levels[0].width, chain.levels[0].height);
   const double lx = glm::length(duv_dx * size), ly = glm::length(duv_dy * size);
   const double major = std::max(lx, ly), minor = std::min(lx, ly);

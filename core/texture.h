@@ -15,11 +15,17 @@ namespace tessera {
 /// One texture map as loaded: RGBA8, rows top to bottom. `srgb` marks colour data (base
 /// colour), decoded to linear before filtering; data maps (metallic-roughness, normal,
 /// occlusion) are linear.
+/// How lookups outside [0, 1] wrap, per axis: OpenGL's (and glTF 2.0's) REPEAT, CLAMP_TO_EDGE
+/// and MIRRORED_REPEAT (OpenGL 4.6 specification, section 8.14.2).
+enum class TextureWrap : uint8_t { repeat, clamp_to_edge, mirrored_repeat };
+
 struct Texture {
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<glm::u8vec4> texels;  // width * height
   bool srgb = false;
+  TextureWrap wrap_u = TextureWrap::repeat;  // along rows
+  TextureWrap wrap_v = TextureWrap::repeat;  // along columns
 };
 
 /// Largest texture side: the GPU descriptor stores at most TS_MAX_TEXTURE_LEVELS levels.
@@ -39,6 +45,7 @@ struct MipChain {
     std::vector<glm::vec4> texels;
   };
   std::vector<Level> levels;
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;  // the texture's
 };
 
 /// Builds the full mip chain of `texture` (down to 1 x 1). Precondition: texture is non-empty
@@ -48,11 +55,11 @@ MipChain build_mip_chain(const Texture& texture);
 /// IEC 61966-2-1 sRGB decoding of one 8-bit value, in [0, 1].
 double srgb_to_linear(uint8_t value);
 
-/// Filtered lookup at `uv` (repeat wrapping; v = 0 is the top row) with the screen-space uv
-/// derivatives duv_dx, duv_dy of one pixel step. Trilinear at lod log2 of the longer footprint
-/// axis in level-0 texels; with max_anisotropy > 1, n = min(ceil(major / minor), max_anisotropy)
-/// trilinear probes spread along the major axis at lod log2(major / n). Non-finite derivatives
-/// (a triangle seen edge-on) select the coarsest level.
+/// Filtered lookup at `uv` (wrapping by the chain's modes; v = 0 is the top row) with the
+/// screen-space uv derivatives duv_dx, duv_dy of one pixel step. Trilinear at lod log2 of the
+/// longer footprint axis in level-0 texels; with max_anisotropy > 1, n = min(ceil(major / minor),
+/// max_anisotropy) trilinear probes spread along the major axis at lod log2(major / n). Non-finite
+/// derivatives (a triangle seen edge-on) select the coarsest level.
 glm::dvec4 sample_texture(const MipChain& chain, glm::dvec2 uv, glm::dvec2 duv_dx,
                           glm::dvec2 duv_dy, uint32_t max_anisotropy);
 

@@ -16,8 +16,8 @@ namespace tessera {
 int run_bench(const BenchArgs& a, const std::string& command_line) {
   // Check outputs before spending time on a sweep.
   for (const std::string* path : {&a.csv, &a.json, &a.chart}) {
-    if (!path->empty() && !can_write_file(*path))
-      throw Error("cannot write output file '" + *path + "'");
+    if (std::string why = path->empty() ? "" : unwritable_reason(*path); !why.empty())
+      throw Error("cannot write output file '" + *path + "': " + why);
   }
   const bool gpu_backends =
       std::any_of(a.backends.begin(), a.backends.end(),

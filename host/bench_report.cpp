@@ -36,12 +36,15 @@ std::string json_string(const std::string& s) {
 
 }  // namespace
 
+// "medians of 5 frames", or "one frame each" for a single frame (no median to speak of).
+static std::string frames_phrase(uint32_t repeat) {
+  return repeat == 1 ? "one frame each" : "medians of " + std::to_string(repeat) + " frames";
+}
+
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf(
-      "scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), medians of %u "
-      "frames\n",
-      a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area, results.device.c_str(),
-      results.driver.c_str(), a.repeat);
+  std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), %s\n",
+              a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area,
+              results.device.c_str(), results.driver.c_str(), frames_phrase(a.repeat).c_str());
   std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
               "rasterized", "ms", "triangles/s", "cpu ms");
   for (const BenchRow& r : results.rows) {
@@ -122,8 +125,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
 void write_bench_chart(const std::string& path, const BenchResults& results, const BenchArgs& a) {
   ChartSpec spec;
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
-               std::to_string(a.height) + ", " + results.device + " (medians of " +
-               std::to_string(a.repeat) + " frames)";
+               std::to_string(a.height) + ", " + results.device + " (" + frames_phrase(a.repeat) +
+               ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
   for (const std::string& backend : a.backends) {

@@ -16,9 +16,19 @@
 namespace {
 
 int run_devices() {
-  for (const tessera::DeviceInfo& d : tessera::list_devices()) {
-    std::printf("%u: %s (%s)%s%s\n", d.index, d.name.c_str(), tessera::device_type_name(d.type),
-                d.missing.empty() ? "" : " - unusable, lacks: ", d.missing.c_str());
+  const std::vector<tessera::DeviceInfo> devices = tessera::list_devices();
+  if (devices.empty()) {
+    std::puts("no Vulkan device found (for the CPU driver: Debian package mesa-vulkan-drivers)");
+    return 1;
+  }
+  for (const tessera::DeviceInfo& d : devices) {
+    std::string verdict = d.missing.empty() ? "usable" : "unusable, lacks: " + d.missing;
+    std::string how = "--device " + std::to_string(d.index);
+    if (d.is_lavapipe) how += " or --device lavapipe";
+    if (d.is_default) how += "; the default";
+    std::printf("%u: %s (%s) - %s%s%s\n", d.index, d.name.c_str(),
+                tessera::device_type_name(d.type), verdict.c_str(), d.missing.empty() ? " (" : "",
+                d.missing.empty() ? (how + ")").c_str() : "");
   }
   return 0;
 }

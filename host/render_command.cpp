@@ -114,9 +114,11 @@ int run_render(const RenderArgs& given) {
   RenderArgs args = given;
   const Scene scene = scene_of(args);
   // Check outputs before spending time on a render.
-  if (!can_write_file(args.out)) throw Error("cannot write output file '" + args.out + "'");
-  if (!args.hdr_out.empty() && !can_write_file(args.hdr_out)) {
-    throw Error("cannot write HDR output file '" + args.hdr_out + "'");
+  if (std::string why = unwritable_reason(args.out); !why.empty()) {
+    throw Error("cannot write output file '" + args.out + "': " + why);
+  }
+  if (std::string why = args.hdr_out.empty() ? "" : unwritable_reason(args.hdr_out); !why.empty()) {
+    throw Error("cannot write HDR output file '" + args.hdr_out + "': " + why);
   }
 
   if (args.device == "reference") return run_reference(scene, args);

@@ -3,17 +3,18 @@
 // Needs bindings.glsl; the mirror in the reference is resolve_material (reference_renderer.cpp).
 // A material parameter is read here (from GpuMaterial) and applied to the shading parameters
 // (PixelParams) at the end of evaluate_material; the lighting code uses only PixelParams.
-#include "texture.glsl"
-#include "brdf.glsl"
-
-// Maps this pipeline can sample (TS_MAP_* bits). The generic pipeline keeps them all and tests
-// each material's map index at run time; a pipeline specialized to a scene drops the code of
-// maps no material of the scene uses.
+// Maps this pipeline can sample (TS_MAP_* bits, with TS_MAP_WRAP_MODES for wrap modes other
+// than repeat). The generic pipeline keeps them all and tests each material's map index at run
+// time; a pipeline specialized to a scene drops the code of maps no material of the scene uses.
 layout(constant_id = TS_SPEC_TEXTURE_MAPS) const uint TEXTURE_MAPS = TS_MAP_ALL;
 // Maps that may read uv set 1 (TS_MAP_* bits). Generic: all, tested per material at run time;
 // specialized to a scene: the maps its materials read with set 1, usually none, which leaves
 // out set 1's fetch and interpolation.
 layout(constant_id = TS_SPEC_UV1_MAPS) const uint UV1_MAPS = TS_MAP_ALL;
+
+#include "texture.glsl"
+#include "brdf.glsl"
+
 
 // Where and how a pixel sees a surface, before the material is applied.
 struct SurfaceGeometry {

@@ -12,19 +12,39 @@ uint wrap_once(int i, int n) {
   return uint(i < 0 ? i + n : (i >= n ? i - n : i));
 }
 
-// Bilinear lookup of one level of texture `tex` with repeat wrapping. Reads the descriptor's
-// fields from the buffer where needed: copying the whole GpuTexture into a local costs a lot
-// on CPU implementations (its offset array becomes an indexed local array).
+// Folds a coordinate into [0, 1] by its TS_WRAP_* mode: repeat by its fraction, mirrored
+// repeat with period 2, clamp to edge by clamping (beyond [0, 1] every lookup reads the edge
+// texel alike, and a huge coordinate would overflow the integer texel index).
+float fold_coordinate(float u, uint mode) {
+  if (mode == TS_WRAP_MIRRORED_REPEAT) {
+    float t = u - 2.0 * floor(0.5 * u);
+    return t > 1.0 ? 2.0 - t : t;
+  }
+  return mode == TS_WRAP_REPEAT ? u - floor(u) : clamp(u, 0.0, 1.0);
+}
+
+// Texel index within one texel of [0, n) after fold_coordinate: repeat wraps, mirroring and
+// clamping both read the edge texel.
+uint texel_index(int i, int n, uint mode) {
+  return mode == TS_WRAP_REPEAT ? wrap_once(i, n) : uint(clamp(i, 0, n - 1));
+}
+
+// Bilinear lookup of one level of texture `tex`, wrapping by its modes (repeat unless the
+// scene has other modes: TS_MAP_WRAP_MODES). Reads the descriptor's fields from the buffer
+// where needed: copying the whole GpuTexture into a local costs a lot on CPU implementations
+// (its offset array becomes an indexed local array).
 vec4 bilinear(uint tex, uint level, vec2 uv) {
-  uv -= floor(uv);  // into [0, 1], so the corner indices below are within one period
+  uint wrap = (TEXTURE_MAPS & TS_MAP_WRAP_MODES) != 0u ? textures[tex].wrap : 0u;
+  uint wrap_u = wrap & 3u, wrap_v = wrap >> 2u;
+  uv = vec2(fold_coordinate(uv.x, wrap_u), fold_coordinate(uv.y, wrap_v));
   ivec2 size = ivec2(max(textures[tex].size >> level, uvec2(1u)));
   uint offset = textures[tex].level_offset[level >> 2u][level & 3u];
   vec2 xy = uv * vec2(size) - 0.5;
   vec2 corner = floor(xy);
   vec2 f = xy - corner;
   ivec2 i0 = ivec2(corner);
-  uint x0 = wrap_once(i0.x, size.x), x1 = wrap_once(i0.x + 1, size.x);
-  uint y0 = wrap_once(i0.y, size.y), y1 = wrap_once(i0.y + 1, size.y);
+  uint x0 = texel_index(i0.x, size.x, wrap_u), x1 = texel_index(i0.x + 1, size.x, wrap_u);
+  uint y0 = texel_index(i0.y, size.y, wrap_v), y1 = texel_index(i0.y + 1, size.y, wrap_v);
   uint w = uint(size.x);
   return mix(mix(texel_at(offset, w, x0, y0), texel_at(offset, w, x1, y0), f.x),
              mix(texel_at(offset, w, x0, y1), texel_at(offset, w, x1, y1), f.x), f.y);

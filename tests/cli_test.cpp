@@ -223,7 +223,10 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --env sky.exr", 2, "tessera: error: --env: expects a .hdr file"},
       {"render --env-size 3", 2, "not a power of two"},
       {"render --anisotropy 17", 2, "--anisotropy: expects a whole number from 1 to 16"},
-      {"render --out /nonexistent-dir/x.png", 1, "tessera: error: cannot write output file"},
+      {"render --out /nonexistent-dir/x.png", 1,
+       "tessera: error: cannot write output file '/nonexistent-dir/x.png': folder "
+       "'/nonexistent-dir' does not exist"},
+      {"devices", 0, "(CPU) - usable (--device "},
       {"render --device 99", 1, "out of range"},
       {"render --device warp-drive", 1, "tessera: error: unknown device 'warp-drive'"},
       {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 1,

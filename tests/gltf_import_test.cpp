@@ -109,14 +109,19 @@ TEST(GltfImport, LimitsAreEnforced) {
   const std::string cut = ::testing::TempDir() + "truncated.glb";
   std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() - 100));
   EXPECT_NE(import_error(cut).find("truncated"), std::string::npos) << import_error(cut);
-  // Strict import turns the .gltf form's sampler warning (MIRRORED_REPEAT, CLAMP; the .glb
-  // form's sampler repeats) into an error.
+  // The .gltf form's sampler wraps with MIRRORED_REPEAT (wrapS 33648) and CLAMP_TO_EDGE
+  // (wrapT 33071), the .glb form's repeats: both are supported, so strict import passes.
   ImportOptions strict;
   strict.strict = true;
   const std::string gltf = kModels + "BoxTextured-glTF/BoxTextured.gltf";
-  EXPECT_NE(import_error(gltf, strict).find("samplers[0]: wraps with modes 33648, 33071"),
-            std::string::npos);
+  EXPECT_EQ(import_error(gltf, strict), "");
   EXPECT_EQ(import_error(glb, strict), "");
+  const Texture& mirrored = import_gltf(gltf).scene.textures.at(0);
+  EXPECT_EQ(mirrored.wrap_u, TextureWrap::mirrored_repeat);
+  EXPECT_EQ(mirrored.wrap_v, TextureWrap::clamp_to_edge);
+  const Texture& repeating = import_gltf(glb).scene.textures.at(0);
+  EXPECT_EQ(repeating.wrap_u, TextureWrap::repeat);
+  EXPECT_EQ(repeating.wrap_v, TextureWrap::repeat);
 }
 
 void world_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {

@@ -127,7 +127,8 @@ TEST(SceneFile, ValuesReadByHand) {
     "materials": [{"name": "gold", "preset": "gold", "roughness": 0.25},
                   {"name": "glow", "base_color": [0.1, 0.2, 0.3], "emissive": [2, 0, 0],
                    "emissive_map": "squares", "double_sided": true}],
-    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2}],
+    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2,
+                  "wrap": ["clamp_to_edge", "mirrored_repeat"]}],
     "meshes": [{"name": "box", "type": "cube"}],
     "objects": [{"mesh": "box", "material": "gold", "translation": [1, 2, 3],
                  "rotation": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2},
@@ -139,11 +140,16 @@ TEST(SceneFile, ValuesReadByHand) {
   })");
   EXPECT_FLOAT_EQ(f.scene.camera.vertical_fov, 1.5707963f);  // pi / 2
   EXPECT_EQ(f.scene.camera.near_plane, 0.5f);
-  // Gold's F0 in Filament's table: (1.00, 0.85, 0.57), metallic.
-  EXPECT_EQ(f.scene.materials[0].base_color, glm::vec3(1.0f, 0.85f, 0.57f));
+  // Gold's F0 in Filament's table, sRGB (1.00, 0.85, 0.57), decoded by hand:
+  // ((0.85 + 0.055) / 1.055)^2.4 = 0.69203, ((0.57 + 0.055) / 1.055)^2.4 = 0.28466; metallic.
+  EXPECT_NEAR(f.scene.materials[0].base_color.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(f.scene.materials[0].base_color.g, 0.69203f, 1e-4f);
+  EXPECT_NEAR(f.scene.materials[0].base_color.b, 0.28466f, 1e-4f);
   EXPECT_EQ(f.scene.materials[0].metallic, 1.0f);
   EXPECT_EQ(f.scene.materials[0].roughness, 0.25f);
   EXPECT_EQ(f.scene.materials[1].emissive, glm::vec3(2, 0, 0));
+  EXPECT_EQ(f.scene.textures[0].wrap_u, TextureWrap::clamp_to_edge);
+  EXPECT_EQ(f.scene.textures[0].wrap_v, TextureWrap::mirrored_repeat);
   EXPECT_EQ(f.scene.materials[1].roughness, 0.5f);  // the default
   EXPECT_EQ(f.scene.materials[1].emissive_map, 0u);
   EXPECT_TRUE(f.scene.materials[1].double_sided);

@@ -67,6 +67,34 @@ TEST(TextureMaps, FilteringByHand) {
   EXPECT_NEAR(sample_texture(chain, {0.25, 0.5}, {inf, 0.0}, {0.0, 0.0}, 1).r, 0.5, 1e-12);
 }
 
+TEST(TextureMaps, WrapModesByHand) {
+  // The 2x1 texture of FilteringByHand, red 0 and 1, outside [0, 1] (v stays inside).
+  // u = 1.6: repeat reads u = 0.6, texel coordinate 0.6 * 2 - 0.5 = 0.7 between the centres,
+  // 0.7; clamp to edge reads u = 1, coordinate 1.5, texel 1 and the clamped texel 2 -> 1, so 1;
+  // mirrored repeat reads 2 - 1.6 = 0.4, coordinate 0.3, so 0.3.
+  // u = -0.4: repeat 0.6 -> 0.7; clamp 0 -> coordinate -0.5, texels -1 and 0 -> both 0, so 0;
+  // mirrored -0.4 + 2 = 1.6 -> 2 - 1.6 = 0.4 -> 0.3.
+  struct Case {
+    TextureWrap mode;
+    double at_1_6, at_minus_0_4;
+  };
+  for (const Case& c :
+       {Case{TextureWrap::repeat, 0.7, 0.7}, Case{TextureWrap::clamp_to_edge, 1.0, 0.0},
+        Case{TextureWrap::mirrored_repeat, 0.3, 0.3}}) {
+    Texture t = texture_of(2, 1, {glm::u8vec4(0, 0, 0, 255), glm::u8vec4(255, 0, 0, 255)});
+    t.wrap_u = c.mode;
+    t.wrap_v = TextureWrap::clamp_to_edge;
+    const MipChain chain = build_mip_chain(t);
+    const glm::dvec2 tiny(1e-6, 0.0), tiny_v(0.0, 1e-6);
+    EXPECT_NEAR(sample_texture(chain, {1.6, 0.5}, tiny, tiny_v, 1).r, c.at_1_6, 1e-9)
+        << int(c.mode);
+    EXPECT_NEAR(sample_texture(chain, {-0.4, 0.5}, tiny, tiny_v, 1).r, c.at_minus_0_4, 1e-9)
+        << int(c.mode);
+    // Far outside, v clamps to the only row and u stays defined.
+    EXPECT_TRUE(std::isfinite(sample_texture(chain, {1e30, -1e30}, tiny, tiny_v, 1).r));
+  }
+}
+
 TEST(TextureMaps, TangentsFollowTheUvs) {
   // make_plane: u along +x, v along +y, normal +z: tangent +x, bitangent +y = cross(n, t), w = 1.
   const Mesh plane = make_plane(2, 2);
@@ -138,6 +166,29 @@ TEST_F(TexturedRendering, TexturedSceneAgreesWithTheReference) {
     std::printf("%s\n", test::describe(r).c_str());
     test::expect_meets_bars(r);
   }
+}
+
+// The textured scene with its uvs spread over [-1, 2] (so that two thirds of each surface
+// lies outside the texture) and its textures clamping in u and mirroring in v: the compute path
+// agrees with the reference, and differs from the repeating scene over much of the image.
+TEST_F(TexturedRendering, WrapModesAgreeWithTheReference) {
+  Scene repeating = make_builtin_scene("textured");
+  for (Mesh& m : repeating.meshes) {
+    for (glm::vec2& uv : m.uvs) uv = uv * 3.0f - 1.0f;
+  }
+  Scene wrapped = repeating;
+  for (Texture& t : wrapped.textures) {
+    t.wrap_u = TextureWrap::clamp_to_edge;
+    t.wrap_v = TextureWrap::mirrored_repeat;
+  }
+  const test::AccuracyReport r =
+      test::compare_with_reference(context(), wrapped, 160, 120, "textured_wrap_modes");
+  std::printf("%s\n", test::describe(r).c_str());
+  test::expect_meets_bars(r);
+  const Image8 a = render(repeating, 160, 120).ldr, b = render(wrapped, 160, 120).ldr;
+  size_t differing = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+  EXPECT_GT(differing, a.pixels.size() / 10) << "the wrap modes changed too few pixels";
 }
 
 // A plane at a grazing angle under a fine checkerboard: the ideal pixel value is the mean of

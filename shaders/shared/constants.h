@@ -74,6 +74,8 @@
 #define TS_MAP_NORMAL 4u
 #define TS_MAP_OCCLUSION 8u
 #define TS_MAP_EMISSIVE 16u
-#define TS_MAP_ALL 31u
+// Not a map: some texture wraps other than by repeating (GpuTexture.wrap is read only then).
+#define TS_MAP_WRAP_MODES 32u
+#define TS_MAP_ALL 63u
 
 #endif  // TESSERA_CONSTANTS_H

@@ -98,6 +98,11 @@ using glm::vec4;
 #define TS_IBL_ON 1u
 #define TS_IBL_RUNTIME 2u  // decided per frame by GpuFrame.environment
 
+// GpuTexture.wrap: the mode of u in bits 0-1, of v in bits 2-3 (glTF 2.0 sampler wrapS/wrapT,
+// as OpenGL's REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT).
+#define TS_WRAP_REPEAT 0u
+#define TS_WRAP_CLAMP_TO_EDGE 1u
+#define TS_WRAP_MIRRORED_REPEAT 2u
 #define TS_NO_TEXTURE 0xFFFFFFFFu
 // Mip levels a GpuTexture can describe: sides up to 2^15 (the largest accepted is 16384).
 #define TS_MAX_TEXTURE_LEVELS 16
@@ -158,7 +163,7 @@ struct GpuMaterial {
 struct GpuTexture {
   uvec2 size;   // texels of level 0
   uint levels;  // in the mip chain
-  uint pad0;
+  uint wrap;    // TS_WRAP_* of u | (of v << 2)
   uvec4 level_offset[TS_MAX_TEXTURE_LEVELS / 4];
 };
 
@@ -284,6 +289,7 @@ static_assert(offsetof(GpuMaterial, occlusion_map) == 60);
 static_assert(offsetof(GpuMaterial, uv1_maps) == 64);
 static_assert(sizeof(GpuTexture) == 80);
 static_assert(offsetof(GpuTexture, levels) == 8);
+static_assert(offsetof(GpuTexture, wrap) == 12);
 static_assert(offsetof(GpuTexture, level_offset) == 16);
 static_assert(sizeof(GpuLight) == 80);
 static_assert(offsetof(GpuLight, kind) == 12);
