@@ -44,6 +44,7 @@ struct Specialization {
   VkBool32 lights_specialized = VK_FALSE;
   uint32_t texture_maps = TS_MAP_ALL;
   uint32_t ibl = TS_IBL_RUNTIME;
+  uint32_t uv1_maps = TS_MAP_ALL;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -269,6 +270,7 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_ENV_SPECULAR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},
     {TS_BINDING_ENV_LEVELS, kStorageBuffer, Source::environment},
     {TS_BINDING_ENV_IRRADIANCE, kStorageBuffer, Source::environment},
+    {TS_BINDING_UV1, kStorageBuffer, Source::scene},
 };
 
 constexpr bool binding_table_is_complete() {

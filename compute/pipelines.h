@@ -38,13 +38,15 @@ VkShaderModule create_shader_module(const Context& ctx, std::string_view name);
 
 /// A shading pipeline specialized to a scene: BRDF variant, energy compensation, the number
 /// of lights of each kind (lights sorted by kind), the texture maps its
-/// materials use (TS_MAP_* bits) and whether an environment lights it.
+/// materials use (TS_MAP_* bits), whether an environment lights it, and the maps that read uv
+/// set 1 (TS_MAP_* bits; 0 leaves out the second set's code and reads).
 struct ShadeVariant {
   uint32_t brdf;
   bool energy_compensation;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts;  // by TS_LIGHT_* kind
   uint32_t texture_maps;
   bool ibl;
+  uint32_t uv1_maps;
   auto operator<=>(const ShadeVariant&) const = default;
 };
 

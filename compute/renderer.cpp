@@ -198,6 +198,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXTURES), prev.textures, next.textures, copies,
                      stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_UV1), prev.uv1s, next.uv1s, copies, stats,
+                     s.descriptors_dirty);
   if (scene.environment != s.env.source) {
     set_environment(s.ctx, s.env, scene.environment, s.options.environment);
     s.descriptors_dirty = true;
@@ -386,8 +388,9 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf), compensate, s.uploaded.light_counts,
-                         s.uploaded.texture_maps, s.env.source != nullptr};
+    const ShadeVariant v{uint32_t(settings.brdf), compensate,
+                         s.uploaded.light_counts, s.uploaded.texture_maps,
+                         s.env.source != nullptr, s.uploaded.uv1_maps};
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;

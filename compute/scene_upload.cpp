@@ -36,7 +36,8 @@ gpu::GpuMaterial gpu_material(const Material& m) {
           .base_color_map = m.base_color_map,
           .metallic_roughness_map = m.metallic_roughness_map,
           .normal_map = m.normal_map,
-          .occlusion_map = m.occlusion_map};
+          .occlusion_map = m.occlusion_map,
+          .uv1_maps = m.uv1_maps};
 }
 
 // The same conversion for every kind: each kind's shader branch reads the fields it needs.
@@ -165,7 +166,11 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
   std::vector<uint32_t> first_index(scene.meshes.size());
   std::vector<uint32_t> base_vertex(scene.meshes.size());
   bool normal_maps = false;
-  for (const Material& m : scene.materials) normal_maps |= m.normal_map != kNoTexture;
+  bool uv1 = false;
+  for (const Material& m : scene.materials) {
+    normal_maps |= m.normal_map != kNoTexture;
+    uv1 |= m.uv1_maps != 0u;
+  }
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     first_index[m] = uint32_t(out.indices.size());
@@ -179,6 +184,13 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
       out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], mesh.uvs[v].x),
                               .normal_v = glm::vec4(mesh.normals[v], mesh.uvs[v].y),
                               .tangent = tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
+    }
+    if (uv1) {
+      if (mesh.uvs1.empty()) {
+        out.uv1s.resize(out.uv1s.size() + mesh.positions.size(), glm::vec2(0.0f));
+      } else {
+        out.uv1s.insert(out.uv1s.end(), mesh.uvs1.begin(), mesh.uvs1.end());
+      }
     }
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
@@ -216,6 +228,7 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
         {m.emissive_map, TS_MAP_EMISSIVE}};
     for (const auto& [map, bit] : maps) {
       if (map != kNoTexture) out.texture_maps |= bit;
+      if (map != kNoTexture && (m.uv1_maps & bit) != 0u) out.uv1_maps |= bit;
     }
   }
   pack_textures(scene.textures, cache, out);

@@ -22,8 +22,12 @@ struct GpuSceneArrays {
   std::vector<glm::uvec2> texels;  // every mip level of every texture, fp16 RGBA
   uint32_t texture_maps = 0;       // TS_MAP_* bits of the maps any material uses
   ObjectNumbering numbering;       // GPU object slot i is Scene::objects[numbering.objects[i]]
-  uint64_t triangle_count = 0;     // triangle instances over all objects
-  uint32_t mip_chains_built = 0;   // textures whose mip chain was built, not reused
+  uint32_t uv1_maps = 0;           // TS_MAP_* bits of the maps any material reads with set 1
+  /// Uv set 1 of every vertex (as `vertices`; zero where a mesh has none); empty unless a
+  /// material reads set 1, so a scene without one uploads nothing for it.
+  std::vector<glm::vec2> uv1s;
+  uint64_t triangle_count = 0;    // triangle instances over all objects
+  uint32_t mip_chains_built = 0;  // textures whose mip chain was built, not reused
 };
 
 /// Packed mip chains of the textures of the last flattened scene, by content, so that

@@ -62,14 +62,17 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
 
 /// How one primitive becomes a Tessera mesh.
 struct PrimitiveOptions {
-  int uv_set = 0;             // TEXCOORD_n read as Mesh::uvs
-  glm::mat3 uv_transform{1};  // KHR_texture_transform, applied to the uvs
-  bool flip_winding = false;  // for instances whose world transform mirrors
+  bool uv1 = false;  // TEXCOORD_1 read as Mesh::uvs1 (a texture of the material reads set 1)
+  glm::mat3 uv_transform[2]{glm::mat3(1), glm::mat3(1)};  // KHR_texture_transform of each set
+  int tangent_set = 0;         // the uv set tangents are generated from (the normal map's)
+  std::string material_where;  // the material's glTF path, for messages
+  bool flip_winding = false;   // for instances whose world transform mirrors
 };
 
 /// Converts meshes[mesh].primitives[primitive] (TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN,
 /// indexed or not) into a Mesh with unit normals (flat ones generated when NORMAL is absent),
-/// uvs and tangents (generated when TANGENT is absent).
+/// uvs (TEXCOORD_0, and TEXCOORD_1 as uvs1 where options.uv1) and tangents (generated when
+/// TANGENT is absent).
 Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mesh, int primitive,
                        const PrimitiveOptions& options);
 

@@ -124,7 +124,8 @@ uint32_t texture_index(const Context& ctx, const json& doc, const tinygltf::Mode
 }
 
 // KHR_texture_transform as a 3x3 uv matrix: translation * rotation * scale, as the extension
-// specifies (rotation counter-clockwise in uv space, about the origin).
+// specifies (rotation counter-clockwise in uv space, about the origin). Its texCoord, if
+// given, overrides the textureInfo's.
 glm::mat3 uv_transform(const json& info, int& tex_coord) {
   const json* ext = nullptr;
   if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform")) {
@@ -223,69 +224,76 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     }
     mat.double_sided = m.value("doubleSided", false);
 
-    // Each texture, its uv set and its uv transform.
+    // Each texture, its uv set (TEXCOORD_0 or _1) and its uv transform.
     struct Slot {
       const json* info;
       std::string where;
+      uint32_t bit;  // TS_MAP_*
       int tex_coord = 0;
       glm::mat3 transform{1.0f};
     };
     std::vector<Slot> slots;
-    auto slot = [&](const json& parent, const char* key, const std::string& parent_where) {
+    auto slot = [&](const json& parent, const char* key, const std::string& parent_where,
+                    uint32_t bit) {
       if (!parent.contains(key)) return -1;
-      Slot s{&parent[key], parent_where + "." + key};
+      Slot s{&parent[key], parent_where + "." + key, bit};
       if (!s.info->contains("index")) ctx.fail(s.where + ".index", "is missing");
       s.tex_coord = s.info->value("texCoord", 0);
       s.transform = uv_transform(*s.info, s.tex_coord);
+      if (s.tex_coord > 1) {
+        ctx.fail(s.where + ".texCoord",
+                 "is " + std::to_string(s.tex_coord) +
+                     "; Tessera reads two uv sets, TEXCOORD_0 and TEXCOORD_1 (texCoord 0 or 1)");
+      }
+      if (s.tex_coord == 1) mat.uv1_maps |= bit;
       slots.push_back(s);
       return (*s.info)["index"].get<int>();
     };
-    const int base_map = slot(pbr, "baseColorTexture", pbr_where);
+    const int base_map = slot(pbr, "baseColorTexture", pbr_where, TS_MAP_BASE_COLOR);
     if (base_map >= 0) {
       mat.base_color_map =
           texture_index(ctx, doc, model, base_map, slots.back().where, true, 1.0f, table, scene);
     }
-    const int mr_map = slot(pbr, "metallicRoughnessTexture", pbr_where);
+    const int mr_map = slot(pbr, "metallicRoughnessTexture", pbr_where, TS_MAP_METALLIC_ROUGHNESS);
     if (mr_map >= 0) {
       mat.metallic_roughness_map =
           texture_index(ctx, doc, model, mr_map, slots.back().where, false, 1.0f, table, scene);
     }
-    const int normal_map = slot(m, "normalTexture", where);
+    const int normal_map = slot(m, "normalTexture", where, TS_MAP_NORMAL);
     if (normal_map >= 0) {
       mat.normal_map =
           texture_index(ctx, doc, model, normal_map, slots.back().where, false, 1.0f, table, scene);
       mat.normal_scale = float(m["normalTexture"].value("scale", 1.0));
     }
-    const int occlusion_map = slot(m, "occlusionTexture", where);
+    const int occlusion_map = slot(m, "occlusionTexture", where, TS_MAP_OCCLUSION);
     if (occlusion_map >= 0) {
       const float s = factor(ctx, m["occlusionTexture"], "strength", 1.0,
                              where + ".occlusionTexture", 0.0, 1.0);
       mat.occlusion_map =
           texture_index(ctx, doc, model, occlusion_map, slots.back().where, false, s, table, scene);
     }
-    const int emissive_map = slot(m, "emissiveTexture", where);
+    const int emissive_map = slot(m, "emissiveTexture", where, TS_MAP_EMISSIVE);
     if (emissive_map >= 0) {
       mat.emissive_map = texture_index(ctx, doc, model, emissive_map, slots.back().where, true,
                                        1.0f, table, scene);
     }
 
-    // Tessera meshes carry one uv set: use the one all textures share, else TEXCOORD_0.
-    if (!slots.empty()) {
-      uv.uv_set = slots[0].tex_coord;
-      uv.uv_transform = slots[0].transform;
+    // The transform is applied to the uvs of a set when they are read, so the textures of one
+    // set share the transform of the first of them.
+    uv.uv1 = mat.uv1_maps != 0u;
+    if (mat.normal_map != kNoTexture && (mat.uv1_maps & TS_MAP_NORMAL) != 0u) uv.tangent_set = 1;
+    uv.material_where = where;
+    for (int set = 0; set < 2; ++set) {
+      const Slot* first = nullptr;
       for (const Slot& s : slots) {
-        if (s.tex_coord != uv.uv_set) {
-          ctx.warn(where, "its textures use different uv sets (texCoord " +
-                              std::to_string(slots[0].tex_coord) + " and " +
-                              std::to_string(s.tex_coord) + "); Tessera has one, all read " +
-                              "TEXCOORD_" + std::to_string(slots[0].tex_coord));
-          break;
-        }
-      }
-      for (const Slot& s : slots) {
-        if (s.transform != uv.uv_transform) {
-          ctx.warn(where, "its textures have different KHR_texture_transform transforms; all " +
-                              std::string("use the one of ") + slots[0].where);
+        if (s.tex_coord != set) continue;
+        if (!first) {
+          first = &s;
+          uv.uv_transform[set] = s.transform;
+        } else if (s.transform != first->transform) {
+          ctx.warn(where, "its textures on TEXCOORD_" + std::to_string(set) +
+                              " have different KHR_texture_transform transforms; all use the " +
+                              "one of " + first->where);
           break;
         }
       }

@@ -70,6 +70,7 @@ void make_flat(Mesh& mesh) {
       flat.positions.push_back(mesh.positions[tri[k]]);
       flat.normals.push_back(normal);
       flat.uvs.push_back(mesh.uvs[tri[k]]);
+      if (!mesh.uvs1.empty()) flat.uvs1.push_back(mesh.uvs1[tri[k]]);
     }
   }
   mesh = std::move(flat);
@@ -119,15 +120,26 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   for (size_t i = 0; i < n; ++i) {
     mesh.positions[i] = glm::vec3(glm::make_vec3(&positions.values[3 * i]));
   }
-  mesh.uvs.assign(n, glm::vec2(0.0f));
-  const std::string uv_name = "TEXCOORD_" + std::to_string(options.uv_set);
-  if (attribute(uv_name.c_str()) >= 0) {
-    const AccessorValues uvs = read(uv_name, TINYGLTF_TYPE_VEC2);
+  // TEXCOORD_n (zero where absent) through set n's texture transform.
+  auto read_uvs = [&](int set) {
+    std::vector<glm::vec2> out(n, glm::vec2(0.0f));
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    if (attribute(name.c_str()) < 0) return out;
+    const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
     for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 uv = glm::dmat3(options.uv_transform) *
+      const glm::dvec3 uv = glm::dmat3(options.uv_transform[set]) *
                             glm::dvec3(uvs.values[2 * i], uvs.values[2 * i + 1], 1.0);
-      mesh.uvs[i] = glm::vec2(uv);
+      out[i] = glm::vec2(uv);
     }
+    return out;
+  };
+  mesh.uvs = read_uvs(0);
+  if (options.uv1) {
+    if (attribute("TEXCOORD_1") < 0) {
+      ctx.warn(attributes + "TEXCOORD_1", "is missing, but " + options.material_where +
+                                              " has a texture with texCoord 1; read as (0, 0)");
+    }
+    mesh.uvs1 = read_uvs(1);
   }
 
   std::vector<uint32_t> vertices;
@@ -204,7 +216,9 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   // agree on smooth, well-parametrized meshes, but a normal map baked against MikkTSpace can
   // show small shading seams where the two frames differ (split uv islands, sharp edges).
   if (mesh.tangents.empty()) {
-    mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+    mesh.tangents =
+        generate_tangents(mesh.positions, mesh.normals,
+                          options.tangent_set == 1 ? mesh.uvs1 : mesh.uvs, mesh.indices);
   }
   // A mirroring transform M maps cross(n, t) to -M cross(n, t) (for orthogonal M), so the
   // handedness that keeps the bitangent following the uvs changes sign.

@@ -357,8 +357,9 @@ LightArrival light_arrival(const Light& light, dvec3 position, dvec3 normal) {
 struct Surface {
   dvec3 position, normal;
   dvec2 uv;
-  dvec2 duv_dx, duv_dy;  // uv change for one pixel step right and down (ray differentials)
-  glm::dvec4 tangent;    // world tangent (unnormalised) and handedness, if the mesh has them
+  dvec2 duv_dx, duv_dy;         // uv change for one pixel step right and down (ray differentials)
+  dvec2 uv1, duv1_dx, duv1_dy;  // the same of uv set 1, if the mesh has it (else set 0's)
+  glm::dvec4 tangent;           // world tangent (unnormalised) and handedness, if the mesh has them
 };
 
 // Unclamped barycentrics of the hit of the ray (origin, dir) on the plane of p0 p1 p2 by
@@ -380,8 +381,10 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
                    dvec3 dir_dy) {
   const auto idx = corner_indices(inst, id);
   dvec3 p[3], n[3];
-  dvec2 uv[3];
+  dvec2 uv[3], uv1[3];
+  const bool has_uv1 = !inst.mesh->uvs1.empty();
   for (int k = 0; k < 3; ++k) {
+    uv1[k] = has_uv1 ? dvec2(inst.mesh->uvs1[idx[k]]) : dvec2(0.0);
     p[k] = dvec3(inst.model * dvec4(dvec3(inst.mesh->positions[idx[k]]), 1.0));
     n[k] = inst.normal_matrix * dvec3(inst.mesh->normals[idx[k]]);
     uv[k] = dvec2(inst.mesh->uvs[idx[k]]);
@@ -401,17 +404,19 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
   const dvec3 normal = b.x * n[0] + b.y * n[1] + b.z * n[2];
   const double length2 = glm::dot(normal, normal);
   out.normal = length2 > 1e-20 ? normal / std::sqrt(length2) : glm::normalize(glm::cross(e1, e2));
-  out.uv = b.x * uv[0] + b.y * uv[1] + b.z * uv[2];
   // Texture footprint: where the neighbouring pixels' rays meet the triangle's plane. A ray
   // parallel to the plane gives an infinite footprint (the coarsest mip level).
   const double inf = std::numeric_limits<double>::infinity();
   dvec3 bx, by;
-  out.duv_dx = plane_barycentrics(p, origin, dir_dx, bx)
-                   ? bx.x * uv[0] + bx.y * uv[1] + bx.z * uv[2] - out.uv
-                   : dvec2(inf);
-  out.duv_dy = plane_barycentrics(p, origin, dir_dy, by)
-                   ? by.x * uv[0] + by.y * uv[1] + by.z * uv[2] - out.uv
-                   : dvec2(inf);
+  const bool has_dx = plane_barycentrics(p, origin, dir_dx, bx);
+  const bool has_dy = plane_barycentrics(p, origin, dir_dy, by);
+  const auto footprint = [&](const dvec2 t[3], dvec2& at, dvec2& d_dx, dvec2& d_dy) {
+    at = b.x * t[0] + b.y * t[1] + b.z * t[2];
+    d_dx = has_dx ? bx.x * t[0] + bx.y * t[1] + bx.z * t[2] - at : dvec2(inf);
+    d_dy = has_dy ? by.x * t[0] + by.y * t[1] + by.z * t[2] - at : dvec2(inf);
+  };
+  footprint(uv, out.uv, out.duv_dx, out.duv_dy);
+  footprint(has_uv1 ? uv1 : uv, out.uv1, out.duv1_dx, out.duv1_dy);
   out.tangent = glm::dvec4(0.0);
   if (inst.tangents) {
     const glm::dmat3 model3(inst.model);
@@ -445,19 +450,28 @@ struct ShadeContext {
 // (normal-mapped when the material has a normal map).
 Material resolve_material(const ShadeContext& c, const Material& base, Surface& s, dvec3 v) {
   Material m = base;
-  auto sample = [&](uint32_t map) {
-    return sample_texture(c.chains[map], s.uv, s.duv_dx, s.duv_dy, c.settings.frame.max_anisotropy);
+  // Map `bit` (texture `map`) through the uv set it reads (Material::uv1_maps).
+  auto sample = [&](uint32_t map, uint32_t bit) {
+    const bool set1 = (base.uv1_maps & bit) != 0u;
+    return sample_texture(c.chains[map], set1 ? s.uv1 : s.uv, set1 ? s.duv1_dx : s.duv_dx,
+                          set1 ? s.duv1_dy : s.duv_dy, c.settings.frame.max_anisotropy);
   };
-  if (m.base_color_map != kNoTexture) m.base_color *= glm::vec3(sample(m.base_color_map));
+  if (m.base_color_map != kNoTexture) {
+    m.base_color *= glm::vec3(sample(m.base_color_map, TS_MAP_BASE_COLOR));
+  }
   if (m.metallic_roughness_map != kNoTexture) {
-    const glm::dvec4 t = sample(m.metallic_roughness_map);
+    const glm::dvec4 t = sample(m.metallic_roughness_map, TS_MAP_METALLIC_ROUGHNESS);
     m.roughness = float(m.roughness * t.g);
     m.metallic = float(m.metallic * t.b);
   }
-  if (m.occlusion_map != kNoTexture) m.occlusion = float(m.occlusion * sample(m.occlusion_map).r);
-  if (m.emissive_map != kNoTexture) m.emissive *= glm::vec3(sample(m.emissive_map));
+  if (m.occlusion_map != kNoTexture) {
+    m.occlusion = float(m.occlusion * sample(m.occlusion_map, TS_MAP_OCCLUSION).r);
+  }
+  if (m.emissive_map != kNoTexture) {
+    m.emissive *= glm::vec3(sample(m.emissive_map, TS_MAP_EMISSIVE));
+  }
   if (m.normal_map != kNoTexture) {
-    const glm::dvec4 t = sample(m.normal_map);
+    const glm::dvec4 t = sample(m.normal_map, TS_MAP_NORMAL);
     const dvec3 local(dvec2(t) * 2.0 - 1.0, t.z * 2.0 - 1.0);
     const dvec3 n = s.normal;
     dvec3 tangent = dvec3(s.tangent) - n * glm::dot(n, dvec3(s.tangent));

@@ -49,6 +49,13 @@ void validate_mesh(const Mesh& mesh, size_t m) {
   require(mesh.uvs.size() == mesh.positions.size(),
           name + " has " + std::to_string(mesh.uvs.size()) + " uvs for " +
               std::to_string(mesh.positions.size()) + " positions");
+  require(mesh.uvs1.empty() || mesh.uvs1.size() == mesh.positions.size(),
+          name + " has " + std::to_string(mesh.uvs1.size()) + " uvs of set 1 for " +
+              std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
+  for (size_t v = 0; v < mesh.uvs1.size(); ++v) {
+    require(finite(mesh.uvs1[v]),
+            name + " vertex " + std::to_string(v) + " has a NaN or infinite uv of set 1");
+  }
   require(mesh.indices.size() % 3 == 0,
           name + " has " + std::to_string(mesh.indices.size()) + " indices, not a multiple of 3");
   require(mesh.tangents.empty() || mesh.tangents.size() == mesh.positions.size(),
@@ -180,6 +187,10 @@ void validate_scene(const Scene& scene) {
               name + " uses texture " + std::to_string(index) + " as its " + what + " map, of " +
                   std::to_string(scene.textures.size()));
     }
+    constexpr uint32_t kMaps = TS_MAP_BASE_COLOR | TS_MAP_METALLIC_ROUGHNESS | TS_MAP_NORMAL |
+                               TS_MAP_OCCLUSION | TS_MAP_EMISSIVE;
+    require((mat.uv1_maps & ~kMaps) == 0u, name + " has uv1_maps " + std::to_string(mat.uv1_maps) +
+                                               ", bits other than the five maps' TS_MAP_*");
   }
   for (size_t t = 0; t < scene.textures.size(); ++t) {
     const Texture& tex = scene.textures[t];
@@ -217,6 +228,9 @@ void validate_scene(const Scene& scene) {
                                                        std::to_string(obj.material) + " of " +
                                                        std::to_string(scene.materials.size()));
     require(finite(obj.transform), name + " has a NaN or infinite transform");
+    require(scene.materials[obj.material].uv1_maps == 0u || !scene.meshes[obj.mesh].uvs1.empty(),
+            name + ": material " + std::to_string(obj.material) + " reads uv set 1, which mesh " +
+                std::to_string(obj.mesh) + " does not have");
     // The world-space box of the mesh's box contains every vertex.
     if (scene.meshes[obj.mesh].positions.empty()) continue;
     const auto [lo, hi] = boxes[obj.mesh];

@@ -42,11 +42,15 @@ struct AnalyticSphere {
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length, same count as positions
-  std::vector<glm::vec2> uvs;      // same count as positions
+  std::vector<glm::vec2> uvs;      // same count as positions (uv set 0)
   std::vector<uint32_t> indices;   // 3 per triangle, each < positions.size()
+  /// Optional second uv set (glTF TEXCOORD_1), read by the maps of Material::uv1_maps: empty,
+  /// or the same count as positions. Costs nothing in a scene whose materials read only set 0.
+  std::vector<glm::vec2> uvs1;
   /// Optional, for normal maps: xyz a unit tangent along +u orthogonal to the normal, w = +-1
-  /// the handedness (bitangent = w cross(normal, tangent)). Empty: generated from the uvs
-  /// (generate_tangents) when the scene is uploaded or rendered.
+  /// the handedness (bitangent = w cross(normal, tangent)). Empty: generated from `uvs` (set
+  /// 0; generate_tangents) when the scene is uploaded or rendered, so a normal map that reads
+  /// set 1 needs the mesh to bring tangents of that set (the glTF importer makes them).
   std::vector<glm::vec4> tangents;
   /// Set by the sphere builders (make_uv_sphere, make_icosphere, so also the scene file's
   /// "sphere" and "icosphere" meshes): the triangles approximate this sphere, and the reference
@@ -79,6 +83,11 @@ struct Material {
   // Never culled by facing (whatever FrameSettings::cull says); back faces are shaded with the
   // normal and tangent frame flipped toward the viewer (glTF 2.0 doubleSided).
   bool double_sided = false;
+  /// The uv set each map reads (glTF textureInfo.texCoord): a TS_MAP_* bit set here (e.g.
+  /// TS_MAP_BASE_COLOR for base_color_map) makes that map read Mesh::uvs1, clear reads
+  /// Mesh::uvs. Bits of the five maps only; every mesh drawn with a material that sets any bit
+  /// must have uvs1 (validate_scene).
+  uint32_t uv1_maps = 0;
   bool operator==(const Material&) const = default;
 };
 

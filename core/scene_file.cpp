@@ -12,6 +12,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -433,9 +434,11 @@ void Reader::load_textures() {
 }
 
 void Reader::read_material(const Node& n) {
-  object(n, {"name", "preset", "base_color", "metallic", "roughness", "emissive", "occlusion",
-             "normal_scale", "base_color_map", "metallic_roughness_map", "normal_map",
-             "occlusion_map", "emissive_map", "double_sided"});
+  object(n,
+         {"name", "preset", "base_color", "metallic", "roughness", "emissive", "occlusion",
+          "normal_scale", "base_color_map", "metallic_roughness_map", "normal_map", "occlusion_map",
+          "emissive_map", "base_color_map_uv_set", "metallic_roughness_map_uv_set",
+          "normal_map_uv_set", "occlusion_map_uv_set", "emissive_map_uv_set", "double_sided"});
   declare(n, material_names, uint32_t(out.scene.materials.size()), "material");
   Material m;
   if (has(n, "preset")) {
@@ -457,21 +460,25 @@ void Reader::read_material(const Node& n) {
   m.emissive = vec3_or(n, "emissive", m.emissive, 0.0);
   m.occlusion = real_or(n, "occlusion", m.occlusion, 0.0, 1.0);
   m.normal_scale = real_or(n, "normal_scale", m.normal_scale);
-  const std::pair<const char*, uint32_t*> maps[] = {
-      {"base_color_map", &m.base_color_map},
-      {"metallic_roughness_map", &m.metallic_roughness_map},
-      {"normal_map", &m.normal_map},
-      {"occlusion_map", &m.occlusion_map},
-      {"emissive_map", &m.emissive_map}};
-  for (const auto& [key, slot] : maps)
+  const std::tuple<const char*, uint32_t*, uint32_t> maps[] = {
+      {"base_color_map", &m.base_color_map, TS_MAP_BASE_COLOR},
+      {"metallic_roughness_map", &m.metallic_roughness_map, TS_MAP_METALLIC_ROUGHNESS},
+      {"normal_map", &m.normal_map, TS_MAP_NORMAL},
+      {"occlusion_map", &m.occlusion_map, TS_MAP_OCCLUSION},
+      {"emissive_map", &m.emissive_map, TS_MAP_EMISSIVE}};
+  for (const auto& [key, slot, bit] : maps) {
     if (has(n, key)) *slot = lookup(child(n, key), texture_names, "texture");
+    // The uv set the map reads: 0 (the mesh's "uvs") or 1 ("uvs1").
+    const std::string set_key = std::string(key) + "_uv_set";
+    if (integer_or(n, set_key.c_str(), 0, 0, 1) == 1) m.uv1_maps |= bit;
+  }
   if (has(n, "double_sided")) m.double_sided = boolean(child(n, "double_sided"));
   out.scene.materials.push_back(m);
 }
 
 void Reader::read_mesh(const Node& n) {
   object(n, {"name", "type", "segments", "rings", "level", "nx", "ny", "positions", "normals",
-             "uvs", "indices", "tangents"});
+             "uvs", "uvs1", "indices", "tangents"});
   declare(n, mesh_names, uint32_t(out.scene.meshes.size()), "mesh");
   if (!has(n, "type"))
     fail(n, "a mesh needs a \"type\": sphere, icosphere, cube, plane or triangles");
@@ -528,6 +535,14 @@ void Reader::read_mesh(const Node& n) {
       mesh.positions.push_back(pos);
       mesh.normals.push_back(unit_vector(nor));
       mesh.uvs.push_back({real(element(uv, 2 * i)), real(element(uv, 2 * i + 1))});
+    }
+    if (has(n, "uvs1")) {
+      const Node uv1 = flat("uvs1", 2);
+      if (uv1.json->size() / 2 != vertices)
+        fail(uv1, "uvs1 gives " + std::to_string(uv1.json->size() / 2) + " vertices, positions " +
+                      std::to_string(vertices));
+      for (size_t i = 0; i < vertices; ++i)
+        mesh.uvs1.push_back({real(element(uv1, 2 * i)), real(element(uv1, 2 * i + 1))});
     }
     const Node ix = child(n, "indices");
     expect(ix, ix.json->is_array(), "an array of integers");

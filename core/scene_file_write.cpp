@@ -104,6 +104,14 @@ Json mesh_json(const Mesh& mesh, const std::string& name) {
     j["uvs"] = std::move(uv);
     j["indices"] = mesh.indices;
     if (!mesh.tangents.empty()) j["tangents"] = std::move(t);
+    if (!mesh.uvs1.empty()) {
+      Json uv1 = Json::array();
+      for (const glm::vec2& v : mesh.uvs1) {
+        uv1.push_back(num(v.x));
+        uv1.push_back(num(v.y));
+      }
+      j["uvs1"] = std::move(uv1);
+    }
   }
   j["name"] = name;
   return j;
@@ -138,14 +146,16 @@ Json material_json(const Material& m, const std::string& name,
             {"occlusion", num(m.occlusion)},
             {"normal_scale", num(m.normal_scale)},
             {"double_sided", m.double_sided}};
-  const std::pair<const char*, uint32_t> maps[] = {
-      {"base_color_map", m.base_color_map},
-      {"metallic_roughness_map", m.metallic_roughness_map},
-      {"normal_map", m.normal_map},
-      {"occlusion_map", m.occlusion_map},
-      {"emissive_map", m.emissive_map}};
-  for (const auto& [key, map] : maps)
+  const std::tuple<const char*, uint32_t, uint32_t> maps[] = {
+      {"base_color_map", m.base_color_map, TS_MAP_BASE_COLOR},
+      {"metallic_roughness_map", m.metallic_roughness_map, TS_MAP_METALLIC_ROUGHNESS},
+      {"normal_map", m.normal_map, TS_MAP_NORMAL},
+      {"occlusion_map", m.occlusion_map, TS_MAP_OCCLUSION},
+      {"emissive_map", m.emissive_map, TS_MAP_EMISSIVE}};
+  for (const auto& [key, map, bit] : maps) {
     if (map != kNoTexture) j[key] = texture_names[map];
+    if (m.uv1_maps & bit) j[std::string(key) + "_uv_set"] = 1;
+  }
   return j;
 }
 

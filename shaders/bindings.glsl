@@ -7,6 +7,8 @@
 
 layout(set = 0, binding = TS_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
 layout(set = 0, binding = TS_BINDING_VERTICES, std430) readonly buffer Vertices { GpuVertex vertices[]; };
+// Uv set 1 of every vertex, indexed as `vertices`; holds data only when a material reads it.
+layout(set = 0, binding = TS_BINDING_UV1, std430) readonly buffer Uv1 { vec2 uv1s[]; };
 layout(set = 0, binding = TS_BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
 layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };

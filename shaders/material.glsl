@@ -7,6 +7,10 @@
 // than repeat). The generic pipeline keeps them all and tests each material's map index at run
 // time; a pipeline specialized to a scene drops the code of maps no material of the scene uses.
 layout(constant_id = TS_SPEC_TEXTURE_MAPS) const uint TEXTURE_MAPS = TS_MAP_ALL;
+// Maps that may read uv set 1 (TS_MAP_* bits). Generic: all, tested per material at run time;
+// specialized to a scene: the maps its materials read with set 1, usually none, which leaves
+// out set 1's fetch and interpolation.
+layout(constant_id = TS_SPEC_UV1_MAPS) const uint UV1_MAPS = TS_MAP_ALL;
 
 #include "texture.glsl"
 #include "brdf.glsl"
@@ -20,6 +24,9 @@ struct SurfaceGeometry {
   vec2 uv;
   vec2 duv_dx;   // uv change for one pixel step right
   vec2 duv_dy;   // and down
+  vec2 uv1;      // uv set 1 and its footprint, read by the maps of GpuMaterial.uv1_maps
+  vec2 duv1_dx;
+  vec2 duv1_dy;
 };
 
 struct MaterialSample {
@@ -32,6 +39,17 @@ struct MaterialSample {
 
 bool has_map(uint bit, uint index) {
   return (TEXTURE_MAPS & bit) != 0u && index != TS_NO_TEXTURE;
+}
+
+// True if the material's map `bit` reads uv set 1 (glTF texCoord 1).
+bool reads_uv1(GpuMaterial m, uint bit) {
+  return (UV1_MAPS & bit) != 0u && (m.uv1_maps & bit) != 0u;
+}
+
+// Map `bit` (texture `index`) of material m at g, through the uv set it reads.
+vec4 sample_map(GpuMaterial m, uint bit, uint index, SurfaceGeometry g) {
+  if (reads_uv1(m, bit)) return sample_texture(index, g.uv1, g.duv1_dx, g.duv1_dy);
+  return sample_texture(index, g.uv, g.duv_dx, g.duv_dy);
 }
 
 // Tangent-space normal `local` (unit-ish) to world, around the geometric frame of g.
@@ -73,21 +91,21 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   s.emissive = m.emissive;
   s.N = g.N;
   if (has_map(TS_MAP_BASE_COLOR, m.base_color_map)) {
-    s.base_color *= sample_texture(m.base_color_map, g.uv, g.duv_dx, g.duv_dy).rgb;
+    s.base_color *= sample_map(m, TS_MAP_BASE_COLOR, m.base_color_map, g).rgb;
   }
   if (has_map(TS_MAP_METALLIC_ROUGHNESS, m.metallic_roughness_map)) {
-    vec4 t = sample_texture(m.metallic_roughness_map, g.uv, g.duv_dx, g.duv_dy);
+    vec4 t = sample_map(m, TS_MAP_METALLIC_ROUGHNESS, m.metallic_roughness_map, g);
     roughness *= t.g;
     metallic *= t.b;
   }
   if (has_map(TS_MAP_OCCLUSION, m.occlusion_map)) {
-    s.occlusion *= sample_texture(m.occlusion_map, g.uv, g.duv_dx, g.duv_dy).r;
+    s.occlusion *= sample_map(m, TS_MAP_OCCLUSION, m.occlusion_map, g).r;
   }
   if (has_map(TS_MAP_EMISSIVE, m.emissive_map)) {
-    s.emissive *= sample_texture(m.emissive_map, g.uv, g.duv_dx, g.duv_dy).rgb;
+    s.emissive *= sample_map(m, TS_MAP_EMISSIVE, m.emissive_map, g).rgb;
   }
   if (has_map(TS_MAP_NORMAL, m.normal_map)) {
-    vec3 local = sample_texture(m.normal_map, g.uv, g.duv_dx, g.duv_dy).rgb * 2.0 - 1.0;
+    vec3 local = sample_map(m, TS_MAP_NORMAL, m.normal_map, g).rgb * 2.0 - 1.0;
     s.N = apply_normal_map(g, local, m.normal_scale, V);
   }
   s.pixel = metallic_roughness_params(s.base_color, metallic, roughness);

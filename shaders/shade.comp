@@ -95,10 +95,20 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   // right and below meet the triangle's plane. Compute shaders have no implicit derivatives.
   vec3 bx, by;
   const float INF = uintBitsToFloat(0x7F800000u);
-  g.duv_dx = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(1.5, 0.5)), p[0], p[1], p[2], bx)
-                 ? bx.x * t[0] + bx.y * t[1] + bx.z * t[2] - g.uv : vec2(INF);
-  g.duv_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by)
-                 ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
+  bool has_dx = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(1.5, 0.5)), p[0], p[1], p[2], bx);
+  bool has_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by);
+  g.duv_dx = has_dx ? bx.x * t[0] + bx.y * t[1] + bx.z * t[2] - g.uv : vec2(INF);
+  g.duv_dy = has_dy ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
+  // Uv set 1 the same way, only where the material reads it (else uv1s may hold nothing).
+  g.uv1 = g.uv;
+  g.duv1_dx = g.duv_dx;
+  g.duv1_dy = g.duv_dy;
+  if (UV1_MAPS != 0u && materials[o.material].uv1_maps != 0u) {
+    vec2 s[3] = vec2[3](uv1s[vi[0]], uv1s[vi[1]], uv1s[vi[2]]);
+    g.uv1 = b.x * s[0] + b.y * s[1] + b.z * s[2];
+    g.duv1_dx = has_dx ? bx.x * s[0] + bx.y * s[1] + bx.z * s[2] - g.uv1 : vec2(INF);
+    g.duv1_dy = has_dy ? by.x * s[0] + by.y * s[1] + by.z * s[2] - g.uv1 : vec2(INF);
+  }
   // A mirroring transform flips the handedness of the tangent frame.
   float handedness = vertices[vi[0]].tangent.w * (o.mirrored != 0u ? -1.0 : 1.0);
   g.T = vec4(b.x * tan[0] + b.y * tan[1] + b.z * tan[2], handedness);

@@ -7,32 +7,30 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/golden.h"
 #include "tests/support/image_assertions.h"
 
 namespace tessera::test {
 
-AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
-                                      uint32_t height, const std::string& name,
-                                      RendererOptions options, Brdf brdf, uint32_t anisotropy,
-                                      uint32_t environment_samples) {
-  Renderer renderer(ctx, options);
-  renderer.set_scene(scene);
-  FrameSettings fs;
-  fs.width = width;
-  fs.height = height;
-  fs.brdf = brdf;
-  fs.max_anisotropy = anisotropy;
-  renderer.render(fs);
+namespace {
+
+bool meets_bars(const AccuracyReport& r) {
+  return r.unexplained == 0 && r.finite && r.ldr.max_abs_error <= kMaxLevelError &&
+         r.ldr.fraction_over <= kMaxFractionOverOneLevel;
+}
+
+// Compares the frame `renderer` last rendered (with `fs`, `cull`) with the reference.
+AccuracyReport compare_rendered(Renderer& renderer, const Scene& scene, const FrameSettings& fs,
+                                CullMode cull, const std::string& name,
+                                uint32_t environment_samples) {
+  const uint32_t width = fs.width;
   const ImageF hdr = renderer.read_hdr();
   const Image8 ldr = renderer.read_ldr();
   const std::vector<uint64_t> vis = renderer.read_visibility();
 
   ReferenceSettings rs;
-  rs.frame.width = width;
-  rs.frame.height = height;
-  rs.cull = options.cull;
-  rs.frame.brdf = brdf;
-  rs.frame.max_anisotropy = anisotropy;
+  rs.frame = fs;
+  rs.cull = cull;
   rs.environment_samples = environment_samples;
   const ReferenceFrame ref = render_reference(scene, rs);
 
@@ -90,9 +88,7 @@ AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t
     r.hdr_p999_relative = relative[size_t(double(relative.size() - 1) * 0.999)];
     r.hdr_max_relative = relative.back();
   }
-  const bool bars = r.unexplained == 0 && r.finite && r.ldr.max_abs_error <= kMaxLevelError &&
-                    r.ldr.fraction_over <= kMaxFractionOverOneLevel;
-  if (!bars) {
+  if (!meets_bars(r)) {
     const std::string stem = name;
     write_png(testing::test_output_path(stem + "_compute.png"), ldr);
     write_png(testing::test_output_path(stem + "_reference.png"), ref.ldr);
@@ -100,6 +96,36 @@ AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t
               difference_image(ldr, ref.ldr, 4.0, &agree));
   }
   std::printf("ACCURACY %s\n", describe(r).c_str());
+  return r;
+}
+
+}  // namespace
+
+AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
+                                      uint32_t height, const std::string& name,
+                                      RendererOptions options, Brdf brdf, uint32_t anisotropy,
+                                      uint32_t environment_samples) {
+  Renderer renderer(ctx, options);
+  renderer.set_scene(scene);
+  FrameSettings fs;
+  fs.width = width;
+  fs.height = height;
+  fs.brdf = brdf;
+  fs.max_anisotropy = anisotropy;
+  renderer.render(fs);
+  return compare_rendered(renderer, scene, fs, options.cull, name, environment_samples);
+}
+
+AccuracyReport expect_reference_and_golden(Renderer& renderer, const Scene& scene, uint32_t width,
+                                           uint32_t height, const std::string& name) {
+  renderer.set_scene(scene);
+  FrameSettings fs;
+  fs.width = width;
+  fs.height = height;
+  renderer.render(fs);
+  const AccuracyReport r = compare_rendered(renderer, scene, fs, CullMode::back, name, 1024);
+  expect_meets_bars(r);
+  if (meets_bars(r)) expect_golden(renderer, name);
   return r;
 }
 

@@ -41,9 +41,16 @@ struct AccuracyReport {
 /// not met.
 AccuracyReport compare_with_reference(Context& ctx, const Scene& scene, uint32_t width,
                                       uint32_t height, const std::string& name,
-                                      RendererOptions options = {},
-                                      Brdf brdf = Brdf::classic, uint32_t anisotropy = 1,
-                                      uint32_t environment_samples = 1024);
+                                      RendererOptions options = {}, Brdf brdf = Brdf::classic,
+                                      uint32_t anisotropy = 1, uint32_t environment_samples = 1024);
+
+/// Renders `scene` with `renderer` (made with the default RendererOptions; reusing one saves
+/// building its pipelines again) at the default frame settings, compares with the reference
+/// (expect_meets_bars), and where the bars are met compares the frame bit for bit with
+/// tests/golden/NAME (expect_golden, tests/golden.h): a golden image is kept only of a frame
+/// that the reference vouches for, so TESSERA_UPDATE_GOLDENS=1 writes none for a failing one.
+AccuracyReport expect_reference_and_golden(Renderer& renderer, const Scene& scene, uint32_t width,
+                                           uint32_t height, const std::string& name);
 
 /// The bars: no unexplained ownership mismatch, finite HDR, 8-bit output within 1 level on at
 /// least 99.99 % of pixels and within kMaxLevelError on all.

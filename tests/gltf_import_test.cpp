@@ -1,12 +1,13 @@
 // glTF 2.0 import: the broken files of Debian's assimp-testmodels and tests/data/bad/ each give
 // their specific Error; good files import to the counts, bounds and transforms read by hand
-// from their JSON; BoxTextured and 2CylinderEngine render the same with the compute path and
-// the reference renderer.
+// from their JSON; BoxTextured, 2CylinderEngine and the asset generator's triangle modes render
+// the same with the compute path and the reference renderer, and are kept as golden images.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/check.h"
@@ -285,6 +286,26 @@ TEST(GltfImport, StripsFansAndIndexTypesGiveTheSameSquare) {
   }
 }
 
+// tests/data/texcoord1.gltf: a quad with two uv sets; base colour reads TEXCOORD_1, the
+// metallic-roughness map TEXCOORD_0.
+TEST(GltfImport, SecondUvSetIsReadForTheMapsThatUseIt) {
+  const ImportedModel m = import_gltf(kData + "/texcoord1.gltf");
+  EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+  ASSERT_EQ(m.scene.objects.size(), 1u);
+  const Mesh& mesh = m.scene.meshes[m.scene.objects[0].mesh];
+  ASSERT_EQ(mesh.uvs.size(), 4u);
+  ASSERT_EQ(mesh.uvs1.size(), 4u);
+  EXPECT_EQ(mesh.uvs[1], glm::vec2(0.25f, 0.5f));
+  EXPECT_EQ(mesh.uvs1[0], glm::vec2(0.0f, 0.5f));
+  EXPECT_EQ(mesh.uvs1[1], glm::vec2(1.0f, 0.5f));
+  const Material& mat = m.scene.materials[m.scene.objects[0].material];
+  EXPECT_EQ(mat.uv1_maps, TS_MAP_BASE_COLOR);
+  EXPECT_NE(mat.metallic_roughness_map, kNoTexture);
+  // Without a texture on set 1 no second set is read.
+  const ImportedModel box = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");
+  for (const Mesh& b : box.scene.meshes) EXPECT_TRUE(b.uvs1.empty());
+}
+
 TEST(GltfImport, HandMadeFeaturesFile) {
   const ImportedModel m = import_gltf(kData + "/features.gltf");
   EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
@@ -354,8 +375,7 @@ TEST(GltfImport, HandMadeFeaturesFile) {
 }
 
 // A lit scene framing the model's world bounds from the front and above.
-Scene framed(ImportedModel model) {
-  Scene s = std::move(model.scene);
+Scene framed(Scene s) {
   glm::vec3 lo, hi;
   world_bounds(s, lo, hi);
   const glm::vec3 centre = 0.5f * (lo + hi);
@@ -374,23 +394,90 @@ Scene framed(ImportedModel model) {
   return s;
 }
 
+// Rendered models are compared with the reference (tests/accuracy_support.h) and then kept
+// as golden images (tests/golden/gltf_*.png), small so that the suite stays fast.
 class GltfRender : public test::VulkanTest {};
 
 TEST_F(GltfRender, BoxTexturedMatchesTheReference) {
-  const Scene scene = framed(import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf"));
-  const test::AccuracyReport r =
-      test::compare_with_reference(context(), scene, 256, 256, "gltf_box_textured");
-  test::expect_meets_bars(r);
-  write_png(test::output_path("gltf_box_textured.png"), render(scene, 256, 256).ldr);
+  const Scene scene = framed(import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf").scene);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 120, "gltf_box_textured");
 }
 
 TEST_F(GltfRender, EngineMatchesTheReference) {
   const Scene scene =
-      framed(import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"));
-  const test::AccuracyReport r =
-      test::compare_with_reference(context(), scene, 256, 256, "gltf_engine");
-  test::expect_meets_bars(r);
-  write_png(test::output_path("gltf_engine.png"), render(scene, 256, 256).ldr);
+      framed(import_gltf(kModels + "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").scene);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 120, "gltf_engine");
+}
+
+// The asset generator's triangle modes (strips, fans, lists; indexed by every index type or
+// not) side by side in one frame, 4 by 2 in the order 04, 05, 06, 11 / 12, 13, 14, 15: each
+// file's unit square (one object) moved to its cell.
+TEST_F(GltfRender, PrimitiveModesMatchTheReference) {
+  Scene scene;
+  int cell = 0;
+  for (int m : {4, 5, 6, 11, 12, 13, 14, 15}) {
+    char name[64];
+    std::snprintf(name, sizeof name, "Mesh_PrimitiveMode_%02d.gltf", m);
+    Scene part = import_gltf(kModels + "glTF-Asset-Generator/Mesh_PrimitiveMode/" + name).scene;
+    ASSERT_EQ(part.objects.size(), 1u) << name;
+    Object o = part.objects[0];
+    o.mesh += uint32_t(scene.meshes.size());
+    o.material += uint32_t(scene.materials.size());
+    const glm::vec3 offset(1.25f * (float(cell % 4) - 1.5f), 0.625f - 1.25f * float(cell / 4), 0);
+    o.transform = glm::translate(glm::mat4(1.0f), offset) * o.transform;
+    scene.objects.push_back(o);
+    scene.meshes.insert(scene.meshes.end(), part.meshes.begin(), part.meshes.end());
+    scene.materials.insert(scene.materials.end(), part.materials.begin(), part.materials.end());
+    ++cell;
+  }
+  // The grid spans x in [-2.375, 2.375], y in [-1.125, 1.125]: seen from 4 m in front (and a
+  // little right and above), 45 degrees high and 75 wide fit +-1.66 and +-2.8 m.
+  scene = framed(std::move(scene));
+  scene.camera.target = glm::vec3(0.0f);
+  scene.camera.position = glm::vec3(0.6f, 0.5f, 4.0f);
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, 160, 96, "gltf_primitive_modes");
+}
+
+// tests/data/texcoord1.gltf seen head-on: a 2x2 m quad whose TEXCOORD_0 is (0.25, 0.5) at every
+// vertex, the centre of the red texel of its 2x1 red|blue base-colour texture, and whose
+// TEXCOORD_1 runs u from 0 at its left edge to 1 at its right. Base colour reads set 1: red a
+// quarter of the way in from the left (u = 0.25), blue a quarter in from the right (u = 0.75).
+// Read through set 0 the whole quad is red.
+TEST_F(GltfRender, SecondUvSetMatchesTheReference) {
+  Scene scene = import_gltf(kData + "/texcoord1.gltf").scene;
+  scene.camera.position = glm::vec3(0, 0, 3);
+  scene.camera.target = glm::vec3(0);
+  Light sun;
+  sun.kind = LightKind::directional;
+  sun.direction = glm::vec3(0, 0, -1);
+  sun.intensity = 3.0f;
+  scene.lights = {sun};
+  // 64 px span 2 * 3 tan(22.5 deg) = 2.485 m: pixel column 19 (centre 19.5) is at x = -0.486 m,
+  // u = 0.257; column 44 at x = +0.486 m, u = 0.743: within 0.02 texel of the texel centres.
+  const uint32_t size = 64, left = 19, right = 44, row = 32;
+  Renderer renderer(context());
+  test::expect_reference_and_golden(renderer, scene, size, size, "gltf_texcoord1");
+  const Image8 set1 = renderer.read_ldr();
+  const auto red_over_blue = [&](const Image8& image, uint32_t x) {
+    const glm::u8vec4 p = image.pixels[size_t(row) * size + x];
+    return double(p.r) / std::max(1.0, double(p.b));
+  };
+  EXPECT_GT(red_over_blue(set1, left), 4.0);
+  EXPECT_LT(red_over_blue(set1, right), 0.25);
+
+  // The generic shading pipeline decides per material at run time; the same answer.
+  RendererOptions generic;
+  generic.specialize_lights = false;
+  test::expect_meets_bars(test::compare_with_reference(context(), scene, size, size,
+                                                       "gltf_texcoord1_generic", generic));
+
+  scene.materials[scene.objects[0].material].uv1_maps = 0;
+  const Image8 set0 = render(scene, size, size).ldr;
+  EXPECT_GT(red_over_blue(set0, left), 4.0);
+  EXPECT_GT(red_over_blue(set0, right), 4.0);
 }
 
 }  // namespace

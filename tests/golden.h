@@ -1,5 +1,7 @@
 #pragma once
-// The golden check of tests/golden_test.cpp, for other tests that must give the same bits.
+// The golden check of tests/golden_test.cpp, for other tests that must give the same bits (the
+// scene files of scenes/, and the imported models of the glTF and OBJ tests, through
+// expect_reference_and_golden in tests/accuracy_support.h).
 
 #include <string>
 

@@ -496,14 +496,14 @@ void frame(Scene& scene) {
 
 class ObjImportRendering : public test::VulkanTest {};
 
+// Compared with the reference, then kept as a golden image (tests/golden/obj_spider.png).
 TEST_F(ObjImportRendering, SpiderAgreesWithTheReference) {
   Scene scene = import_obj(kAssimpObj + "spider.obj").scene;
   frame(scene);
-  write_png(test::output_path("spider.png"), render(scene, 320, 240).ldr);
-  const test::AccuracyReport r = test::compare_with_reference(context(), scene, 320, 240, "spider");
-  std::printf("%s\n", test::describe(r).c_str());
-  test::expect_meets_bars(r);
-  EXPECT_GT(r.covered, 320u * 240u / 10) << "the spider fills a good part of the frame";
+  Renderer renderer(context());
+  const test::AccuracyReport r =
+      test::expect_reference_and_golden(renderer, scene, 160, 120, "obj_spider");
+  EXPECT_GT(r.covered, 160u * 120u / 10) << "the spider fills a good part of the frame";
 }
 
 }  // namespace

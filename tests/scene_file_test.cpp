@@ -2,6 +2,7 @@
 // files against make_builtin_scene (every field, exact floats) and against the golden images,
 // the benchmark grid file against make_bench_scene, and the bad-file corpus of tests/data/bad/.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -107,6 +108,41 @@ TEST(SceneFile, ValuesReadByHand) {
   EXPECT_EQ(*f.render.brdf, Brdf::filament);
 }
 
+// A second uv set: "uvs1" on a triangles mesh, "MAP_uv_set": 1 on a material's map.
+TEST(SceneFile, SecondUvSet) {
+  const auto text = [](const char* set, const char* uvs1) {
+    return std::string(R"({
+    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2}],
+    "materials": [{"name": "m", "base_color_map": "squares", "emissive_map": "squares",
+                   "emissive_map_uv_set": )") +
+           set + R"(}],
+    "meshes": [{"name": "t", "type": "triangles", "positions": [0, 0, 0, 1, 0, 0, 0, 1, 0],
+                "normals": [0, 0, 1, 0, 0, 1, 0, 0, 1], "uvs": [0, 0, 1, 0, 0, 1],
+                "uvs1": )" +
+           uvs1 + R"(, "indices": [0, 1, 2]}],
+    "objects": [{"mesh": "t", "material": "m"}]
+  })";
+  };
+  const char* uvs1 = "[0.5, 0.5, 0.25, 0.5, 0.5, 0.75]";
+  const SceneFile f = load(text("1", uvs1));
+  EXPECT_EQ(f.scene.materials[0].uv1_maps, TS_MAP_EMISSIVE);
+  const std::vector<glm::vec2> expected = {{0.5f, 0.5f}, {0.25f, 0.5f}, {0.5f, 0.75f}};
+  EXPECT_EQ(f.scene.meshes[0].uvs1, expected);
+  EXPECT_EQ(load(text("0", uvs1)).scene.materials[0].uv1_maps, 0u);
+  EXPECT_NE(load_error(text("2", uvs1)).find("materials.m.emissive_map_uv_set: 2 is outside"),
+            std::string::npos)
+      << load_error(text("2", uvs1));
+  EXPECT_NE(load_error(text("1", "[0.5, 0.5, 0.25, 0.5]")).find("uvs1 gives 2 vertices"),
+            std::string::npos)
+      << load_error(text("1", "[0.5, 0.5, 0.25, 0.5]"));
+  EXPECT_NE(load_error(R"({
+    "textures": [{"name": "squares", "type": "checker", "size": 4, "cells": 2}],
+    "materials": [{"name": "m", "base_color_map": "squares", "base_color_map_uv_set": 1}],
+    "meshes": [{"name": "c", "type": "cube"}], "objects": [{"mesh": "c", "material": "m"}]})")
+                .find("material 0 reads uv set 1, which mesh 0 does not have"),
+            std::string::npos);
+}
+
 TEST(SceneFile, GridLayoutAndMaterialTiling) {
   const SceneFile f = load(R"({
     "materials": [{"name": "a"}, {"name": "b"}, {"name": "c"}, {"name": "d"}],
@@ -162,6 +198,25 @@ TEST(SceneFile, ModelFilesArePlacedAsAUnit) {
     EXPECT_NEAR(moved.x, origin.x + 10.0f, 1e-4f);
     EXPECT_EQ(moved.y, origin.y);
   }
+}
+
+// The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
+// unknown key and place something: they are kept working. Their models' own warnings (the
+// BoxTextured sampler's wrap modes) are allowed.
+TEST(SceneFile, ExampleScenesLoad) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(TESSERA_EXAMPLE_SCENES_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    ++files;
+    const SceneFile f = load_scene_file(entry.path().string());
+    EXPECT_FALSE(f.scene.objects.empty());
+    EXPECT_FALSE(f.description.empty());
+    for (const std::string& w : f.warnings) {
+      EXPECT_EQ(w.find("unknown key"), std::string::npos) << w;
+    }
+  }
+  EXPECT_GE(files, 4);
 }
 
 TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {

@@ -49,6 +49,26 @@ TEST(SceneValidation, NamesNonFiniteVertex) {
   EXPECT_NE(error_of(s).find("mesh 0 vertex 2"), std::string::npos) << error_of(s);
 }
 
+TEST(SceneValidation, SecondUvSetIsCheckedWhereMaterialsReadIt) {
+  Scene s = one_triangle_scene();
+  s.meshes[0].uvs1 = {{0, 0}, {1, 0}};
+  EXPECT_NE(error_of(s).find("mesh 0 has 2 uvs of set 1 for 3 positions"), std::string::npos)
+      << error_of(s);
+  s.meshes[0].uvs1.push_back({0, std::numeric_limits<float>::infinity()});
+  EXPECT_NE(error_of(s).find("mesh 0 vertex 2 has a NaN or infinite uv of set 1"),
+            std::string::npos)
+      << error_of(s);
+  s = one_triangle_scene();
+  s.materials[0].uv1_maps = TS_MAP_BASE_COLOR;
+  EXPECT_NE(error_of(s).find("object 0: material 0 reads uv set 1, which mesh 0 does not have"),
+            std::string::npos)
+      << error_of(s);
+  s.meshes[0].uvs1 = s.meshes[0].uvs;
+  EXPECT_EQ(error_of(s), "");
+  s.materials[0].uv1_maps = 32;
+  EXPECT_NE(error_of(s).find("material 0 has uv1_maps 32"), std::string::npos) << error_of(s);
+}
+
 TEST(SceneValidation, NamesOutOfRangeReferences) {
   Scene s = one_triangle_scene();
   s.meshes[0].indices[2] = 7;

@@ -71,4 +71,15 @@
 #define TS_VIEW_TRIANGLE 3u  // a colour hashed from the triangle-instance id
 #define TS_VIEW_OBJECT 4u    // a colour hashed from the object slot
 
+// Texture maps of a material (bits of Material::uv1_maps, TS_SPEC_TEXTURE_MAPS,
+// TS_SPEC_UV1_MAPS and GpuMaterial.uv1_maps; GpuMaterial.*_map).
+#define TS_MAP_BASE_COLOR 1u
+#define TS_MAP_METALLIC_ROUGHNESS 2u
+#define TS_MAP_NORMAL 4u
+#define TS_MAP_OCCLUSION 8u
+#define TS_MAP_EMISSIVE 16u
+// Not a map: some texture wraps other than by repeating (GpuTexture.wrap is read only then).
+#define TS_MAP_WRAP_MODES 32u
+#define TS_MAP_ALL 63u
+
 #endif  // TESSERA_CONSTANTS_H

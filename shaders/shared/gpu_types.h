@@ -76,7 +76,8 @@ using glm::vec4;
 #define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
 #define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
 #define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
-#define TS_BINDING_COUNT 26
+#define TS_BINDING_UV1 26             // the second uv set (vec2 per vertex), when a material reads it
+#define TS_BINDING_COUNT 27
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
@@ -86,23 +87,14 @@ using glm::vec4;
   3                             // the light counts below are the scene's (lights sorted by kind)
 #define TS_SPEC_TEXTURE_MAPS 4  // maps the shader can sample (TS_MAP_* bits; all if generic)
 #define TS_SPEC_IBL 5           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
+#define TS_SPEC_UV1_MAPS 6      // maps that may read uv set 1 (TS_MAP_* bits; all if generic)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 6
+#define TS_SPEC_LIGHT_COUNT_BASE 7
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
 #define TS_IBL_RUNTIME 2u  // decided per frame by GpuFrame.environment
-
-// Texture maps of a material (bits of TS_SPEC_TEXTURE_MAPS; GpuMaterial.*_map).
-#define TS_MAP_BASE_COLOR 1u
-#define TS_MAP_METALLIC_ROUGHNESS 2u
-#define TS_MAP_NORMAL 4u
-#define TS_MAP_OCCLUSION 8u
-#define TS_MAP_EMISSIVE 16u
-// Not a map: some texture wraps other than by repeating (GpuTexture.wrap is read only then).
-#define TS_MAP_WRAP_MODES 32u
-#define TS_MAP_ALL 63u
 
 // GpuTexture.wrap: the mode of u in bits 0-1, of v in bits 2-3 (glTF 2.0 sampler wrapS/wrapT,
 // as OpenGL's REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT).
@@ -158,6 +150,10 @@ struct GpuMaterial {
   uint metallic_roughness_map;
   uint normal_map;
   uint occlusion_map;
+  uint uv1_maps;  // TS_MAP_* bits of the maps that read uv set 1 (the TS_BINDING_UV1 buffer)
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // One texture: its mip chain in the texel buffer, level l being max(1, size >> l) texels per
@@ -279,7 +275,7 @@ static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
 static_assert(offsetof(GpuObject, mirrored) == 148);
 static_assert(offsetof(GpuObject, double_sided) == 152);
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 80);
 static_assert(offsetof(GpuMaterial, metallic) == 12);
 static_assert(offsetof(GpuMaterial, emissive) == 16);
 static_assert(offsetof(GpuMaterial, roughness) == 28);
@@ -288,6 +284,7 @@ static_assert(offsetof(GpuMaterial, double_sided) == 40);
 static_assert(offsetof(GpuMaterial, emissive_map) == 44);
 static_assert(offsetof(GpuMaterial, base_color_map) == 48);
 static_assert(offsetof(GpuMaterial, occlusion_map) == 60);
+static_assert(offsetof(GpuMaterial, uv1_maps) == 64);
 static_assert(sizeof(GpuTexture) == 80);
 static_assert(offsetof(GpuTexture, levels) == 8);
 static_assert(offsetof(GpuTexture, wrap) == 12);

@@ -12,6 +12,7 @@ layout(location = 1) in vec3 world_normal;
 layout(location = 2) flat in uint material;
 layout(location = 3) in vec4 world_tangent;
 layout(location = 4) in vec2 uv;
+layout(location = 5) in vec2 uv1;
 layout(location = 0) out vec4 color;
 
 void main() {
@@ -27,6 +28,9 @@ void main() {
   g.uv = uv;
   g.duv_dx = dFdxFine(uv);
   g.duv_dy = dFdyFine(uv);
+  g.uv1 = uv1;
+  g.duv1_dx = dFdxFine(uv1);
+  g.duv1_dy = dFdyFine(uv1);
   // The pipeline's front face accounts for mirroring.
   g = face_viewer(material, g, !gl_FrontFacing);
   MaterialSample ms = evaluate_material(material, g, V);

@@ -9,6 +9,7 @@ layout(location = 1) out vec3 world_normal;
 layout(location = 2) flat out uint material;
 layout(location = 3) out vec4 world_tangent;
 layout(location = 4) out vec2 uv;
+layout(location = 5) out vec2 uv1;
 
 void main() {
   GpuObject o = objects[gl_InstanceIndex];
@@ -21,6 +22,8 @@ void main() {
   world_tangent = vec4(mat3(o.model) * v.tangent.xyz,
                        v.tangent.w * (o.mirrored != 0u ? -1.0 : 1.0));
   uv = vec2(v.position_u.w, v.normal_v.w);
+  // uv1s holds data only when some material reads set 1; this one's mesh has it if it does.
+  uv1 = materials[o.material].uv1_maps != 0u ? uv1s[gl_VertexIndex] : uv;
   gl_Position = frame.view_proj * world;
   // Reverse depth as in the compute path: z / w = near / w, nearer is larger.
   gl_Position.z = frame.near_plane;
