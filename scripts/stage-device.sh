@@ -27,8 +27,9 @@ rm -rf .device-build && mkdir -p .device-build
 cp build-device/host/tessera build-device/bench/tessera_bench .device-build/
 cp "$(ldd build-device/bench/tessera_bench | awk '/libbenchmark/ {print $3}')" .device-build/
 # The window's libraries (GLFW, FreeType and what they load: X11, PNG, ...) are not on the GPU
-# machine: every shared library `tessera` needs beyond glibc and the Vulkan loader goes along.
+# machine: every shared library `tessera` needs beyond glibc, the C++ runtime (Ubuntu's is newer)
+# and the Vulkan loader goes along.
 ldd build-device/host/tessera | awk '$3 ~ /^\// {print $3}' |
-  grep -Ev '/(libc|libm|libdl|librt|libpthread|ld-linux[^/]*|libvulkan)\.so' |
+  grep -Ev '/(libc|libm|libdl|librt|libpthread|ld-linux[^/]*|libvulkan|libstdc\+\+|libgcc_s)\.so' |
   xargs -r cp -L -t .device-build/
 du -sh .gl .device-build
