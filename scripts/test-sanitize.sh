@@ -29,4 +29,7 @@ export ASAN_OPTIONS=detect_leaks=1:verify_asan_link_order=0:strict_string_checks
 export LSAN_OPTIONS=suppressions=$PWD/scripts/lsan-suppressions.txt:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1
 cd build-asan
-ctest --output-on-failure -j "$jobs" --timeout 900 -E 'AccuracySizes\.DefaultScene/4096x4096'
+# View.*: the viewer's GLFW finds no Vulkan loader while the validation layer and lavapipe are
+# preloaded (which ASan needs for their interposition), so the window tests run in the plain
+# suite (scripts/test.sh, with validation) only.
+ctest --output-on-failure -j "$jobs" --timeout 900 -E 'AccuracySizes\.DefaultScene/4096x4096|^View\.'
