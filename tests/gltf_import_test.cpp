@@ -116,10 +116,11 @@ TEST(GltfImport, LimitsAreEnforced) {
   const std::string gltf = kModels + "BoxTextured-glTF/BoxTextured.gltf";
   EXPECT_EQ(import_error(gltf, strict), "");
   EXPECT_EQ(import_error(glb, strict), "");
-  const Texture& mirrored = import_gltf(gltf).scene.textures.at(0);
+  const Texture mirrored =
+      import_gltf(gltf).scene.textures.at(0);  // a copy: the model is a temporary
   EXPECT_EQ(mirrored.wrap_u, TextureWrap::mirrored_repeat);
   EXPECT_EQ(mirrored.wrap_v, TextureWrap::clamp_to_edge);
-  const Texture& repeating = import_gltf(glb).scene.textures.at(0);
+  const Texture repeating = import_gltf(glb).scene.textures.at(0);
   EXPECT_EQ(repeating.wrap_u, TextureWrap::repeat);
   EXPECT_EQ(repeating.wrap_v, TextureWrap::repeat);
 }
