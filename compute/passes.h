@@ -22,6 +22,9 @@ enum class Pass {
   environment,  // the environment's irradiance and prefiltered cube, on the first frame after
                 // set_scene changed it (also the DFG tables when first needed)
   clear,
+  lod,          // level of detail (FrameSettings::lod automatic only): each object's level,
+  lod_scan,     // the triangle total and each batch's setup dispatch,
+  lod_offsets,  // and each object's first triangle-instance id
   setup,
   clip,
   bin_count,
@@ -45,6 +48,7 @@ struct Specialization {
   uint32_t texture_maps = TS_MAP_ALL;
   uint32_t ibl = TS_IBL_RUNTIME;
   uint32_t uv1_maps = TS_MAP_ALL;
+  VkBool32 lod = VK_FALSE;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -52,6 +56,7 @@ struct Specialization {
 enum class Stage {
   precompute,  // record_precomputation: timed only on frames that computed something
   clear,       // the buffers of kBindings with Clear::per_frame are filled
+  lod,         // once per frame before the batches, only under FrameSettings::lod automatic
   batch,       // once per batch of triangles (these rows are contiguous), after the buffers
                // with Clear::per_batch are filled; the GpuBatch push constant is set
   frame,       // once per frame, after the batches
@@ -62,6 +67,7 @@ enum class Dispatch {
   none,                // Stage::precompute and Stage::clear record no dispatch of their own
   fixed,               // `groups` workgroups
   per_batch_triangle,  // one thread per triangle of the batch, `group_size` per workgroup
+  per_object,          // one thread per object, `group_size` per workgroup
   per_pixel,           // `group_size` x `group_size` pixels per workgroup
   per_tile,            // one workgroup per TS_TILE_SIZE^2 screen tile
   indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
@@ -72,6 +78,8 @@ enum class Variants {
   plain,           // the one built from `shader` and `spec`
   debug_coverage,  // that, or with TS_SPEC_DEBUG_COVERAGE on under RendererOptions::debug_coverage
   shading,  // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
+  lod,      // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
+            // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
 };
 
 struct PassInfo {
@@ -82,7 +90,7 @@ struct PassInfo {
   Dispatch dispatch;
   uint32_t groups = 0;          // Dispatch::fixed
   uint32_t group_size = 0;      // Dispatch::per_batch_triangle, ::per_pixel
-  uint32_t counter_offset = 0;  // Dispatch::indirect: byte offset in GpuCounters
+  uint32_t counter_offset = 0;  // Dispatch::indirect and Variants::lod: byte offset in GpuCounters
   Variants variants = Variants::plain;
   Specialization spec{};
 };
@@ -90,8 +98,12 @@ struct PassInfo {
 constexpr PassInfo kPasses[] = {
     {Pass::environment, "environment", nullptr, Stage::precompute, Dispatch::none},
     {Pass::clear, "clear", nullptr, Stage::clear, Dispatch::none},
+    {Pass::lod, "lod", "lod", Stage::lod, Dispatch::per_object, 0, TS_LOD_GROUP_SIZE},
+    {Pass::lod_scan, "lod_scan", "lod_scan", Stage::lod, Dispatch::fixed, 1},
+    {Pass::lod_offsets, "lod_offsets", "lod_offsets", Stage::lod, Dispatch::per_object, 0,
+     TS_LOD_GROUP_SIZE},
     {Pass::setup, "setup", "setup", Stage::batch, Dispatch::per_batch_triangle, 0,
-     TS_SETUP_GROUP_SIZE},
+     TS_SETUP_GROUP_SIZE, offsetof(gpu::GpuCounters, setup_dispatch), Variants::lod},
     {Pass::clip, "clip", "clip", Stage::batch, Dispatch::fixed, TS_CLIP_GROUPS},
     {Pass::bin_count, "count", "count", Stage::batch, Dispatch::fixed, TS_COUNT_GROUPS},
     {Pass::scan, "scan", "scan", Stage::batch, Dispatch::fixed, 1},
@@ -108,12 +120,18 @@ constexpr PassInfo kPasses[] = {
 constexpr bool pass_row_is_filled(const PassInfo& p) {
   if (p.name == nullptr || p.name[0] == '\0') return false;
   const bool dispatches = p.dispatch != Dispatch::none;
-  if (dispatches != (p.stage == Stage::batch || p.stage == Stage::frame)) return false;
+  if (dispatches != (p.stage == Stage::batch || p.stage == Stage::frame || p.stage == Stage::lod))
+    return false;
+  if (p.variants == Variants::lod &&
+      (p.counter_offset % 4 != 0 ||
+       p.counter_offset + 3 * sizeof(uint32_t) > sizeof(gpu::GpuCounters)))
+    return false;
   if (dispatches != (p.shader != nullptr)) return false;
   switch (p.dispatch) {
     case Dispatch::fixed:
       return p.groups > 0;
     case Dispatch::per_batch_triangle:
+    case Dispatch::per_object:
     case Dispatch::per_pixel:
       return p.group_size > 0;
     case Dispatch::indirect:  // a whole VkDispatchIndirectCommand inside GpuCounters
@@ -146,8 +164,8 @@ constexpr const char* pass_name(Pass pass) {
   return kPasses[size_t(pass)].name;
 }
 
-/// Timestamps a frame of `batches` batches writes: one before the first pass and one after
-/// each pass it records.
+/// Timestamps a frame of `batches` batches writes at most: one before the first pass and one
+/// after each pass it records (the Stage::lod passes only under level of detail).
 constexpr uint32_t timestamps_needed(uint32_t batches) {
   uint32_t per_frame = 1, per_batch = 0;
   for (const PassInfo& p : kPasses) (p.stage == Stage::batch ? per_batch : per_frame)++;
@@ -215,6 +233,7 @@ enum class Scale {
   pixels_if_coverage,   // per pixel under RendererOptions::debug_coverage, else 4 bytes
   tiles,                // per screen tile (plus `extra` elements)
   raster_capacity,      // per raster triangle the scratch buffers hold (grows on overflow)
+  lod_groups,           // per TS_LOD_GROUP_SIZE objects of the scene
   tile_entry_capacity,  // per tile-list entry (grows on overflow)
   batches,              // per batch of the frame (GpuCounters slots)
 };
@@ -271,6 +290,10 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_ENV_LEVELS, kStorageBuffer, Source::environment},
     {TS_BINDING_ENV_IRRADIANCE, kStorageBuffer, Source::environment},
     {TS_BINDING_UV1, kStorageBuffer, Source::scene},
+    // Level of detail: every mesh's chain, uploaded by the first frame that asks for it.
+    {TS_BINDING_LOD_LEVELS, kStorageBuffer, Source::scene},
+    {TS_BINDING_LOD_MESHES, kStorageBuffer, Source::scene},
+    {TS_BINDING_LOD_SUMS, kStorageBuffer, Source::sized, Scale::lod_groups, 4},
 };
 
 constexpr bool binding_table_is_complete() {

@@ -39,7 +39,8 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
       {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)},
-      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)}};
+      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)},
+      {TS_SPEC_LOD, offsetof(Specialization, lod), sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -107,6 +108,11 @@ Pipelines create_pipelines(const Context& ctx) {
       coverage.debug_coverage = VK_TRUE;
       p.coverage[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, coverage);
     }
+    if (pass.variants == Variants::lod) {
+      Specialization lod = pass.spec;
+      lod.lod = VK_TRUE;
+      p.lod[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, lod);
+    }
   }
   for (const PipelineInfo& info : kPipelines) {
     p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, p.layout, info.shader, info.spec);
@@ -116,7 +122,7 @@ Pipelines create_pipelines(const Context& ctx) {
 
 void destroy_pipelines(const Context& ctx, Pipelines& p) {
   for (std::span<VkPipeline> list :
-       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage),
+       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage), std::span<VkPipeline>(p.lod),
         std::span<VkPipeline>(p.pipelines)}) {
     for (VkPipeline pipeline : list) {
       if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);

@@ -22,9 +22,10 @@ constexpr VkShaderStageFlags kShaderStages =
 struct Pipelines {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  std::array<VkPipeline, kPassCount> passes{};    // per pass that dispatches (Variants::plain
-                                                  // and ::debug_coverage)
+  std::array<VkPipeline, kPassCount> passes{};    // per pass that dispatches (all but
+                                                  // Variants::shading)
   std::array<VkPipeline, kPassCount> coverage{};  // TS_SPEC_DEBUG_COVERAGE on (::debug_coverage)
+  std::array<VkPipeline, kPassCount> lod{};       // TS_SPEC_LOD on (Variants::lod)
   std::array<VkPipeline, size_t(Pipeline::count)> pipelines{};  // kPipelines
   VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
   VkPipeline operator[](Pass p) const { return passes[size_t(p)]; }

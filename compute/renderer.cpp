@@ -15,6 +15,7 @@
 #include "compute/scene_upload.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "core/lod.h"
 #include "core/pick.h"
 #include "shaders/shared/gpu_types.h"
 
@@ -145,23 +146,38 @@ struct PendingCopy {
   VkDeviceSize size;
 };
 
+// Reallocates `buffer` and queues a copy of all of `next` if the buffer is too small for it.
+// Returns true if it did.
+template <typename T>
+bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>& next,
+                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
+  const VkDeviceSize bytes = next.size() * sizeof(T);
+  if (buffer.buffer && buffer.size >= bytes) return false;
+  destroy_buffer(ctx, buffer);
+  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
+  buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
+                         MemoryKind::device);
+  stats.buffers_created++;
+  dirty = true;
+  if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
+  return true;
+}
+
+// Makes `buffer` hold `array`, given that it holds its first `from` elements.
+template <typename T>
+void queue_tail_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& array, size_t from,
+                       std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
+  if (queue_reallocation(ctx, buffer, array, copies, stats, dirty) || from >= array.size()) return;
+  copies.push_back({buffer.buffer, from * sizeof(T), &array[from], (array.size() - from) * sizeof(T)});
+}
+
 // Makes `buffer` hold `next`, given that it holds `previous`: reallocates if it is too small,
 // else queues a copy of the range of elements that differ (nothing if none does).
 template <typename T>
 void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
                         const std::vector<T>& next, std::vector<PendingCopy>& copies,
                         UploadStats& stats, bool& dirty) {
-  const VkDeviceSize bytes = next.size() * sizeof(T);
-  if (!buffer.buffer || buffer.size < bytes) {
-    destroy_buffer(ctx, buffer);
-    // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
-    buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
-                           MemoryKind::device);
-    stats.buffers_created++;
-    dirty = true;
-    if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
-    return;
-  }
+  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty)) return;
   size_t first = 0;
   size_t common = std::min(previous.size(), next.size());
   while (first < common && std::memcmp(&previous[first], &next[first], sizeof(T)) == 0) ++first;
@@ -172,6 +188,77 @@ void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>
     --last;
   }
   copies.push_back({buffer.buffer, first * sizeof(T), &next[first], (last - first) * sizeof(T)});
+}
+
+// Copies `copies` to the GPU (through one staging buffer) and waits. Returns the bytes copied.
+VkDeviceSize submit_copies(const Context& ctx, const std::vector<PendingCopy>& copies) {
+  VkDeviceSize total = 0;
+  for (const PendingCopy& c : copies) total += c.size;
+  if (total == 0) return 0;
+  Buffer staging = create_buffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
+  VkDeviceSize offset = 0;
+  for (const PendingCopy& c : copies) {
+    std::memcpy(static_cast<char*>(staging.mapped) + offset, c.data, c.size);
+    offset += c.size;
+  }
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    full_barrier(cmd);
+    VkDeviceSize src = 0;
+    for (const PendingCopy& c : copies) {
+      VkBufferCopy region{src, c.dst_offset, c.size};
+      vkCmdCopyBuffer(cmd, staging.buffer, c.dst, 1, &region);
+      src += c.size;
+    }
+    transfer_to_compute(cmd);
+  });
+  destroy_buffer(ctx, staging);
+  return total;
+}
+
+// The chain of `mesh` from `cache` if it holds one for the same content, else built.
+LodChain chain_of(const Mesh& mesh, const std::vector<LodChain>& cache) {
+  for (const LodChain& c : cache) {
+    const Mesh& base = *c.levels[c.base_level].mesh;
+    if (base.triangle_count() == mesh.triangle_count() && base == mesh) return c;
+  }
+  return build_lod_chain(mesh);
+}
+
+// Builds (or reuses) the chains of the scene's meshes and uploads them, once per scene.
+void prepare_lod(Renderer::State& s) {
+  if (s.lod_uploaded) return;
+  std::vector<LodChain> chains(s.meshes.size());
+  std::vector<LodChain> cache;
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    if (s.meshes[m].triangle_count() == 0) continue;
+    chains[m] = chain_of(s.meshes[m], s.lod_chains);
+    cache.push_back(chains[m]);
+  }
+  s.lod_chains = std::move(cache);
+  GpuSceneArrays& a = s.uploaded;
+  const size_t vertices = a.vertices.size(), indices = a.indices.size(), uv1s = a.uv1s.size();
+  append_lod_chains(chains, a);
+  std::vector<PendingCopy> copies;
+  UploadStats stats;
+  bool& dirty = s.descriptors_dirty;
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), a.vertices, vertices, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_INDICES), a.indices, indices, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_UV1), a.uv1s, uv1s, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), a.lod_levels, 0, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_MESHES), a.lod_meshes, 0, copies, stats, dirty);
+  submit_copies(s.ctx, copies);
+  s.lod_uploaded = true;
+}
+
+// Puts the meshes' own triangles back into the GPU's objects after frames with level of detail.
+void restore_objects(Renderer::State& s) {
+  if (!s.objects_hold_lod) return;
+  const std::vector<gpu::GpuObject>& objects = s.uploaded.objects;
+  if (!objects.empty()) {
+    submit_copies(s.ctx, {{s.buffer(TS_BINDING_OBJECTS).buffer, 0, objects.data(),
+                           objects.size() * sizeof(gpu::GpuObject)}});
+  }
+  s.objects_hold_lod = false;
 }
 
 }  // namespace
@@ -200,41 +287,26 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_UV1), prev.uv1s, next.uv1s, copies, stats,
                      s.descriptors_dirty);
+  // Empty until a frame asks for level of detail (prepare_lod), but bound in every frame.
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), prev.lod_levels, next.lod_levels,
+                     copies, stats, s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_LOD_MESHES), prev.lod_meshes, next.lod_meshes,
+                     copies, stats, s.descriptors_dirty);
   if (scene.environment != s.env.source) {
     set_environment(s.ctx, s.env, scene.environment, s.options.environment);
     s.descriptors_dirty = true;
     stats.environment_changed = true;
   }
 
-  VkDeviceSize total = 0;
-  for (const PendingCopy& c : copies) total += c.size;
-  if (total > 0) {
-    Buffer staging =
-        create_buffer(s.ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
-    VkDeviceSize offset = 0;
-    for (const PendingCopy& c : copies) {
-      std::memcpy(static_cast<char*>(staging.mapped) + offset, c.data, c.size);
-      offset += c.size;
-    }
-    submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
-      full_barrier(cmd);
-      VkDeviceSize src = 0;
-      for (const PendingCopy& c : copies) {
-        VkBufferCopy region{src, c.dst_offset, c.size};
-        vkCmdCopyBuffer(cmd, staging.buffer, c.dst, 1, &region);
-        src += c.size;
-      }
-      transfer_to_compute(cmd);
-    });
-    destroy_buffer(s.ctx, staging);
-  }
-  stats.bytes = total;
+  stats.bytes = submit_copies(s.ctx, copies);
   if (next.triangle_count != s.uploaded.triangle_count) {
     // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
     s.batch_triangles = 0;
     s.raster_capacity = 0;
   }
   s.uploaded = std::move(next);
+  s.meshes = scene.meshes;
+  s.lod_uploaded = false;
   s.camera = scene.camera;
   s.background = scene.background;
   s.ambient = scene.ambient;
@@ -280,6 +352,9 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
       break;
     case Scale::raster_capacity:
       count = s.raster_capacity;
+      break;
+    case Scale::lod_groups:
+      count = div_up(s.uploaded.objects.size(), TS_LOD_GROUP_SIZE);
       break;
     case Scale::tile_entry_capacity:
       count = s.tile_entry_capacity;
@@ -445,6 +520,10 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
   }
+  if (!std::isfinite(settings.lod_error_px) || settings.lod_error_px <= 0.0f) {
+    throw Error("level-of-detail error bound " + std::to_string(settings.lod_error_px) +
+                " px is not a positive number");
+  }
 }
 
 }  // namespace
@@ -457,15 +536,26 @@ FrameStats Renderer::render(const FrameSettings& settings) {
 
   const uint64_t total = s.uploaded.triangle_count;
   init_capacities(s);
+  // Level of detail: the GPU chooses the levels and sizes setup; the batches are sized by the
+  // last such frame's total and the frame is redone if this one's is larger.
+  const bool lod = settings.lod == Lod::automatic && total > 0;
+  if (lod) {
+    prepare_lod(s);
+  } else {
+    restore_objects(s);
+  }
 
   FrameStats stats;
   stats.triangles_submitted = total;
+  stats.triangles_without_lod = total;
   for (uint32_t attempt = 1;; ++attempt) {
     if (attempt > kMaxAttempts) {
       throw Error("the frame still overflowed its buffers after " + std::to_string(kMaxAttempts) +
                   " attempts (batch of " + std::to_string(s.batch_triangles) + " triangles)");
     }
-    const uint32_t batches = total == 0 ? 0 : div_up(total, s.batch_triangles);
+    const uint64_t setup_triangles = lod ? std::max<uint64_t>(s.lod_triangles, 1) : total;
+    const uint32_t batches = total == 0 ? 0 : div_up(setup_triangles, s.batch_triangles);
+    s.frame_batches = batches;
     ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = timestamps_needed(batches);
@@ -494,6 +584,19 @@ FrameStats Renderer::render(const FrameSettings& settings) {
 
     // Read the counters: did any batch need more room than it had?
     const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
+    if (lod) {
+      s.objects_hold_lod = true;
+      if (counters[0].lod_total == 0xFFFFFFFFu) {
+        throw Error("the levels of detail chosen make 2^32 or more triangle instances, more than "
+                    "Tessera can number: raise --lod-error");
+      }
+      stats.triangles_submitted = counters[0].lod_total;
+      if (counters[0].lod_total > uint64_t(batches) * s.batch_triangles) {
+        s.lod_triangles = counters[0].lod_total;
+        continue;  // more batches
+      }
+      s.lod_triangles = counters[0].lod_total;
+    }
     uint64_t need_raster = 0, need_entries = 0;
     for (uint32_t b = 0; b < batches; ++b) {
       need_raster =
@@ -628,7 +731,11 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .small_triangle_max_area = s.options.small_triangle_max_area,
                         .environment = s.env.source ? 1u : 0u,
                         .env_levels = specular_levels(s.env),
-                        .anisotropy = settings.max_anisotropy};
+                        .anisotropy = settings.max_anisotropy,
+                        .lod_scale = float(lod_pixels_per_unit(camera, s.width, s.height) /
+                                           double(settings.lod_error_px)),
+                        .batch_count = s.frame_batches,
+                        .batch_triangles = s.batch_triangles};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -646,6 +753,9 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
       break;
     case Variants::shading:
       return shade_pipeline(s, settings);
+    case Variants::lod:
+      if (settings.lod == Lod::automatic) return s.pipelines.lod[size_t(pass.pass)];
+      break;
   }
   return s.pipelines[pass.pass];
 }
@@ -663,7 +773,16 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       vkCmdDispatch(cmd, pass.groups, 1, 1);
       break;
     case Dispatch::per_batch_triangle:
-      vkCmdDispatch(cmd, div_up(batch.triangle_count, pass.group_size), 1, 1);
+      if (pass.variants == Variants::lod && settings.lod == Lod::automatic) {
+        vkCmdDispatchIndirect(
+            cmd, s.buffer(TS_BINDING_COUNTERS).buffer,
+            VkDeviceSize(batch.index) * sizeof(gpu::GpuCounters) + pass.counter_offset);
+      } else {
+        vkCmdDispatch(cmd, div_up(batch.triangle_count, pass.group_size), 1, 1);
+      }
+      break;
+    case Dispatch::per_object:
+      vkCmdDispatch(cmd, div_up(s.uploaded.objects.size(), pass.group_size), 1, 1);
       break;
     case Dispatch::per_pixel:
       vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
@@ -726,13 +845,25 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         mark(pass.pass);
         ++i;
         break;
+      case Stage::lod:
+        // Not recorded at all without level of detail, so such frames are as before it.
+        if (settings.lod == Lod::automatic && total > 0) {
+          record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
+          barrier_after(cmd, pass);
+          mark(pass.pass);
+        }
+        ++i;
+        break;
       case Stage::batch: {
         size_t end = i;
         while (end < kPassCount && kPasses[end].stage == Stage::batch) ++end;
         for (uint32_t b = 0; b < batches; ++b) {
           const uint64_t first = uint64_t(b) * s.batch_triangles;
-          gpu::GpuBatch batch{uint32_t(first),
-                              uint32_t(std::min<uint64_t>(s.batch_triangles, total - first)), b, 0};
+          // Under level of detail setup reads its count from the GPU (lod_scan) instead.
+          gpu::GpuBatch batch{
+              uint32_t(first),
+              uint32_t(first < total ? std::min<uint64_t>(s.batch_triangles, total - first) : 0),
+              b, 0};
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
           if constexpr (has_clear(Clear::per_batch)) {
             // The previous batch's passes read and wrote what is cleared.
@@ -818,7 +949,18 @@ const StorageImage& Renderer::output_image() const {
 }
 
 uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
-  return tessera::object_of_triangle(s_->uploaded.numbering, triangle_id);
+  const State& s = *s_;
+  if (!s.objects_hold_lod) return tessera::object_of_triangle(s.uploaded.numbering, triangle_id);
+  // The last frame's levels numbered the triangles: its first_triangle per object.
+  const std::vector<gpu::GpuObject> objects = download_buffer<gpu::GpuObject>(
+      s.ctx, s.buffer(TS_BINDING_OBJECTS), s.uploaded.objects.size());
+  ObjectNumbering numbering = s.uploaded.numbering;
+  numbering.triangle_count = 0;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    numbering.first_triangle[i] = objects[i].first_triangle;
+    numbering.triangle_count = uint64_t(objects[i].first_triangle) + objects[i].triangle_count;
+  }
+  return tessera::object_of_triangle(numbering, triangle_id);
 }
 
 RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,

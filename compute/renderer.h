@@ -54,7 +54,8 @@ struct FrameStats {
   std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;  // recording and submitting the final attempt
-  uint64_t triangles_submitted = 0;   // triangle instances in the scene
+  uint64_t triangles_submitted = 0;   // triangle instances set up (after the level of detail)
+  uint64_t triangles_without_lod = 0;  // triangle instances of the meshes as they are
   uint64_t raster_triangles = 0;      // after culling and clipping
   uint64_t small_triangles = 0;
   uint64_t big_triangles = 0;
@@ -112,7 +113,8 @@ class Renderer {
 
   /// The display image (RGBA8, VK_IMAGE_LAYOUT_GENERAL, usable as a copy or blit source).
   const StorageImage& output_image() const;
-  /// Maps a triangle-instance id from read_visibility to its index in Scene::objects.
+  /// Maps a triangle-instance id from read_visibility to its index in Scene::objects (after a
+  /// frame with level of detail, through the levels that frame chose: a read-back).
   uint32_t object_of_triangle(uint32_t triangle_id) const;
 
   struct State;  // internal (compute/renderer_state.h)

@@ -131,6 +131,31 @@ void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, Gp
   if (cache) *cache = std::move(next);
 }
 
+// Appends the vertices of `mesh` with `tangents` (empty: zero) to out.vertices, and its uv set 1
+// (zero where it has none) to out.uv1s when `uv1`.
+void append_vertices(const Mesh& mesh, const std::vector<glm::vec4>& tangents, bool uv1,
+                     GpuSceneArrays& out) {
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], mesh.uvs[v].x),
+                            .normal_v = glm::vec4(mesh.normals[v], mesh.uvs[v].y),
+                            .tangent = tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
+  }
+  if (uv1) {
+    if (mesh.uvs1.empty()) {
+      out.uv1s.resize(out.uv1s.size() + mesh.positions.size(), glm::vec2(0.0f));
+    } else {
+      out.uv1s.insert(out.uv1s.end(), mesh.uvs1.begin(), mesh.uvs1.end());
+    }
+  }
+}
+
+// The smallest float >= x (x >= 0, finite).
+float float_at_least(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
 }  // namespace
 
 static_assert(uint32_t(TextureWrap::repeat) == TS_WRAP_REPEAT &&
@@ -180,21 +205,12 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
       generated = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
     }
     const std::vector<glm::vec4>& tangents = mesh.tangents.empty() ? generated : mesh.tangents;
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], mesh.uvs[v].x),
-                              .normal_v = glm::vec4(mesh.normals[v], mesh.uvs[v].y),
-                              .tangent = tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
-    }
-    if (uv1) {
-      if (mesh.uvs1.empty()) {
-        out.uv1s.resize(out.uv1s.size() + mesh.positions.size(), glm::vec2(0.0f));
-      } else {
-        out.uv1s.insert(out.uv1s.end(), mesh.uvs1.begin(), mesh.uvs1.end());
-      }
-    }
+    append_vertices(mesh, tangents, uv1, out);
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
   }
 
+  out.mesh_first_index = first_index;
+  out.mesh_base_vertex = base_vertex;
   const ObjectNumbering numbering = number_objects(scene);
   // The all-ones id is never used: it marks empty pixels in the visibility buffer.
   if (numbering.triangle_count > 0xFFFFFFFFull) {
@@ -214,7 +230,8 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
         .material = o.material,
         .first_triangle = uint32_t(numbering.first_triangle[slot]),
         .mirrored = is_mirroring(o.transform) ? 1u : 0u,
-        .double_sided = scene.materials[o.material].double_sided ? 1u : 0u};
+        .double_sided = scene.materials[o.material].double_sided ? 1u : 0u,
+        .mesh = o.mesh};
     out.objects.push_back(g);
   }
 
@@ -247,6 +264,44 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
     out.light_counts[uint32_t(l->kind)]++;
   }
   return out;
+}
+
+}  // namespace tessera
+
+namespace tessera {
+
+void append_lod_chains(const std::vector<LodChain>& chains, GpuSceneArrays& out) {
+  TESSERA_CHECK(chains.size() == out.mesh_first_index.size());
+  out.lod_levels.clear();
+  out.lod_meshes.clear();
+  const bool uv1 = !out.uv1s.empty();
+  for (size_t m = 0; m < chains.size(); ++m) {
+    const LodChain& chain = chains[m];
+    out.lod_meshes.push_back({.centre = glm::vec3(chain.centre),
+                              .radius = float_at_least(chain.radius),
+                              .first_level = uint32_t(out.lod_levels.size()),
+                              .level_count = uint32_t(chain.levels.size())});
+    for (const LodLevel& level : chain.levels) {
+      const Mesh& mesh = *level.mesh;
+      gpu::GpuLodLevel g{.first_index = out.mesh_first_index[m],
+                         .base_vertex = out.mesh_base_vertex[m],
+                         .triangle_count = uint32_t(mesh.triangle_count()),
+                         .error = float_at_least(level.error)};
+      if (!level.is_base) {
+        if (out.indices.size() + mesh.indices.size() > 0xFFFFFFFFull ||
+            out.vertices.size() + mesh.positions.size() > 0xFFFFFFFFull) {
+          throw Error("the level-of-detail chains need more than 2^32 indices or vertices");
+        }
+        g.first_index = uint32_t(out.indices.size());
+        out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
+        if (!level.shares_base_vertices) {
+          g.base_vertex = uint32_t(out.vertices.size());
+          append_vertices(mesh, mesh.tangents, uv1, out);
+        }
+      }
+      out.lod_levels.push_back(g);
+    }
+  }
 }
 
 }  // namespace tessera

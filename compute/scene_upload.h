@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/lod.h"
 #include "core/scene.h"
 #include "core/texture.h"
 #include "shaders/shared/gpu_types.h"
@@ -27,6 +28,11 @@ struct GpuSceneArrays {
   /// material reads set 1, so a scene without one uploads nothing for it.
   std::vector<glm::vec2> uv1s;
   uint64_t triangle_count = 0;    // triangle instances over all objects
+  std::vector<uint32_t> mesh_first_index;  // per Scene::meshes entry: its first index
+  std::vector<uint32_t> mesh_base_vertex;  // and its first vertex
+  /// Level of detail (append_lod_chains; empty until a frame asks for it).
+  std::vector<gpu::GpuLodLevel> lod_levels;
+  std::vector<gpu::GpuLodMesh> lod_meshes;
   uint32_t mip_chains_built = 0;  // textures whose mip chain was built, not reused
 };
 
@@ -56,5 +62,14 @@ uint64_t texture_hash(const Texture& texture);
 /// is left holding exactly the textures of `scene`; the arrays are the same either way.
 /// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels.
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache = nullptr);
+
+/// Appends the level-of-detail chains of the flattened scene's meshes (`chains`, one per
+/// Scene::meshes entry, as build_lod_chains makes them) to `arrays`: the levels other than the
+/// base mesh add their indices, and sphere tessellations their vertices (uv set 1 zero), after
+/// everything flatten_scene wrote, so that the arrays without level of detail stay a prefix;
+/// lod_levels and lod_meshes are rewritten. Errors and radii are rounded up to float, so the
+/// GPU's choice is never less fine than the double-precision one but by its own rounding.
+/// Throws Error past 2^32 vertices or indices.
+void append_lod_chains(const std::vector<LodChain>& chains, GpuSceneArrays& arrays);
 
 }  // namespace tessera

@@ -9,6 +9,12 @@
 
 namespace tessera {
 
+/// Level of detail (docs/architecture.md, "Level of detail").
+enum class Lod {
+  off,        // every object drawn with its mesh as it is
+  automatic,  // each object's level chosen per frame from its projected error (core/lod.h)
+};
+
 struct FrameSettings {
   uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
   uint32_t height = 512;
@@ -24,6 +30,11 @@ struct FrameSettings {
   /// Texture filtering: 1 is trilinear; 2 to 16 take up to that many trilinear probes along
   /// the footprint's longer axis (anisotropic filtering).
   uint32_t max_anisotropy = 1;
+  /// Level of detail: off draws the meshes as they are; automatic draws each object at the
+  /// coarsest level of its chain (core/lod.h) whose error projects to at most lod_error_px
+  /// pixels (> 0 and finite; renderers throw Error otherwise).
+  Lod lod = Lod::off;
+  float lod_error_px = 0.5f;
 };
 
 }  // namespace tessera

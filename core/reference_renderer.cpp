@@ -4,12 +4,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/check.h"
+#include "core/lod.h"
 #include "core/reference_brdf.h"
 #include "core/texture.h"
 #include "shaders/shared/constants.h"
@@ -89,6 +91,28 @@ std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& 
                    uint32_t(slot), is_mirroring(o.transform)});
   }
   return out;
+}
+
+// Level of detail (FrameSettings::lod automatic): each instance takes the level
+// select_lod_level chooses (in double; the GPU's float choice agrees but within rounding of a
+// level's bound) and the triangles are numbered again in slot order, as the GPU's lod passes
+// do. `chains` keeps the level meshes the instances point to; `base_of` maps a level sharing
+// its base mesh's vertices to the base mesh (whose tangents the GPU uses for it).
+void apply_lod(const Scene& scene, const FrameSettings& frame, const std::vector<LodChain>& chains,
+               ObjectNumbering& numbering, std::vector<Instance>& instances,
+               std::map<const Mesh*, const Mesh*>& base_of) {
+  uint64_t next = 0;
+  for (size_t slot = 0; slot < instances.size(); ++slot) {
+    const Object& o = scene.objects[numbering.objects[slot]];
+    const LodChain& chain = chains[o.mesh];
+    const LodLevel& level = chain.levels[select_lod_level(
+        chain, o.transform, scene.camera, frame.width, frame.height, frame.lod_error_px)];
+    instances[slot].mesh = level.mesh.get();
+    if (level.shares_base_vertices) base_of[level.mesh.get()] = &scene.meshes[o.mesh];
+    instances[slot].first_triangle = numbering.first_triangle[slot] = next;
+    next += level.mesh->triangle_count();
+  }
+  numbering.triangle_count = next;
 }
 
 const Instance& instance_of(const std::vector<Instance>& instances, uint64_t id) {
@@ -897,23 +921,31 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
-  const ObjectNumbering numbering = number_objects(scene);
+  ObjectNumbering numbering = number_objects(scene);
   std::vector<Instance> instances = make_instances(scene, numbering);
+  std::vector<LodChain> lod_chains;
+  std::map<const Mesh*, const Mesh*> base_of;
+  if (settings.frame.lod == Lod::automatic) {
+    lod_chains = build_lod_chains(scene);
+    apply_lod(scene, settings.frame, lod_chains, numbering, instances, base_of);
+  }
   std::vector<MipChain> chains;
   for (const Texture& t : scene.textures) chains.push_back(build_mip_chain(t));
-  std::vector<std::vector<glm::vec4>> generated(scene.meshes.size());
+  std::map<const Mesh*, std::vector<glm::vec4>> generated;  // by the mesh whose vertices they are
   for (Instance& inst : instances) {
     if (inst.material->normal_map == kNoTexture) continue;
-    const size_t mesh = size_t(inst.mesh - scene.meshes.data());
-    if (!inst.mesh->tangents.empty()) {
-      inst.tangents = &inst.mesh->tangents;
+    const auto base = base_of.find(inst.mesh);
+    const Mesh* vertices = base == base_of.end() ? inst.mesh : base->second;
+    if (!vertices->tangents.empty()) {
+      inst.tangents = &vertices->tangents;
       continue;
     }
-    if (generated[mesh].empty()) {
-      generated[mesh] = generate_tangents(inst.mesh->positions, inst.mesh->normals, inst.mesh->uvs,
-                                          inst.mesh->indices);
+    std::vector<glm::vec4>& t = generated[vertices];
+    if (t.empty()) {
+      t = generate_tangents(vertices->positions, vertices->normals, vertices->uvs,
+                            vertices->indices);
     }
-    inst.tangents = &generated[mesh];
+    inst.tangents = &t;
   }
   const ShadeContext context{scene, cam, instances, chains, settings};
   const unsigned threads =
@@ -933,6 +965,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   }
 
   ReferenceFrame f;
+  f.numbering = numbering;
   f.raster_triangles = tris.size();
   f.owner.assign(pixels, kNoTriangle);
   f.depth.assign(pixels, 0.0);
@@ -987,8 +1020,14 @@ ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& sett
                                uint32_t triangle_id, uint32_t x, uint32_t y) {
   check_size(settings);
   const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
-  const ObjectNumbering numbering = number_objects(scene);
-  const std::vector<Instance> instances = make_instances(scene, numbering);
+  ObjectNumbering numbering = number_objects(scene);
+  std::vector<Instance> instances = make_instances(scene, numbering);
+  std::vector<LodChain> lod_chains;
+  std::map<const Mesh*, const Mesh*> base_of;
+  if (settings.frame.lod == Lod::automatic) {
+    lod_chains = build_lod_chains(scene);
+    apply_lod(scene, settings.frame, lod_chains, numbering, instances, base_of);
+  }
   TESSERA_CHECK(triangle_id < numbering.triangle_count);
   const Instance& inst = instance_of(instances, triangle_id);
 

@@ -40,6 +40,8 @@ struct GroundTruthOptions {
 struct ReferenceSettings {
   /// As for the compute path; energy compensation is reference_compensated_lobes (Kulla &
   /// Conty layering, E from the reference's own quadrature rather than the GPU's table).
+  /// Level of detail (frame.lod) picks each object's level with select_lod_level
+  /// (core/lod.h), in double.
   FrameSettings frame;
   CullMode cull = CullMode::back;
   /// Monte Carlo directions per lobe and pixel for the environment's light (Scene::environment).
@@ -64,8 +66,11 @@ struct ReferenceFrame {
   std::vector<double> depth;    // the owner's near / w at the pixel centre, 0 where empty
   std::vector<uint32_t> coverage;  // samples covered per pixel, over all triangles not culled
   uint64_t raster_triangles = 0;   // triangles after culling and clipping
+  /// How the frame numbered its triangle instances: number_objects(scene), or under level of
+  /// detail (FrameSettings::lod) the same slots numbered through the levels chosen.
+  ObjectNumbering numbering;
   /// Ground truth only (empty otherwise, to spare memory: make it with make_ownership(width,
-  /// height, 1, object_ids(number_objects(scene), owner))): which object, by its
+  /// height, 1, object_ids(frame.numbering, owner))): which object, by its
   /// ObjectNumbering slot, each sample shows, kNoObject where none.
   Ownership ownership;
 };

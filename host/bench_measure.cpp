@@ -10,6 +10,7 @@
 #include "compute/baselines/hardware_baseline.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "core/lod.h"
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
 #include "host/report.h"
@@ -131,6 +132,8 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   FrameSettings fs;
   fs.width = a.width;
   fs.height = a.height;
+  fs.lod = a.lod;
+  fs.lod_error_px = a.lod_error_px;
   const float aspect = float(a.width) / float(a.height);
 
   // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
@@ -148,12 +151,14 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     const Scene scene = builtin ? fixed
                         : file  ? make_instanced_bench_scene(fixed, n, aspect)
                                 : make_bench_scene(a.scene, n, a.segments, aspect);
-    uint64_t triangles = 0;
-    for (const Object& o : scene.objects) triangles += scene.meshes[o.mesh].triangle_count();
+    // After the level of detail, which the compute path counts on the GPU.
+    uint64_t triangles =
+        fs.lod == Lod::off || renderer ? lod_triangle_count(scene, {}, FrameSettings{})
+                                       : lod_triangle_count(scene, build_lod_chains(scene), fs);
     uint64_t pixels_shaded = 0;
     if (renderer) {
       renderer->set_scene(scene);  // uploaded once, outside the timed frames
-      renderer->render(fs);
+      triangles = renderer->render(fs).triangles_submitted;
       for (uint64_t key : renderer->read_visibility()) pixels_shaded += key != ~0ull;
     }
     for (const std::string& backend : a.backends) {

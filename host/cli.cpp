@@ -30,6 +30,22 @@ CLI::Validator bench_scene() {
   });
 }
 
+// --lod and --lod-error, for render and bench.
+void add_lod_options(CLI::App& app, Lod& lod, float& error_px) {
+  add_choice(app, "--lod", lod, {{"off", Lod::off}, {"auto", Lod::automatic}},
+             "level of detail: off (default) draws meshes as\n"
+             "they are; auto draws each object at the\n"
+             "coarsest level of its chain whose error\n"
+             "projects to at most --lod-error, chosen on the\n"
+             "GPU every frame");
+  app.add_option("--lod-error", error_px,
+                 "largest projected error of a level under\n"
+                 "--lod auto, in pixels, 0.001..1000 (default\n"
+                 "0.5)")
+      ->type_name("PIXELS")
+      ->check(finite_number(0.001, 1000.0));
+}
+
 CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {
   auto set = [&width, &height](const std::string& text) {
     std::tie(width, height) = read_size(text);
@@ -116,6 +132,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "texture filtering: 1 trilinear (default),\n2..16 anisotropic")
       ->type_name("N")
       ->check(whole_number(1, 16));
+  add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_choice(app, "--view", a.frame.view,
              {{"shaded", View::shaded},
               {"normal", View::normal},
@@ -183,6 +200,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
                  "binned into tiles (default 64)")
       ->type_name("A")
       ->check(whole_number(0, 1u << 24));
+  add_lod_options(app, a.lod, a.lod_error_px);
   app.add_flag("--generic-shading", a.generic_shading,
                "shade with the generic pipeline instead of one\n"
                "specialized to the scene's light counts, to\n"

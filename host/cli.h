@@ -47,6 +47,8 @@ struct BenchArgs {
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
   uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
   bool generic_shading = false;                  // RendererOptions::specialize_lights off
+  Lod lod = Lod::off;                            // FrameSettings::lod, for every backend
+  float lod_error_px = 0.5f;                     // FrameSettings::lod_error_px
   std::string csv, json, chart;
   bool quiet = false;
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake git pkg-config
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
-  libtinyobjloader-dev assimp-testmodels nlohmann-json3-dev
+  libtinyobjloader-dev assimp-testmodels nlohmann-json3-dev libmeshoptimizer-dev
   # tessera view: the window, its overlay, and the X server its tests run under
   libglfw3-dev libimgui-dev libfreetype-dev xvfb
   # scripts/fuzz.sh: libFuzzer and the sanitizer runtimes

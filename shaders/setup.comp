@@ -15,6 +15,9 @@
 
 layout(local_size_x = TS_SETUP_GROUP_SIZE) in;
 
+// Under level of detail the batch's triangle count is the lod_scan pass's, on the GPU.
+layout(constant_id = TS_SPEC_LOD) const bool LOD = false;
+
 // Cull counts of the workgroup: a million-object frame culls ~10^9 triangles, and even one
 // atomic per subgroup on the same four addresses limited setup's throughput.
 shared uint group_culled[4];
@@ -75,7 +78,8 @@ void main() {
   slot = subgroupBroadcastFirst(slot);
   while (slot + 1u < frame.object_count && objects[slot + 1u].first_triangle <= id) ++slot;
   RasterTri t;
-  uint outcome = local < batch.triangle_count ? classify(slot, id, t) : OUTCOME_NONE;
+  uint count = LOD ? counters[batch.index].lod_triangles : batch.triangle_count;
+  uint outcome = local < count ? classify(slot, id, t) : OUTCOME_NONE;
 
   if (gl_LocalInvocationIndex < 4u) group_culled[gl_LocalInvocationIndex] = 0u;
   barrier();

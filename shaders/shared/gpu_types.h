@@ -36,6 +36,9 @@ using glm::vec4;
 #define TS_SETUP_GROUP_SIZE 256
 // Workgroup size of the prefix-sum pass.
 #define TS_SCAN_GROUP_SIZE 256
+// Objects per workgroup of the level-of-detail passes (lod.comp, lod_offsets.comp): each
+// workgroup's triangle count is one entry of the TS_BINDING_LOD_SUMS buffer.
+#define TS_LOD_GROUP_SIZE 256
 // Workgroups of the clipping pass; its threads loop over the (usually short) clip list.
 #define TS_CLIP_GROUPS 16
 // Workgroups of the tile-counting pass; its threads loop over the bin entries.
@@ -77,7 +80,10 @@ using glm::vec4;
 #define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
 #define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
 #define TS_BINDING_UV1 26             // the second uv set (vec2 per vertex), when a material reads it
-#define TS_BINDING_COUNT 27
+#define TS_BINDING_LOD_LEVELS 27      // GpuLodLevel of every mesh's level-of-detail chain
+#define TS_BINDING_LOD_MESHES 28      // GpuLodMesh per Scene::meshes entry
+#define TS_BINDING_LOD_SUMS 29        // triangles per TS_LOD_GROUP_SIZE objects, then their scan
+#define TS_BINDING_COUNT 30
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
@@ -88,9 +94,10 @@ using glm::vec4;
 #define TS_SPEC_TEXTURE_MAPS 4  // maps the shader can sample (TS_MAP_* bits; all if generic)
 #define TS_SPEC_IBL 5           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
 #define TS_SPEC_UV1_MAPS 6      // maps that may read uv set 1 (TS_MAP_* bits; all if generic)
+#define TS_SPEC_LOD 7           // setup: the batch's triangle count is the level-of-detail pass's
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 7
+#define TS_SPEC_LIGHT_COUNT_BASE 8
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -121,7 +128,9 @@ struct GpuVertex {
 
 // One placed instance of a mesh. Objects are uploaded in a canonical order (see
 // compute/scene_upload.cpp) and their triangles numbered consecutively: triangle-instance id
-// `first_triangle + t` is triangle t of this object.
+// `first_triangle + t` is triangle t of this object. Under level of detail the lod passes
+// rewrite first_index, base_vertex, triangle_count and first_triangle every frame with the
+// chosen level's (from `mesh`'s chain, which they read and never write).
 struct GpuObject {
   mat4 model;          // object -> world
   mat4 normal_matrix;  // inverse transpose of model's upper 3x3 (in a mat4 for alignment)
@@ -132,7 +141,27 @@ struct GpuObject {
   uint first_triangle;
   uint mirrored;      // 1 if model's upper 3x3 has a negative determinant (is_mirroring, scene.h)
   uint double_sided;  // 1 if its material is double-sided: never culled by facing
-  uint pad2;
+  uint mesh;          // index of its mesh in Scene::meshes (its GpuLodMesh)
+};
+
+// One level of a mesh's level-of-detail chain (core/lod.h): its triangles in the index and
+// vertex buffers, and its object-space error.
+struct GpuLodLevel {
+  uint first_index;
+  uint base_vertex;
+  uint triangle_count;
+  float error;  // object-space distance, in the mesh's units (LodLevel::error)
+};
+
+// The chain of one mesh: levels first_level .. first_level + level_count - 1 of
+// TS_BINDING_LOD_LEVELS, finest first, and the object-space sphere around all of them.
+struct GpuLodMesh {
+  vec3 centre;
+  float radius;
+  uint first_level;
+  uint level_count;
+  uint pad0;
+  uint pad1;
 };
 
 // Metallic-roughness material (core/scene.h's Material, whose comments give ranges and units);
@@ -205,9 +234,11 @@ struct GpuFrame {
   uint environment;              // 1 if an environment lights the scene
   uint env_levels;               // levels of the prefiltered specular cube
   uint anisotropy;               // texture anisotropy (>= 1)
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  // Level of detail: a level is fine enough where error * (largest axis scale) * lod_scale
+  // <= the view depth of the near side of the object's bounding sphere (core/lod.h).
+  float lod_scale;  // lod_pixels_per_unit / lod_error_px
+  uint batch_count;       // batches of this frame (the lod_scan pass sizes each one's setup)
+  uint batch_triangles;   // triangle instances per batch (the last may hold fewer)
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
@@ -261,8 +292,9 @@ struct GpuCounters {
   uint culled_nonfinite;  // a vertex with NaN or Inf clip coordinates
   uint clipped;           // triangles that crossed the near plane or the guard band
   uint clip_list;         // entries in the clip list (== clipped unless it overflowed)
-  uint pad1;
-  uint pad2;
+  uint lod_triangles;     // level of detail: triangle instances of this batch
+  uint lod_total;         // level of detail, batch 0's slot: triangle instances of the frame
+  uvec4 setup_dispatch;   // level of detail: VkDispatchIndirectCommand for setup (xyz)
 };
 
 #ifdef __cplusplus
@@ -275,6 +307,12 @@ static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
 static_assert(offsetof(GpuObject, mirrored) == 148);
 static_assert(offsetof(GpuObject, double_sided) == 152);
+static_assert(offsetof(GpuObject, mesh) == 156);
+static_assert(sizeof(GpuLodLevel) == 16);
+static_assert(offsetof(GpuLodLevel, error) == 12);
+static_assert(sizeof(GpuLodMesh) == 32);
+static_assert(offsetof(GpuLodMesh, radius) == 12);
+static_assert(offsetof(GpuLodMesh, first_level) == 16);
 static_assert(sizeof(GpuMaterial) == 80);
 static_assert(offsetof(GpuMaterial, metallic) == 12);
 static_assert(offsetof(GpuMaterial, emissive) == 16);
@@ -316,13 +354,17 @@ static_assert(offsetof(GpuFrame, raster_capacity) == 220);
 static_assert(offsetof(GpuFrame, tile_entry_capacity) == 224);
 static_assert(offsetof(GpuFrame, env_levels) == 236);
 static_assert(offsetof(GpuFrame, anisotropy) == 240);
+static_assert(offsetof(GpuFrame, lod_scale) == 244);
+static_assert(offsetof(GpuFrame, batch_triangles) == 252);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
-static_assert(sizeof(GpuCounters) == 96);
+static_assert(sizeof(GpuCounters) == 112);
+static_assert(offsetof(GpuCounters, lod_triangles) == 88);
+static_assert(offsetof(GpuCounters, setup_dispatch) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
 static_assert(offsetof(GpuCounters, tiles_dispatch) == 32);
 static_assert(offsetof(GpuCounters, raster_tris) == 48);
