@@ -308,6 +308,11 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &v12;
   features.features.shaderInt64 = VK_TRUE;
+  VkPhysicalDeviceFeatures available{};
+  vkGetPhysicalDeviceFeatures(ctx->physical_device, &available);
+  ctx->multi_draw_indirect = available.multiDrawIndirect && available.drawIndirectFirstInstance;
+  features.features.multiDrawIndirect = ctx->multi_draw_indirect ? VK_TRUE : VK_FALSE;
+  features.features.drawIndirectFirstInstance = ctx->multi_draw_indirect ? VK_TRUE : VK_FALSE;
 
   std::vector<const char*> extensions;
   if (options.swapchain) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);

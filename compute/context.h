@@ -53,6 +53,9 @@ struct Context {
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
   uint32_t timestamp_valid_bits = 0;          // 0: the queue cannot write timestamps
+  // multiDrawIndirect and drawIndirectFirstInstance, enabled where the device has both (the
+  // hardware baseline's level of detail draws with them).
+  bool multi_draw_indirect = false;
   std::string driver;                         // driver name and version, e.g. "NVIDIA 580.159.04"
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
 

@@ -234,6 +234,8 @@ enum class Scale {
   tiles,                // per screen tile (plus `extra` elements)
   raster_capacity,      // per raster triangle the scratch buffers hold (grows on overflow)
   lod_groups,           // per TS_LOD_GROUP_SIZE objects of the scene
+  objects_if_lod_draws,  // per object once the hardware baseline drew with level of detail,
+                         // else 4 bytes
   tile_entry_capacity,  // per tile-list entry (grows on overflow)
   batches,              // per batch of the frame (GpuCounters slots)
 };
@@ -294,6 +296,8 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_LOD_LEVELS, kStorageBuffer, Source::scene},
     {TS_BINDING_LOD_MESHES, kStorageBuffer, Source::scene},
     {TS_BINDING_LOD_SUMS, kStorageBuffer, Source::sized, Scale::lod_groups, 4},
+    {TS_BINDING_LOD_DRAWS, kStorageBuffer, Source::sized, Scale::objects_if_lod_draws,
+     sizeof(VkDrawIndexedIndirectCommand), 0, Clear::never, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
 };
 
 constexpr bool binding_table_is_complete() {

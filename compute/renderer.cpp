@@ -356,6 +356,10 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
     case Scale::lod_groups:
       count = div_up(s.uploaded.objects.size(), TS_LOD_GROUP_SIZE);
       break;
+    case Scale::objects_if_lod_draws:
+      if (!s.lod_draws) return 4;
+      count = s.uploaded.objects.size();
+      break;
     case Scale::tile_entry_capacity:
       count = s.tile_entry_capacity;
       break;
@@ -848,7 +852,9 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
       case Stage::lod:
         // Not recorded at all without level of detail, so such frames are as before it.
         if (settings.lod == Lod::automatic && total > 0) {
-          record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
+          const gpu::GpuBatch none{};  // lod.comp reads flags
+          vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(none), &none);
+          record_dispatch(s, cmd, pass, none, settings);
           barrier_after(cmd, pass);
           mark(pass.pass);
         }
@@ -969,6 +975,14 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   check_frame(s, settings, "a frame outside render()");
   ensure_frame_resources(s, settings);
   init_capacities(s);
+  const bool lod = settings.lod == Lod::automatic && s.uploaded.triangle_count > 0;
+  if (lod) {
+    prepare_lod(s);
+    s.lod_draws = true;
+  } else {
+    restore_objects(s);
+  }
+  s.frame_batches = 0;  // lod_scan sizes no setup
   ensure_scratch_buffers(s, 1);
   if (s.descriptors_dirty) {
     renderer.update_descriptors();
@@ -987,7 +1001,30 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
   f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
   f.cull = s.options.cull;
+  f.lod = lod;
+  f.lod_draws = s.buffer(TS_BINDING_LOD_DRAWS).buffer;
   return f;
+}
+
+void RendererInternal::record_lod(Renderer& renderer, VkCommandBuffer cmd) {
+  Renderer::State& s = *renderer.s_;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set, 0,
+                          nullptr);
+  const gpu::GpuBatch draws{0, 0, 0, TS_BATCH_LOD_DRAWS};
+  vkCmdPushConstants(cmd, s.pipelines.layout, kShaderStages, 0, sizeof(draws), &draws);
+  FrameSettings lod;
+  lod.lod = Lod::automatic;
+  for (const PassInfo& pass : kPasses) {
+    if (pass.stage != Stage::lod) continue;
+    record_dispatch(s, cmd, pass, draws, lod);
+    compute_to_compute(cmd);
+  }
+  // The draws and the objects feed the graphics pipeline's indirect reads and vertex shader.
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                     VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+  s.objects_hold_lod = true;
 }
 
 void RendererInternal::record_precomputation(Renderer& renderer, VkCommandBuffer cmd,

@@ -30,6 +30,11 @@ class RendererInternal {
     std::span<const gpu::GpuObject> objects;  // the scene's objects in slot order (the GPU's)
     glm::vec3 background{0.0f};  // as the HDR image holds it: pre-exposed, clamped to 65504
     CullMode cull = CullMode::back;
+    /// Level of detail (FrameSettings::lod automatic, and the scene has triangles): record_lod
+    /// must run before drawing; it writes a VkDrawIndexedIndirectCommand per object slot into
+    /// `lod_draws` (indexed draws of one instance, first instance the slot).
+    bool lod = false;
+    VkBuffer lod_draws = VK_NULL_HANDLE;
   };
 
   /// Prepares a frame of `settings` as render() does, without recording any pass: checks the
@@ -41,6 +46,11 @@ class RendererInternal {
   /// does. The shared set must be bound at the compute bind point.
   static void record_precomputation(Renderer& renderer, VkCommandBuffer cmd,
                                     const FrameSettings& settings);
+
+  /// Records the level-of-detail passes (Frame::lod), which choose each object's level into
+  /// the objects and the draws of Frame::lod_draws, then a barrier making them visible to
+  /// indirect draws and vertex shaders. Binds the shared set at the compute bind point.
+  static void record_lod(Renderer& renderer, VkCommandBuffer cmd);
 
   /// Records the resolve pass (HDR image to display image; binds its pipeline and the shared
   /// set at the compute bind point), then a barrier making its writes visible to transfers.

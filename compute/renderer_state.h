@@ -39,6 +39,7 @@ struct Renderer::State {
   bool objects_hold_lod = false;     // the GPU's objects hold levels (the lod passes wrote them)
   uint64_t lod_triangles = 0;        // the last such frame's triangle instances (sizes batches)
   uint32_t frame_batches = 0;        // batches of the frame being recorded
+  bool lod_draws = false;            // the hardware baseline drew with level of detail
 
   // Every buffer of the shared set that the renderer owns (kBindings' Source::scene, ::sized
   // and ::frame_constants), by binding (TS_BINDING_*); the others stay empty.

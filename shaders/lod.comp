@@ -14,6 +14,8 @@ layout(local_size_x = TS_LOD_GROUP_SIZE) in;
 layout(set = 0, binding = TS_BINDING_LOD_LEVELS, std430) readonly buffer LodLevels { GpuLodLevel lod_levels[]; };
 layout(set = 0, binding = TS_BINDING_LOD_MESHES, std430) readonly buffer LodMeshes { GpuLodMesh lod_meshes[]; };
 layout(set = 0, binding = TS_BINDING_LOD_SUMS, std430) writeonly buffer LodSums { uint lod_sums[]; };
+// VkDrawIndexedIndirectCommand per object, for the hardware baseline (TS_BATCH_LOD_DRAWS).
+layout(set = 0, binding = TS_BINDING_LOD_DRAWS, std430) writeonly buffer LodDraws { uint lod_draws[]; };
 
 shared uint group_triangles;
 
@@ -45,6 +47,14 @@ void main() {
     objects[i].base_vertex = level.base_vertex;
     objects[i].triangle_count = level.triangle_count;
     triangles = level.triangle_count;
+    if ((batch.flags & TS_BATCH_LOD_DRAWS) != 0u) {
+      // index count, instance count, first index, vertex offset, first instance (the slot)
+      lod_draws[5u * i] = 3u * level.triangle_count;
+      lod_draws[5u * i + 1u] = 1u;
+      lod_draws[5u * i + 2u] = level.first_index;
+      lod_draws[5u * i + 3u] = level.base_vertex;
+      lod_draws[5u * i + 4u] = i;
+    }
   }
   if (gl_LocalInvocationIndex == 0u) group_triangles = 0u;
   barrier();

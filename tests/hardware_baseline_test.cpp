@@ -20,14 +20,15 @@ struct Compared {
 };
 
 Compared compare_paths(Context& ctx, const Scene& scene, uint32_t w, uint32_t h,
-                       Brdf brdf = Brdf::classic) {
+                       Brdf brdf = Brdf::classic, Lod lod = Lod::off) {
   Renderer renderer(ctx);
   renderer.set_scene(scene);
   FrameSettings fs;
   fs.width = w;
   fs.height = h;
   fs.brdf = brdf;
-  renderer.render(fs);
+  fs.lod = lod;
+  const FrameStats compute_stats = renderer.render(fs);
   const Image8 compute = renderer.read_ldr();
   const ImageF compute_hdr = renderer.read_hdr();
   // Qualified: this file's test fixture has the same name.
@@ -35,6 +36,10 @@ Compared compare_paths(Context& ctx, const Scene& scene, uint32_t w, uint32_t h,
   BaselineStats stats = baseline.render(fs);
   EXPECT_GE(stats.draws, 1u);
   const Image8 hardware = renderer.read_ldr();
+  // Under level of detail both paths drew the levels the lod passes chose: the same triangles.
+  if (lod == Lod::automatic) {
+    EXPECT_LT(compute_stats.triangles_submitted, compute_stats.triangles_without_lod);
+  }
   const ImageF hardware_hdr = renderer.read_hdr();
   Compared c;
   // Pixels that one path covers and the other does not (background exactly on one side only).
@@ -68,6 +73,14 @@ TEST_F(HardwareBaseline, DefaultSceneMatchesTheComputePath) {
   // Measured: 0 pixels differ in coverage, 8-bit values within 1 level (PSNR 81 dB).
   EXPECT_LE(c.ldr.max_abs_error, 2.0);
   EXPECT_LE(c.ldr.fraction_over, 1e-4);
+}
+
+TEST_F(HardwareBaseline, LevelsOfDetailMatchTheComputePath) {
+  for (const Scene& scene : {make_sphere_grid_scene(), make_bench_scene("grid", 300, 32, 1.0f)}) {
+    Compared c = compare_paths(context(), scene, 256, 256, Brdf::classic, Lod::automatic);
+    EXPECT_LE(c.pixels_differing_in_coverage, 10u);
+    EXPECT_LE(c.ldr.max_abs_error, 2.0);
+  }
 }
 
 TEST_F(HardwareBaseline, BenchmarkFamiliesMatchTheComputePath) {

@@ -117,6 +117,10 @@ void HardwareBaseline::ensure_targets(VkImageView hdr_view, uint64_t generation,
 BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const Context& ctx = ctx_;
   require_graphics_queue(ctx);
+  if (settings.lod == Lod::automatic && !ctx.multi_draw_indirect) {
+    throw Error("the hardware baseline's level of detail needs multiDrawIndirect and "
+                "drawIndirectFirstInstance, which this device lacks");
+  }
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
   // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2
@@ -156,21 +160,23 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
 
   // One instanced draw per run of consecutive object slots that share a mesh, mirroring and
   // double-sidedness (the canonical order sorts by mesh first, so each mesh is one run unless
-  // some of its objects are mirrored or differ in material sidedness).
+  // some of its objects are mirrored or differ in material sidedness). Under level of detail
+  // the run is one multi-draw of the indexed draws the lod pass wrote, one per object, each at
+  // its object's level.
   struct Draw {
-    uint32_t first_index, index_count, base_vertex, first_instance, instances, variant;
+    uint32_t first_index, index_count, base_vertex, first_instance, instances, variant, mesh;
   };
   std::vector<Draw> draws;
   const auto& objects = frame.objects;
   for (uint32_t slot = 0; slot < objects.size(); ++slot) {
     const gpu::GpuObject& o = objects[slot];
     const uint32_t variant = o.mirrored | o.double_sided << 1;
-    if (!draws.empty() && draws.back().first_index == o.first_index &&
-        draws.back().base_vertex == o.base_vertex && draws.back().variant == variant &&
+    if (!draws.empty() && draws.back().mesh == o.mesh && draws.back().variant == variant &&
         draws.back().first_instance + draws.back().instances == slot) {
       draws.back().instances++;
     } else {
-      draws.push_back({o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, variant});
+      draws.push_back(
+          {o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, variant, o.mesh});
     }
   }
 
@@ -188,6 +194,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
       vkCmdResetQueryPool(cmd, queries_, 0, 3);
       vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
     }
+    // Part of the timed frame, as the compute path's lod passes are.
+    if (frame.lod) RendererInternal::record_lod(renderer_, cmd);
     VkClearValue clears[2];
     clears[0].color = {{frame.background.r, frame.background.g, frame.background.b, 1.0f}};
     clears[1].depthStencil = {0.0f, 0};  // reverse depth: 0 is infinitely far
@@ -211,8 +219,15 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
         bound = pipelines[d.variant];
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
       }
-      vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),
-                       d.first_instance);
+      if (frame.lod) {
+        vkCmdDrawIndexedIndirect(cmd, frame.lod_draws,
+                                 VkDeviceSize(d.first_instance) *
+                                     sizeof(VkDrawIndexedIndirectCommand),
+                                 d.instances, sizeof(VkDrawIndexedIndirectCommand));
+      } else {
+        vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),
+                         d.first_instance);
+      }
     }
     vkCmdEndRenderPass(cmd);
     if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);

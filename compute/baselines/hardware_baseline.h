@@ -16,11 +16,12 @@ namespace tessera {
 
 struct BaselineStats {
   bool has_timestamps = false;
-  double render_pass_ms = 0.0;  // GPU time of the render pass (clear, draws)
+  double render_pass_ms = 0.0;  // GPU time of the level-of-detail passes (--lod auto) and
+                                // the render pass (clear, draws)
   double resolve_ms = 0.0;
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;
-  uint32_t draws = 0;  // one instanced draw per mesh
+  uint32_t draws = 0;  // one instanced draw (multi-draw under level of detail) per mesh run
 };
 
 class HardwareBaseline {

@@ -83,7 +83,11 @@ using glm::vec4;
 #define TS_BINDING_LOD_LEVELS 27      // GpuLodLevel of every mesh's level-of-detail chain
 #define TS_BINDING_LOD_MESHES 28      // GpuLodMesh per Scene::meshes entry
 #define TS_BINDING_LOD_SUMS 29        // triangles per TS_LOD_GROUP_SIZE objects, then their scan
-#define TS_BINDING_COUNT 30
+#define TS_BINDING_LOD_DRAWS 30       // VkDrawIndexedIndirectCommand per object (hardware baseline)
+#define TS_BINDING_COUNT 31
+
+// GpuBatch.flags
+#define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
 
 // Specialization constant ids.
 #define TS_SPEC_DEBUG_COVERAGE 0
@@ -267,7 +271,7 @@ struct GpuBatch {
   uint first_triangle;
   uint triangle_count;
   uint index;  // which GpuCounters slot this batch uses
-  uint pad;
+  uint flags;  // TS_BATCH_* bits
 };
 
 // A triangle after setup, clipped and snapped, ready to rasterize. 48 bytes.
