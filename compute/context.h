@@ -52,7 +52,7 @@ struct Context {
   VkCommandPool command_pool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
-  uint32_t timestamp_valid_bits = 0;          // 0: the queue cannot write timestamps
+  uint32_t timestamp_valid_bits = 0;  // 0: the queue cannot write timestamps
   // multiDrawIndirect and drawIndirectFirstInstance, enabled where the device has both (the
   // hardware baseline's level of detail draws with them).
   bool multi_draw_indirect = false;

@@ -228,16 +228,16 @@ enum class Source {
 
 /// What the size of a Source::sized buffer is a multiple of.
 enum class Scale {
-  fixed,                // `bytes` in all
-  pixels,               // per pixel of the frame
-  pixels_if_coverage,   // per pixel under RendererOptions::debug_coverage, else 4 bytes
-  tiles,                // per screen tile (plus `extra` elements)
-  raster_capacity,      // per raster triangle the scratch buffers hold (grows on overflow)
-  lod_groups,           // per TS_LOD_GROUP_SIZE objects of the scene
+  fixed,                 // `bytes` in all
+  pixels,                // per pixel of the frame
+  pixels_if_coverage,    // per pixel under RendererOptions::debug_coverage, else 4 bytes
+  tiles,                 // per screen tile (plus `extra` elements)
+  raster_capacity,       // per raster triangle the scratch buffers hold (grows on overflow)
+  lod_groups,            // per TS_LOD_GROUP_SIZE objects of the scene
   objects_if_lod_draws,  // per object once the hardware baseline drew with level of detail,
                          // else 4 bytes
-  tile_entry_capacity,  // per tile-list entry (grows on overflow)
-  batches,              // per batch of the frame (GpuCounters slots)
+  tile_entry_capacity,   // per tile-list entry (grows on overflow)
+  batches,               // per batch of the frame (GpuCounters slots)
 };
 
 /// When a Source::sized buffer is filled with `clear_value`.

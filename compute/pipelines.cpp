@@ -122,8 +122,8 @@ Pipelines create_pipelines(const Context& ctx) {
 
 void destroy_pipelines(const Context& ctx, Pipelines& p) {
   for (std::span<VkPipeline> list :
-       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage), std::span<VkPipeline>(p.lod),
-        std::span<VkPipeline>(p.pipelines)}) {
+       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage),
+        std::span<VkPipeline>(p.lod), std::span<VkPipeline>(p.pipelines)}) {
     for (VkPipeline pipeline : list) {
       if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
     }

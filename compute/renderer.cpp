@@ -168,7 +168,8 @@ template <typename T>
 void queue_tail_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& array, size_t from,
                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
   if (queue_reallocation(ctx, buffer, array, copies, stats, dirty) || from >= array.size()) return;
-  copies.push_back({buffer.buffer, from * sizeof(T), &array[from], (array.size() - from) * sizeof(T)});
+  copies.push_back(
+      {buffer.buffer, from * sizeof(T), &array[from], (array.size() - from) * sizeof(T)});
 }
 
 // Makes `buffer` hold `next`, given that it holds `previous`: reallocates if it is too small,
@@ -241,7 +242,8 @@ void prepare_lod(Renderer::State& s) {
   std::vector<PendingCopy> copies;
   UploadStats stats;
   bool& dirty = s.descriptors_dirty;
-  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), a.vertices, vertices, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), a.vertices, vertices, copies, stats,
+                    dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_INDICES), a.indices, indices, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_UV1), a.uv1s, uv1s, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), a.lod_levels, 0, copies, stats, dirty);
@@ -591,8 +593,9 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     if (lod) {
       s.objects_hold_lod = true;
       if (counters[0].lod_total == 0xFFFFFFFFu) {
-        throw Error("the levels of detail chosen make 2^32 or more triangle instances, more than "
-                    "Tessera can number: raise --lod-error");
+        throw Error(
+            "the levels of detail chosen make 2^32 or more triangle instances, more than "
+            "Tessera can number: raise --lod-error");
       }
       stats.triangles_submitted = counters[0].lod_total;
       if (counters[0].lod_total > uint64_t(batches) * s.batch_triangles) {
@@ -868,8 +871,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
           // Under level of detail setup reads its count from the GPU (lod_scan) instead.
           gpu::GpuBatch batch{
               uint32_t(first),
-              uint32_t(first < total ? std::min<uint64_t>(s.batch_triangles, total - first) : 0),
-              b, 0};
+              uint32_t(first < total ? std::min<uint64_t>(s.batch_triangles, total - first) : 0), b,
+              0};
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
           if constexpr (has_clear(Clear::per_batch)) {
             // The previous batch's passes read and wrote what is cleared.

@@ -53,10 +53,10 @@ struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
   std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches
   double gpu_total_ms = 0.0;
-  double cpu_record_submit_ms = 0.0;  // recording and submitting the final attempt
-  uint64_t triangles_submitted = 0;   // triangle instances set up (after the level of detail)
+  double cpu_record_submit_ms = 0.0;   // recording and submitting the final attempt
+  uint64_t triangles_submitted = 0;    // triangle instances set up (after the level of detail)
   uint64_t triangles_without_lod = 0;  // triangle instances of the meshes as they are
-  uint64_t raster_triangles = 0;      // after culling and clipping
+  uint64_t raster_triangles = 0;       // after culling and clipping
   uint64_t small_triangles = 0;
   uint64_t big_triangles = 0;
   uint64_t tile_entries = 0;

@@ -33,13 +33,14 @@ struct Renderer::State {
   EnvironmentGpu env;
 
   // Level of detail (FrameSettings::lod).
-  std::vector<Mesh> meshes;          // the scene's, for the chains a frame may ask for
-  std::vector<LodChain> lod_chains;  // the chains of the last scene that used them, reused by content
-  bool lod_uploaded = false;         // `uploaded` and the GPU hold this scene's chains
-  bool objects_hold_lod = false;     // the GPU's objects hold levels (the lod passes wrote them)
-  uint64_t lod_triangles = 0;        // the last such frame's triangle instances (sizes batches)
-  uint32_t frame_batches = 0;        // batches of the frame being recorded
-  bool lod_draws = false;            // the hardware baseline drew with level of detail
+  std::vector<Mesh> meshes;  // the scene's, for the chains a frame may ask for
+  std::vector<LodChain>
+      lod_chains;                 // the chains of the last scene that used them, reused by content
+  bool lod_uploaded = false;      // `uploaded` and the GPU hold this scene's chains
+  bool objects_hold_lod = false;  // the GPU's objects hold levels (the lod passes wrote them)
+  uint64_t lod_triangles = 0;     // the last such frame's triangle instances (sizes batches)
+  uint32_t frame_batches = 0;     // batches of the frame being recorded
+  bool lod_draws = false;         // the hardware baseline drew with level of detail
 
   // Every buffer of the shared set that the renderer owns (kBindings' Source::scene, ::sized
   // and ::frame_constants), by binding (TS_BINDING_*); the others stay empty.

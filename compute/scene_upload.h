@@ -27,7 +27,7 @@ struct GpuSceneArrays {
   /// Uv set 1 of every vertex (as `vertices`; zero where a mesh has none); empty unless a
   /// material reads set 1, so a scene without one uploads nothing for it.
   std::vector<glm::vec2> uv1s;
-  uint64_t triangle_count = 0;    // triangle instances over all objects
+  uint64_t triangle_count = 0;             // triangle instances over all objects
   std::vector<uint32_t> mesh_first_index;  // per Scene::meshes entry: its first index
   std::vector<uint32_t> mesh_base_vertex;  // and its first vertex
   /// Level of detail (append_lod_chains; empty until a frame asks for it).

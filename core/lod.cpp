@@ -100,10 +100,9 @@ LodChain simplified_chain(const Mesh& mesh, const std::shared_ptr<const Mesh>& b
   double previous_error = 0.0;
   while (previous >= 2) {
     float relative = 0.0f;
-    const size_t n = meshopt_simplify(out.data(), mesh.indices.data(), mesh.indices.size(),
-                                      positions, mesh.positions.size(), sizeof(glm::vec3),
-                                      previous / 2 * 3, std::numeric_limits<float>::max(), 0,
-                                      &relative);
+    const size_t n = meshopt_simplify(
+        out.data(), mesh.indices.data(), mesh.indices.size(), positions, mesh.positions.size(),
+        sizeof(glm::vec3), previous / 2 * 3, std::numeric_limits<float>::max(), 0, &relative);
     const size_t triangles = n / 3;
     // Stalled (locked borders, seams): a level that saves less than a tenth is not worth it.
     if (triangles == 0 || triangles * 10 > previous * 9) break;
@@ -177,9 +176,9 @@ uint32_t select_lod_level(const LodChain& chain, const glm::mat4& transform, con
   TESSERA_CHECK(!chain.levels.empty() && max_error_px > 0.0);
   const glm::dmat4 model(transform);
   const glm::dvec3 centre = glm::dvec3(model * glm::dvec4(chain.centre, 1.0));
-  const double scale = std::max({glm::length(glm::dvec3(model[0])),
-                                 glm::length(glm::dvec3(model[1])),
-                                 glm::length(glm::dvec3(model[2]))});
+  const double scale =
+      std::max({glm::length(glm::dvec3(model[0])), glm::length(glm::dvec3(model[1])),
+                glm::length(glm::dvec3(model[2]))});
   const glm::dvec3 forward =
       glm::normalize(glm::dvec3(camera.target) - glm::dvec3(camera.position));
   const double depth = glm::dot(centre - glm::dvec3(camera.position), forward);

@@ -49,7 +49,8 @@ struct LodChain {
 double uv_sphere_chord_error(uint32_t segments, uint32_t rings);
 
 /// Segment counts of the sphere levels (make_uv_sphere(s, s / 2)): 4 to 256.
-inline constexpr uint32_t kSphereLodSegments[] = {4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256};
+inline constexpr uint32_t kSphereLodSegments[] = {4,  6,  8,  12,  16,  24, 32,
+                                                  48, 64, 96, 128, 192, 256};
 
 /// Builds the chain of `mesh` (which must have triangles):
 ///  - a sphere (Mesh::analytic_sphere): the base mesh, with its chord error measured from its

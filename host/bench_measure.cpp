@@ -152,9 +152,9 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
                         : file  ? make_instanced_bench_scene(fixed, n, aspect)
                                 : make_bench_scene(a.scene, n, a.segments, aspect);
     // After the level of detail, which the compute path counts on the GPU.
-    uint64_t triangles =
-        fs.lod == Lod::off || renderer ? lod_triangle_count(scene, {}, FrameSettings{})
-                                       : lod_triangle_count(scene, build_lod_chains(scene), fs);
+    uint64_t triangles = fs.lod == Lod::off || renderer
+                             ? lod_triangle_count(scene, {}, FrameSettings{})
+                             : lod_triangle_count(scene, build_lod_chains(scene), fs);
     uint64_t pixels_shaded = 0;
     if (renderer) {
       renderer->set_scene(scene);  // uploaded once, outside the timed frames

@@ -59,7 +59,9 @@ TEST(LodChain, UvSphereChordErrorIsTheHandDerivedOneAndTheMeshes) {
     EXPECT_NEAR(measured_chord_error(make_uv_sphere(s, s / 2)), formula, 2e-6) << s;
     // (1 + cos(pi / s)) times the sagitta of the outline seen along the equator,
     // r (1 - cos(pi / s)), for odd s / 2: about twice it for fine spheres.
-    if (s >= 12) EXPECT_GT(formula, 1.9 * (1.0 - std::cos(kPi / s))) << s;
+    if (s >= 12) {
+      EXPECT_GT(formula, 1.9 * (1.0 - std::cos(kPi / s))) << s;
+    }
   }
   // Other ring counts too: the formula is not only for rings = segments / 2.
   EXPECT_NEAR(measured_chord_error(make_uv_sphere(12, 5)), uv_sphere_chord_error(12, 5), 2e-6);
@@ -368,8 +370,8 @@ TEST_F(Lod, PoppingAtALevelSwitchStaysWithinTheBound) {
       std::printf(
           "LOD popping: frame %d, %.3f m, %llu triangles, radius %.2f px: %zu pixels changed "
           "owner (outline %.0f px), 8-bit RMSE %.3f, max %.0f levels, %zu pixels over 8%s\n",
-          frame, distance, (unsigned long long)stats.triangles_submitted, radius_px, flips,
-          outline, d.rmse, d.max_abs_error, d.pixels_over, at_switch ? "  <- switch" : "");
+          frame, distance, (unsigned long long)stats.triangles_submitted, radius_px, flips, outline,
+          d.rmse, d.max_abs_error, d.pixels_over, at_switch ? "  <- switch" : "");
       // The band of pixel centres the outline sweeps: at most 1 px + the step's motion wide.
       const double motion = radius_px * step / distance;
       EXPECT_LE(double(flips), outline * (1.0 + motion) + 4.0) << "frame " << frame;

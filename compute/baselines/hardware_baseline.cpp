@@ -118,8 +118,9 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const Context& ctx = ctx_;
   require_graphics_queue(ctx);
   if (settings.lod == Lod::automatic && !ctx.multi_draw_indirect) {
-    throw Error("the hardware baseline's level of detail needs multiDrawIndirect and "
-                "drawIndirectFirstInstance, which this device lacks");
+    throw Error(
+        "the hardware baseline's level of detail needs multiDrawIndirect and "
+        "drawIndirectFirstInstance, which this device lacks");
   }
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
@@ -220,10 +221,10 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound);
       }
       if (frame.lod) {
-        vkCmdDrawIndexedIndirect(cmd, frame.lod_draws,
-                                 VkDeviceSize(d.first_instance) *
-                                     sizeof(VkDrawIndexedIndirectCommand),
-                                 d.instances, sizeof(VkDrawIndexedIndirectCommand));
+        vkCmdDrawIndexedIndirect(
+            cmd, frame.lod_draws,
+            VkDeviceSize(d.first_instance) * sizeof(VkDrawIndexedIndirectCommand), d.instances,
+            sizeof(VkDrawIndexedIndirectCommand));
       } else {
         vkCmdDrawIndexed(cmd, d.index_count, d.instances, d.first_index, int32_t(d.base_vertex),
                          d.first_instance);

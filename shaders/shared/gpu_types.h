@@ -79,11 +79,11 @@ using glm::vec4;
 #define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
 #define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
 #define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
-#define TS_BINDING_UV1 26             // the second uv set (vec2 per vertex), when a material reads it
-#define TS_BINDING_LOD_LEVELS 27      // GpuLodLevel of every mesh's level-of-detail chain
-#define TS_BINDING_LOD_MESHES 28      // GpuLodMesh per Scene::meshes entry
-#define TS_BINDING_LOD_SUMS 29        // triangles per TS_LOD_GROUP_SIZE objects, then their scan
-#define TS_BINDING_LOD_DRAWS 30       // VkDrawIndexedIndirectCommand per object (hardware baseline)
+#define TS_BINDING_UV1 26         // the second uv set (vec2 per vertex), when a material reads it
+#define TS_BINDING_LOD_LEVELS 27  // GpuLodLevel of every mesh's level-of-detail chain
+#define TS_BINDING_LOD_MESHES 28  // GpuLodMesh per Scene::meshes entry
+#define TS_BINDING_LOD_SUMS 29    // triangles per TS_LOD_GROUP_SIZE objects, then their scan
+#define TS_BINDING_LOD_DRAWS 30   // VkDrawIndexedIndirectCommand per object (hardware baseline)
 #define TS_BINDING_COUNT 31
 
 // GpuBatch.flags
@@ -240,9 +240,9 @@ struct GpuFrame {
   uint anisotropy;               // texture anisotropy (>= 1)
   // Level of detail: a level is fine enough where error * (largest axis scale) * lod_scale
   // <= the view depth of the near side of the object's bounding sphere (core/lod.h).
-  float lod_scale;  // lod_pixels_per_unit / lod_error_px
-  uint batch_count;       // batches of this frame (the lod_scan pass sizes each one's setup)
-  uint batch_triangles;   // triangle instances per batch (the last may hold fewer)
+  float lod_scale;       // lod_pixels_per_unit / lod_error_px
+  uint batch_count;      // batches of this frame (the lod_scan pass sizes each one's setup)
+  uint batch_triangles;  // triangle instances per batch (the last may hold fewer)
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
