@@ -68,6 +68,10 @@ TEST(Cli, ParsesEveryRenderOption) {
                                                "256",
                                                "--anisotropy",
                                                "8",
+                                               "--lod",
+                                               "auto",
+                                               "--lod-error",
+                                               "0.25",
                                                "--view",
                                                "uv"});
   ASSERT_EQ(line.command, Command::render);
@@ -91,6 +95,8 @@ TEST(Cli, ParsesEveryRenderOption) {
   EXPECT_EQ(a.env_options.irradiance_size, 16u);
   EXPECT_EQ(a.env_reference_samples, 256u);
   EXPECT_EQ(a.frame.max_anisotropy, 8u);
+  EXPECT_EQ(a.frame.lod, Lod::automatic);
+  EXPECT_FLOAT_EQ(a.frame.lod_error_px, 0.25f);
   EXPECT_EQ(a.frame.view, View::uv);
 }
 
@@ -191,6 +197,8 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"render", "--env-irradiance-size", "0"}, "--env-irradiance-size: expects"},
       {{"render", "--env-reference-samples", "x"}, "--env-reference-samples: expects"},
       {{"render", "--anisotropy", "17"}, "--anisotropy: expects a whole number from 1 to 16"},
+      {{"render", "--lod", "on"}, "--lod: expects off or auto"},
+      {{"bench", "--lod-error", "0"}, "--lod-error: expects a number from 0.001 to 1000"},
       {{"render", "--repeat", "0"}, "--repeat: expects a whole number from 1 to 1000"},
       {{"render", "--repeat", "1.5"}, "--repeat: expects a whole number"},
       {{"render", "--frobnicate"}, "unknown option '--frobnicate'"},
