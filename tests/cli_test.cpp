@@ -153,7 +153,8 @@ TEST(Cli, ReadmeQuotesTheHelpTexts) {
   for (const auto& args : {std::vector<std::string>{"--help"},
                            {"render", "--help"},
                            {"bench", "--help"},
-                           {"view", "--help"}}) {
+                           {"view", "--help"},
+                           {"tradeoff", "--help"}}) {
     std::string command = "$ tessera";
     for (const std::string& arg : args) command += " " + arg;
     EXPECT_NE(readme.find(command + "\n" + help_of(args)), std::string::npos)
