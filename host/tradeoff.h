@@ -54,6 +54,9 @@ struct TradeoffPoint {
   bool identical_to_default = false;  // the 8-bit image equals the knob's default setting's
   bool on_front = false;              // on the Pareto front of its knob (time, mean_relative)
   uint64_t triangles_rasterized = 0;
+  /// GPU time of the environment's precomputation (the first frame after set_scene only): what
+  /// the env-size and env-samples knobs cost, which the per-frame time does not show.
+  double precompute_ms = 0.0;
 };
 
 struct TradeoffResults {

@@ -24,7 +24,8 @@ nlohmann::json finite_or_null(double v) {
 void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
   std::printf("scene '%s', %ux%u, device '%s' (%s)\n", args.scene.c_str(), args.frame.width,
               args.frame.height, results.device.c_str(), results.driver.c_str());
-  std::printf("truth: %s (%.1f s)\n", results.truth.c_str(), results.truth_seconds);
+  std::printf("truth: %s (%.1f s of CPU wall time)\n", results.truth.c_str(),
+              results.truth_seconds);
   std::printf(
       "GPU ms: median of %u rounds x %u frames (min..max); errors against the truth: mean and\n"
       "99th percentile relative error of linear radiance over all pixels and over the interior\n"
@@ -36,6 +37,11 @@ void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& ar
     std::string marks;
     if (p.setting.is_default) marks += "default ";
     if (p.on_front) marks += "front ";
+    if (p.precompute_ms > 0) {
+      char buf[64];
+      std::snprintf(buf, sizeof(buf), "precompute %.3f ms ", p.precompute_ms);
+      marks += buf;
+    }
     if (p.setting.speed_only)
       marks +=
           p.identical_to_default ? "(image identical to default)" : "(IMAGE DIFFERS FROM DEFAULT)";
@@ -73,6 +79,7 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
                         {"max", p.gpu_ms.max},
                         {"frames", p.gpu_ms.count}}},
                       {"triangles_rasterized", p.triangles_rasterized},
+                      {"environment_precompute_ms", p.precompute_ms},
                       {"mean_relative_error", finite_or_null(p.error.mean_relative)},
                       {"interior_mean_relative_error", finite_or_null(p.interior_mean_relative)},
                       {"p99_relative_error", finite_or_null(p.error.p99_relative)},
