@@ -199,7 +199,7 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},
       {{"--verbose"}, "unknown option '--verbose'"},
-      {{}, "a command is required: render, bench, view, devices or scenes"},
+      {{}, "a command is required: render, bench, view, tradeoff, devices or scenes"},
       {{"view", "--vsync", "maybe"}, "--vsync: expects on or off, got 'maybe'"},
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
