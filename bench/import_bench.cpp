@@ -5,6 +5,11 @@
 // glTF: tinygltf alone (LoadBinaryFromFile, images decoded by its stb_image loader) against
 // import_gltf, on $TESSERA_GLB_BENCH_FILE (default the largest sample glb of Debian's assimp
 // models, 2CylinderEngine.glb).
+// Textures: a scene file with kBenchTextures PNG textures of kBenchTextureSide^2 texels (noise,
+// so that they compress as photographs do, not as flat colour), written once to $TMPDIR. Its
+// cases time decoding (load_scene_file) and mip building (flatten_scene, the CPU part of an
+// upload) on every core and on one thread (parallel_thread_limit), as wall time: the speed-up
+// of the parallel steps is the ratio of the two.
 // Each case also reports peak_MB, the process's peak resident memory (getrusage ru_maxrss; it
 // only grows, so run one case per process (--benchmark_filter) to read it for that case), and
 // added_peak_MB, the peak during the case above the resident memory at its start (the kernel's
@@ -25,7 +30,11 @@
 #include <tiny_obj_loader.h>
 
 #include "bench/large_obj.h"
+#include "compute/scene_upload.h"
+#include "core/image.h"
 #include "core/model_import.h"
+#include "core/parallel.h"
+#include "core/scene_file.h"
 
 namespace {
 
@@ -162,6 +171,97 @@ void BM_ImportGltf(benchmark::State& state) {
   set_counters(state, f, peak);
 }
 BENCHMARK(BM_ImportGltf)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+constexpr int kBenchTextures = 8;
+constexpr uint32_t kBenchTextureSide = 2048;
+
+// The textured scene's file: a plane per texture, each texture a base colour map.
+const std::string& texture_scene() {
+  static const std::string path = [] {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "tessera_bench_textures";
+    const std::filesystem::path scene = dir / "scene.json";
+    std::error_code ec;
+    if (std::filesystem::exists(scene, ec)) return scene.string();
+    std::filesystem::create_directories(dir);
+    std::string textures, materials, objects;
+    uint32_t state = 12345u;
+    for (int t = 0; t < kBenchTextures; ++t) {
+      tessera::Image8 image;
+      image.width = image.height = kBenchTextureSide;
+      image.pixels.resize(size_t(kBenchTextureSide) * kBenchTextureSide);
+      for (uint32_t y = 0; y < kBenchTextureSide; ++y) {
+        for (uint32_t x = 0; x < kBenchTextureSide; ++x) {
+          state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG: noise in low bits
+          const uint32_t noise = (state >> 24) & 31u;
+          image.at(x, y) = glm::u8vec4((x >> 3) + noise, (y >> 3) + noise, (t * 32) + noise, 255);
+        }
+      }
+      const std::string name = "t" + std::to_string(t);
+      tessera::write_png((dir / (name + ".png")).string(), image);
+      const std::string sep = t ? ",\n" : "";
+      textures +=
+          sep + R"({"name": ")" + name + R"(", "type": "file", "file": ")" + name + ".png\"}";
+      materials += sep + R"({"name": ")" + name + R"(", "base_color_map": ")" + name + "\"}";
+      objects += sep + R"({"mesh": "plane", "material": ")" + name + R"(", "translation": [)" +
+                 std::to_string(2 * t) + ", 0, 0]}";
+    }
+    std::ofstream(dir / "scene.json.part")
+        << "{\"version\": 1,\n\"textures\": [" << textures << "],\n\"materials\": [" << materials
+        << "],\n\"meshes\": [{\"name\": \"plane\", \"type\": \"plane\"}],\n\"objects\": ["
+        << objects << "]}\n";
+    std::filesystem::rename(dir / "scene.json.part", scene);
+    return scene.string();
+  }();
+  return path;
+}
+
+// state.range(0): parallel_thread_limit for the case (0: every core).
+struct ThreadLimit {
+  explicit ThreadLimit(const benchmark::State& state) {
+    tessera::parallel_thread_limit = unsigned(state.range(0));
+  }
+  ~ThreadLimit() { tessera::parallel_thread_limit = 0; }
+};
+
+void set_texture_counters(benchmark::State& state) {
+  state.counters["textures"] = kBenchTextures;
+  state.counters["texels/s"] =
+      benchmark::Counter(double(kBenchTextures) * kBenchTextureSide * kBenchTextureSide,
+                         benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_DecodeTextures(benchmark::State& state) {
+  const std::string& path = texture_scene();
+  const ThreadLimit limit(state);
+  for (auto _ : state) {
+    tessera::SceneFile file = tessera::load_scene_file(path);
+    benchmark::DoNotOptimize(file.scene.textures.data());
+  }
+  set_texture_counters(state);
+}
+BENCHMARK(BM_DecodeTextures)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_BuildMipChains(benchmark::State& state) {
+  const tessera::SceneFile file = tessera::load_scene_file(texture_scene());
+  const ThreadLimit limit(state);
+  for (auto _ : state) {
+    tessera::GpuSceneArrays arrays = tessera::flatten_scene(file.scene);
+    benchmark::DoNotOptimize(arrays.texels.data());
+  }
+  set_texture_counters(state);
+}
+BENCHMARK(BM_BuildMipChains)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 
