@@ -96,8 +96,14 @@ template <typename In, typename Out>
 void copy_typed(const unsigned char* bytes, uint64_t count, int components, uint64_t stride,
                 Out* out) {
   static_assert(std::is_same_v<In, Out> || sizeof(In) < sizeof(Out));
-  if (std::is_same_v<In, Out> && stride == sizeof(In) * components) {
-    std::memcpy(out, bytes, count * stride);
+  if (stride == sizeof(In) * components) {
+    if constexpr (std::is_same_v<In, Out>) {
+      std::memcpy(out, bytes, count * stride);
+    } else {
+      // One flat loop, which the compiler vectorizes (16-bit indices, mostly).
+      for (uint64_t i = 0; i < count * components; ++i)
+        out[i] = Out(load<In>(bytes + i * sizeof(In)));
+    }
     return;
   }
   for (uint64_t i = 0; i < count; ++i) {
