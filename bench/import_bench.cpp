@@ -21,6 +21,7 @@
 #include <sys/resource.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -28,6 +29,7 @@
 #include <benchmark/benchmark.h>
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
+#include <nlohmann/json.hpp>
 
 #include "bench/large_obj.h"
 #include "compute/scene_upload.h"
@@ -183,6 +185,24 @@ void BM_TinyGltfAlone(benchmark::State& state) {
   set_counters(state, f, peak);
 }
 BENCHMARK(BM_TinyGltfAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+// import_gltf's own parse of the document (nlohmann::json, before TinyGLTF parses it again),
+// which gives its errors their JSON paths: its share of import_gltf's time.
+void BM_GltfJsonParseAlone(benchmark::State& state) {
+  const BenchFile& f = glb_file();
+  std::ifstream in(f.path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);  // the JSON chunk's (glTF 2.0, 4.4)
+  const std::string text = bytes.substr(20, length);
+  const PeakScope peak;
+  for (auto _ : state) {
+    const nlohmann::json doc = nlohmann::json::parse(text);
+    benchmark::DoNotOptimize(&doc);
+  }
+  set_counters(state, f, peak);
+}
+BENCHMARK(BM_GltfJsonParseAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 void BM_ImportGltf(benchmark::State& state) {
   const BenchFile& f = glb_file();
