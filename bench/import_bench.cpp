@@ -9,7 +9,8 @@
 // so that they compress as photographs do, not as flat colour), written once to $TMPDIR. Its
 // cases time decoding (load_scene_file) and mip building (flatten_scene, the CPU part of an
 // upload) on every core and on one thread (parallel_thread_limit), as wall time: the speed-up
-// of the parallel steps is the ratio of the two.
+// of the parallel steps is the ratio of the two on an idle machine; caller_cpu_share shows how
+// evenly the work was divided whether or not the machine had cores free.
 // Each case also reports peak_MB, the process's peak resident memory (getrusage ru_maxrss; it
 // only grows, so run one case per process (--benchmark_filter) to read it for that case), and
 // added_peak_MB, the peak during the case above the resident memory at its start (the kernel's
@@ -19,6 +20,7 @@
 // the machine may be shared, so wall time would mislead.
 #include <malloc.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -267,7 +269,26 @@ struct ThreadLimit {
   ~ThreadLimit() { tessera::parallel_thread_limit = 0; }
 };
 
-void set_texture_counters(benchmark::State& state) {
+double cpu_seconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// The calling thread's share of the process's CPU time over a case: 1 when one thread did all
+// the work, 1 / cores when the work was divided evenly. Unlike the wall time, it does not
+// depend on whether the shared machine had a core free for the other threads.
+struct CallerShare {
+  double thread = cpu_seconds(CLOCK_THREAD_CPUTIME_ID);
+  double process = cpu_seconds(CLOCK_PROCESS_CPUTIME_ID);
+  double share() const {
+    return (cpu_seconds(CLOCK_THREAD_CPUTIME_ID) - thread) /
+           (cpu_seconds(CLOCK_PROCESS_CPUTIME_ID) - process);
+  }
+};
+
+void set_texture_counters(benchmark::State& state, const CallerShare& caller) {
+  state.counters["caller_cpu_share"] = caller.share();
   state.counters["textures"] = kBenchTextures;
   state.counters["texels/s"] =
       benchmark::Counter(double(kBenchTextures) * kBenchTextureSide * kBenchTextureSide,
@@ -277,11 +298,12 @@ void set_texture_counters(benchmark::State& state) {
 void BM_DecodeTextures(benchmark::State& state) {
   const std::string& path = texture_scene();
   const ThreadLimit limit(state);
+  const CallerShare caller;
   for (auto _ : state) {
     tessera::SceneFile file = tessera::load_scene_file(path);
     benchmark::DoNotOptimize(file.scene.textures.data());
   }
-  set_texture_counters(state);
+  set_texture_counters(state, caller);
 }
 BENCHMARK(BM_DecodeTextures)
     ->Arg(0)
@@ -294,11 +316,12 @@ BENCHMARK(BM_DecodeTextures)
 void BM_BuildMipChains(benchmark::State& state) {
   const tessera::SceneFile file = tessera::load_scene_file(texture_scene());
   const ThreadLimit limit(state);
+  const CallerShare caller;
   for (auto _ : state) {
     tessera::GpuSceneArrays arrays = tessera::flatten_scene(file.scene);
     benchmark::DoNotOptimize(arrays.texels.data());
   }
-  set_texture_counters(state);
+  set_texture_counters(state, caller);
 }
 BENCHMARK(BM_BuildMipChains)
     ->Arg(0)
