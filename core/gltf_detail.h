@@ -85,7 +85,6 @@ struct PrimitiveOptions {
   bool tangents = false;
   int tangent_set = 0;         // the uv set tangents are generated from (the normal map's)
   std::string material_where;  // the material's glTF path, for messages
-  bool flip_winding = false;   // for instances whose world transform mirrors
 };
 
 /// Converts meshes[mesh].primitives[primitive] (TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN,

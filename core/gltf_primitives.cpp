@@ -191,11 +191,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
                  " elements, not a multiple of 3 as TRIANGLES need");
   }
   mesh.indices = triangulate(prim.mode, std::move(vertices));
-  if (options.flip_winding) {
-    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-      std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-    }
-  }
 
   if (attribute("NORMAL") < 0) {
     make_flat(mesh);
@@ -242,11 +237,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     mesh.tangents =
         generate_tangents(mesh.positions, mesh.normals,
                           options.tangent_set == 1 ? mesh.uvs1 : mesh.uvs, mesh.indices);
-  }
-  // A mirroring transform M maps cross(n, t) to -M cross(n, t) (for orthogonal M), so the
-  // handedness that keeps the bitangent following the uvs changes sign.
-  if (options.flip_winding) {
-    for (glm::vec4& t : mesh.tangents) t.w = -t.w;
   }
   for (const char* ignored : {"COLOR_0", "JOINTS_0", "WEIGHTS_0"}) {
     if (attribute(ignored) >= 0) {

@@ -499,5 +499,46 @@ TEST_F(GltfRender, SecondUvSetMatchesTheReference) {
   EXPECT_GT(red_over_blue(set0, right), 4.0);
 }
 
+// A single-sided triangle under a node that mirrors it (scale -1 in x): its front face stays
+// its front (glTF 2.0, 3.7.4), so seen from +z it covers as many pixels as its unmirrored twin.
+// The importer once wound mirrored instances the other way on top of the renderer doing so
+// (is_mirroring), and such triangles were culled.
+TEST_F(GltfRender, MirroredNodeKeepsItsFrontFace) {
+  const auto triangle_under = [](const std::string& scale) {
+    const std::string text = R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0, "scale": )" +
+                             scale + R"(}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36,
+        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    Scene s = import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()),
+                                "triangle.gltf", ".")
+                  .scene;
+    s.camera.position = glm::vec3(0, 0.4f, 3);
+    s.camera.target = glm::vec3(0, 0.4f, 0);
+    s.ambient = glm::vec3(1.0f);
+    return s;
+  };
+  const auto covered = [](const std::vector<uint64_t>& visibility) {
+    return std::count_if(visibility.begin(), visibility.end(),
+                         [](uint64_t key) { return key != ~0ull; });
+  };
+  const Scene plain = triangle_under("[1, 1, 1]"), mirrored = triangle_under("[-1, 1, 1]");
+  const long long plain_pixels = covered(render(plain, 64, 64).visibility);
+  EXPECT_GT(plain_pixels, 200);
+  EXPECT_EQ(covered(render(mirrored, 64, 64).visibility), plain_pixels)
+      << "the mirrored triangle must show its front face, the mirror image of the plain one";
+  ReferenceSettings rs;
+  rs.frame.width = rs.frame.height = 64;
+  const ReferenceFrame ref = render_reference(mirrored, rs);
+  EXPECT_EQ(std::count_if(ref.owner.begin(), ref.owner.end(),
+                          [](uint32_t o) { return o != kNoTriangle; }),
+            plain_pixels);
+}
+
 }  // namespace
 }  // namespace tessera
