@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,7 +15,34 @@
 
 namespace tessera {
 
-/// One measured point of the sweep: a backend at an object count. Times are medians, in ms.
+/// When the untimed frames before a point's timed ones stop (`tessera bench --warmup`,
+/// `--warmup-ms`). With `ms` = 0: after `min_frames` frames. Otherwise after at least
+/// `min_frames` frames and `ms` of wall time after the first frame (which may compile
+/// pipelines), once the median frame time of the last `window`
+/// frames is within `tolerance` (relative) of the median of the `window` frames before them,
+/// or when `cap_factor` * `ms` of wall time have passed without that (then not stable).
+struct WarmupRule {
+  uint32_t min_frames = 2;
+  double ms = 500.0;
+  uint32_t window = 5;
+  double tolerance = 0.02;
+  double cap_factor = 4.0;
+};
+
+/// What a warm-up took: untimed frames, their wall time (ms), and whether the frame time had
+/// settled (false: stopped at the cap, or the rule asked for no settling, `ms` = 0).
+struct WarmupStats {
+  uint32_t frames = 0;
+  double ms = 0.0;
+  bool stable = false;
+};
+
+/// Renders untimed frames with `frame` (which renders one and returns its time in ms, the
+/// figure whose settling is watched) as `rule` says.
+WarmupStats warm_up(const std::function<double()>& frame, const WarmupRule& rule);
+
+/// One measured point of the sweep: a backend at an object count. Times are medians, in ms;
+/// with several runs (--runs), the median of the runs' medians.
 struct BenchRow {
   uint32_t objects = 0;
   std::string backend;
@@ -27,10 +55,16 @@ struct BenchRow {
   double total_ms = 0.0;         // GPU time (compute, hardware) or wall time (reference)
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
-  uint32_t frames = 0;
+  double min_ms = 0.0;  // the fastest and slowest timed frame (of every run)
+  double max_ms = 0.0;
+  std::vector<double> run_ms;  // each run's median total_ms, in run order
+  WarmupStats warmup;          // summed over the runs (stable: every run's was)
+  uint32_t frames = 0;         // timed frames per run
   uint32_t batches = 0;
   bool skipped = false;  // the reference, above --reference-max-triangles
   std::string note;
+  /// Run-to-run spread: (max - min) / median of the runs' medians, in percent (0 for one run).
+  double run_spread_percent() const;
   double triangles_per_second() const {
     return total_ms > 0 ? triangles_submitted / (total_ms * 1e-3) : 0.0;
   }
@@ -43,7 +77,8 @@ struct BenchResults {
   std::string driver;
 };
 
-/// Runs the sweep `args` describes. `ctx` is the device for the compute and hardware backends
+/// Runs the sweep `args` describes, `args.runs` times over (whole sweeps, one after the other),
+/// and merges the runs per point. `ctx` is the device for the compute and hardware backends
 /// (null when only the reference runs; it must outlive the call). Throws Error for a scene or
 /// size the renderer rejects.
 BenchResults measure_bench(Context* ctx, const BenchArgs& args);

@@ -110,6 +110,40 @@ TEST(BenchCli, InstancedCopiesFillGridCells) {
   EXPECT_EQ(s.lights.size(), 4u) << "content without lights gets the grid's four";
 }
 
+// The yardstick family against the formulas worked by hand: side = ceil(sqrt N),
+// centre (((i mod side) + 0.5) / side * 2 - 1) * 3, (((i div side) + 0.5) / side * 2 - 1) * 1.7,
+// radius 0.45 * 3.4 / side = 1.53 / side.
+TEST(BenchCli, YardstickLayoutIsTheMinimalProgramsLayout) {
+  struct Case {
+    uint32_t objects, i;
+    glm::vec3 centre;
+    float radius;
+  };
+  const Case cases[] = {
+      {1, 0, {0.0f, 0.0f, 0.0f}, 1.53f},           // side 1: the one cell's centre
+      {10, 0, {-2.25f, -1.275f, 0.0f}, 0.3825f},   // side 4: (0.25 - 1) * 3, (0.25 - 1) * 1.7
+      {10, 9, {-0.75f, 0.425f, 0.0f}, 0.3825f},    // column 1, row 2: (0.75 - 1) * 3, 0.25 * 1.7
+      {49, 24, {0.0f, 0.0f, 0.0f}, 1.53f / 7.0f},  // side 7: the middle cell (3, 3)
+      {49, 48, {18.0f / 7.0f, 10.2f / 7.0f, 0.0f}, 1.53f / 7.0f},  // (13/7 - 1) * 3, * 1.7
+  };
+  for (const Case& c : cases) {
+    const Scene s = make_bench_scene("yardstick", c.objects, 32, 16.0f / 9.0f);
+    ASSERT_EQ(s.objects.size(), c.objects);
+    EXPECT_EQ(s.meshes[0].triangle_count(), 960u);
+    const glm::mat4& m = s.objects[c.i].transform;
+    const glm::vec3 centre = glm::vec3(m * glm::vec4(0, 0, 0, 1));
+    const glm::vec3 east = glm::vec3(m * glm::vec4(1, 0, 0, 1));  // the unit sphere's +x pole
+    EXPECT_NEAR(glm::distance(centre, c.centre), 0.0f, 1e-5f) << c.objects << " " << c.i;
+    EXPECT_NEAR(glm::distance(east, c.centre + glm::vec3(c.radius, 0, 0)), 0.0f, 1e-5f)
+        << c.objects << " " << c.i;
+    EXPECT_EQ(s.camera.position, glm::vec3(0, 0, 3));
+    EXPECT_EQ(s.camera.target, glm::vec3(0));
+    EXPECT_NEAR(s.camera.vertical_fov, 3.14159265f / 3.0f, 1e-6f);
+    ASSERT_EQ(s.lights.size(), 4u);
+    EXPECT_EQ(s.lights[3].position, glm::vec3(4, -4, 4));
+  }
+}
+
 TEST(BenchCli, ParsesEveryOption) {
   const CommandLine line = parse_command_line({"bench",
                                                "--scene",
