@@ -385,12 +385,25 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
 }
 
+namespace {
+
+bool compensates(const FrameSettings& settings) {
+  return settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+}
+
+// The shading variant of the current scene for `settings` (with RendererOptions::
+// specialize_lights).
+ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settings) {
+  return {uint32_t(settings.brdf), compensates(settings),   s.uploaded.light_counts,
+          s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps};
+}
+
+}  // namespace
+
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
-  const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+  const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf), compensate,
-                         s.uploaded.light_counts, s.uploaded.texture_maps,
-                         s.env.source != nullptr, s.uploaded.uv1_maps};
+    const ShadeVariant v = shade_variant(s, settings);
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;
@@ -845,6 +858,13 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
   f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
   f.cull = s.options.cull;
+  // What shade_pipeline specializes the shading pass to; the generic pipelines' constants
+  // otherwise (kPipelines).
+  f.shading =
+      s.options.specialize_lights
+          ? shade_specialization(shade_variant(s, settings))
+          : Specialization{.brdf = uint32_t(settings.brdf),
+                           .energy_compensation = compensates(settings) ? VK_TRUE : VK_FALSE};
   return f;
 }
 

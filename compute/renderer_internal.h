@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "compute/gpu_memory.h"
+#include "compute/passes.h"
 #include "compute/renderer.h"
 #include "shaders/shared/gpu_types.h"
 
@@ -30,6 +31,10 @@ class RendererInternal {
     std::span<const gpu::GpuObject> objects;  // the scene's objects in slot order (the GPU's)
     glm::vec3 background{0.0f};  // as the HDR image holds it: pre-exposed, clamped to 65504
     CullMode cull = CullMode::back;
+    // The specialization constants of the compute path's shading pass for this frame: light
+    // counts, texture maps, environment, uv sets (or the generic pipeline's, without
+    // RendererOptions::specialize_lights), for shaders that include the same lighting code.
+    Specialization shading{};
   };
 
   /// Prepares a frame of `settings` as render() does, without recording any pass: checks the

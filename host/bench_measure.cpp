@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -222,39 +221,6 @@ std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs)
 }
 
 }  // namespace
-
-WarmupStats warm_up(const std::function<double()>& frame, const WarmupRule& rule) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  // The rule's clock starts after the first frame, which may compile pipelines for seconds.
-  auto settle_start = start;
-  auto elapsed_ms = [&] {
-    return std::chrono::duration<double, std::milli>(clock::now() - settle_start).count();
-  };
-  WarmupStats stats;
-  std::vector<double> times;
-  const size_t w = std::max<uint32_t>(rule.window, 1);
-  while (true) {
-    const bool enough_frames = times.size() >= rule.min_frames;
-    if (rule.ms <= 0.0 && enough_frames) break;
-    if (rule.ms > 0.0 && enough_frames && elapsed_ms() >= rule.ms) {
-      if (times.size() >= 2 * w) {
-        const double last = median({times.end() - w, times.end()});
-        const double before = median({times.end() - 2 * w, times.end() - w});
-        if (std::abs(last - before) <= rule.tolerance * last) {
-          stats.stable = true;
-          break;
-        }
-      }
-      if (elapsed_ms() >= rule.cap_factor * rule.ms) break;
-    }
-    times.push_back(frame());
-    if (times.size() == 1) settle_start = clock::now();
-  }
-  stats.frames = uint32_t(times.size());
-  stats.ms = std::chrono::duration<double, std::milli>(clock::now() - start).count();
-  return stats;
-}
 
 double BenchRow::run_spread_percent() const {
   if (run_ms.size() < 2 || total_ms <= 0) return 0.0;

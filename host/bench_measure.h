@@ -4,42 +4,16 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "compute/context.h"
 #include "compute/renderer.h"
+#include "core/warmup.h"
 #include "host/cli.h"
 
 namespace tessera {
-
-/// When the untimed frames before a point's timed ones stop (`tessera bench --warmup`,
-/// `--warmup-ms`). With `ms` = 0: after `min_frames` frames. Otherwise after at least
-/// `min_frames` frames and `ms` of wall time after the first frame (which may compile
-/// pipelines), once the median frame time of the last `window`
-/// frames is within `tolerance` (relative) of the median of the `window` frames before them,
-/// or when `cap_factor` * `ms` of wall time have passed without that (then not stable).
-struct WarmupRule {
-  uint32_t min_frames = 2;
-  double ms = 500.0;
-  uint32_t window = 5;
-  double tolerance = 0.02;
-  double cap_factor = 4.0;
-};
-
-/// What a warm-up took: untimed frames, their wall time (ms), and whether the frame time had
-/// settled (false: stopped at the cap, or the rule asked for no settling, `ms` = 0).
-struct WarmupStats {
-  uint32_t frames = 0;
-  double ms = 0.0;
-  bool stable = false;
-};
-
-/// Renders untimed frames with `frame` (which renders one and returns its time in ms, the
-/// figure whose settling is watched) as `rule` says.
-WarmupStats warm_up(const std::function<double()>& frame, const WarmupRule& rule);
 
 /// One measured point of the sweep: a backend at an object count. Times are medians, in ms;
 /// with several runs (--runs), the median of the runs' medians.

@@ -116,6 +116,7 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
 void write_bench_json(const std::string& path, const BenchResults& results, const BenchArgs& a,
                       const std::string& command_line) {
   std::ofstream f(path);
+  f.precision(9);  // sub-microsecond digits of milliseconds, for --compare and spreads
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));

@@ -175,12 +175,13 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->type_name("K")
       ->check(whole_number(0, 100));
   app.add_option("--warmup-ms", a.warmup_ms,
-                 "and for at least MS of wall time, then until\n"
-                 "the median of the last 5 frames is within 2 %\n"
-                 "of the 5 before (at most 4 MS), 0..600000\n"
-                 "(default 500; 0: --warmup frames only)")
+                 "and for at least MS ms after the first, then\n"
+                 "until the median of the last 5 frames is\n"
+                 "within 2 % of the 5 before (at most 4 x MS),\n"
+                 "0..600000 (default 500; 0: --warmup frames\n"
+                 "only)")
       ->type_name("MS")
-      ->check(CLI::Range(0.0, 600000.0));
+      ->check(whole_number(0, 600000));
   app.add_option("--runs", a.runs,
                  "repeat the whole sweep K times, 1..100\n"
                  "(default 1): figures are the medians of the\n"

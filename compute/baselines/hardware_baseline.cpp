@@ -5,6 +5,7 @@
 #include "compute/baselines/hardware_baseline.h"
 
 #include <chrono>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -17,10 +18,6 @@ namespace tessera {
 namespace {
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-// Brdf values are passed as the TS_SPEC_BRDF specialization constant.
-static_assert(uint32_t(Brdf::classic) == TS_BRDF_CLASSIC &&
-              uint32_t(Brdf::filament) == TS_BRDF_FILAMENT &&
-              uint32_t(Brdf::blinn_phong) == TS_BRDF_BLINN_PHONG);
 
 VkRenderPass create_pass(const Context& ctx) {
   VkAttachmentDescription a[2] = {};
@@ -81,7 +78,7 @@ HardwareBaseline::HardwareBaseline(Renderer& renderer)
 HardwareBaseline::~HardwareBaseline() {
   vkDeviceWaitIdle(ctx_.device);
   destroy_targets();
-  for (VkPipeline p : pipelines_) {
+  for (const auto& [key, p] : pipelines_) {
     if (p) vkDestroyPipeline(ctx_.device, p, nullptr);
   }
   if (pass_) vkDestroyRenderPass(ctx_.device, pass_, nullptr);
@@ -120,12 +117,15 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
   // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2
-  // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided.
+  // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided. Each is
+  // specialized as the compute path's shading pass is for this frame (frame.shading).
   VkPipeline pipelines[4];
   for (int v = 0; v < 4; ++v) {
     const int mirrored = v & 1, double_sided = v >> 1;
-    VkPipeline& pipeline =
-        pipelines_[size_t(settings.brdf) * 8 + (settings.energy_compensation ? 4 : 0) + v];
+    PipelineKey key{};
+    std::memcpy(key.data(), &frame.shading, sizeof(frame.shading));
+    key.back() = uint32_t(v);
+    VkPipeline& pipeline = pipelines_[key];
     if (!pipeline) {
       const GraphicsPipelineDesc desc{
           "baseline_shade_vert",
@@ -138,9 +138,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
           VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
           VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
               VK_COLOR_COMPONENT_A_BIT,
-          uint32_t(settings.brdf),
-          settings.energy_compensation ? VK_TRUE : VK_FALSE,
-          mirrored == 1};
+          mirrored == 1,
+          frame.shading};
       pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
     }
     pipelines[v] = pipeline;
@@ -226,11 +225,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     VK_CHECK(vkGetQueryPoolResults(ctx.device, queries_, 0, 3, sizeof(ticks), ticks,
                                    sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const uint64_t mask =
-        ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
-    const double ms = ctx.properties.limits.timestampPeriod * 1e-6;
-    stats.render_pass_ms = double(((ticks[1] & mask) - (ticks[0] & mask)) & mask) * ms;
-    stats.resolve_ms = double(((ticks[2] & mask) - (ticks[1] & mask)) & mask) * ms;
+    stats.render_pass_ms = timestamp_interval_ms(ctx, ticks[0], ticks[1]);
+    stats.resolve_ms = timestamp_interval_ms(ctx, ticks[1], ticks[2]);
     stats.gpu_total_ms = stats.render_pass_ms + stats.resolve_ms;
     stats.has_timestamps = true;
   }

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 
 #include <vulkan/vulkan.h>
 
@@ -43,8 +44,9 @@ class HardwareBaseline {
   Renderer& renderer_;
   const Context& ctx_;
   VkRenderPass pass_ = VK_NULL_HANDLE;
-  // Per Brdf variant, with and without compensation, for objects with and without mirroring.
-  std::array<VkPipeline, 24> pipelines_{};
+  // By the shading specialization's words and the variant (mirrored, double-sided).
+  using PipelineKey = std::array<uint32_t, sizeof(Specialization) / 4 + 1>;
+  std::map<PipelineKey, VkPipeline> pipelines_;
   Attachment depth_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
   uint64_t images_generation_ = 0;  // of the renderer's images the framebuffer holds
