@@ -337,9 +337,9 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   }
   destroy_image(ctx, s.hdr);
   destroy_image(ctx, s.ldr);
-  // A colour attachment too, for graphics pipelines drawing into it (the hardware baseline).
+  // A copy destination too: the hardware baseline copies its colour attachment into it.
   s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+                               VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
   s.images_generation++;
   s.descriptors_dirty = true;
@@ -849,7 +849,7 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   Frame f;
   f.set = s.set;
   f.layout = s.pipelines.layout;
-  f.hdr_view = s.hdr.view;
+  f.hdr_image = s.hdr.image;
   f.images_generation = s.images_generation;
   f.width = s.width;
   f.height = s.height;

@@ -23,8 +23,8 @@ class RendererInternal {
   struct Frame {
     VkDescriptorSet set = VK_NULL_HANDLE;      // the shared set (bindings of compute/passes.h)
     VkPipelineLayout layout = VK_NULL_HANDLE;  // its layout, push constants GpuBatch, kShaderStages
-    VkImageView hdr_view = VK_NULL_HANDLE;     // the HDR image (RGBA16F, layout GENERAL, also a
-                                               // colour attachment) the resolve pass reads
+    VkImage hdr_image = VK_NULL_HANDLE;        // the HDR image (RGBA16F, layout GENERAL, also a
+                                               // copy destination) the resolve pass reads
     uint64_t images_generation = 0;            // changes whenever the output images are recreated
     uint32_t width = 0, height = 0;
     VkBuffer indices = VK_NULL_HANDLE;        // the scene's uint32 indices (index-buffer usage too)
