@@ -484,6 +484,7 @@ void write_outputs(const Options& o, const Context& ctx, const std::vector<Point
     // The layout of `tessera bench --json` (scene, size, results[].objects / backend /
     // total_ms), so that `tessera bench --compare` reads it too.
     std::ofstream f(o.json);
+    f.precision(9);  // as tessera bench writes them
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
