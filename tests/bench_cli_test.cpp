@@ -150,6 +150,46 @@ TEST(BenchCli, YardstickLayoutIsTheMinimalProgramsLayout) {
   }
 }
 
+// The minimal graphics program computes its layout from the formulas itself, projects
+// with its own matrices and rasterizes on the device's graphics pipeline: the pixels it covers
+// must be those the compute path's visibility buffer holds for the yardstick family.
+TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
+#ifndef TESSERA_MINIMAL_GRAPHICS
+  GTEST_SKIP() << "built without bench/ (TESSERA_BUILD_BENCH off)";
+#else
+  const std::string minimal = test::output_path("minimal.json");
+  const std::string bench = test::output_path("yardstick.json");
+  const std::string common =
+      " --device lavapipe --objects 1,10,49 --size 96x54 --repeat 1 "
+      "--warmup 0 --warmup-ms 0 --json ";
+  std::string out;
+  // The validation layer prints to stdout when no messenger is installed.
+  ASSERT_EQ(test::run_command("VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation " +
+                                  std::string(TESSERA_MINIMAL_GRAPHICS) + common + minimal,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --validate --scene yardstick --backends compute "
+                                  "--quiet" +
+                                  common + bench,
+                              out),
+            0)
+      << out;
+  std::ifstream m(minimal), b(bench);
+  const nlohmann::json mj = nlohmann::json::parse(m), bj = nlohmann::json::parse(b);
+  ASSERT_EQ(mj["results"].size(), 3u);
+  ASSERT_EQ(bj["results"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(mj["results"][i]["objects"], bj["results"][i]["objects"]);
+    EXPECT_GT(int(mj["results"][i]["pixels_shaded"]), 1000);
+    EXPECT_EQ(mj["results"][i]["pixels_shaded"], bj["results"][i]["pixels_shaded"])
+        << "objects " << mj["results"][i]["objects"];
+  }
+#endif
+}
+
 TEST(BenchCli, ParsesEveryOption) {
   const CommandLine line = parse_command_line({"bench",
                                                "--scene",
