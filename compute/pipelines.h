@@ -5,6 +5,7 @@
 #include <array>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -49,6 +50,14 @@ struct ShadeVariant {
   uint32_t uv1_maps;
   auto operator<=>(const ShadeVariant&) const = default;
 };
+
+/// The specialization constants of `variant`'s shading pipeline (shared with the graphics
+/// baseline's fragment shader, which includes the same lighting code).
+Specialization shade_specialization(const ShadeVariant& variant);
+
+/// The map entries of every Specialization member to its constant id (TS_SPEC_*), for
+/// VkSpecializationInfo with a Specialization as data.
+std::vector<VkSpecializationMapEntry> specialization_entries();
 
 /// Builds the shading pipeline for `variant` with the layout of `pipelines`.
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,

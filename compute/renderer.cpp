@@ -337,9 +337,9 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   }
   destroy_image(ctx, s.hdr);
   destroy_image(ctx, s.ldr);
-  // A colour attachment too, for graphics pipelines drawing into it (the hardware baseline).
+  // A copy destination too: the hardware baseline copies its colour attachment into it.
   s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+                               VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
   s.images_generation++;
   s.descriptors_dirty = true;
@@ -385,12 +385,25 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
 }
 
+namespace {
+
+bool compensates(const FrameSettings& settings) {
+  return settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+}
+
+// The shading variant of the current scene for `settings` (with RendererOptions::
+// specialize_lights).
+ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settings) {
+  return {uint32_t(settings.brdf), compensates(settings),   s.uploaded.light_counts,
+          s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps};
+}
+
+}  // namespace
+
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
-  const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+  const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf), compensate,
-                         s.uploaded.light_counts, s.uploaded.texture_maps,
-                         s.env.source != nullptr, s.uploaded.uv1_maps};
+    const ShadeVariant v = shade_variant(s, settings);
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;
@@ -836,7 +849,7 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   Frame f;
   f.set = s.set;
   f.layout = s.pipelines.layout;
-  f.hdr_view = s.hdr.view;
+  f.hdr_image = s.hdr.image;
   f.images_generation = s.images_generation;
   f.width = s.width;
   f.height = s.height;
@@ -845,6 +858,13 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
   f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
   f.cull = s.options.cull;
+  // What shade_pipeline specializes the shading pass to; the generic pipelines' constants
+  // otherwise (kPipelines).
+  f.shading =
+      s.options.specialize_lights
+          ? shade_specialization(shade_variant(s, settings))
+          : Specialization{.brdf = uint32_t(settings.brdf),
+                           .energy_compensation = compensates(settings) ? VK_TRUE : VK_FALSE};
   return f;
 }
 

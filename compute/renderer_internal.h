@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "compute/gpu_memory.h"
+#include "compute/passes.h"
 #include "compute/renderer.h"
 #include "shaders/shared/gpu_types.h"
 
@@ -22,14 +23,18 @@ class RendererInternal {
   struct Frame {
     VkDescriptorSet set = VK_NULL_HANDLE;      // the shared set (bindings of compute/passes.h)
     VkPipelineLayout layout = VK_NULL_HANDLE;  // its layout, push constants GpuBatch, kShaderStages
-    VkImageView hdr_view = VK_NULL_HANDLE;     // the HDR image (RGBA16F, layout GENERAL, also a
-                                               // colour attachment) the resolve pass reads
+    VkImage hdr_image = VK_NULL_HANDLE;        // the HDR image (RGBA16F, layout GENERAL, also a
+                                               // copy destination) the resolve pass reads
     uint64_t images_generation = 0;            // changes whenever the output images are recreated
     uint32_t width = 0, height = 0;
     VkBuffer indices = VK_NULL_HANDLE;        // the scene's uint32 indices (index-buffer usage too)
     std::span<const gpu::GpuObject> objects;  // the scene's objects in slot order (the GPU's)
     glm::vec3 background{0.0f};  // as the HDR image holds it: pre-exposed, clamped to 65504
     CullMode cull = CullMode::back;
+    // The specialization constants of the compute path's shading pass for this frame: light
+    // counts, texture maps, environment, uv sets (or the generic pipeline's, without
+    // RendererOptions::specialize_lights), for shaders that include the same lighting code.
+    Specialization shading{};
   };
 
   /// Prepares a frame of `settings` as render() does, without recording any pass: checks the

@@ -157,10 +157,11 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
 
 void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--scene", a.scene,
-                 "grid (default), scatter or huge; or a\n"
-                 "built-in scene of `tessera scenes` (one point:\n"
-                 "its own object count); or a scene file or\n"
-                 ".gltf/.glb/.obj model placed N times on the\ngrid")
+                 "grid (default), scatter, huge or yardstick;\n"
+                 "or a built-in scene of `tessera scenes` (one\n"
+                 "point: its own object count); or a scene file\n"
+                 "or .gltf/.glb/.obj model placed N times on the\n"
+                 "grid")
       ->type_name("NAME")
       ->check(bench_scene());
   app.add_option("--objects", a.objects, "object counts, e.g. 1,10,100,1000 (default\n1,10,100)")
@@ -185,9 +186,28 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--repeat", a.repeat, "timed frames per point, 1..1000 (default 10)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
-  app.add_option("--warmup", a.warmup, "untimed frames first, 0..100 (default 2)")
+  app.add_option("--warmup", a.warmup, "untimed frames first, at least, 0..100\n(default 2)")
       ->type_name("K")
       ->check(whole_number(0, 100));
+  app.add_option("--warmup-ms", a.warmup_ms,
+                 "and for at least MS ms after the first, then\n"
+                 "until the median of the last 5 frames is\n"
+                 "within 2 % of the 5 before (at most 4 x MS),\n"
+                 "0..600000 (default 500; 0: --warmup frames\n"
+                 "only)")
+      ->type_name("MS")
+      ->check(whole_number(0, 600000));
+  app.add_option("--runs", a.runs,
+                 "repeat the whole sweep K times, 1..100\n"
+                 "(default 1): figures are the medians of the\n"
+                 "runs' medians, with their spread")
+      ->type_name("K")
+      ->check(whole_number(1, 100));
+  app.add_option("--compare", a.compare,
+                 "print each point's time against a saved\n"
+                 "--json run (old, new, new / old), matched by\n"
+                 "scene, objects, size and backend")
+      ->type_name("BASE.json");
   app.add_option("--reference-max-triangles", a.reference_max_triangles,
                  "skip the reference above T triangles\n(default 2000000)")
       ->type_name("T")
@@ -353,9 +373,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     sub->footer(exit_statuses);
   }
   bench->footer(
-      "Figures are medians of GPU timestamps over --repeat frames after --warmup\n"
-      "untimed ones: per pass for the compute path, around the render pass for\n"
-      "the hardware baseline; wall time for the CPU reference.\n" +
+      "Figures are medians of GPU timestamps over --repeat frames after the\n"
+      "warm-up (--warmup, --warmup-ms; its frames and time are reported), with\n"
+      "the fastest and slowest frame: per pass for the compute path, around the\n"
+      "render pass for the hardware baseline; wall time for the CPU reference.\n"
+      "With --runs K, the median of the K runs' medians and their spread,\n"
+      "(max - min) / median.\n" +
       exit_statuses);
 
   // CLI11 takes the arguments last first.

@@ -42,8 +42,11 @@ struct BenchArgs {
   uint32_t segments = 32;  // sphere tessellation: 960 triangles per sphere
   std::string device = "auto";
   std::vector<std::string> backends = {"compute", "hardware"};  // and/or "reference"
-  uint32_t repeat = 10;  // timed frames per point; figures are their medians
-  uint32_t warmup = 2;   // untimed frames first
+  uint32_t repeat = 10;    // timed frames per point; figures are their medians
+  uint32_t warmup = 2;     // untimed frames first, at least
+  double warmup_ms = 500;  // and at least this long, until the frame time settles (0: no)
+  uint32_t runs = 1;       // whole sweeps; figures are the medians of their medians
+  std::string compare;     // --compare: a saved --json run to print ratios against
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
   uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
   bool generic_shading = false;                  // RendererOptions::specialize_lights off
