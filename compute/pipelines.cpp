@@ -25,8 +25,6 @@ VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
   return create_shader_module(ctx, find_shader(name));
 }
 
-namespace {
-
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                    std::string_view shader, Specialization values) {
   VkShaderModule module = create_shader_module(ctx, shader);
@@ -39,7 +37,8 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
       {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)},
-      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)}};
+      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)},
+      {TS_SPEC_SAMPLES, offsetof(Specialization, samples), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -65,8 +64,6 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   return pipeline;
 }
 
-}  // namespace
-
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& v) {
   const Specialization values{.debug_coverage = VK_FALSE,
@@ -76,6 +73,7 @@ VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                               .texture_maps = v.texture_maps,
                               .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
                               .uv1_maps = v.uv1_maps,
+                              .samples = v.samples,
                               .light_counts = v.light_counts};
   return create_compute_pipeline(ctx, pipelines.layout, "shade", values);
 }

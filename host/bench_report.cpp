@@ -42,8 +42,10 @@ static std::string frames_phrase(uint32_t repeat) {
 }
 
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), %s\n",
-              a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area,
+  std::printf("scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, "
+              "device '%s' (%s), %s\n",
+              a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
+              a.segments, a.small_triangle_area,
               results.device.c_str(), results.driver.c_str(), frames_phrase(a.repeat).c_str());
   std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
               "rasterized", "ms", "triangles/s", "cpu ms");
@@ -92,7 +94,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"driver\": " << json_string(results.driver)
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
-    << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
+    << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
+    << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
     << ",\n  \"statistic\": \"median\",\n  \"results\": [";
   bool first = true;
@@ -125,7 +128,9 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
 void write_bench_chart(const std::string& path, const BenchResults& results, const BenchArgs& a) {
   ChartSpec spec;
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
-               std::to_string(a.height) + ", " + results.device + " (" + frames_phrase(a.repeat) +
+               std::to_string(a.height) +
+               (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") + ", " +
+               results.device + " (" + frames_phrase(a.repeat) +
                ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
