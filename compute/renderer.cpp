@@ -257,8 +257,9 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint3
   }
   const uint64_t vis_bytes = uint64_t(width) * height * samples * sizeof(uint64_t);
   if (vis_bytes > l.maxStorageBufferRange) {
-    throw Error("image size " + size + (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") +
-                " needs a " + std::to_string(vis_bytes >> 20) +
+    throw Error("image size " + size +
+                (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") + " needs a " +
+                std::to_string(vis_bytes >> 20) +
                 " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
                 std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
   }
@@ -397,9 +398,9 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf),     compensate,
-                         s.uploaded.light_counts,     s.uploaded.texture_maps,
-                         s.env.source != nullptr,     s.uploaded.uv1_maps,
+    const ShadeVariant v{uint32_t(settings.brdf), compensate,
+                         s.uploaded.light_counts, s.uploaded.texture_maps,
+                         s.env.source != nullptr, s.uploaded.uv1_maps,
                          settings.samples};
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);

@@ -895,8 +895,8 @@ void set_owner(const SampleHit* hits, size_t n, std::vector<std::pair<uint32_t, 
 // it holds every sample and else at the mean of its samples' positions; its radiance, exposed
 // and clamped to the fp16 maximum as the compute path stores it, is weighted by its share of
 // the samples.
-void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris,
-                      uint32_t y0, uint32_t y1, ReferenceFrame& f) {
+void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris, uint32_t y0,
+                      uint32_t y1, ReferenceFrame& f) {
   const FrameSettings& frame = c.settings.frame;
   const uint32_t w = frame.width, n = frame.samples;
   const SamplePattern pattern = msaa_pattern(n);
@@ -1060,9 +1060,8 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   }
   if (msaa) {
     f.sample_ids.assign(pixels * settings.frame.samples, kNoTriangle);
-    parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {
-      render_msaa_rows(context, tris, y0, y1, f);
-    });
+    parallel_rows(h, threads,
+                  [&](uint32_t y0, uint32_t y1) { render_msaa_rows(context, tris, y0, y1, f); });
     return f;
   }
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {

@@ -54,8 +54,9 @@ constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 /// means its samples: `hdr` is their mean (with anti-aliasing, the compute path's: each
 /// distinct triangle shaded once, docs/architecture.md "Anti-aliasing"), `owner` the id seen by
 /// most of them (ties to the lower id, empty samples count as kNoTriangle), `depth` the owner's
-/// largest near / w among them, `coverage` counts covered samples. An analytic sphere's id is its object's first triangle-instance id; its coverage
-/// counts each side a sample's ray meets that is not culled, as a closed mesh's would.
+/// largest near / w among them, `coverage` counts covered samples. An analytic sphere's id is its
+/// object's first triangle-instance id; its coverage counts each side a sample's ray meets that is
+/// not culled, as a closed mesh's would.
 struct ReferenceFrame {
   /// Linear HDR radiance in the model of the compute path: pre-exposed, clamped to 65504 (the
   /// fp16 maximum), divided by the exposure again; as float.

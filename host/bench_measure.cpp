@@ -158,7 +158,8 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
       // Pixels with at least one covered sample.
       const std::vector<uint64_t> keys = renderer->read_visibility();
       for (size_t p = 0; p < keys.size(); p += fs.samples)
-        pixels_shaded += *std::min_element(keys.begin() + p, keys.begin() + p + fs.samples) != ~0ull;
+        pixels_shaded +=
+            *std::min_element(keys.begin() + p, keys.begin() + p + fs.samples) != ~0ull;
     }
     for (const std::string& backend : a.backends) {
       progress.step("objects " + std::to_string(n) + ", " + backend);

@@ -42,11 +42,12 @@ static std::string frames_phrase(uint32_t repeat) {
 }
 
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf("scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, "
-              "device '%s' (%s), %s\n",
-              a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
-              a.segments, a.small_triangle_area,
-              results.device.c_str(), results.driver.c_str(), frames_phrase(a.repeat).c_str());
+  std::printf(
+      "scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, "
+      "device '%s' (%s), %s\n",
+      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments,
+      a.small_triangle_area, results.device.c_str(), results.driver.c_str(),
+      frames_phrase(a.repeat).c_str());
   std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
               "rasterized", "ms", "triangles/s", "cpu ms");
   for (const BenchRow& r : results.rows) {
@@ -130,8 +131,7 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
                std::to_string(a.height) +
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") + ", " +
-               results.device + " (" + frames_phrase(a.repeat) +
-               ")";
+               results.device + " (" + frames_phrase(a.repeat) + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
   for (const std::string& backend : a.backends) {

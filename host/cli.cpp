@@ -334,7 +334,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.brdf_given = render->count("--brdf") > 0;
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
-  const bool hardware = std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
+  const bool hardware =
+      std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
   if (b.samples > 1 && hardware) {
     if (bench->count("--backends") > 0) {
       throw UsageError("--samples " + std::to_string(b.samples) +

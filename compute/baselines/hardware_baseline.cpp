@@ -119,7 +119,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   require_graphics_queue(ctx);
   if (settings.samples != 1) {
     throw Error("the hardware baseline renders 1 sample per pixel, not " +
-                std::to_string(settings.samples) + " (--samples applies to the compute path and "
+                std::to_string(settings.samples) +
+                " (--samples applies to the compute path and "
                 "the reference)");
   }
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);

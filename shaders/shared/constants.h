@@ -23,9 +23,8 @@
 #define TS_MAX_SAMPLES 16
 #define TS_SAMPLES_1(P) P(8, 8)
 #define TS_SAMPLES_4(P) P(6, 2), P(14, 6), P(2, 10), P(10, 14)
-#define TS_SAMPLES_8(P) \
-  P(9, 5), P(7, 11), P(13, 9), P(5, 3), P(3, 13), P(1, 7), P(11, 15), P(15, 1)
-#define TS_SAMPLES_16(P)                                                                     \
+#define TS_SAMPLES_8(P) P(9, 5), P(7, 11), P(13, 9), P(5, 3), P(3, 13), P(1, 7), P(11, 15), P(15, 1)
+#define TS_SAMPLES_16(P)                                                                   \
   P(9, 9), P(7, 5), P(5, 10), P(12, 7), P(3, 6), P(10, 13), P(13, 11), P(11, 3), P(6, 14), \
       P(8, 1), P(4, 2), P(2, 12), P(0, 8), P(15, 4), P(14, 15), P(1, 0)
 // Snapped coordinates stay inside +-TS_GUARD_BAND_PX so that edge products fit easily in int64
