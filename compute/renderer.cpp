@@ -259,7 +259,7 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint3
   if (vis_bytes > l.maxStorageBufferRange) {
     throw Error("image size " + size +
                 (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") + " needs a " +
-                std::to_string(vis_bytes >> 20) +
+                std::to_string((vis_bytes + (1u << 20) - 1) >> 20) +
                 " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
                 std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
   }

@@ -1,11 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Shading: one thread per pixel. Reads the visibility buffer, rebuilds the visible triangle
-// (with several samples per pixel, each distinct one: resolve_samples)
 // in world space, intersects the pixel's camera ray with it for perspective-correct
 // barycentrics and texture footprints, applies the material's texture maps, and evaluates the
 // shading model (lighting.glsl) into linear HDR. Empty pixels get the background: the
-// environment along the pixel's ray, or the scene's background colour.
+// environment along the pixel's ray, or the scene's background colour. With several samples
+// per pixel, each distinct triangle among them is shaded once (resolve_samples).
 #include "bindings.glsl"
 #include "material.glsl"
 #include "lighting.glsl"
@@ -19,7 +19,6 @@ vec3 camera_ray_at(vec2 pixel_point) {
   vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
   return normalize(far_point.xyz / far_point.w - frame.camera_position);
 }
-
 
 // Unclamped barycentrics of the ray's hit on the triangle's plane, for texture footprints;
 // false if the ray is parallel to the plane.
