@@ -34,7 +34,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_LIGHTS_SPECIALIZED, offsetof(Specialization, lights_specialized), sizeof(VkBool32)},
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)},
-      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)}};
+      {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)},
+      {TS_SPEC_SAMPLES, offsetof(Specialization, samples), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -54,10 +55,9 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .texture_maps = v.texture_maps,
           .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
           .uv1_maps = v.uv1_maps,
+          .samples = v.samples,
           .light_counts = v.light_counts};
 }
-
-namespace {
 
 VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                    std::string_view shader, Specialization values) {
@@ -79,8 +79,6 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   vk_check(result, ("vkCreateComputePipelines(" + std::string(shader) + ")").c_str());
   return pipeline;
 }
-
-}  // namespace
 
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& v) {

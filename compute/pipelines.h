@@ -48,6 +48,7 @@ struct ShadeVariant {
   uint32_t texture_maps;
   bool ibl;
   uint32_t uv1_maps;
+  uint32_t samples = 1;  // per pixel
   auto operator<=>(const ShadeVariant&) const = default;
 };
 
@@ -58,6 +59,11 @@ Specialization shade_specialization(const ShadeVariant& variant);
 /// The map entries of every Specialization member to its constant id (TS_SPEC_*), for
 /// VkSpecializationInfo with a Specialization as data.
 std::vector<VkSpecializationMapEntry> specialization_entries();
+
+/// A compute pipeline of the embedded shader `shader` with the layout `layout`, specialized to
+/// `values`. Throws Error (through vk_check) if the driver cannot build it.
+VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
+                                   std::string_view shader, Specialization values);
 
 /// Builds the shading pipeline for `variant` with the layout of `pipelines`.
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,

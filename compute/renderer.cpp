@@ -129,6 +129,8 @@ Renderer::~Renderer() {
   destroy_environment_gpu(ctx, s_->env);
   for (auto& [variant, pipeline] : s_->shade_variants)
     vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  for (auto& [key, pipeline] : s_->sampled_pipelines)
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
   destroy_image(ctx, s_->hdr);
   destroy_image(ctx, s_->ldr);
   if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
@@ -244,7 +246,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
 
 namespace {
 
-void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
+void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples) {
   const VkPhysicalDeviceLimits& l = ctx.properties.limits;
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width == 0 || height == 0) throw Error("image size " + size + " is empty");
@@ -253,9 +255,11 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
     throw Error("image size " + size + " is over the largest side of " + std::to_string(max_side) +
                 " px");
   }
-  const uint64_t vis_bytes = uint64_t(width) * height * sizeof(uint64_t);
+  const uint64_t vis_bytes = uint64_t(width) * height * samples * sizeof(uint64_t);
   if (vis_bytes > l.maxStorageBufferRange) {
-    throw Error("image size " + size + " needs a " + std::to_string(vis_bytes >> 20) +
+    throw Error("image size " + size +
+                (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") + " needs a " +
+                std::to_string((vis_bytes + (1u << 20) - 1) >> 20) +
                 " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
                 std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
   }
@@ -270,6 +274,9 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
       break;
     case Scale::pixels:
       count = uint64_t(s.width) * s.height;
+      break;
+    case Scale::samples:
+      count = uint64_t(s.width) * s.height * s.samples;
       break;
     case Scale::pixels_if_coverage:
       if (!s.options.debug_coverage) return 4;
@@ -294,7 +301,8 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
 namespace {
 
 bool sized_by_frame(Scale scale) {
-  return scale == Scale::pixels || scale == Scale::pixels_if_coverage || scale == Scale::tiles;
+  return scale == Scale::pixels || scale == Scale::samples || scale == Scale::pixels_if_coverage ||
+         scale == Scale::tiles;
 }
 
 // Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
@@ -322,10 +330,12 @@ constexpr bool has_clear(Clear when) {
 
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
-  check_frame_size(ctx, settings.width, settings.height);
-  if (settings.width == s.width && settings.height == s.height) return false;
+  check_frame_size(ctx, settings.width, settings.height, settings.samples);
+  if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples)
+    return false;
   s.width = settings.width;
   s.height = settings.height;
+  s.samples = settings.samples;
   s.tiles_x = div_up(s.width, TS_TILE_SIZE);
   s.tiles_y = div_up(s.height, TS_TILE_SIZE);
   for (const BindingInfo& b : kBindings) {
@@ -395,7 +405,8 @@ bool compensates(const FrameSettings& settings) {
 // specialize_lights).
 ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settings) {
   return {uint32_t(settings.brdf), compensates(settings),   s.uploaded.light_counts,
-          s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps};
+          s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps,
+          settings.samples};
 }
 
 }  // namespace
@@ -408,17 +419,32 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;
   }
+  Pipeline generic = Pipeline::shade_classic;
   switch (settings.brdf) {
     case Brdf::classic:
-      return s
-          .pipelines[compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic];
+      generic = compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic;
+      break;
     case Brdf::filament:
-      return s
-          .pipelines[compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament];
+      generic = compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament;
+      break;
     case Brdf::blinn_phong:
-      return s.pipelines[Pipeline::shade_blinn_phong];
+      generic = Pipeline::shade_blinn_phong;
+      break;
   }
-  return s.pipelines[Pipeline::shade_classic];
+  if (settings.samples == 1) return s.pipelines[generic];
+  return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader,
+                          kPipelines[size_t(generic)].spec, settings.samples);
+}
+
+VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader,
+                            Specialization spec, uint32_t samples) {
+  auto [it, inserted] = s.sampled_pipelines.try_emplace(
+      std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE), VK_NULL_HANDLE);
+  if (inserted) {
+    spec.samples = samples;
+    it->second = create_compute_pipeline(s.ctx, s.pipelines.layout, shader, spec);
+  }
+  return it->second;
 }
 
 namespace {
@@ -454,6 +480,7 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
   if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
     throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
   }
+  validate_samples(settings.samples);
   if (settings.max_anisotropy < 1 || settings.max_anisotropy > 16) {
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
@@ -651,6 +678,12 @@ namespace {
 
 // The pipeline `pass` binds this frame.
 VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
+  if (settings.samples > 1 && pass.variants != Variants::shading) {
+    Specialization spec = pass.spec;
+    if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
+      spec.debug_coverage = VK_TRUE;
+    return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
+  }
   switch (pass.variants) {
     case Variants::plain:
       break;
@@ -804,13 +837,15 @@ Image8 Renderer::read_ldr() const {
 std::vector<uint64_t> Renderer::read_visibility() const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE);
-  return download_buffer<uint64_t>(s_->ctx, visibility, uint64_t(s_->width) * s_->height);
+  return download_buffer<uint64_t>(s_->ctx, visibility,
+                                   uint64_t(s_->width) * s_->height * s_->samples);
 }
 
 uint64_t Renderer::read_visibility_at(uint32_t x, uint32_t y) const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE && x < s_->width && y < s_->height);
-  return download_buffer<uint64_t>(s_->ctx, visibility, 1, uint64_t(y) * s_->width + x)[0];
+  return download_buffer<uint64_t>(s_->ctx, visibility, 1,
+                                   (uint64_t(y) * s_->width + x) * s_->samples)[0];
 }
 
 std::vector<uint32_t> Renderer::read_coverage() const {

@@ -91,13 +91,15 @@ class Renderer {
   /// cannot handle or when no scene was set.
   FrameStats render(const FrameSettings& settings);
 
-  /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage.
+  /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts
+  /// covered samples per pixel. read_visibility holds FrameSettings::samples keys per pixel,
+  /// row-major, each pixel's samples together in the order of their TS_SAMPLES_* positions.
   ImageF read_hdr() const;
   Image8 read_ldr() const;
   std::vector<uint64_t> read_visibility() const;
   std::vector<uint32_t> read_coverage() const;
   /// The last frame's visibility key at pixel (x, y) (< the frame's size; TS_VIS_EMPTY where
-  /// no triangle covers it): an 8-byte read-back, for picking.
+  /// no triangle covers it; its first sample with several): an 8-byte read-back, for picking.
   uint64_t read_visibility_at(uint32_t x, uint32_t y) const;
 
   /// The DFG tables (classic, then filament; TS_DFG_SIZE^2 each, rows by roughness): x the

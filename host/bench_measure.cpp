@@ -139,6 +139,7 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
   FrameSettings fs;
   fs.width = a.width;
   fs.height = a.height;
+  fs.samples = a.samples;
   const float aspect = float(a.width) / float(a.height);
 
   // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
@@ -164,7 +165,11 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
     if (renderer) {
       renderer->set_scene(scene);  // uploaded once, outside the timed frames
       renderer->render(fs);
-      for (uint64_t key : renderer->read_visibility()) pixels_shaded += key != ~0ull;
+      // Pixels with at least one covered sample.
+      const std::vector<uint64_t> keys = renderer->read_visibility();
+      for (size_t p = 0; p < keys.size(); p += fs.samples)
+        pixels_shaded +=
+            *std::min_element(keys.begin() + p, keys.begin() + p + fs.samples) != ~0ull;
     }
     for (const std::string& backend : a.backends) {
       progress.step(run_label + "objects " + std::to_string(n) + ", " + backend);

@@ -64,12 +64,19 @@ static std::string warmup_text(const BenchRow& r, const BenchArgs& a) {
 }
 
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s),\n%s\n",
-              a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area,
-              results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
-  std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
-              "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
-              "cpu ms", "warm-up");
+  std::printf(
+      "scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, device "
+      "'%s' (%s),
+          % s ",
+            a.scene.c_str(),
+      a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments, a.small_triangle_area,
+      results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
+  std::printf(
+      "%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s
+      ", " objects ", " backend
+      ",
+      "triangles",
+      "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s", "cpu ms", "warm-up");
   for (const BenchRow& r : results.rows) {
     if (r.skipped) {
       std::printf("%9u %9s %10s  skipped (over --reference-max-triangles)\n", r.objects,
@@ -124,7 +131,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"driver\": " << json_string(results.driver)
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
-    << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
+    << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
+    << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
     << ",\n  \"runs\": " << a.runs << ",\n  \"warmup\": {\"min_frames\": " << a.warmup
     << ", \"min_ms\": " << a.warmup_ms << "},\n  \"statistic\": \"median\",\n  \"results\": [";
@@ -164,7 +172,9 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
 void write_bench_chart(const std::string& path, const BenchResults& results, const BenchArgs& a) {
   ChartSpec spec;
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
-               std::to_string(a.height) + ", " + results.device + " (" + frames_phrase(a.repeat) +
+               std::to_string(a.height) +
+               (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") + ", " +
+               results.device + " (" + frames_phrase(a.repeat) +
                (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";

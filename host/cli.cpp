@@ -32,6 +32,18 @@ CLI::Validator bench_scene() {
   });
 }
 
+// --samples: visibility samples per pixel (FrameSettings::samples).
+CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& help) {
+  return app.add_option("--samples", samples, help)
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        const size_t digits = text.find_first_not_of("0123456789");
+        if (text.empty() || digits != std::string::npos || text.size() > 9)
+          throw Error("expects 1, 4, 8 or 16 samples per pixel, got '" + text + "'");
+        validate_samples(uint32_t(std::stoul(text)));
+      }));
+}
+
 CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {
   auto set = [&width, &height](const std::string& text) {
     std::tie(width, height) = read_size(text);
@@ -131,6 +143,10 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "texture filtering: 1 trilinear (default),\n2..16 anisotropic")
       ->type_name("N")
       ->check(whole_number(1, 16));
+  add_samples(app, a.frame.samples,
+              "anti-aliasing: visibility samples per pixel,\n"
+              "1 (default), 4, 8 or 16; each triangle in a\n"
+              "pixel is shaded once, weighted by its samples");
   add_choice(app, "--view", a.frame.view,
              {{"shaded", View::shaded},
               {"normal", View::normal},
@@ -170,6 +186,10 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->allow_extra_args(false)
       ->check(whole_number(1, 100'000'000));
   add_size(app, a.width, a.height, "image size, each side 1..16384 (default\n512x512)");
+  add_samples(app, a.samples,
+              "anti-aliasing samples per pixel, 1 (default),\n"
+              "4, 8 or 16; compute and reference backends\n"
+              "only (the default backends are then compute)");
   app.add_option("--segments", a.segments,
                  "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
       ->type_name("S")
@@ -402,6 +422,18 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.tonemap_given = render->count("--tonemap") > 0;
   r.brdf_given = render->count("--brdf") > 0;
   line.view.size_given = view->count("--size") > 0;
+  BenchArgs& b = line.bench;
+  const bool hardware =
+      std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
+  if (b.samples > 1 && hardware) {
+    if (bench->count("--backends") > 0) {
+      throw UsageError("--samples " + std::to_string(b.samples) +
+                           ": the hardware backend renders 1 sample per pixel; leave it out of "
+                           "--backends",
+                       help_command);
+    }
+    b.backends = {"compute"};
+  }
   line.tradeoff.size_given = tradeoff->count("--size") > 0;
   reject_extras(app, help_command);
   line.command = render->parsed()     ? Command::render

@@ -318,5 +318,23 @@ TEST(Cli, RenderReportsTheFirstFrameApartAndCountsTheTimedOnes) {
   EXPECT_EQ(count_of(out, "CPU time, median of 2 frames:"), 1u) << out;
 }
 
+TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
+  EXPECT_EQ(parse_command_line({"render", "--samples", "8"}).render.frame.samples, 8u);
+  EXPECT_EQ(parse_command_line({"render"}).render.frame.samples, 1u);
+  const CommandLine bench = parse_command_line({"bench", "--samples", "4"});
+  EXPECT_EQ(bench.bench.samples, 4u);
+  EXPECT_EQ(bench.bench.backends, std::vector<std::string>{"compute"});  // no hardware MSAA
+  for (const std::string bad : {"3", "0", "32", "-4", "four", "4.0"}) {
+    for (const std::string command : {"render", "bench"}) {
+      const std::string message = usage_error({command, "--samples", bad});
+      EXPECT_NE(message.find("--samples"), std::string::npos) << message;
+      EXPECT_NE(message.find(bad), std::string::npos) << message;
+    }
+  }
+  EXPECT_NE(usage_error({"bench", "--samples", "4", "--backends", "compute,hardware"})
+                .find("--samples 4: the hardware backend"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -139,6 +139,12 @@ void HardwareBaseline::ensure_targets(uint64_t generation, uint32_t width, uint3
 BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const Context& ctx = ctx_;
   require_graphics_queue(ctx);
+  if (settings.samples != 1) {
+    throw Error("the hardware baseline renders 1 sample per pixel, not " +
+                std::to_string(settings.samples) +
+                " (--samples applies to the compute path and "
+                "the reference)");
+  }
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
   // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2

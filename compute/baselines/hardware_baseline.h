@@ -36,7 +36,8 @@ class HardwareBaseline {
   HardwareBaseline& operator=(const HardwareBaseline&) = delete;
 
   /// Renders the renderer's current scene with `settings`. Throws Error if the queue has no
-  /// graphics support, and as Renderer::render does (no scene, bad settings).
+  /// graphics support or settings.samples is not 1, and as Renderer::render does (no scene,
+  /// bad settings).
   BaselineStats render(const FrameSettings& settings);
 
  private:
