@@ -221,6 +221,21 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
       ->type_name("FILE");
+  add_choice(app, "--present", a.present,
+             {{"auto", PresentPath::automatic},
+              {"copy", PresentPath::copy},
+              {"direct", PresentPath::direct}},
+             "direct: the resolve pass writes the swapchain\n"
+             "image; copy: it writes Tessera's image, then\n"
+             "copied; auto (default): direct where the\n"
+             "surface allows storage use");
+  add_choice(app, "--surface-format", a.surface_format,
+             {{"auto", SurfaceFormat::automatic},
+              {"unorm", SurfaceFormat::unorm},
+              {"srgb", SurfaceFormat::srgb}},
+             "the swapchain's 8-bit format: auto (default)\n"
+             "takes UNORM where offered, else sRGB; the\n"
+             "window shows the PNG's colours with either");
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   app.add_flag("--validate", a.validate,
