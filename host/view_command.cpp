@@ -5,9 +5,11 @@
 #include <cstdio>
 
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "core/image.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 #include "host/viewer.h"
@@ -27,6 +29,8 @@ void build_panel(Viewer& v) {
   in.environment_on = v.scene.environment != nullptr;
   in.unsaved = v.history.dirty();
   apply_panel_changes(v, draw_view_panel(in, v.frame));
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  draw_selection_mark(v.scene, v.selected, display.x, display.y);
 }
 
 // Renders and presents one frame at the framebuffer's size; false if nothing was shown.
@@ -85,9 +89,17 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     v.scene_changed = false;
   }
   if (wants_shot) {
-    write_png(v.screenshot, shot);
-    std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
-                shot.width, shot.height);
+    // A screenshot that cannot be written says why and leaves the session running.
+    const std::string reason = unwritable_reason(v.screenshot);
+    try {
+      if (!reason.empty()) throw Error(reason);
+      write_png(v.screenshot, shot);
+      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
+                  shot.width, shot.height);
+    } catch (const Error& error) {
+      std::printf("frame %" PRIu64 ": screenshot %s not written: %s\n", v.frame_number,
+                  v.screenshot.c_str(), error.what());
+    }
     v.screenshot.clear();
   }
   return true;

@@ -114,9 +114,16 @@ TEST(ViewScript, ReadsEveryEvent) {
       "# a comment\n"
       "0 key Z ctrl\n1 drag middle 1 2 3 4 shift\n2 click 5 6\n2 wheel -1.5\n"
       "3 resize 333 77\n4 minimise\n5 restore\n6 screenshot a.png\n7 save b.json\n"
-      "7 memory\n8 exit # the end\n",
+      "7 memory\n8 exit # the end\n"
+      "9 light add\n9 light 2 position -1 2.5 3\n9 light 0 delete\n",
       "s.txt");
-  ASSERT_EQ(events.size(), 11u);
+  ASSERT_EQ(events.size(), 14u);
+  EXPECT_EQ(events[11].event.kind, EventKind::light);
+  EXPECT_EQ(events[11].event.field, "add");
+  EXPECT_EQ(events[12].event.index, 2u);
+  EXPECT_EQ(events[12].event.field, "position");
+  EXPECT_EQ(events[12].event.value, glm::vec3(-1.0f, 2.5f, 3.0f));
+  EXPECT_EQ(events[13].event.field, "delete");
   EXPECT_EQ(events[0].event.kind, EventKind::key);
   EXPECT_EQ(events[0].event.key, 'Z');
   EXPECT_TRUE(events[0].event.ctrl);
@@ -148,6 +155,8 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
       {"1 resize 2.5 5\n", "s.txt:1: width expects a whole number"},
       {"1 screenshot a.jpg\n", "s.txt:1: screenshot expects a .png path"},
       {"1 key A alt\n", "s.txt:1: unexpected 'alt'"},
+      {"1 light 0 dim\n", "s.txt:1: unknown light action 'dim'"},
+      {"1 light 1.5 delete\n", "s.txt:1: light index expects a whole number"},
   };
   for (const auto& [text, message] : cases) {
     try {
@@ -304,7 +313,9 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
   std::vector<uint64_t> selected = numbers_after(run.output, "selected object");
   ASSERT_EQ(selected.size(), expected.size()) << run.output;
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(selected[i], expected[i]);
-  EXPECT_NE(run.output.find("selected nothing"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("click at 0 0: nothing under the cursor"), std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("-1"), std::string::npos) << run.output;
 }
 
 TEST_F(View, MaterialEditGivesTheEditedScenesImage) {
@@ -364,6 +375,95 @@ std::string write_ball_scene() {
     "objects": [{"mesh": "ball", "material": "red"}],
     "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 60}]})";
   return scene;
+}
+
+// core/orbit_camera.h: a scripted fly key moves target and eye together by
+// fly_distances_per_second (1) * distance * 0.1 s, along the view direction (W), the view's
+// right axis (D) or world up (E). The ball's camera stands at (0, 0, 4) looking down -z, so
+// each step is 0.4 m along -z, +x and +y.
+TEST_F(View, FlyKeysMoveTheCameraByTheHandComputedDistance) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_ball_scene();
+  const std::string png = output_path("fly.png");
+  const ViewRun run = run_view("1 key W\n2 key D\n3 key E\n5 screenshot " + png + "\n5 exit\n",
+                               "--scene " + scene_path + " --size 64x48");
+  ASSERT_EQ(run.status, 0) << run.output;
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  const glm::vec3 target{0.4f, 0.4f, -0.4f}, position{0.4f, 0.4f, 3.6f};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(camera.target[i], target[i], 1e-5f) << i;
+    EXPECT_NEAR(camera.position[i], position[i], 1e-5f) << i;
+  }
+  FrameSettings frame;
+  Scene scene = scene_named(scene_path, frame, 64, 48);
+  scene.camera.position = camera.position;
+  scene.camera.target = camera.target;
+  expect_same_image(png, headless(scene, frame));
+}
+
+// F frames the whole scene. Two unit-sphere balls, one at the origin and one of scale 0.5 at
+// (3, 0, 0): their bounding spheres' box spans x in [-1, 3.5], so the centre is (1.25, 0, 0)
+// and the radius max(1.25 + 1, 1.75 + 0.5) = 2.25. In a 128x96 window the vertical field
+// (45 degrees) is the narrower, so the distance is 2.25 / sin(22.5 degrees); yaw and pitch stay
+// 0, so the eye is that far along +z from the centre.
+TEST_F(View, FKeyFramesTheWholeScene) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = output_path("two_balls.json");
+  std::ofstream(scene_path) << R"({"version": 1,
+    "camera": {"position": [0, 0, 4], "target": [0, 0, 0]},
+    "materials": [{"name": "red", "base_color": [0.8, 0.1, 0.1], "roughness": 0.4}],
+    "meshes": [{"name": "ball", "type": "sphere", "segments": 8}],
+    "objects": [{"mesh": "ball", "material": "red"},
+                {"mesh": "ball", "material": "red", "translation": [3, 0, 0], "scale": 0.5}],
+    "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 60}]})";
+  const ViewRun run = run_view("1 key F\n2 exit\n", "--scene " + scene_path + " --size 128x96");
+  ASSERT_EQ(run.status, 0) << run.output;
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  const float distance = 2.25f / std::sin(glm::radians(22.5f));
+  EXPECT_NEAR(camera.target.x, 1.25f, 1e-5f);
+  EXPECT_NEAR(camera.target.y, 0.0f, 1e-5f);
+  EXPECT_NEAR(camera.target.z, 0.0f, 1e-5f);
+  EXPECT_NEAR(camera.position.x, 1.25f, 1e-5f);
+  EXPECT_NEAR(camera.position.y, 0.0f, 1e-5f);
+  EXPECT_NEAR(camera.position.z, distance, 1e-4f);
+}
+
+// The panel's light controls, replayed by the script through the same changes the panel makes:
+// add a light at the eye, move and dim it, delete the scene's own light. The window then shows
+// the headless render of the scene edited by hand.
+TEST_F(View, PanelLightControlsGiveTheEditedScenesImage) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_ball_scene();
+  const std::string png = output_path("lights_edited.png");
+  const ViewRun run = run_view(
+      "1 light add\n2 light 1 position -2 1 3\n3 light 1 intensity 30\n"
+      "3 light 1 color 0.5 0.75 1\n4 light 0 delete\n6 screenshot " +
+          png + "\n6 exit\n",
+      "--scene " + scene_path + " --size 64x48");
+  ASSERT_EQ(run.status, 0) << run.output;
+  FrameSettings frame;
+  Scene scene = scene_named(scene_path, frame, 64, 48);
+  Light light;  // a point light, as the panel's button adds
+  light.position = {-2.0f, 1.0f, 3.0f};
+  light.intensity = 30.0f;
+  light.color = {0.5f, 0.75f, 1.0f};
+  scene.lights = {light};
+  expect_same_image(png, headless(scene, frame));
+}
+
+// A screenshot that cannot be written says why, and the session goes on.
+TEST_F(View, UnwritableScreenshotSaysWhy) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_ball_scene();
+  const ViewRun run = run_view("1 screenshot /nonexistent-dir/shot.png\n2 exit\n",
+                               "--scene " + scene_path + " --size 32x24");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("screenshot /nonexistent-dir/shot.png not written: folder "
+                            "'/nonexistent-dir' does not exist"),
+            std::string::npos)
+      << run.output;
 }
 
 TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
