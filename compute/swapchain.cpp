@@ -162,9 +162,10 @@ void create_swapchain(const Context& ctx, Swapchain& chain, uint32_t width, uint
     obstacle = "the copy path was asked for (--present copy)";
   } else if (options.path == PresentPath::automatic && obstacle.empty() &&
              unorm_twin(format.format) != format.format) {
-    // Valid (storage through the UNORM view, VK_KHR_swapchain_mutable_format), but validation
-    // layers before August 2026 report it as VUID-VkSwapchainCreateInfoKHR-imageFormat-01778
-    // (KhronosGroup/Vulkan-ValidationLayers#12883); the copy costs one image copy.
+    // Valid (the images of a mutable-format swapchain are created as if with
+    // VK_IMAGE_CREATE_EXTENDED_USAGE_BIT, so storage use through the UNORM view is allowed),
+    // but the validation layer the tests run with reports it as
+    // VUID-VkSwapchainCreateInfoKHR-imageFormat-01778; the copy costs one image copy.
     obstacle = "sRGB images are copied into unless --present direct is asked for";
   }
   if (options.path == PresentPath::direct && !obstacle.empty()) {

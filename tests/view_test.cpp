@@ -204,8 +204,8 @@ TEST_F(View, EveryPresentPathAndFormatShowsTheHeadlessRender) {
       {"--present auto --surface-format srgb", "B8G8R8A8_SRGB images by copy", true},
       // Valid usage that the installed validation layer reports falsely (VUID-
       // VkSwapchainCreateInfoKHR-imageFormat-01778 for storage use through the UNORM view of a
-      // mutable-format swapchain; fixed in KhronosGroup/Vulkan-ValidationLayers#12883), so
-      // this one case runs without the layer.
+      // mutable-format swapchain, whose images count as created with EXTENDED_USAGE), so this
+      // one case runs without the layer.
       {"--present direct --surface-format srgb", "B8G8R8A8_SRGB images directly", false},
   };
   for (const Case& c : cases) {
