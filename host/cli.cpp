@@ -7,11 +7,13 @@
 #include "core/builtin_scenes.h"
 #include "host/cli_values.h"
 #include "host/scene_source.h"
+#include "host/tradeoff.h"
 
 namespace tessera {
 namespace {
 
-const std::vector<std::string> kCommands = {"render", "bench", "view", "devices", "scenes"};
+const std::vector<std::string> kCommands = {"render",   "bench",   "view",
+                                            "tradeoff", "devices", "scenes"};
 
 // Checks that a scene exists, naming every known scene otherwise (as `tessera scenes` lists
 // them). A scene file (a path) is read when the command runs, where its errors name file and
@@ -37,6 +39,19 @@ CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const st
   return app.add_option_function<std::string>("--size", set, help)
       ->type_name("WxH")
       ->check(image_size());
+}
+
+// --validate of the commands that only report it (render's help says more).
+void add_validate(CLI::App& app, bool& validate) {
+  app.add_flag("--validate", validate,
+               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+}
+
+// --chart of bench and tradeoff.
+void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
+  app.add_option("--chart", chart, help)
+      ->type_name("FILE")
+      ->check(file_with_suffix({".svg", ".png"}));
 }
 
 void add_render_options(CLI::App& app, RenderArgs& a) {
@@ -190,14 +205,11 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--csv", a.csv, "write every measurement as CSV")->type_name("FILE");
   app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
       ->type_name("FILE");
-  app.add_option("--chart", a.chart,
-                 "time against objects (log-log, one line per\n"
-                 "backend) and the compute path's per-pass\n"
-                 "breakdown, as SVG or PNG")
-      ->type_name("FILE")
-      ->check(file_with_suffix({".svg", ".png"}));
-  app.add_flag("--validate", a.validate,
-               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+  add_chart(app, a.chart,
+            "time against objects (log-log, one line per\n"
+            "backend) and the compute path's per-pass\n"
+            "breakdown, as SVG or PNG");
+  add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet, "no progress bar or table");
 }
 
@@ -238,8 +250,58 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
              "window shows the PNG's colours with either");
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
-  app.add_flag("--validate", a.validate,
-               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+  add_validate(app, a.validate);
+}
+
+void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
+  app.add_option("--scene", a.scene,
+                 "built-in scene (default spheres), scene file,\n"
+                 "or a benchmark family: grid, scatter, huge")
+      ->type_name("S")
+      ->check(bench_scene());
+  app.add_option("--objects", a.objects,
+                 "objects of a benchmark family (grid, scatter,\nhuge; default 100)")
+      ->type_name("N")
+      ->check(whole_number(1, 100'000'000));
+  app.add_option("--knob", a.knobs,
+                 "the knobs to sweep, e.g. brdf,tessellation:\n"
+                 "brdf, tessellation, anisotropy, env-size,\n"
+                 "env-samples, small-triangle (docs/tradeoffs.md)")
+      ->type_name("K[,K...]")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->required()
+      ->check(checked_by([](const std::string& knob) { knob_settings(knob, {}, {}); }));
+  app.add_option("--device", a.device,
+                 "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
+      ->type_name("D");
+  add_size(app, a.frame.width, a.frame.height,
+           "image size, each side 1..16384 (default: the\nscene's, else 512x512)");
+  app.add_option("--repeat", a.repeat, "timed frames per setting and round, 1..1000\n(default 10)")
+      ->type_name("K")
+      ->check(whole_number(1, 1000));
+  app.add_option("--rounds", a.rounds,
+                 "passes over all settings, interleaved so that\n"
+                 "clock changes affect all alike, 1..100\n(default 3)")
+      ->type_name("R")
+      ->check(whole_number(1, 100));
+  app.add_option("--truth-samples", a.truth_samples,
+                 "N: N x N samples per pixel of the ground\ntruth, 1..32 (default 8)")
+      ->type_name("N")
+      ->check(whole_number(1, 32));
+  app.add_option("--truth-env-samples", a.truth_env_samples,
+                 "environment directions per lobe and pixel of\n"
+                 "the ground truth, 1..1048576 (default 1024)")
+      ->type_name("N")
+      ->check(whole_number(1, 1u << 20));
+  app.add_option("--json", a.json, "every point as JSON, with device and command")
+      ->type_name("FILE");
+  add_chart(app, a.chart,
+            "error against GPU time, a series per knob,\n"
+            "each knob's Pareto front joined, SVG or PNG");
+  add_validate(app, a.validate);
+  app.add_flag("--quiet", a.quiet, "no progress or table");
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors");
 }
 
 // CLI11's message, reworded where it is unclear for a missing value.
@@ -291,6 +353,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::App* view =
       app.add_subcommand("view", "show a scene in a window: camera, picking, live edits");
   add_view_options(*view, line.view);
+  CLI::App* tradeoff =
+      app.add_subcommand("tradeoff", "chart GPU time against error from the truth, knob by knob");
+  add_tradeoff_options(*tradeoff, line.tradeoff);
   CLI::App* devices =
       app.add_subcommand("devices", "list the Vulkan devices and whether Tessera can use them");
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes");
@@ -298,7 +363,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "Exit status: 0 success, 1 a failure while running, 2 a bad command line,\n"
       "3 reports of the validation layer (--validate).";
   app.footer("Run `tessera COMMAND --help` for a command's options.\n" + exit_statuses);
-  for (CLI::App* sub : {render, bench, view, devices, scenes}) {
+  for (CLI::App* sub : {render, bench, view, tradeoff, devices, scenes}) {
     sub->allow_extras();
     sub->footer(exit_statuses);
   }
@@ -321,19 +386,22 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   } catch (const CLI::ParseError& e) {
     throw UsageError(message_of(e), help_command);
   }
-  for (CLI::App* sub : {render, bench, view, devices, scenes}) reject_extras(*sub, help_command);
+  for (CLI::App* sub : {render, bench, view, tradeoff, devices, scenes})
+    reject_extras(*sub, help_command);
   RenderArgs& r = line.render;
   r.size_given = render->count("--size") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
   r.brdf_given = render->count("--brdf") > 0;
   line.view.size_given = view->count("--size") > 0;
+  line.tradeoff.size_given = tradeoff->count("--size") > 0;
   reject_extras(app, help_command);
-  line.command = render->parsed()    ? Command::render
-                 : bench->parsed()   ? Command::bench
-                 : view->parsed()    ? Command::view
-                 : devices->parsed() ? Command::devices
-                                     : Command::scenes;
+  line.command = render->parsed()     ? Command::render
+                 : bench->parsed()    ? Command::bench
+                 : view->parsed()     ? Command::view
+                 : tradeoff->parsed() ? Command::tradeoff
+                 : devices->parsed()  ? Command::devices
+                                      : Command::scenes;
   return line;
 }
 

@@ -66,7 +66,26 @@ struct ViewArgs {
   SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format
 };
 
-enum class Command { help, render, bench, devices, scenes, view };
+struct TradeoffArgs {
+  std::string scene = "spheres";   // a scene of `tessera scenes`, a scene file, or a bench family
+  uint32_t objects = 0;            // objects of a bench family (grid, scatter, huge); 0: 100
+  std::vector<std::string> knobs;  // host/tradeoff.h, knobs()
+  FrameSettings frame;             // --size; the rest is each knob setting's
+  EnvironmentOptions env_options;  // the environment knobs' defaults
+  std::string device = "auto";
+  uint32_t repeat = 10;               // timed frames per setting and round
+  uint32_t warmup = 2;                // untimed frames per setting and round
+  uint32_t rounds = 3;                // passes over all settings, interleaved
+  uint32_t truth_samples = 8;         // N x N samples per pixel of the ground truth
+  uint32_t truth_env_samples = 1024;  // environment directions per lobe and pixel of the truth
+  std::string json, chart;
+  bool quiet = false;
+  bool strict = false;
+  bool validate = false;
+  bool size_given = false;
+};
+
+enum class Command { help, render, bench, devices, scenes, view, tradeoff };
 
 /// A parsed command line.
 struct CommandLine {
@@ -75,6 +94,7 @@ struct CommandLine {
   RenderArgs render;
   BenchArgs bench;
   ViewArgs view;
+  TradeoffArgs tradeoff;
 };
 
 /// A command line that does not parse: an unknown command or option, a missing or bad value.

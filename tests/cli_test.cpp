@@ -154,7 +154,8 @@ TEST(Cli, ReadmeQuotesTheHelpTexts) {
   for (const auto& args : {std::vector<std::string>{"--help"},
                            {"render", "--help"},
                            {"bench", "--help"},
-                           {"view", "--help"}}) {
+                           {"view", "--help"},
+                           {"tradeoff", "--help"}}) {
     std::string command = "$ tessera";
     for (const std::string& arg : args) command += " " + arg;
     EXPECT_NE(readme.find(command + "\n" + help_of(args)), std::string::npos)
@@ -199,7 +200,7 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},
       {{"--verbose"}, "unknown option '--verbose'"},
-      {{}, "a command is required: render, bench, view, devices or scenes"},
+      {{}, "a command is required: render, bench, view, tradeoff, devices or scenes"},
       {{"view", "--vsync", "maybe"}, "--vsync: expects on or off, got 'maybe'"},
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},

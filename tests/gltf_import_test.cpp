@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/check.h"
 #include "core/image.h"
@@ -307,6 +308,22 @@ TEST(GltfImport, SecondUvSetIsReadForTheMapsThatUseIt) {
   for (const Mesh& b : box.scene.meshes) EXPECT_TRUE(b.uvs1.empty());
 }
 
+// features.gltf with a normal map on its material: tangents are generated. The strip's first
+// triangle, (0,0,0) (1,0,0) (0,1,0) with uvs (0,0) (1,0) (0,1) before the uv transform (which
+// scales both by 2), has u growing along +x and v along +y: tangent +x, bitangent +y = cross(+z,
+// +x), so w = +1. Its three flat vertices are the mesh's first three.
+TEST(GltfImport, NormalMappedMaterialGetsGeneratedTangents) {
+  std::ifstream in(kData + "/features.gltf");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  const std::string text = doc.dump();
+  const ImportedModel m =
+      import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "features", kData);
+  const Mesh& mesh = m.scene.meshes[m.scene.objects[0].mesh];
+  ASSERT_EQ(mesh.tangents.size(), 6u);
+  for (int v = 0; v < 3; ++v) EXPECT_EQ(mesh.tangents[v], glm::vec4(1, 0, 0, 1)) << v;
+}
+
 TEST(GltfImport, HandMadeFeaturesFile) {
   const ImportedModel m = import_gltf(kData + "/features.gltf");
   EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
@@ -325,7 +342,8 @@ TEST(GltfImport, HandMadeFeaturesFile) {
   EXPECT_EQ(mesh.uvs[0], glm::vec2(0.5f, 0.0f));  // vertex 0, uv (0, 0)
   EXPECT_EQ(mesh.uvs[1], glm::vec2(2.5f, 0.0f));  // vertex 1, uv (1, 0)
   EXPECT_EQ(mesh.uvs[4], glm::vec2(2.5f, 2.0f));  // vertex 3, uv (1, 1)
-  EXPECT_EQ(mesh.tangents.size(), 6u);
+  // Its material has no normal map, the one reader of tangents: none are generated.
+  EXPECT_TRUE(mesh.tangents.empty());
   // World = translate(1, 2, 3) * scale 2 (the child's matrix).
   const glm::mat4 world(2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1);
   EXPECT_EQ(s.objects[0].transform, world);
