@@ -46,6 +46,7 @@ struct Specialization {
   uint32_t ibl = TS_IBL_RUNTIME;
   uint32_t uv1_maps = TS_MAP_ALL;
   uint32_t samples = 1;  // per pixel (FrameSettings::samples); others are built on first use
+  VkBool32 output_bgra = VK_FALSE;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -167,6 +168,7 @@ enum class Pipeline {
   dfg_filament,
   env_irradiance,  // the environment's irradiance coefficients
   env_prefilter,   // one level of the prefiltered specular cube
+  resolve_bgra,    // the resolve pass storing B, G, R, A bytes, for B8G8R8A8 swapchain images
   count
 };
 
@@ -190,6 +192,7 @@ constexpr PipelineInfo kPipelines[] = {
     {Pipeline::dfg_filament, "dfg", {.brdf = TS_BRDF_FILAMENT}},
     {Pipeline::env_irradiance, "env_irradiance", {}},
     {Pipeline::env_prefilter, "env_prefilter", {}},
+    {Pipeline::resolve_bgra, "resolve", {.output_bgra = VK_TRUE}},
 };
 
 constexpr bool pipeline_table_is_complete() {

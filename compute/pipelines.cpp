@@ -35,7 +35,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)},
       {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)},
-      {TS_SPEC_SAMPLES, offsetof(Specialization, samples), sizeof(uint32_t)}};
+      {TS_SPEC_SAMPLES, offsetof(Specialization, samples), sizeof(uint32_t)},
+      {TS_SPEC_OUTPUT_BGRA, offsetof(Specialization, output_bgra), sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),

@@ -635,6 +635,7 @@ void Renderer::update_descriptors() {
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(s.ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+  ++s.descriptors_generation;
 }
 
 void Renderer::write_frame_constants(const FrameSettings& settings) {
@@ -798,6 +799,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
+        if (pass.pass == Pass::resolve && !s.options.resolve) {
+          ++i;  // the caller records it (RendererOptions::resolve)
+          break;
+        }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
         barrier_after(cmd, pass);
         mark(pass.pass);
@@ -806,6 +811,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     }
   }
 
+  // Without the resolve pass, shading was the last pass and fed only compute passes.
+  if (!s.options.resolve) {
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   VkBufferCopy region{0, 0, counters.size};
   vkCmdCopyBuffer(cmd, counters.buffer, s.counters_readback.buffer, 1, &region);
@@ -915,6 +925,23 @@ void RendererInternal::record_resolve(Renderer& renderer, VkCommandBuffer cmd) {
   record_dispatch(s, cmd, kPasses[size_t(Pass::resolve)], gpu::GpuBatch{}, FrameSettings{});
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+RendererInternal::SharedSet RendererInternal::shared_set(const Renderer& renderer) {
+  const Renderer::State& s = *renderer.s_;
+  return {s.set, s.pipelines.set_layout, s.descriptors_generation};
+}
+
+void RendererInternal::record_resolve_into(Renderer& renderer, VkCommandBuffer cmd,
+                                           VkDescriptorSet set, bool bgra) {
+  Renderer::State& s = *renderer.s_;
+  TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE && set != VK_NULL_HANDLE);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &set, 0,
+                          nullptr);
+  const PassInfo& pass = kPasses[size_t(Pass::resolve)];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    bgra ? s.pipelines[Pipeline::resolve_bgra] : s.pipelines[Pass::resolve]);
+  vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
 }
 
 const Buffer& RendererInternal::buffer(const Renderer& renderer, uint32_t binding) {

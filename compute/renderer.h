@@ -44,6 +44,11 @@ struct RendererOptions {
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
   /// covered exactly once. Slower; for tests.
   bool debug_coverage = false;
+  /// Records the resolve pass (tone mapping, sRGB encoding into the display image) in render().
+  /// Off, render() stops after shading and the caller records the resolve into an image of its
+  /// own (RendererInternal::record_resolve_into), as the window does into swapchain images;
+  /// read_ldr and output_image then hold what the caller resolved there.
+  bool resolve = true;
   /// Resolutions and sample counts of the image-based lighting, applied when a scene's
   /// environment is set (set_scene throws Error for values out of range).
   EnvironmentOptions environment;

@@ -51,6 +51,24 @@ class RendererInternal {
   /// set at the compute bind point), then a barrier making its writes visible to transfers.
   static void record_resolve(Renderer& renderer, VkCommandBuffer cmd);
 
+  /// The shared descriptor set, its layout, and a number that changes whenever the renderer
+  /// rewrites the set's descriptors (a new scene's buffers, a new size), so that a set copied
+  /// from it knows when to copy again. Valid after the first render().
+  struct SharedSet {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    uint64_t generation = 0;
+  };
+  static SharedSet shared_set(const Renderer& renderer);
+
+  /// Records the resolve pass of the last frame into the storage image that `set` binds at
+  /// TS_BINDING_LDR_IMAGE (an R8G8B8A8_UNORM view in GENERAL, the frame's size; `set` has the
+  /// shared set's layout and its other bindings), storing B, G, R, A where `bgra`. Binds the
+  /// pipeline and `set` at the compute bind point; the caller orders the HDR image's writes
+  /// before it and the target's use after it. For RendererOptions::resolve off.
+  static void record_resolve_into(Renderer& renderer, VkCommandBuffer cmd, VkDescriptorSet set,
+                                  bool bgra);
+
   /// The renderer's buffer at `binding` (TS_BINDING_* of a buffer the renderer owns; empty
   /// before the first frame that allocates it).
   static const Buffer& buffer(const Renderer& renderer, uint32_t binding);

@@ -23,6 +23,7 @@ struct Renderer::State {
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
+  uint64_t descriptors_generation = 0;  // counts the rewrites of `set` (copies follow it)
 
   // The scene as it is on the GPU.
   bool has_scene = false;

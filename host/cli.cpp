@@ -15,12 +15,12 @@ namespace {
 const std::vector<std::string> kCommands = {"render",   "bench",   "view",
                                             "tradeoff", "devices", "scenes"};
 
-// Checks that a scene exists; the builders throw Error naming the known scenes otherwise.
-// A scene file (a path) is read when the command runs, where its errors name file and place.
+// Checks that a scene exists, naming every known scene otherwise (as `tessera scenes` lists
+// them). A scene file (a path) is read when the command runs, where its errors name file and
+// place.
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_named_scene(name))
-      make_builtin_scene(name);
+    if (!is_scene_path(name)) check_scene_name(name);
   });
 }
 
@@ -273,6 +273,21 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
       ->type_name("FILE");
+  add_choice(app, "--present", a.present,
+             {{"auto", PresentPath::automatic},
+              {"copy", PresentPath::copy},
+              {"direct", PresentPath::direct}},
+             "direct: the resolve pass writes the swapchain\n"
+             "image; copy: it writes Tessera's image, which\n"
+             "is copied; auto (default): direct where the\n"
+             "surface allows storage use");
+  add_choice(app, "--surface-format", a.surface_format,
+             {{"auto", SurfaceFormat::automatic},
+              {"unorm", SurfaceFormat::unorm},
+              {"srgb", SurfaceFormat::srgb}},
+             "the swapchain's 8-bit format: auto (default)\n"
+             "takes UNORM where offered, else sRGB; the\n"
+             "window shows the PNG's colours with either");
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);

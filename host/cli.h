@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compute/environment_gpu.h"
+#include "compute/swapchain.h"
 #include "core/check.h"
 #include "core/frame_settings.h"
 #include "core/scene.h"
@@ -65,6 +66,8 @@ struct ViewArgs {
   bool overlay = true;
   bool validate = false;
   bool size_given = false;
+  PresentPath present = PresentPath::automatic;             // --present
+  SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format
 };
 
 struct TradeoffArgs {

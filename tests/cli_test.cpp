@@ -3,6 +3,7 @@
 // running).
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -251,6 +252,32 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
   std::string help;
   EXPECT_EQ(test::run_command(tool() + " render --help", help), 0);
   EXPECT_NE(help.find("--size WxH"), std::string::npos) << help;
+}
+
+// An unknown scene's message names every scene `tessera scenes` lists (the scene files, the
+// benchmark ones among them), for render and view alike.
+TEST(Cli, UnknownSceneListsEverySceneThatScenesLists) {
+  std::string listing;
+  ASSERT_EQ(test::run_command(tool() + " scenes", listing), 0);
+  std::vector<std::string> names;
+  std::istringstream lines(listing);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line.starts_with("scene files in")) continue;
+    names.push_back(line.substr(0, line.find(' ')));
+  }
+  ASSERT_GE(names.size(), 5u) << listing;
+  for (const char* command : {"render", "view"}) {
+    std::string out;
+    EXPECT_EQ(test::run_command(tool() + " " + command + " --scene nosuchscene", out), 2);
+    const size_t known = out.find("(known scenes: ");
+    ASSERT_NE(known, std::string::npos) << out;
+    for (const std::string& name : names) {
+      // Each name ends at a comma, or at the semicolon after the last.
+      const bool listed = out.find(" " + name + ",", known) != std::string::npos ||
+                          out.find(" " + name + ";", known) != std::string::npos;
+      EXPECT_TRUE(listed) << command << ": '" << name << "' missing from: " << out;
+    }
+  }
 }
 
 // An environment file round trip: a .hdr written by Tessera lights a scene under validation.

@@ -76,7 +76,7 @@ using glm::vec4;
 #define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
 #define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
 #define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
-#define TS_BINDING_UV1 26             // the second uv set (vec2 per vertex), when a material reads it
+#define TS_BINDING_UV1 26  // the second uv set (vec2 per vertex), when a material reads it
 #define TS_BINDING_COUNT 27
 
 // Specialization constant ids.
@@ -89,9 +89,10 @@ using glm::vec4;
 #define TS_SPEC_IBL 5           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
 #define TS_SPEC_UV1_MAPS 6      // maps that may read uv set 1 (TS_MAP_* bits; all if generic)
 #define TS_SPEC_SAMPLES 7       // samples per pixel: 1, 4, 8 or 16 (shaders/samples.glsl)
+#define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 8
+#define TS_SPEC_LIGHT_COUNT_BASE 9
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
