@@ -5,6 +5,12 @@
 // glTF: tinygltf alone (LoadBinaryFromFile, images decoded by its stb_image loader) against
 // import_gltf, on $TESSERA_GLB_BENCH_FILE (default the largest sample glb of Debian's assimp
 // models, 2CylinderEngine.glb).
+// Textures: a scene file with kBenchTextures PNG textures of kBenchTextureSide^2 texels (noise,
+// so that they compress as photographs do, not as flat colour), written once to $TMPDIR. Its
+// cases time decoding (load_scene_file) and mip building (flatten_scene, the CPU part of an
+// upload) on every core and on one thread (parallel_thread_limit), as wall time: the speed-up
+// of the parallel steps is the ratio of the two on an idle machine; caller_cpu_share shows how
+// evenly the work was divided whether or not the machine had cores free.
 // Each case also reports peak_MB, the process's peak resident memory (getrusage ru_maxrss; it
 // only grows, so run one case per process (--benchmark_filter) to read it for that case), and
 // added_peak_MB, the peak during the case above the resident memory at its start (the kernel's
@@ -14,8 +20,10 @@
 // the machine may be shared, so wall time would mislead.
 #include <malloc.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -23,9 +31,14 @@
 #include <benchmark/benchmark.h>
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
+#include <nlohmann/json.hpp>
 
 #include "bench/large_obj.h"
+#include "compute/scene_upload.h"
+#include "core/image.h"
 #include "core/model_import.h"
+#include "core/parallel.h"
+#include "core/scene_file.h"
 
 namespace {
 
@@ -108,6 +121,29 @@ void BM_TinyObjLoaderAlone(benchmark::State& state) {
 }
 BENCHMARK(BM_TinyObjLoaderAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
+// tinyobjloader as import_obj calls it (without its triangulation, through a stream): the
+// parser's share of import_obj's time and memory.
+void BM_TinyObjLoaderAsImported(benchmark::State& state) {
+  const BenchFile& f = bench_file();
+  const PeakScope peak;
+  for (auto _ : state) {
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn, err;
+    std::ifstream in(f.path, std::ios::binary);
+    tinyobj::MaterialFileReader reader(std::filesystem::path(f.path).parent_path().string());
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &reader,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+      state.SkipWithError(err.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(shapes.data());
+  }
+  set_counters(state, f, peak);
+}
+BENCHMARK(BM_TinyObjLoaderAsImported)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
 void BM_ImportObj(benchmark::State& state) {
   const BenchFile& f = bench_file();
   const PeakScope peak;
@@ -152,6 +188,24 @@ void BM_TinyGltfAlone(benchmark::State& state) {
 }
 BENCHMARK(BM_TinyGltfAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
+// import_gltf's own parse of the document (nlohmann::json, before TinyGLTF parses it again),
+// which gives its errors their JSON paths: its share of import_gltf's time.
+void BM_GltfJsonParseAlone(benchmark::State& state) {
+  const BenchFile& f = glb_file();
+  std::ifstream in(f.path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);  // the JSON chunk's (glTF 2.0, 4.4)
+  const std::string text = bytes.substr(20, length);
+  const PeakScope peak;
+  for (auto _ : state) {
+    const nlohmann::json doc = nlohmann::json::parse(text);
+    benchmark::DoNotOptimize(&doc);
+  }
+  set_counters(state, f, peak);
+}
+BENCHMARK(BM_GltfJsonParseAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
 void BM_ImportGltf(benchmark::State& state) {
   const BenchFile& f = glb_file();
   const PeakScope peak;
@@ -162,6 +216,120 @@ void BM_ImportGltf(benchmark::State& state) {
   set_counters(state, f, peak);
 }
 BENCHMARK(BM_ImportGltf)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+constexpr int kBenchTextures = 8;
+constexpr uint32_t kBenchTextureSide = 2048;
+
+// The textured scene's file: a plane per texture, each texture a base colour map.
+const std::string& texture_scene() {
+  static const std::string path = [] {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "tessera_bench_textures";
+    const std::filesystem::path scene = dir / "scene.json";
+    std::error_code ec;
+    if (std::filesystem::exists(scene, ec)) return scene.string();
+    std::filesystem::create_directories(dir);
+    std::string textures, materials, objects;
+    uint32_t state = 12345u;
+    for (int t = 0; t < kBenchTextures; ++t) {
+      tessera::Image8 image;
+      image.width = image.height = kBenchTextureSide;
+      image.pixels.resize(size_t(kBenchTextureSide) * kBenchTextureSide);
+      for (uint32_t y = 0; y < kBenchTextureSide; ++y) {
+        for (uint32_t x = 0; x < kBenchTextureSide; ++x) {
+          state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG: noise in low bits
+          const uint32_t noise = (state >> 24) & 31u;
+          image.at(x, y) = glm::u8vec4((x >> 3) + noise, (y >> 3) + noise, (t * 32) + noise, 255);
+        }
+      }
+      const std::string name = "t" + std::to_string(t);
+      tessera::write_png((dir / (name + ".png")).string(), image);
+      const std::string sep = t ? ",\n" : "";
+      textures +=
+          sep + R"({"name": ")" + name + R"(", "type": "file", "file": ")" + name + ".png\"}";
+      materials += sep + R"({"name": ")" + name + R"(", "base_color_map": ")" + name + "\"}";
+      objects += sep + R"({"mesh": "plane", "material": ")" + name + R"(", "translation": [)" +
+                 std::to_string(2 * t) + ", 0, 0]}";
+    }
+    std::ofstream(dir / "scene.json.part")
+        << "{\"version\": 1,\n\"textures\": [" << textures << "],\n\"materials\": [" << materials
+        << "],\n\"meshes\": [{\"name\": \"plane\", \"type\": \"plane\"}],\n\"objects\": ["
+        << objects << "]}\n";
+    std::filesystem::rename(dir / "scene.json.part", scene);
+    return scene.string();
+  }();
+  return path;
+}
+
+// state.range(0): parallel_thread_limit for the case (0: every core).
+struct ThreadLimit {
+  explicit ThreadLimit(const benchmark::State& state) {
+    tessera::parallel_thread_limit = unsigned(state.range(0));
+  }
+  ~ThreadLimit() { tessera::parallel_thread_limit = 0; }
+};
+
+double cpu_seconds(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// The calling thread's share of the process's CPU time over a case: 1 when one thread did all
+// the work, 1 / cores when the work was divided evenly. Unlike the wall time, it does not
+// depend on whether the shared machine had a core free for the other threads.
+struct CallerShare {
+  double thread = cpu_seconds(CLOCK_THREAD_CPUTIME_ID);
+  double process = cpu_seconds(CLOCK_PROCESS_CPUTIME_ID);
+  double share() const {
+    return (cpu_seconds(CLOCK_THREAD_CPUTIME_ID) - thread) /
+           (cpu_seconds(CLOCK_PROCESS_CPUTIME_ID) - process);
+  }
+};
+
+void set_texture_counters(benchmark::State& state, const CallerShare& caller) {
+  state.counters["caller_cpu_share"] = caller.share();
+  state.counters["textures"] = kBenchTextures;
+  state.counters["texels/s"] =
+      benchmark::Counter(double(kBenchTextures) * kBenchTextureSide * kBenchTextureSide,
+                         benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_DecodeTextures(benchmark::State& state) {
+  const std::string& path = texture_scene();
+  const ThreadLimit limit(state);
+  const CallerShare caller;
+  for (auto _ : state) {
+    tessera::SceneFile file = tessera::load_scene_file(path);
+    benchmark::DoNotOptimize(file.scene.textures.data());
+  }
+  set_texture_counters(state, caller);
+}
+BENCHMARK(BM_DecodeTextures)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+void BM_BuildMipChains(benchmark::State& state) {
+  const tessera::SceneFile file = tessera::load_scene_file(texture_scene());
+  const ThreadLimit limit(state);
+  const CallerShare caller;
+  for (auto _ : state) {
+    tessera::GpuSceneArrays arrays = tessera::flatten_scene(file.scene);
+    benchmark::DoNotOptimize(arrays.texels.data());
+  }
+  set_texture_counters(state, caller);
+}
+BENCHMARK(BM_BuildMipChains)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace
 

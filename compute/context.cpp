@@ -315,7 +315,23 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   features.features.drawIndirectFirstInstance = ctx->multi_draw_indirect ? VK_TRUE : VK_FALSE;
 
   std::vector<const char*> extensions;
-  if (options.swapchain) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  if (options.swapchain) {
+    extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    // Lets the resolve pass write B8G8R8A8 and sRGB swapchain images through an R8G8B8A8_UNORM
+    // view (compute/swapchain.h); its dependencies (image format list, maintenance2) are core
+    // in Vulkan 1.2.
+    uint32_t count = 0;
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(ctx->physical_device, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> available(count);
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(ctx->physical_device, nullptr, &count,
+                                                  available.data()));
+    for (const VkExtensionProperties& e : available) {
+      if (std::string_view(e.extensionName) == VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME) {
+        extensions.push_back(VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME);
+        ctx->swapchain_mutable_format = true;
+      }
+    }
+  }
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &features;
   info.queueCreateInfoCount = 1;

@@ -20,7 +20,8 @@ struct ContextOptions {
   bool validation = false;
   /// Instance extensions a window system needs (e.g. from glfwGetRequiredInstanceExtensions).
   std::vector<std::string> instance_extensions;
-  /// Enables VK_KHR_swapchain on the device, for presenting the output image in a window.
+  /// Enables VK_KHR_swapchain on the device, for presenting the output image in a window, and
+  /// VK_KHR_swapchain_mutable_format where the device has it.
   bool swapchain = false;
 };
 
@@ -52,7 +53,8 @@ struct Context {
   VkCommandPool command_pool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
-  uint32_t timestamp_valid_bits = 0;  // 0: the queue cannot write timestamps
+  uint32_t timestamp_valid_bits = 0;      // 0: the queue cannot write timestamps
+  bool swapchain_mutable_format = false;  // VK_KHR_swapchain_mutable_format is enabled
   // multiDrawIndirect and drawIndirectFirstInstance, enabled where the device has both (the
   // hardware baseline's level of detail draws with them).
   bool multi_draw_indirect = false;

@@ -48,6 +48,8 @@ struct Specialization {
   uint32_t texture_maps = TS_MAP_ALL;
   uint32_t ibl = TS_IBL_RUNTIME;
   uint32_t uv1_maps = TS_MAP_ALL;
+  uint32_t samples = 1;  // per pixel (FrameSettings::samples); others are built on first use
+  VkBool32 output_bgra = VK_FALSE;
   VkBool32 lod = VK_FALSE;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
@@ -184,6 +186,7 @@ enum class Pipeline {
   dfg_filament,
   env_irradiance,  // the environment's irradiance coefficients
   env_prefilter,   // one level of the prefiltered specular cube
+  resolve_bgra,    // the resolve pass storing B, G, R, A bytes, for B8G8R8A8 swapchain images
   count
 };
 
@@ -207,6 +210,7 @@ constexpr PipelineInfo kPipelines[] = {
     {Pipeline::dfg_filament, "dfg", {.brdf = TS_BRDF_FILAMENT}},
     {Pipeline::env_irradiance, "env_irradiance", {}},
     {Pipeline::env_prefilter, "env_prefilter", {}},
+    {Pipeline::resolve_bgra, "resolve", {.output_bgra = VK_TRUE}},
 };
 
 constexpr bool pipeline_table_is_complete() {
@@ -230,6 +234,7 @@ enum class Source {
 enum class Scale {
   fixed,                 // `bytes` in all
   pixels,                // per pixel of the frame
+  samples,               // per sample of the frame: pixels times FrameSettings::samples
   pixels_if_coverage,    // per pixel under RendererOptions::debug_coverage, else 4 bytes
   tiles,                 // per screen tile (plus `extra` elements)
   raster_capacity,       // per raster triangle the scratch buffers hold (grows on overflow)
@@ -275,7 +280,8 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_TILE_ENTRIES, kStorageBuffer, Source::sized, Scale::tile_entry_capacity, 4},
     {TS_BINDING_COUNTERS, kStorageBuffer, Source::sized, Scale::batches, sizeof(gpu::GpuCounters),
      0, Clear::per_frame, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
-    {TS_BINDING_VISIBILITY, kStorageBuffer, Source::sized, Scale::pixels, 8, 0, Clear::per_frame,
+    // Each pixel's samples together (shaders/samples.glsl).
+    {TS_BINDING_VISIBILITY, kStorageBuffer, Source::sized, Scale::samples, 8, 0, Clear::per_frame,
      0xFFFFFFFFu},  // TS_VIS_EMPTY
     {TS_BINDING_COVERAGE, kStorageBuffer, Source::sized, Scale::pixels_if_coverage, 4, 0,
      Clear::per_frame},

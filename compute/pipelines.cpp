@@ -25,12 +25,7 @@ VkShaderModule create_shader_module(const Context& ctx, std::string_view name) {
   return create_shader_module(ctx, find_shader(name));
 }
 
-namespace {
-
-VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
-                                   std::string_view shader, Specialization values) {
-  VkShaderModule module = create_shader_module(ctx, shader);
-
+std::vector<VkSpecializationMapEntry> specialization_entries() {
   std::vector<VkSpecializationMapEntry> entries = {
       {TS_SPEC_DEBUG_COVERAGE, offsetof(Specialization, debug_coverage), sizeof(VkBool32)},
       {TS_SPEC_BRDF, offsetof(Specialization, brdf), sizeof(uint32_t)},
@@ -40,6 +35,8 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
       {TS_SPEC_TEXTURE_MAPS, offsetof(Specialization, texture_maps), sizeof(uint32_t)},
       {TS_SPEC_IBL, offsetof(Specialization, ibl), sizeof(uint32_t)},
       {TS_SPEC_UV1_MAPS, offsetof(Specialization, uv1_maps), sizeof(uint32_t)},
+      {TS_SPEC_SAMPLES, offsetof(Specialization, samples), sizeof(uint32_t)},
+      {TS_SPEC_OUTPUT_BGRA, offsetof(Specialization, output_bgra), sizeof(VkBool32)},
       {TS_SPEC_LOD, offsetof(Specialization, lod), sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
@@ -49,6 +46,25 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   // Every member of Specialization (4 bytes each) has its entry: a member without one would be
   // silently ignored by the driver.
   TESSERA_CHECK(entries.size() * 4 == sizeof(Specialization));
+  return entries;
+}
+
+Specialization shade_specialization(const ShadeVariant& v) {
+  return {.debug_coverage = VK_FALSE,
+          .brdf = v.brdf,
+          .energy_compensation = v.energy_compensation ? VK_TRUE : VK_FALSE,
+          .lights_specialized = VK_TRUE,
+          .texture_maps = v.texture_maps,
+          .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
+          .uv1_maps = v.uv1_maps,
+          .samples = v.samples,
+          .light_counts = v.light_counts};
+}
+
+VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
+                                   std::string_view shader, Specialization values) {
+  VkShaderModule module = create_shader_module(ctx, shader);
+  const std::vector<VkSpecializationMapEntry> entries = specialization_entries();
   VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), sizeof(values), &values};
 
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -66,19 +82,9 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   return pipeline;
 }
 
-}  // namespace
-
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& v) {
-  const Specialization values{.debug_coverage = VK_FALSE,
-                              .brdf = v.brdf,
-                              .energy_compensation = v.energy_compensation ? VK_TRUE : VK_FALSE,
-                              .lights_specialized = VK_TRUE,
-                              .texture_maps = v.texture_maps,
-                              .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
-                              .uv1_maps = v.uv1_maps,
-                              .light_counts = v.light_counts};
-  return create_compute_pipeline(ctx, pipelines.layout, "shade", values);
+  return create_compute_pipeline(ctx, pipelines.layout, "shade", shade_specialization(v));
 }
 
 Pipelines create_pipelines(const Context& ctx) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -48,8 +49,22 @@ struct ShadeVariant {
   uint32_t texture_maps;
   bool ibl;
   uint32_t uv1_maps;
+  uint32_t samples = 1;  // per pixel
   auto operator<=>(const ShadeVariant&) const = default;
 };
+
+/// The specialization constants of `variant`'s shading pipeline (shared with the graphics
+/// baseline's fragment shader, which includes the same lighting code).
+Specialization shade_specialization(const ShadeVariant& variant);
+
+/// The map entries of every Specialization member to its constant id (TS_SPEC_*), for
+/// VkSpecializationInfo with a Specialization as data.
+std::vector<VkSpecializationMapEntry> specialization_entries();
+
+/// A compute pipeline of the embedded shader `shader` with the layout `layout`, specialized to
+/// `values`. Throws Error (through vk_check) if the driver cannot build it.
+VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
+                                   std::string_view shader, Specialization values);
 
 /// Builds the shading pipeline for `variant` with the layout of `pipelines`.
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,

@@ -130,6 +130,8 @@ Renderer::~Renderer() {
   destroy_environment_gpu(ctx, s_->env);
   for (auto& [variant, pipeline] : s_->shade_variants)
     vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  for (auto& [key, pipeline] : s_->sampled_pipelines)
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
   destroy_image(ctx, s_->hdr);
   destroy_image(ctx, s_->ldr);
   if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
@@ -318,7 +320,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
 
 namespace {
 
-void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
+void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples) {
   const VkPhysicalDeviceLimits& l = ctx.properties.limits;
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width == 0 || height == 0) throw Error("image size " + size + " is empty");
@@ -327,9 +329,11 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height) {
     throw Error("image size " + size + " is over the largest side of " + std::to_string(max_side) +
                 " px");
   }
-  const uint64_t vis_bytes = uint64_t(width) * height * sizeof(uint64_t);
+  const uint64_t vis_bytes = uint64_t(width) * height * samples * sizeof(uint64_t);
   if (vis_bytes > l.maxStorageBufferRange) {
-    throw Error("image size " + size + " needs a " + std::to_string(vis_bytes >> 20) +
+    throw Error("image size " + size +
+                (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") + " needs a " +
+                std::to_string((vis_bytes + (1u << 20) - 1) >> 20) +
                 " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
                 std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
   }
@@ -344,6 +348,9 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
       break;
     case Scale::pixels:
       count = uint64_t(s.width) * s.height;
+      break;
+    case Scale::samples:
+      count = uint64_t(s.width) * s.height * s.samples;
       break;
     case Scale::pixels_if_coverage:
       if (!s.options.debug_coverage) return 4;
@@ -375,7 +382,8 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
 namespace {
 
 bool sized_by_frame(Scale scale) {
-  return scale == Scale::pixels || scale == Scale::pixels_if_coverage || scale == Scale::tiles;
+  return scale == Scale::pixels || scale == Scale::samples || scale == Scale::pixels_if_coverage ||
+         scale == Scale::tiles;
 }
 
 // Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
@@ -403,10 +411,12 @@ constexpr bool has_clear(Clear when) {
 
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
-  check_frame_size(ctx, settings.width, settings.height);
-  if (settings.width == s.width && settings.height == s.height) return false;
+  check_frame_size(ctx, settings.width, settings.height, settings.samples);
+  if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples)
+    return false;
   s.width = settings.width;
   s.height = settings.height;
+  s.samples = settings.samples;
   s.tiles_x = div_up(s.width, TS_TILE_SIZE);
   s.tiles_y = div_up(s.height, TS_TILE_SIZE);
   for (const BindingInfo& b : kBindings) {
@@ -418,9 +428,9 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   }
   destroy_image(ctx, s.hdr);
   destroy_image(ctx, s.ldr);
-  // A colour attachment too, for graphics pipelines drawing into it (the hardware baseline).
+  // A copy destination too: the hardware baseline copies its colour attachment into it.
   s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+                               VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
   s.images_generation++;
   s.descriptors_dirty = true;
@@ -466,27 +476,57 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
 }
 
+namespace {
+
+bool compensates(const FrameSettings& settings) {
+  return settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+}
+
+// The shading variant of the current scene for `settings` (with RendererOptions::
+// specialize_lights).
+ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settings) {
+  return {uint32_t(settings.brdf), compensates(settings),   s.uploaded.light_counts,
+          s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps,
+          settings.samples};
+}
+
+}  // namespace
+
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
-  const bool compensate = settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
+  const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {
-    const ShadeVariant v{uint32_t(settings.brdf), compensate,
-                         s.uploaded.light_counts, s.uploaded.texture_maps,
-                         s.env.source != nullptr, s.uploaded.uv1_maps};
+    const ShadeVariant v = shade_variant(s, settings);
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
     if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
     return it->second;
   }
+  Pipeline generic = Pipeline::shade_classic;
   switch (settings.brdf) {
     case Brdf::classic:
-      return s
-          .pipelines[compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic];
+      generic = compensate ? Pipeline::shade_classic_compensated : Pipeline::shade_classic;
+      break;
     case Brdf::filament:
-      return s
-          .pipelines[compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament];
+      generic = compensate ? Pipeline::shade_filament_compensated : Pipeline::shade_filament;
+      break;
     case Brdf::blinn_phong:
-      return s.pipelines[Pipeline::shade_blinn_phong];
+      generic = Pipeline::shade_blinn_phong;
+      break;
   }
-  return s.pipelines[Pipeline::shade_classic];
+  if (settings.samples == 1) return s.pipelines[generic];
+  return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader,
+                          kPipelines[size_t(generic)].spec, settings.samples);
+}
+
+VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader,
+                            Specialization spec, uint32_t samples) {
+  auto [it, inserted] = s.sampled_pipelines.try_emplace(
+      std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE, spec.lod == VK_TRUE),
+      VK_NULL_HANDLE);
+  if (inserted) {
+    spec.samples = samples;
+    it->second = create_compute_pipeline(s.ctx, s.pipelines.layout, shader, spec);
+  }
+  return it->second;
 }
 
 namespace {
@@ -522,6 +562,7 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
   if (!std::isfinite(settings.exposure_ev) || std::abs(settings.exposure_ev) > 64.0f) {
     throw Error("exposure " + std::to_string(settings.exposure_ev) + " EV is outside [-64, 64]");
   }
+  validate_samples(settings.samples);
   if (settings.max_anisotropy < 1 || settings.max_anisotropy > 16) {
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
@@ -705,6 +746,7 @@ void Renderer::update_descriptors() {
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(s.ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+  ++s.descriptors_generation;
 }
 
 void Renderer::write_frame_constants(const FrameSettings& settings) {
@@ -752,6 +794,13 @@ namespace {
 
 // The pipeline `pass` binds this frame.
 VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
+  if (settings.samples > 1 && pass.variants != Variants::shading) {
+    Specialization spec = pass.spec;
+    if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
+      spec.debug_coverage = VK_TRUE;
+    if (pass.variants == Variants::lod && settings.lod == Lod::automatic) spec.lod = VK_TRUE;
+    return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
+  }
   switch (pass.variants) {
     case Variants::plain:
       break;
@@ -892,6 +941,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
+        if (pass.pass == Pass::resolve && !s.options.resolve) {
+          ++i;  // the caller records it (RendererOptions::resolve)
+          break;
+        }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
         barrier_after(cmd, pass);
         mark(pass.pass);
@@ -900,6 +953,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     }
   }
 
+  // Without the resolve pass, shading was the last pass and fed only compute passes.
+  if (!s.options.resolve) {
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   VkBufferCopy region{0, 0, counters.size};
   vkCmdCopyBuffer(cmd, counters.buffer, s.counters_readback.buffer, 1, &region);
@@ -931,13 +989,15 @@ Image8 Renderer::read_ldr() const {
 std::vector<uint64_t> Renderer::read_visibility() const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE);
-  return download_buffer<uint64_t>(s_->ctx, visibility, uint64_t(s_->width) * s_->height);
+  return download_buffer<uint64_t>(s_->ctx, visibility,
+                                   uint64_t(s_->width) * s_->height * s_->samples);
 }
 
 uint64_t Renderer::read_visibility_at(uint32_t x, uint32_t y) const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE && x < s_->width && y < s_->height);
-  return download_buffer<uint64_t>(s_->ctx, visibility, 1, uint64_t(y) * s_->width + x)[0];
+  return download_buffer<uint64_t>(s_->ctx, visibility, 1,
+                                   (uint64_t(y) * s_->width + x) * s_->samples)[0];
 }
 
 std::vector<uint32_t> Renderer::read_coverage() const {
@@ -995,7 +1055,7 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   Frame f;
   f.set = s.set;
   f.layout = s.pipelines.layout;
-  f.hdr_view = s.hdr.view;
+  f.hdr_image = s.hdr.image;
   f.images_generation = s.images_generation;
   f.width = s.width;
   f.height = s.height;
@@ -1006,6 +1066,13 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   f.cull = s.options.cull;
   f.lod = lod;
   f.lod_draws = s.buffer(TS_BINDING_LOD_DRAWS).buffer;
+  // What shade_pipeline specializes the shading pass to; the generic pipelines' constants
+  // otherwise (kPipelines).
+  f.shading =
+      s.options.specialize_lights
+          ? shade_specialization(shade_variant(s, settings))
+          : Specialization{.brdf = uint32_t(settings.brdf),
+                           .energy_compensation = compensates(settings) ? VK_TRUE : VK_FALSE};
   return f;
 }
 
@@ -1042,6 +1109,23 @@ void RendererInternal::record_resolve(Renderer& renderer, VkCommandBuffer cmd) {
   record_dispatch(s, cmd, kPasses[size_t(Pass::resolve)], gpu::GpuBatch{}, FrameSettings{});
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+RendererInternal::SharedSet RendererInternal::shared_set(const Renderer& renderer) {
+  const Renderer::State& s = *renderer.s_;
+  return {s.set, s.pipelines.set_layout, s.descriptors_generation};
+}
+
+void RendererInternal::record_resolve_into(Renderer& renderer, VkCommandBuffer cmd,
+                                           VkDescriptorSet set, bool bgra) {
+  Renderer::State& s = *renderer.s_;
+  TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE && set != VK_NULL_HANDLE);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &set, 0,
+                          nullptr);
+  const PassInfo& pass = kPasses[size_t(Pass::resolve)];
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    bgra ? s.pipelines[Pipeline::resolve_bgra] : s.pipelines[Pass::resolve]);
+  vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
 }
 
 const Buffer& RendererInternal::buffer(const Renderer& renderer, uint32_t binding) {

@@ -44,6 +44,11 @@ struct RendererOptions {
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
   /// covered exactly once. Slower; for tests.
   bool debug_coverage = false;
+  /// Records the resolve pass (tone mapping, sRGB encoding into the display image) in render().
+  /// Off, render() stops after shading and the caller records the resolve into an image of its
+  /// own (RendererInternal::record_resolve_into), as the window does into swapchain images;
+  /// read_ldr and output_image then hold what the caller resolved there.
+  bool resolve = true;
   /// Resolutions and sample counts of the image-based lighting, applied when a scene's
   /// environment is set (set_scene throws Error for values out of range).
   EnvironmentOptions environment;
@@ -92,13 +97,15 @@ class Renderer {
   /// cannot handle or when no scene was set.
   FrameStats render(const FrameSettings& settings);
 
-  /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage.
+  /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts
+  /// covered samples per pixel. read_visibility holds FrameSettings::samples keys per pixel,
+  /// row-major, each pixel's samples together in the order of their TS_SAMPLES_* positions.
   ImageF read_hdr() const;
   Image8 read_ldr() const;
   std::vector<uint64_t> read_visibility() const;
   std::vector<uint32_t> read_coverage() const;
   /// The last frame's visibility key at pixel (x, y) (< the frame's size; TS_VIS_EMPTY where
-  /// no triangle covers it): an 8-byte read-back, for picking.
+  /// no triangle covers it; its first sample with several): an 8-byte read-back, for picking.
   uint64_t read_visibility_at(uint32_t x, uint32_t y) const;
 
   /// The DFG tables (classic, then filament; TS_DFG_SIZE^2 each, rows by roughness): x the

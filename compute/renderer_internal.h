@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "compute/gpu_memory.h"
+#include "compute/passes.h"
 #include "compute/renderer.h"
 #include "shaders/shared/gpu_types.h"
 
@@ -22,8 +23,8 @@ class RendererInternal {
   struct Frame {
     VkDescriptorSet set = VK_NULL_HANDLE;      // the shared set (bindings of compute/passes.h)
     VkPipelineLayout layout = VK_NULL_HANDLE;  // its layout, push constants GpuBatch, kShaderStages
-    VkImageView hdr_view = VK_NULL_HANDLE;     // the HDR image (RGBA16F, layout GENERAL, also a
-                                               // colour attachment) the resolve pass reads
+    VkImage hdr_image = VK_NULL_HANDLE;        // the HDR image (RGBA16F, layout GENERAL, also a
+                                               // copy destination) the resolve pass reads
     uint64_t images_generation = 0;            // changes whenever the output images are recreated
     uint32_t width = 0, height = 0;
     VkBuffer indices = VK_NULL_HANDLE;        // the scene's uint32 indices (index-buffer usage too)
@@ -35,6 +36,10 @@ class RendererInternal {
     /// `lod_draws` (indexed draws of one instance, first instance the slot).
     bool lod = false;
     VkBuffer lod_draws = VK_NULL_HANDLE;
+    // The specialization constants of the compute path's shading pass for this frame: light
+    // counts, texture maps, environment, uv sets (or the generic pipeline's, without
+    // RendererOptions::specialize_lights), for shaders that include the same lighting code.
+    Specialization shading{};
   };
 
   /// Prepares a frame of `settings` as render() does, without recording any pass: checks the
@@ -55,6 +60,24 @@ class RendererInternal {
   /// Records the resolve pass (HDR image to display image; binds its pipeline and the shared
   /// set at the compute bind point), then a barrier making its writes visible to transfers.
   static void record_resolve(Renderer& renderer, VkCommandBuffer cmd);
+
+  /// The shared descriptor set, its layout, and a number that changes whenever the renderer
+  /// rewrites the set's descriptors (a new scene's buffers, a new size), so that a set copied
+  /// from it knows when to copy again. Valid after the first render().
+  struct SharedSet {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    uint64_t generation = 0;
+  };
+  static SharedSet shared_set(const Renderer& renderer);
+
+  /// Records the resolve pass of the last frame into the storage image that `set` binds at
+  /// TS_BINDING_LDR_IMAGE (an R8G8B8A8_UNORM view in GENERAL, the frame's size; `set` has the
+  /// shared set's layout and its other bindings), storing B, G, R, A where `bgra`. Binds the
+  /// pipeline and `set` at the compute bind point; the caller orders the HDR image's writes
+  /// before it and the target's use after it. For RendererOptions::resolve off.
+  static void record_resolve_into(Renderer& renderer, VkCommandBuffer cmd, VkDescriptorSet set,
+                                  bool bgra);
 
   /// The renderer's buffer at `binding` (TS_BINDING_* of a buffer the renderer owns; empty
   /// before the first frame that allocates it).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <tuple>
 
 #include "compute/environment_gpu.h"
 #include "compute/gpu_memory.h"
@@ -22,6 +23,7 @@ struct Renderer::State {
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
+  uint64_t descriptors_generation = 0;  // counts the rewrites of `set` (copies follow it)
 
   // The scene as it is on the GPU.
   bool has_scene = false;
@@ -50,6 +52,7 @@ struct Renderer::State {
 
   // Sized by the image.
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+  uint32_t samples = 1;  // per pixel (FrameSettings::samples) of the visibility buffer
   StorageImage hdr, ldr;
   // What the last frame multiplied the HDR image by (pre-exposure, shaders/bindings.glsl):
   // 2^EV for shaded frames, 1 for debug views. read_hdr divides it back out.
@@ -64,6 +67,10 @@ struct Renderer::State {
   Buffer frame_constants;  // GpuFrame (TS_BINDING_FRAME), written before each frame
 
   std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
+  // The passes (by Pass) and generic shading pipelines (by Pipeline, after the passes) for more
+  // than one sample per pixel, built on first use: key (index, samples, debug coverage, level
+  // of detail).
+  std::map<std::tuple<size_t, uint32_t, bool, bool>, VkPipeline> sampled_pipelines;
   bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
   VkQueryPool queries = VK_NULL_HANDLE;
   uint32_t query_capacity = 0;
@@ -111,6 +118,12 @@ bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameS
 /// The shading pipeline for `settings` and the current scene: specialized to its lights (built
 /// and cached on first use) or the generic one.
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings);
+
+/// The pipeline of embedded shader `shader` specialized to `spec` with `samples` per pixel,
+/// built on first use and kept in State::sampled_pipelines under `index` (a Pass, or
+/// kPassCount + a Pipeline).
+VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader,
+                            Specialization spec, uint32_t samples);
 
 /// Size in bytes that Source::sized binding `info` needs now (at least 4).
 uint64_t binding_size(const Renderer::State& s, const BindingInfo& info);

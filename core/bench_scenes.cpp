@@ -18,6 +18,9 @@ constexpr BenchFamilyInfo kFamilies[] = {
     {"grid", "N spheres on a grid filling the view (triangles shrink as N grows)"},
     {"scatter", "N small spheres scattered in depth (heavy overdraw)"},
     {"huge", "N triangles each many times the screen, stacked in depth"},
+    {"yardstick",
+     "N spheres on a side x side grid (side = ceil(sqrt N)), the minimal graphics program's "
+     "layout"},
 };
 
 // A 7 x 7 palette of metallic-roughness materials, as in the default scene.
@@ -75,6 +78,16 @@ void check_aspect(float aspect) {
 
 }  // namespace
 
+YardstickPlacement yardstick_placement(uint32_t i, uint32_t objects) {
+  TESSERA_CHECK(objects > 0 && i < objects);
+  // Exact: the square root of a perfect square below 2^52 is exact in double precision.
+  const uint32_t s = uint32_t(std::ceil(std::sqrt(double(objects))));
+  const float fs = float(s);
+  return {{((float(i % s) + 0.5f) / fs * 2.0f - 1.0f) * 3.0f,
+           ((float(i / s) + 0.5f) / fs * 2.0f - 1.0f) * 1.7f, 0.0f},
+          0.45f * std::min(6.0f, 3.4f) / fs};
+}
+
 std::span<const BenchFamilyInfo> bench_families() {
   return kFamilies;
 }
@@ -99,6 +112,22 @@ Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segme
     }
     place_grid_camera(s, g);
     add_four_lights(s, std::max(10.0f, g.camera_distance * 0.5f));
+    return s;
+  }
+  if (family == "yardstick") {
+    // The minimal graphics program's scene (bench/minimal_graphics.cpp), whatever the aspect:
+    // its layout is fixed in world units, as the program's is.
+    s.meshes.push_back(make_uv_sphere(segments, segments / 2));
+    for (uint32_t i = 0; i < objects; ++i) {
+      const YardstickPlacement p = yardstick_placement(i, objects);
+      s.objects.push_back(
+          {0, i % uint32_t(s.materials.size()),
+           glm::scale(glm::translate(glm::mat4(1.0f), p.centre), glm::vec3(p.radius))});
+    }
+    s.camera.position = {0.0f, 0.0f, 3.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.vertical_fov = glm::radians(60.0f);
+    add_four_lights(s, kYardstickLightDistance);
     return s;
   }
   if (family == "scatter") {

@@ -14,7 +14,7 @@ struct BenchFamilyInfo {
   std::string_view description;
 };
 
-/// The families: "grid", "scatter", "huge".
+/// The families: "grid", "scatter", "huge", "yardstick".
 std::span<const BenchFamilyInfo> bench_families();
 
 /// Builds family `family` with `objects` objects (>= 1) for an image of aspect `aspect`
@@ -24,7 +24,26 @@ std::span<const BenchFamilyInfo> bench_families();
 ///  - grid: N spheres on a grid that fills the view; triangles shrink as N grows.
 ///  - scatter: N small spheres scattered in depth inside the view: heavy overdraw.
 ///  - huge: N triangles, each many times the screen, stacked in depth: the large-triangle path.
+///  - yardstick: the minimal graphics program's scene (bench/minimal_graphics.cpp, issue 13):
+///    N spheres placed by yardstick_placement, camera at (0, 0, 3) looking at the origin with
+///    a 60 degree vertical field of view, the four lights of
+///    kYardstickLightDistance, material i % 49
+///    of the 7 x 7 palette. It ignores `aspect` (its layout is fixed in world units).
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect);
+
+/// Where the yardstick family puts sphere `i` (< `objects`) of `objects`: on a side x side grid,
+/// side = ceil(sqrt(objects)), centre (((i mod side) + 0.5) / side * 2 - 1) * 3,
+/// (((i div side) + 0.5) / side * 2 - 1) * 1.7, 0) and radius 0.45 * min(6, 3.4) / side (world
+/// units; the grid spans 6 x 3.4). The unit sphere mesh is scaled by `radius`.
+struct YardstickPlacement {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+};
+YardstickPlacement yardstick_placement(uint32_t i, uint32_t objects);
+
+/// The yardstick's four point lights: white, inverse-square, at (+-d, +-d, d) with d = 4 and
+/// intensity 3 d^2 = 48 W/sr (as the other families' lights at their distance).
+constexpr float kYardstickLightDistance = 4.0f;
 
 struct Sphere {
   glm::vec3 center{0.0f};

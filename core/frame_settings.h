@@ -4,6 +4,9 @@
 // all take these. No Vulkan here.
 
 #include <cstdint>
+#include <string>
+
+#include "core/check.h"
 
 #include "core/scene.h"
 
@@ -35,6 +38,17 @@ struct FrameSettings {
   /// pixels (> 0 and finite; renderers throw Error otherwise).
   Lod lod = Lod::off;
   float lod_error_px = 0.5f;
+  /// Anti-aliasing: visibility samples per pixel, 1, 4, 8 or 16, at the fixed positions of
+  /// shaders/shared/constants.h (TS_SAMPLES_*); each distinct triangle of a pixel is shaded
+  /// once and weighted by the samples it covers (docs/architecture.md, "Anti-aliasing").
+  uint32_t samples = 1;
 };
+
+/// Throws Error naming `samples` unless it is 1, 4, 8 or 16.
+inline void validate_samples(uint32_t samples) {
+  if (samples != 1 && samples != 4 && samples != 8 && samples != 16) {
+    throw Error("samples per pixel " + std::to_string(samples) + " is not 1, 4, 8 or 16");
+  }
+}
 
 }  // namespace tessera

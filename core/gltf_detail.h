@@ -41,13 +41,29 @@ void check_index(const Context& ctx, const std::string& where, int64_t index, si
 /// byteLength bytes. Warns for extensions used but ignored.
 void check_document(const Context& ctx, const nlohmann::json& doc);
 
-/// An accessor's elements as doubles (exact for every component type), normalized integers
-/// mapped to [0, 1] or [-1, 1], sparse substitution applied: count * components values.
+/// An accessor's elements, count * components values, in one of three arrays. Float
+/// accessors and unsigned integer ones that are not normalized, without sparse values, keep
+/// their stored type (floats, uints; copied, not converted, which was a fifth of the import of a
+/// large mesh); every other accessor is read as doubles (exact for every component type),
+/// normalized integers mapped to [0, 1] or [-1, 1], sparse substitution applied. Each value
+/// converts to the same double whichever array holds it, so a computation in double does not
+/// depend on which one it reads (visit).
 struct AccessorValues {
   size_t count = 0;
   int components = 0;
   std::vector<double> values;
+  std::vector<float> floats;
+  std::vector<uint32_t> uints;
 };
+
+/// f(p) with p a pointer to the array of `v` that holds its values (const double*, const
+/// float* or const uint32_t*).
+template <typename F>
+decltype(auto) visit(const AccessorValues& v, F&& f) {
+  if (!v.floats.empty()) return f(v.floats.data());
+  if (!v.uints.empty()) return f(v.uints.data());
+  return f(v.values.data());
+}
 
 /// Reads accessors[index], referenced from `where`, checking the buffer view and buffer
 /// ranges, stride, size arithmetic and sparse indices; `types` lists the allowed accessor
@@ -64,15 +80,17 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
 struct PrimitiveOptions {
   bool uv1 = false;  // TEXCOORD_1 read as Mesh::uvs1 (a texture of the material reads set 1)
   glm::mat3 uv_transform[2]{glm::mat3(1), glm::mat3(1)};  // KHR_texture_transform of each set
+  // Tangents are generated (when TANGENT is absent) only for a material with a normal map, the
+  // one reader of tangents: elsewhere they cost a fifth of the import and change no pixel.
+  bool tangents = false;
   int tangent_set = 0;         // the uv set tangents are generated from (the normal map's)
   std::string material_where;  // the material's glTF path, for messages
-  bool flip_winding = false;   // for instances whose world transform mirrors
 };
 
 /// Converts meshes[mesh].primitives[primitive] (TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN,
 /// indexed or not) into a Mesh with unit normals (flat ones generated when NORMAL is absent),
-/// uvs (TEXCOORD_0, and TEXCOORD_1 as uvs1 where options.uv1) and tangents (generated when
-/// TANGENT is absent).
+/// uvs (TEXCOORD_0, and TEXCOORD_1 as uvs1 where options.uv1) and tangents (TANGENT, or
+/// generated where options.tangents).
 Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mesh, int primitive,
                        const PrimitiveOptions& options);
 

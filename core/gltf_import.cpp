@@ -262,7 +262,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
 
   MaterialTable table;
   decode_images(ctx, model, table);
-  std::map<std::tuple<int, int, bool>, uint32_t> meshes;  // (mesh, primitive, mirrored)
+  std::map<std::pair<int, int>, uint32_t> meshes;  // (mesh, primitive)
   std::map<int, glm::dmat4> camera_placements;
   std::vector<bool> on_path(nodes.size(), false);
   struct Visit {
@@ -305,8 +305,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
       const int mesh = node["mesh"].get<int>();
       check_index(ctx, where + ".mesh", mesh, model.meshes.size(), "meshes");
       // A mirroring transform turns counter-clockwise triangles clockwise (specification
-      // 3.7.4): such instances get a copy of the mesh wound the other way.
-      const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+      // 3.7.4); the renderers handle it per object (is_mirroring), so the mesh is shared.
       for (size_t p = 0; p < model.meshes[mesh].primitives.size(); ++p) {
         const int material = model.meshes[mesh].primitives[p].material;
         if (material >= 0) {
@@ -316,13 +315,12 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
         Object object;
         object.material = material_index(ctx, doc, model, material, table, out.scene);
         object.transform = glm::mat4(world);
-        const auto key = std::make_tuple(mesh, int(p), mirrored);
+        const auto key = std::make_pair(mesh, int(p));
         if (auto it = meshes.find(key); it != meshes.end()) {
           object.mesh = it->second;
         } else {
-          PrimitiveOptions options = table.uv_options[material];
-          options.flip_winding = mirrored;
-          out.scene.meshes.push_back(convert_primitive(ctx, model, mesh, int(p), options));
+          out.scene.meshes.push_back(
+              convert_primitive(ctx, model, mesh, int(p), table.uv_options[material]));
           object.mesh = meshes[key] = uint32_t(out.scene.meshes.size() - 1);
         }
         out.scene.objects.push_back(object);

@@ -281,7 +281,8 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     // The transform is applied to the uvs of a set when they are read, so the textures of one
     // set share the transform of the first of them.
     uv.uv1 = mat.uv1_maps != 0u;
-    if (mat.normal_map != kNoTexture && (mat.uv1_maps & TS_MAP_NORMAL) != 0u) uv.tangent_set = 1;
+    uv.tangents = mat.normal_map != kNoTexture;
+    if (uv.tangents && (mat.uv1_maps & TS_MAP_NORMAL) != 0u) uv.tangent_set = 1;
     uv.material_where = where;
     for (int set = 0; set < 2; ++set) {
       const Slot* first = nullptr;

@@ -1,6 +1,7 @@
 // Mesh primitives into Tessera meshes: topology, attributes, generated normals and tangents.
 
 #include <cmath>
+#include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -28,12 +29,15 @@ const char* mode_name(int mode) {
 
 // Fails naming the element if any value of an attribute is NaN or infinite.
 void require_finite(const Context& ctx, const AccessorValues& v, const std::string& where) {
-  for (size_t i = 0; i < v.values.size(); ++i) {
-    if (!std::isfinite(v.values[i])) {
-      ctx.fail(where, "element " + std::to_string(i / v.components) + " has a NaN or infinite " +
-                          "component");
+  if (!v.uints.empty()) return;
+  visit(v, [&](const auto* values) {
+    for (size_t i = 0; i < v.count * size_t(v.components); ++i) {
+      if (!std::isfinite(values[i])) {
+        ctx.fail(where, "element " + std::to_string(i / v.components) +
+                            " has a NaN or infinite component");
+      }
     }
-  }
+  });
 }
 
 // Triangle list of a strip or fan, as the glTF 2.0 specification (3.7.2.1) orders them, so that
@@ -116,9 +120,15 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   };
 
   Mesh mesh;
-  mesh.positions.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    mesh.positions[i] = glm::vec3(glm::make_vec3(&positions.values[3 * i]));
+  if (!positions.floats.empty()) {
+    mesh.positions.resize(n);
+    std::memcpy(mesh.positions.data(), positions.floats.data(), n * sizeof(glm::vec3));
+  } else {
+    mesh.positions.reserve(n);
+    visit(positions, [&](const auto* values) {
+      for (size_t i = 0; i < n; ++i)
+        mesh.positions.push_back(glm::vec3(glm::make_vec3(&values[3 * i])));
+    });
   }
   // TEXCOORD_n (zero where absent) through set n's texture transform.
   auto read_uvs = [&](int set) {
@@ -126,11 +136,12 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     const std::string name = "TEXCOORD_" + std::to_string(set);
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
-    for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 uv = glm::dmat3(options.uv_transform[set]) *
-                            glm::dvec3(uvs.values[2 * i], uvs.values[2 * i + 1], 1.0);
-      out[i] = glm::vec2(uv);
-    }
+    const glm::dmat3 transform(options.uv_transform[set]);
+    visit(uvs, [&](const auto* values) {
+      for (size_t i = 0; i < n; ++i) {
+        out[i] = glm::vec2(transform * glm::dvec3(values[2 * i], values[2 * i + 1], 1.0));
+      }
+    });
     return out;
   };
   mesh.uvs = read_uvs(0);
@@ -145,8 +156,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   std::vector<uint32_t> vertices;
   if (prim.indices >= 0) {
     const std::string path = where + ".indices";
-    const AccessorValues indices =
-        read_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR});
+    AccessorValues indices = read_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR});
     const int type = model.accessors[prim.indices].componentType;
     if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
@@ -154,14 +164,22 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
       ctx.fail(path, "has componentType " + std::to_string(type) +
                          ", must be an unsigned byte, short or int");
     }
-    vertices.reserve(indices.count);
-    for (size_t i = 0; i < indices.count; ++i) {
-      if (indices.values[i] >= double(n)) {
-        ctx.fail(path, "element " + std::to_string(i) + " is vertex " +
-                           std::to_string(uint64_t(indices.values[i])) + ", past the " +
-                           std::to_string(n) + " vertices of POSITION");
+    visit(indices, [&](const auto* values) {
+      for (size_t i = 0; i < indices.count; ++i) {
+        if (values[i] >= n) {
+          ctx.fail(path, "element " + std::to_string(i) + " is vertex " +
+                             std::to_string(uint64_t(values[i])) + ", past the " +
+                             std::to_string(n) + " vertices of POSITION");
+        }
       }
-      vertices.push_back(uint32_t(indices.values[i]));
+    });
+    if (!indices.uints.empty()) {
+      vertices = std::move(indices.uints);
+    } else {
+      vertices.reserve(indices.count);
+      visit(indices, [&](const auto* values) {
+        for (size_t i = 0; i < indices.count; ++i) vertices.push_back(uint32_t(values[i]));
+      });
     }
   } else {
     vertices.resize(n);
@@ -173,11 +191,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
                  " elements, not a multiple of 3 as TRIANGLES need");
   }
   mesh.indices = triangulate(prim.mode, std::move(vertices));
-  if (options.flip_winding) {
-    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-      std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-    }
-  }
 
   if (attribute("NORMAL") < 0) {
     make_flat(mesh);
@@ -186,44 +199,44 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3);
     mesh.normals.resize(n);
     bool renormalized = false;
-    for (size_t i = 0; i < n; ++i) {
-      glm::dvec3 v = glm::make_vec3(&normals.values[3 * i]);
-      const double length = glm::length(v);
-      if (!(length > 0.0)) {
-        ctx.fail(attributes + "NORMAL", "element " + std::to_string(i) + " is the zero vector");
+    visit(normals, [&](const auto* values) {
+      for (size_t i = 0; i < n; ++i) {
+        const glm::dvec3 v(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+        const double length = glm::length(v);
+        if (!(length > 0.0)) {
+          ctx.fail(attributes + "NORMAL", "element " + std::to_string(i) + " is the zero vector");
+        }
+        renormalized |= std::abs(length - 1.0) > 1e-3;
+        mesh.normals[i] = glm::vec3(v / length);
       }
-      renormalized |= std::abs(length - 1.0) > 1e-3;
-      mesh.normals[i] = glm::vec3(v / length);
-    }
+    });
     if (renormalized) {
       ctx.warn(attributes + "NORMAL", "has normals that are not unit length; normalized");
     }
     if (attribute("TANGENT") >= 0) {
       const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
       mesh.tangents.resize(n);
-      for (size_t i = 0; i < n; ++i) {
-        const glm::dvec3 t = glm::make_vec3(&tangents.values[4 * i]);
-        const double w = tangents.values[4 * i + 3];
-        // Tessera's convention is glTF's: bitangent = w * cross(normal, tangent).
-        if (!(glm::length(t) > 0.0)) {
-          ctx.fail(attributes + "TANGENT", "element " + std::to_string(i) + " is the zero vector");
+      visit(tangents, [&](const auto* values) {
+        for (size_t i = 0; i < n; ++i) {
+          const glm::dvec3 t(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+          const double w = values[4 * i + 3];
+          // Tessera's convention is glTF's: bitangent = w * cross(normal, tangent).
+          if (!(glm::length(t) > 0.0)) {
+            ctx.fail(attributes + "TANGENT",
+                     "element " + std::to_string(i) + " is the zero vector");
+          }
+          mesh.tangents[i] = glm::vec4(glm::normalize(t), (w < 0.0 ? -1.0f : 1.0f));
         }
-        mesh.tangents[i] = glm::vec4(glm::normalize(t), (w < 0.0 ? -1.0f : 1.0f));
-      }
+      });
     }
   }
   // Generated tangents are Lengyel's per-vertex sums (generate_tangents), not MikkTSpace: they
   // agree on smooth, well-parametrized meshes, but a normal map baked against MikkTSpace can
   // show small shading seams where the two frames differ (split uv islands, sharp edges).
-  if (mesh.tangents.empty()) {
+  if (mesh.tangents.empty() && options.tangents) {
     mesh.tangents =
         generate_tangents(mesh.positions, mesh.normals,
                           options.tangent_set == 1 ? mesh.uvs1 : mesh.uvs, mesh.indices);
-  }
-  // A mirroring transform M maps cross(n, t) to -M cross(n, t) (for orthogonal M), so the
-  // handedness that keeps the bitangent following the uvs changes sign.
-  if (options.flip_winding) {
-    for (glm::vec4& t : mesh.tangents) t.w = -t.w;
   }
   for (const char* ignored : {"COLOR_0", "JOINTS_0", "WEIGHTS_0"}) {
     if (attribute(ignored) >= 0) {

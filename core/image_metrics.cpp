@@ -183,6 +183,13 @@ Ownership make_ownership(uint32_t width, uint32_t height, uint32_t samples_per_p
   return o;
 }
 
+std::vector<uint8_t> outline_pixels(const Ownership& o) {
+  check_ownership(o);
+  std::vector<uint8_t> mask(size_t(o.width) * o.height);
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = o.first[i + 1] - o.first[i] > 1 ? 1 : 0;
+  return mask;
+}
+
 SilhouetteError silhouette_error(const Ownership& actual, const Ownership& expected) {
   if (actual.width != expected.width || actual.height != expected.height) {
     throw Error("cannot compare the silhouettes of a " + std::to_string(actual.width) + "x" +

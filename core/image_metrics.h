@@ -106,6 +106,12 @@ struct SilhouetteError {
 /// differ.
 SilhouetteError silhouette_error(const Ownership& actual, const Ownership& expected);
 
+/// The pixels an outline crosses: 1 where `o` has two or more shares (two objects, or an object
+/// and the background, each hold some of the pixel's samples), else 0; one entry per pixel, a
+/// mask for compare_images and radiance_error. On a supersampled truth these are the pixels
+/// whose value depends on how the renderer resolves edges (docs/tradeoffs.md, "Anti-aliasing").
+std::vector<uint8_t> outline_pixels(const Ownership& o);
+
 /// The errors issue 12's trade-off charts plot, of one image against the ground truth.
 /// PSNR is that of the 8-bit images (compare_images); silhouette_px is the mean of
 /// silhouette_error, or NaN when no ownership is given.

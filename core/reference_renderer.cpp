@@ -755,28 +755,77 @@ bool keep_nearest(SampleHit& h, double depth, uint32_t id, uint32_t slot) {
   return true;
 }
 
-// Rasterizes every triangle into the samples of pixel row y (hits[x * n * n + j * n + i] is
-// sample (i, j) of pixel x). `offsets`: the sample positions within a pixel, in kTruthOne units.
+// The samples of a pixel: their positions from its top-left corner in fixed-point units, `one`
+// units per pixel (the triangles' snapping grid).
+struct SamplePattern {
+  int64_t one = kSubpixelOne;
+  std::vector<FixedPoint> offsets;
+  // Position of sample s of pixel (x, y), in pixels.
+  dvec2 point(int64_t x, int64_t y, size_t s) const {
+    return {double(x) + double(offsets[s].x) / double(one),
+            double(y) + double(offsets[s].y) / double(one)};
+  }
+};
+
+// The ground truth's N x N grid: sample (i, j) at ((i + 0.5) / N, (j + 0.5) / N) rounded to
+// 1/kTruthOne px, numbered j * N + i.
+SamplePattern truth_pattern(uint32_t n) {
+  SamplePattern p{kTruthOne, {}};
+  std::vector<int64_t> steps(n);
+  for (uint32_t i = 0; i < n; ++i)
+    steps[i] = int64_t(std::floor((i + 0.5) / n * double(kTruthOne) + 0.5));
+  for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t i = 0; i < n; ++i) p.offsets.push_back({steps[i], steps[j]});
+  }
+  return p;
+}
+
+// The compute path's anti-aliasing pattern of `samples` per pixel (TS_SAMPLES_*, constants.h),
+// on its 1/256 px grid.
+SamplePattern msaa_pattern(uint32_t samples) {
+  std::vector<glm::ivec2> grid;
+  switch (samples) {
+    case 4:
+      grid = {TS_SAMPLES_4(glm::ivec2)};
+      break;
+    case 8:
+      grid = {TS_SAMPLES_8(glm::ivec2)};
+      break;
+    case 16:
+      grid = {TS_SAMPLES_16(glm::ivec2)};
+      break;
+    default:
+      grid = {TS_SAMPLES_1(glm::ivec2)};
+      break;
+  }
+  TESSERA_CHECK(grid.size() == samples);
+  SamplePattern p{kSubpixelOne, {}};
+  const int64_t scale = kSubpixelOne / TS_SAMPLE_GRID;
+  for (glm::ivec2 g : grid) p.offsets.push_back({g.x * scale, g.y * scale});
+  return p;
+}
+
+// Rasterizes every triangle into the samples of pixel row y (hits[x * n + s] is sample s of
+// pixel x, n the pattern's sample count).
 void rasterize_samples(const std::vector<RasterTriangle>& tris, int64_t y,
-                       const std::vector<int64_t>& offsets, std::vector<SampleHit>& hits) {
-  const size_t n = offsets.size();
+                       const SamplePattern& pattern, std::vector<SampleHit>& hits) {
+  const size_t n = pattern.offsets.size();
   for (const RasterTriangle& t : tris) {
     if (y < t.box_min_y || y > t.box_max_y) continue;
     const int64_t th0 = edge_threshold(t.v[1], t.v[2]);
     const int64_t th1 = edge_threshold(t.v[2], t.v[0]);
     const int64_t th2 = edge_threshold(t.v[0], t.v[1]);
     for (int64_t x = t.box_min_x; x <= t.box_max_x; ++x) {
-      for (size_t j = 0; j < n; ++j) {
-        for (size_t i = 0; i < n; ++i) {
-          const FixedPoint p{x * kTruthOne + offsets[i], y * kTruthOne + offsets[j]};
-          const int64_t e0 = edge(t.v[1], t.v[2], p), e1 = edge(t.v[2], t.v[0], p),
-                        e2 = edge(t.v[0], t.v[1], p);
-          if (e0 < th0 || e1 < th1 || e2 < th2) continue;
-          const double d =
-              (double(e0) * t.depth[0] + double(e1) * t.depth[1] + double(e2) * t.depth[2]) /
-              double(e0 + e1 + e2);
-          keep_nearest(hits[size_t(x) * n * n + j * n + i], d, t.id, t.slot);
-        }
+      for (size_t s = 0; s < n; ++s) {
+        const FixedPoint p{x * pattern.one + pattern.offsets[s].x,
+                           y * pattern.one + pattern.offsets[s].y};
+        const int64_t e0 = edge(t.v[1], t.v[2], p), e1 = edge(t.v[2], t.v[0], p),
+                      e2 = edge(t.v[0], t.v[1], p);
+        if (e0 < th0 || e1 < th1 || e2 < th2) continue;
+        const double d =
+            (double(e0) * t.depth[0] + double(e1) * t.depth[1] + double(e2) * t.depth[2]) /
+            double(e0 + e1 + e2);
+        keep_nearest(hits[size_t(x) * n + s], d, t.id, t.slot);
       }
     }
   }
@@ -784,30 +833,27 @@ void rasterize_samples(const std::vector<RasterTriangle>& tris, int64_t y,
 
 // Intersects every analytic object with the rays of the samples of pixel row y.
 void intersect_analytic(const CameraModel& cam, const std::vector<AnalyticObject>& objects,
-                        int64_t y, const std::vector<int64_t>& offsets,
-                        std::vector<SampleHit>& hits) {
-  const size_t n = offsets.size();
+                        int64_t y, const SamplePattern& pattern, std::vector<SampleHit>& hits) {
+  const size_t n = pattern.offsets.size();
   for (size_t k = 0; k < objects.size(); ++k) {
     const AnalyticObject& a = objects[k];
     if (y < a.box_min_y || y > a.box_max_y) continue;
     const uint32_t id = uint32_t(a.inst->first_triangle);
     for (int64_t x = a.box_min_x; x <= a.box_max_x; ++x) {
-      for (size_t j = 0; j < n; ++j) {
-        for (size_t i = 0; i < n; ++i) {
-          const dvec3 dir = camera_ray_at(cam, double(x) + double(offsets[i]) / kTruthOne,
-                                          double(y) + double(offsets[j]) / kTruthOne);
-          double t[2];
-          if (!ellipsoid_hits(a, cam.position, dir, t[0], t[1])) continue;
-          SampleHit& h = hits[size_t(x) * n * n + j * n + i];
-          for (int side = 0; side < 2; ++side) {
-            // Kept where the rasterizer keeps triangles: on or beyond the near plane.
-            const double w = t[side] * glm::dot(dir, cam.forward);
-            if (!(side == 0 ? a.front_visible : a.back_visible) || !(w >= cam.near_plane)) continue;
-            if (keep_nearest(h, cam.near_plane / w, id, a.inst->slot)) {
-              h.analytic = int32_t(k);
-              h.t = t[side];
-              h.back = side == 1;
-            }
+      for (size_t s = 0; s < n; ++s) {
+        const dvec2 point = pattern.point(x, y, s);
+        const dvec3 dir = camera_ray_at(cam, point.x, point.y);
+        double t[2];
+        if (!ellipsoid_hits(a, cam.position, dir, t[0], t[1])) continue;
+        SampleHit& h = hits[size_t(x) * n + s];
+        for (int side = 0; side < 2; ++side) {
+          // Kept where the rasterizer keeps triangles: on or beyond the near plane.
+          const double w = t[side] * glm::dot(dir, cam.forward);
+          if (!(side == 0 ? a.front_visible : a.back_visible) || !(w >= cam.near_plane)) continue;
+          if (keep_nearest(h, cam.near_plane / w, id, a.inst->slot)) {
+            h.analytic = int32_t(k);
+            h.t = t[side];
+            h.back = side == 1;
           }
         }
       }
@@ -844,6 +890,74 @@ void append_shares(std::vector<uint32_t>& slots, std::vector<OwnerShare>& out) {
   }
 }
 
+// Pixel i's owner (the id most of its `n` samples `hits` see, ties to the lower id, kNoTriangle
+// the highest), the owner's largest depth among them, and the covered samples. `ids` is scratch.
+void set_owner(const SampleHit* hits, size_t n, std::vector<std::pair<uint32_t, uint32_t>>& ids,
+               size_t i, ReferenceFrame& f) {
+  ids.clear();
+  for (size_t s = 0; s < n; ++s) {
+    f.coverage[i] += hits[s].covered;
+    auto it = std::find_if(ids.begin(), ids.end(), [&](auto& p) { return p.first == hits[s].id; });
+    if (it == ids.end())
+      ids.push_back({hits[s].id, 1});
+    else
+      it->second++;
+  }
+  const auto best = std::min_element(ids.begin(), ids.end(), [](auto& a, auto& b) {
+    return a.second != b.second ? a.second > b.second : a.first < b.first;
+  });
+  f.owner[i] = best->first;
+  if (f.owner[i] == kNoTriangle) return;
+  for (size_t s = 0; s < n; ++s) {
+    if (hits[s].id == f.owner[i]) f.depth[i] = std::max(f.depth[i], hits[s].depth);
+  }
+}
+
+// Renders rows [y0, y1) with the compute path's anti-aliasing (FrameSettings::samples > 1),
+// as docs/architecture.md ("Anti-aliasing") states it: each distinct id among a pixel's
+// samples, in increasing order with the empty one last, is shaded once, at the pixel centre if
+// it holds every sample and else at the mean of its samples' positions; its radiance, exposed
+// and clamped to the fp16 maximum as the compute path stores it, is weighted by its share of
+// the samples.
+void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris, uint32_t y0,
+                      uint32_t y1, ReferenceFrame& f) {
+  const FrameSettings& frame = c.settings.frame;
+  const uint32_t w = frame.width, n = frame.samples;
+  const SamplePattern pattern = msaa_pattern(n);
+  const double exposure = frame.view == View::shaded ? std::exp2(double(frame.exposure_ev)) : 1.0;
+  std::vector<SampleHit> hits(size_t(w) * n);
+  std::vector<std::pair<uint32_t, uint32_t>> ids;
+  std::vector<uint32_t> order(n);
+  for (uint32_t y = y0; y < y1; ++y) {
+    std::fill(hits.begin(), hits.end(), SampleHit{});
+    rasterize_samples(tris, y, pattern, hits);
+    for (uint32_t x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const SampleHit* px = &hits[size_t(x) * n];
+      for (uint32_t s = 0; s < n; ++s) f.sample_ids[i * n + s] = px[s].id;
+      set_owner(px, n, ids, i, f);
+      for (uint32_t s = 0; s < n; ++s) order[s] = s;
+      std::stable_sort(order.begin(), order.end(),
+                       [&](uint32_t a, uint32_t b) { return px[a].id < px[b].id; });
+      dvec3 sum(0.0);
+      for (uint32_t k = 0; k < n;) {
+        uint32_t end = k;
+        dvec2 mean(0.0);
+        while (end < n && px[order[end]].id == px[order[k]].id) {
+          mean += pattern.point(x, y, order[end]);
+          ++end;
+        }
+        const uint32_t count = end - k;
+        const dvec2 point = count == n ? dvec2(x + 0.5, y + 0.5) : mean / double(count);
+        const dvec3 radiance = shade_sample(c, {}, px[order[k]], point.x, point.y, 1.0);
+        sum += glm::min(radiance * exposure, dvec3(TS_MAX_HALF)) * (double(count) / n);
+        k = end;
+      }
+      resolve_pixel(frame, sum / exposure, f.hdr.pixels[i], f.ldr.pixels[i]);
+    }
+  }
+}
+
 // Renders rows [y0, y1) of the ground truth into f; `shares[y]` receives row y's ownership
 // shares, `share_counts` how many each pixel has.
 void render_truth_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris,
@@ -851,45 +965,24 @@ void render_truth_rows(const ShadeContext& c, const std::vector<RasterTriangle>&
                        std::vector<std::vector<OwnerShare>>& shares,
                        std::vector<uint32_t>& share_counts, ReferenceFrame& f) {
   const uint32_t w = c.settings.frame.width, n = c.settings.ground_truth.supersampling;
-  std::vector<int64_t> offsets(n);
-  for (uint32_t i = 0; i < n; ++i)
-    offsets[i] = int64_t(std::floor((i + 0.5) / n * double(kTruthOne) + 0.5));
+  const SamplePattern pattern = truth_pattern(n);
   std::vector<SampleHit> hits(size_t(w) * n * n);
   std::vector<uint32_t> slots(size_t(n) * n);
   std::vector<std::pair<uint32_t, uint32_t>> ids;  // (id, samples)
   for (uint32_t y = y0; y < y1; ++y) {
     std::fill(hits.begin(), hits.end(), SampleHit{});
-    rasterize_samples(tris, y, offsets, hits);
-    intersect_analytic(c.cam, objects, y, offsets, hits);
+    rasterize_samples(tris, y, pattern, hits);
+    intersect_analytic(c.cam, objects, y, pattern, hits);
     for (uint32_t x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       dvec3 sum(0.0);
-      ids.clear();
-      for (uint32_t j = 0; j < n; ++j) {
-        for (uint32_t k = 0; k < n; ++k) {
-          const SampleHit& h = hits[(size_t(x) * n + j) * n + k];
-          sum += shade_sample(c, objects, h, x + double(offsets[k]) / kTruthOne,
-                              y + double(offsets[j]) / kTruthOne, 1.0 / n);
-          slots[j * n + k] = h.slot;
-          f.coverage[i] += h.covered;
-          auto it = std::find_if(ids.begin(), ids.end(), [&](auto& p) { return p.first == h.id; });
-          if (it == ids.end())
-            ids.push_back({h.id, 1});
-          else
-            it->second++;
-        }
+      for (uint32_t s = 0; s < n * n; ++s) {
+        const SampleHit& h = hits[size_t(x) * n * n + s];
+        const dvec2 point = pattern.point(x, y, s);
+        sum += shade_sample(c, objects, h, point.x, point.y, 1.0 / n);
+        slots[s] = h.slot;
       }
-      // Most samples, ties to the lower id (kNoTriangle is the highest).
-      const auto best = std::min_element(ids.begin(), ids.end(), [](auto& a, auto& b) {
-        return a.second != b.second ? a.second > b.second : a.first < b.first;
-      });
-      f.owner[i] = best->first;
-      if (f.owner[i] != kNoTriangle) {
-        for (size_t s = 0; s < size_t(n) * n; ++s) {
-          const SampleHit& h = hits[size_t(x) * n * n + s];
-          if (h.id == f.owner[i]) f.depth[i] = std::max(f.depth[i], h.depth);
-        }
-      }
+      set_owner(&hits[size_t(x) * n * n], size_t(n) * n, ids, i, f);
       resolve_pixel(c.settings.frame, sum / double(n * n), f.hdr.pixels[i], f.ldr.pixels[i]);
       const size_t before = shares[y].size();
       append_shares(slots, shares[y]);
@@ -918,6 +1011,13 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
                 " is outside 1..32 samples per pixel side");
   }
   const bool ground_truth = truth.analytic_spheres || truth.supersampling > 1;
+  validate_samples(settings.frame.samples);
+  if (ground_truth && settings.frame.samples > 1) {
+    throw Error("anti-aliasing (" + std::to_string(settings.frame.samples) +
+                " samples per pixel) and the ground truth's options are exclusive: supersampling "
+                "is the ground truth's own anti-aliasing");
+  }
+  const bool msaa = settings.frame.samples > 1;
   const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
@@ -951,7 +1051,11 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
 
-  const SampleGrid grid = ground_truth ? SampleGrid{kTruthOne, false} : SampleGrid{};
+  // Anti-aliasing snaps like the compute path; its boxes hold every pixel the snapped box
+  // touches, as samples lie anywhere in a pixel.
+  const SampleGrid grid = ground_truth ? SampleGrid{kTruthOne, false}
+                          : msaa       ? SampleGrid{kSubpixelOne, false}
+                                       : SampleGrid{};
   std::vector<RasterTriangle> tris;
   std::vector<AnalyticObject> analytic;
   for (const Instance& inst : instances) {
@@ -985,6 +1089,12 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
     for (uint32_t count : share_counts) o.first.push_back(o.first.back() + count);
     for (const std::vector<OwnerShare>& row : shares)
       o.shares.insert(o.shares.end(), row.begin(), row.end());
+    return f;
+  }
+  if (msaa) {
+    f.sample_ids.assign(pixels * settings.frame.samples, kNoTriangle);
+    parallel_rows(h, threads,
+                  [&](uint32_t y0, uint32_t y1) { render_msaa_rows(context, tris, y0, y1, f); });
     return f;
   }
   parallel_rows(h, threads, [&](uint32_t y0, uint32_t y1) {

@@ -52,11 +52,13 @@ struct ReferenceSettings {
 
 constexpr uint32_t kNoTriangle = 0xFFFFFFFFu;
 
-/// With supersampling N > 1, "the pixel" below means its N^2 samples: `hdr` is their mean,
-/// `owner` the id seen by most of them (ties to the lower id, empty samples count as
-/// kNoTriangle), `depth` the owner's largest near / w among them, `coverage` counts covered
-/// samples. An analytic sphere's id is its object's first triangle-instance id; its coverage
-/// counts each side a sample's ray meets that is not culled, as a closed mesh's would.
+/// With supersampling N > 1, or anti-aliasing (FrameSettings::samples > 1), "the pixel" below
+/// means its samples: `hdr` is their mean (with anti-aliasing, the compute path's: each
+/// distinct triangle shaded once, docs/architecture.md "Anti-aliasing"), `owner` the id seen by
+/// most of them (ties to the lower id, empty samples count as kNoTriangle), `depth` the owner's
+/// largest near / w among them, `coverage` counts covered samples. An analytic sphere's id is its
+/// object's first triangle-instance id; its coverage counts each side a sample's ray meets that is
+/// not culled, as a closed mesh's would.
 struct ReferenceFrame {
   /// Linear HDR radiance in the model of the compute path: pre-exposed, clamped to 65504 (the
   /// fp16 maximum), divided by the exposure again; as float.
@@ -69,6 +71,10 @@ struct ReferenceFrame {
   /// How the frame numbered its triangle instances: number_objects(scene), or under level of
   /// detail (FrameSettings::lod) the same slots numbered through the levels chosen.
   ObjectNumbering numbering;
+  /// Anti-aliasing only (empty otherwise): the triangle-instance id of every sample,
+  /// kNoTriangle where empty, FrameSettings::samples per pixel in the order of the TS_SAMPLES_*
+  /// positions, pixel after pixel: laid out as the compute path's visibility buffer.
+  std::vector<uint32_t> sample_ids;
   /// Ground truth only (empty otherwise, to spare memory: make it with make_ownership(width,
   /// height, 1, object_ids(frame.numbering, owner))): which object, by its
   /// ObjectNumbering slot, each sample shows, kNoObject where none.
@@ -77,6 +83,8 @@ struct ReferenceFrame {
 
 /// Renders `scene` (which must pass validate_scene; throws Error otherwise) at the settings'
 /// size. Sizes follow the compute path's limits: 1 to 16384 per side (throws Error otherwise).
+/// FrameSettings::samples must be 1, 4, 8 or 16, and 1 with any ground-truth option (throws
+/// Error otherwise).
 ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& settings);
 
 /// The object (ObjectNumbering slot) of each triangle-instance id, kNoObject for kNoTriangle;

@@ -50,7 +50,8 @@ struct Mesh {
   /// Optional, for normal maps: xyz a unit tangent along +u orthogonal to the normal, w = +-1
   /// the handedness (bitangent = w cross(normal, tangent)). Empty: generated from `uvs` (set
   /// 0; generate_tangents) when the scene is uploaded or rendered, so a normal map that reads
-  /// set 1 needs the mesh to bring tangents of that set (the glTF importer makes them).
+  /// set 1 needs the mesh to bring tangents of that set (the glTF importer makes them for the
+  /// primitives whose material has a normal map).
   std::vector<glm::vec4> tangents;
   /// Set by the sphere builders (make_uv_sphere, make_icosphere, so also the scene file's
   /// "sphere" and "icosphere" meshes): the triangles approximate this sphere, and the reference

@@ -7,6 +7,7 @@
 #include "compute/context.h"
 #include "core/check.h"
 #include "core/image.h"
+#include "host/bench_compare.h"
 #include "host/bench_measure.h"
 #include "host/bench_report.h"
 #include "host/report.h"
@@ -19,6 +20,8 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
     if (std::string why = path->empty() ? "" : unwritable_reason(*path); !why.empty())
       throw Error("cannot write output file '" + *path + "': " + why);
   }
+  // A bad base file is found before the sweep, too.
+  const SavedRun base = a.compare.empty() ? SavedRun{} : read_bench_json(a.compare);
   const bool gpu_backends =
       std::any_of(a.backends.begin(), a.backends.end(),
                   [](const std::string& b) { return b == "compute" || b == "hardware"; });
@@ -32,6 +35,7 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
   const BenchResults results = measure_bench(ctx.get(), a);
 
   if (!a.quiet) print_bench_table(results, a);
+  if (!a.compare.empty()) print_comparison(base, compare_runs(base, results, a));
   if (!a.csv.empty()) write_bench_csv(a.csv, results, a);
   if (!a.json.empty()) write_bench_json(a.json, results, a, command_line);
   if (!a.chart.empty()) write_bench_chart(a.chart, results, a);

@@ -10,6 +10,7 @@
 #include "compute/baselines/hardware_baseline.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "core/check.h"
 #include "core/lod.h"
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
@@ -41,8 +42,22 @@ class Progress {
   bool enabled_;
 };
 
+WarmupRule warmup_rule(const BenchArgs& a) {
+  WarmupRule rule;
+  rule.min_frames = a.warmup;
+  rule.ms = a.warmup_ms;
+  return rule;
+}
+
+void set_range(BenchRow& row, const std::vector<double>& totals) {
+  const Summary s = summarize(totals);
+  row.total_ms = s.median;
+  row.min_ms = s.min;
+  row.max_ms = s.max;
+}
+
 BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
-  for (uint32_t i = 0; i < a.warmup; ++i) r.render(fs);
+  const WarmupStats warmup = warm_up([&] { return r.render(fs).gpu_total_ms; }, warmup_rule(a));
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < a.repeat; ++i) frames.push_back(r.render(fs));
   std::vector<double> cpu;
@@ -50,8 +65,9 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& 
   std::vector<double> total;
   for (const FrameStats& f : frames) total.push_back(f.gpu_total_ms);
   BenchRow row;
+  row.warmup = warmup;
   row.pass_ms = pass_medians(frames);
-  row.total_ms = median(total);
+  set_range(row, total);
   row.cpu_record_ms = median(cpu);
   const FrameStats& last = frames.back();
   row.triangles_rasterized = last.raster_triangles;
@@ -68,7 +84,8 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& 
 // shading) are the yardstick.
 BenchRow measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
   HardwareBaseline hardware(r);
-  for (uint32_t i = 0; i < a.warmup; ++i) hardware.render(fs);
+  const WarmupStats warmup =
+      warm_up([&] { return hardware.render(fs).render_pass_ms; }, warmup_rule(a));
   std::vector<double> pass, cpu;
   for (uint32_t i = 0; i < a.repeat; ++i) {
     const BaselineStats s = hardware.render(fs);
@@ -76,7 +93,8 @@ BenchRow measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs&
     cpu.push_back(s.cpu_record_submit_ms);
   }
   BenchRow row;
-  row.total_ms = median(pass);
+  row.warmup = warmup;
+  set_range(row, pass);
   row.cpu_record_ms = median(cpu);
   row.frames = a.repeat;
   return row;
@@ -96,7 +114,7 @@ BenchRow measure_reference(const Scene& scene, const FrameSettings& fs, const Be
             .count());
   }
   BenchRow row;
-  row.total_ms = median(wall);
+  set_range(row, wall);
   row.triangles_rasterized = f.raster_triangles;
   row.frames = frames;
   row.note = "CPU wall time";
@@ -116,24 +134,15 @@ std::vector<std::pair<uint32_t, double>> compute_over_hardware(const std::vector
   return ratios;
 }
 
-}  // namespace
-
-BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
-  BenchResults results;
-  std::unique_ptr<Renderer> renderer;
-  if (ctx) {
-    RendererOptions options;
-    options.small_triangle_max_area = a.small_triangle_area;
-    options.specialize_lights = !a.generic_shading;
-    renderer = std::make_unique<Renderer>(*ctx, options);
-    results.device = ctx->properties.deviceName;
-    results.driver = ctx->driver;
-  }
+// One whole sweep: a row per (object count, backend); `run` (from 0) labels the progress bar.
+std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint32_t run) {
+  std::vector<BenchRow> rows;
   FrameSettings fs;
   fs.width = a.width;
   fs.height = a.height;
   fs.lod = a.lod;
   fs.lod_error_px = a.lod_error_px;
+  fs.samples = a.samples;
   const float aspect = float(a.width) / float(a.height);
 
   // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
@@ -147,6 +156,8 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   const std::vector<uint32_t> counts =
       builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
   Progress progress(counts.size() * a.backends.size(), !a.quiet);
+  const std::string run_label =
+      a.runs > 1 ? "run " + std::to_string(run + 1) + "/" + std::to_string(a.runs) + ", " : "";
   for (uint32_t n : counts) {
     const Scene scene = builtin ? fixed
                         : file  ? make_instanced_bench_scene(fixed, n, aspect)
@@ -159,10 +170,14 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     if (renderer) {
       renderer->set_scene(scene);  // uploaded once, outside the timed frames
       triangles = renderer->render(fs).triangles_submitted;
-      for (uint64_t key : renderer->read_visibility()) pixels_shaded += key != ~0ull;
+      // Pixels with at least one covered sample.
+      const std::vector<uint64_t> keys = renderer->read_visibility();
+      for (size_t p = 0; p < keys.size(); p += fs.samples)
+        pixels_shaded +=
+            *std::min_element(keys.begin() + p, keys.begin() + p + fs.samples) != ~0ull;
     }
     for (const std::string& backend : a.backends) {
-      progress.step("objects " + std::to_string(n) + ", " + backend);
+      progress.step(run_label + "objects " + std::to_string(n) + ", " + backend);
       BenchRow row;
       if (backend == "compute") {
         row = measure_compute(*renderer, fs, a);
@@ -177,9 +192,67 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
       row.backend = backend;
       row.triangles_submitted = triangles;
       row.pixels_shaded = pixels_shaded;
-      results.rows.push_back(row);
+      rows.push_back(row);
     }
   }
+  return rows;
+}
+
+// One row per point from the runs' rows (the same points in the same order): figures are
+// medians over the runs, extremes the extremes, warm-ups add up.
+std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs) {
+  std::vector<BenchRow> merged = runs.front();
+  for (size_t i = 0; i < merged.size(); ++i) {
+    BenchRow& m = merged[i];
+    std::vector<double> cpu;
+    m.run_ms.clear();
+    for (const std::vector<BenchRow>& run : runs) {
+      const BenchRow& r = run[i];
+      TESSERA_CHECK(r.objects == m.objects && r.backend == m.backend);
+      m.run_ms.push_back(r.total_ms);
+      cpu.push_back(r.cpu_record_ms);
+      m.min_ms = std::min(m.min_ms, r.min_ms);
+      m.max_ms = std::max(m.max_ms, r.max_ms);
+      if (&run != &runs.front()) {
+        m.warmup.frames += r.warmup.frames;
+        m.warmup.ms += r.warmup.ms;
+        m.warmup.stable = m.warmup.stable && r.warmup.stable;
+      }
+    }
+    m.total_ms = median(m.run_ms);
+    m.cpu_record_ms = median(cpu);
+    for (size_t p = 0; p < kPassCount; ++p) {
+      std::vector<double> v;
+      for (const std::vector<BenchRow>& run : runs) v.push_back(run[i].pass_ms[p]);
+      m.pass_ms[p] = median(v);
+    }
+  }
+  return merged;
+}
+
+}  // namespace
+
+double BenchRow::run_spread_percent() const {
+  if (run_ms.size() < 2 || total_ms <= 0) return 0.0;
+  const auto [lo, hi] = std::minmax_element(run_ms.begin(), run_ms.end());
+  return (*hi - *lo) / total_ms * 100.0;
+}
+
+BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
+  BenchResults results;
+  std::unique_ptr<Renderer> renderer;
+  if (ctx) {
+    RendererOptions options;
+    options.small_triangle_max_area = a.small_triangle_area;
+    options.specialize_lights = !a.generic_shading;
+    renderer = std::make_unique<Renderer>(*ctx, options);
+    results.device = ctx->properties.deviceName;
+    results.driver = ctx->driver;
+  }
+  std::vector<std::vector<BenchRow>> runs;
+  for (uint32_t run = 0; run < std::max(a.runs, 1u); ++run)
+    runs.push_back(measure_sweep(renderer.get(), a, run));
+  results.rows = merge_runs(runs);
   results.compute_over_hardware = compute_over_hardware(results.rows);
   return results;
 }

@@ -10,11 +10,13 @@
 
 #include "compute/context.h"
 #include "compute/renderer.h"
+#include "core/warmup.h"
 #include "host/cli.h"
 
 namespace tessera {
 
-/// One measured point of the sweep: a backend at an object count. Times are medians, in ms.
+/// One measured point of the sweep: a backend at an object count. Times are medians, in ms;
+/// with several runs (--runs), the median of the runs' medians.
 struct BenchRow {
   uint32_t objects = 0;
   std::string backend;
@@ -27,10 +29,16 @@ struct BenchRow {
   double total_ms = 0.0;         // GPU time (compute, hardware) or wall time (reference)
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
-  uint32_t frames = 0;
+  double min_ms = 0.0;  // the fastest and slowest timed frame (of every run)
+  double max_ms = 0.0;
+  std::vector<double> run_ms;  // each run's median total_ms, in run order
+  WarmupStats warmup;          // summed over the runs (stable: every run's was)
+  uint32_t frames = 0;         // timed frames per run
   uint32_t batches = 0;
   bool skipped = false;  // the reference, above --reference-max-triangles
   std::string note;
+  /// Run-to-run spread: (max - min) / median of the runs' medians, in percent (0 for one run).
+  double run_spread_percent() const;
   double triangles_per_second() const {
     return total_ms > 0 ? triangles_submitted / (total_ms * 1e-3) : 0.0;
   }
@@ -43,7 +51,8 @@ struct BenchResults {
   std::string driver;
 };
 
-/// Runs the sweep `args` describes. `ctx` is the device for the compute and hardware backends
+/// Runs the sweep `args` describes, `args.runs` times over (whole sweeps, one after the other),
+/// and merges the runs per point. `ctx` is the device for the compute and hardware backends
 /// (null when only the reference runs; it must outlive the call). Throws Error for a scene or
 /// size the renderer rejects.
 BenchResults measure_bench(Context* ctx, const BenchArgs& args);

@@ -41,22 +41,53 @@ static std::string frames_phrase(uint32_t repeat) {
   return repeat == 1 ? "one frame each" : "medians of " + std::to_string(repeat) + " frames";
 }
 
+// How the figures were taken: frames, warm-up rule and runs.
+static std::string method_phrase(const BenchArgs& a) {
+  std::string s = frames_phrase(a.repeat) + " after a warm-up of at least " +
+                  std::to_string(a.warmup) + " frames";
+  if (a.warmup_ms > 0) {
+    char ms[32];
+    std::snprintf(ms, sizeof(ms), "%g", a.warmup_ms);
+    s += std::string(" and ") + ms + " ms, until the frame time settles";
+  }
+  if (a.runs > 1)
+    s += "; " + std::to_string(a.runs) + " runs, the median of their medians and their spread";
+  return s;
+}
+
+// "12 f, 503 ms", marked when the frame time had not settled.
+static std::string warmup_text(const BenchRow& r, const BenchArgs& a) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%u f, %.0f ms%s", r.warmup.frames, r.warmup.ms,
+                a.warmup_ms > 0 && !r.warmup.stable ? " (unsettled)" : "");
+  return buf;
+}
+
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf("scene %s, %ux%u, %u segments, small-triangle area %u, device '%s' (%s), %s\n",
-              a.scene.c_str(), a.width, a.height, a.segments, a.small_triangle_area,
-              results.device.c_str(), results.driver.c_str(), frames_phrase(a.repeat).c_str());
-  std::printf("%10s %10s %12s %12s %10s %12s %10s\n", "objects", "backend", "triangles",
-              "rasterized", "ms", "triangles/s", "cpu ms");
+  std::printf(
+      "scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, device "
+      "'%s' (%s),\n%s\n",
+      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments,
+      a.small_triangle_area, results.device.c_str(), results.driver.c_str(),
+      method_phrase(a).c_str());
+  std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
+              "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
+              "cpu ms", "warm-up");
   for (const BenchRow& r : results.rows) {
     if (r.skipped) {
-      std::printf("%10u %10s %12s  skipped (over --reference-max-triangles)\n", r.objects,
+      std::printf("%9u %9s %10s  skipped (over --reference-max-triangles)\n", r.objects,
                   r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str());
       continue;
     }
-    std::printf("%10u %10s %12s %12s %10.3f %12s %10.3f\n", r.objects, r.backend.c_str(),
-                human_count(double(r.triangles_submitted)).c_str(),
+    char spread[16] = "-";
+    if (r.run_ms.size() > 1)
+      std::snprintf(spread, sizeof(spread), "%.1f %%", r.run_spread_percent());
+    std::printf("%9u %9s %10s %10s %10.3f %10.3f %10.3f %8s %11s %8.3f  %s\n", r.objects,
+                r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str(),
                 r.triangles_rasterized ? human_count(double(r.triangles_rasterized)).c_str() : "-",
-                r.total_ms, human_count(r.triangles_per_second()).c_str(), r.cpu_record_ms);
+                r.total_ms, r.min_ms, r.max_ms, spread,
+                human_count(r.triangles_per_second()).c_str(), r.cpu_record_ms,
+                r.backend == "reference" ? "-" : warmup_text(r, a).c_str());
   }
   for (const auto& [n, ratio] : results.compute_over_hardware) {
     std::printf("objects %u: compute / hardware = %.3f (compute %.2fx %s)\n", n, ratio,
@@ -67,14 +98,17 @@ void print_bench_table(const BenchResults& results, const BenchArgs& a) {
 void write_bench_csv(const std::string& path, const BenchResults& results, const BenchArgs& a) {
   std::ofstream f(path);
   f << "scene,objects,backend,width,height,triangles_submitted,triangles_rasterized,pixels_shaded,"
-       "total_ms,cpu_record_ms,triangles_per_s";
+       "total_ms,cpu_record_ms,triangles_per_s,min_ms,max_ms,runs,run_spread_pct,warmup_frames,"
+       "warmup_ms,warmup_stable";
   for (size_t p = 0; p < kPassCount; ++p) f << "," << pass_name(Pass(p)) << "_ms";
   f << ",batches,frames,device,note\n";
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
     f << a.scene << "," << r.objects << "," << r.backend << "," << a.width << "," << a.height << ","
       << r.triangles_submitted << "," << r.triangles_rasterized << "," << r.pixels_shaded << ","
-      << r.total_ms << "," << r.cpu_record_ms << "," << r.triangles_per_second();
+      << r.total_ms << "," << r.cpu_record_ms << "," << r.triangles_per_second() << "," << r.min_ms
+      << "," << r.max_ms << "," << r.run_ms.size() << "," << r.run_spread_percent() << ","
+      << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0);
     for (double ms : r.pass_ms) f << "," << ms;
     f << "," << r.batches << "," << r.frames << ",\"" << results.device << "\",\"" << r.note
       << "\"\n";
@@ -85,6 +119,7 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
 void write_bench_json(const std::string& path, const BenchResults& results, const BenchArgs& a,
                       const std::string& command_line) {
   std::ofstream f(path);
+  f.precision(9);  // sub-microsecond digits of milliseconds, for --compare and spreads
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
@@ -92,9 +127,11 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"driver\": " << json_string(results.driver)
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
-    << ",\n  \"height\": " << a.height << ",\n  \"segments\": " << a.segments
+    << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
+    << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
-    << ",\n  \"statistic\": \"median\",\n  \"results\": [";
+    << ",\n  \"runs\": " << a.runs << ",\n  \"warmup\": {\"min_frames\": " << a.warmup
+    << ", \"min_ms\": " << a.warmup_ms << "},\n  \"statistic\": \"median\",\n  \"results\": [";
   bool first = true;
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
@@ -104,7 +141,13 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
       << ", \"triangles_rasterized\": " << r.triangles_rasterized
       << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
       << ", \"tile_entries\": " << r.tile_entries << ", \"pixels_shaded\": " << r.pixels_shaded
-      << ", \"total_ms\": " << r.total_ms << ", \"cpu_record_ms\": " << r.cpu_record_ms
+      << ", \"total_ms\": " << r.total_ms << ", \"min_ms\": " << r.min_ms
+      << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
+    for (size_t i = 0; i < r.run_ms.size(); ++i) f << (i ? ", " : "") << r.run_ms[i];
+    f << "], \"run_spread_pct\": " << r.run_spread_percent()
+      << ", \"warmup_frames\": " << r.warmup.frames << ", \"warmup_ms\": " << r.warmup.ms
+      << ", \"warmup_stable\": " << (r.warmup.stable ? "true" : "false")
+      << ", \"cpu_record_ms\": " << r.cpu_record_ms
       << ", \"triangles_per_s\": " << r.triangles_per_second() << ", \"batches\": " << r.batches
       << ", \"frames\": " << r.frames << ", \"passes_ms\": {";
     for (size_t p = 0; p < kPassCount; ++p)
@@ -125,8 +168,10 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
 void write_bench_chart(const std::string& path, const BenchResults& results, const BenchArgs& a) {
   ChartSpec spec;
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
-               std::to_string(a.height) + ", " + results.device + " (" + frames_phrase(a.repeat) +
-               ")";
+               std::to_string(a.height) +
+               (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") + ", " +
+               results.device + " (" + frames_phrase(a.repeat) +
+               (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
   for (const std::string& backend : a.backends) {

@@ -140,6 +140,46 @@ struct Box {
   double x, y, w, h;
 };
 
+// Log-log axes over [xmin, xmax] x [ymin, ymax] (all > 0), rounded out to powers of ten.
+struct LogAxes {
+  Box b;
+  double lx0, lx1, ly0, ly1;
+  double px(double x) const { return b.x + (std::log10(x) - lx0) / (lx1 - lx0) * b.w; }
+  double py(double y) const { return b.y + b.h - (std::log10(y) - ly0) / (ly1 - ly0) * b.h; }
+};
+
+LogAxes draw_log_axes(Canvas& c, Box b, double xmin, double xmax, double ymin, double ymax,
+                      const std::string& x_label, const std::string& y_label) {
+  LogAxes a{b, std::floor(std::log10(xmin)), 0, std::floor(std::log10(ymin)), 0};
+  a.lx1 = std::max(a.lx0 + 1, std::ceil(std::log10(xmax)));
+  a.ly1 = std::max(a.ly0 + 1, std::ceil(std::log10(ymax)));
+  // Lines at 1, 2 and 5 times each power of ten when the axis spans at most two decades (a
+  // single decade of lines says little), at the powers of ten alone otherwise.
+  auto ticks = [](double l0, double l1) {
+    std::vector<double> t;
+    const bool fine = l1 - l0 <= 2;
+    for (double e = l0; e <= l1; ++e) {
+      for (double m : {1.0, 2.0, 5.0}) {
+        if ((m == 1.0 || fine) && (e < l1 || m == 1.0)) t.push_back(m * std::pow(10, e));
+      }
+    }
+    return t;
+  };
+  for (double v : ticks(a.lx0, a.lx1)) {
+    c.line(a.px(v), b.y, a.px(v), b.y + b.h, kGrid, 1);
+    c.text(a.px(v), b.y + b.h + 14, format_number(v), 12, kInk, 1);
+  }
+  for (double v : ticks(a.ly0, a.ly1)) {
+    c.line(b.x, a.py(v), b.x + b.w, a.py(v), kGrid, 1);
+    c.text(b.x - 6, a.py(v), format_number(v), 12, kInk, 2);
+  }
+  c.line(b.x, b.y + b.h, b.x + b.w, b.y + b.h, kInk, 1);
+  c.line(b.x, b.y, b.x, b.y + b.h, kInk, 1);
+  c.text(b.x + b.w / 2, b.y + b.h + 34, x_label, 13, kInk, 1);
+  c.text(b.x - 58, b.y + b.h / 2, y_label, 13, kInk, 1, true);
+  return a;
+}
+
 void draw_lines(Canvas& c, Box b, const ChartSpec& spec) {
   double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
   for (const Series& s : spec.lines) {
@@ -152,24 +192,9 @@ void draw_lines(Canvas& c, Box b, const ChartSpec& spec) {
     }
   }
   if (xmax == 0) return;
-  const double lx0 = std::floor(std::log10(xmin)),
-               lx1 = std::max(lx0 + 1, std::ceil(std::log10(xmax)));
-  const double ly0 = std::floor(std::log10(ymin)),
-               ly1 = std::max(ly0 + 1, std::ceil(std::log10(ymax)));
-  auto px = [&](double x) { return b.x + (std::log10(x) - lx0) / (lx1 - lx0) * b.w; };
-  auto py = [&](double y) { return b.y + b.h - (std::log10(y) - ly0) / (ly1 - ly0) * b.h; };
-  for (double e = lx0; e <= lx1; ++e) {
-    c.line(px(std::pow(10, e)), b.y, px(std::pow(10, e)), b.y + b.h, kGrid, 1);
-    c.text(px(std::pow(10, e)), b.y + b.h + 14, format_number(std::pow(10, e)), 12, kInk, 1);
-  }
-  for (double e = ly0; e <= ly1; ++e) {
-    c.line(b.x, py(std::pow(10, e)), b.x + b.w, py(std::pow(10, e)), kGrid, 1);
-    c.text(b.x - 6, py(std::pow(10, e)), format_number(std::pow(10, e)), 12, kInk, 2);
-  }
-  c.line(b.x, b.y + b.h, b.x + b.w, b.y + b.h, kInk, 1);
-  c.line(b.x, b.y, b.x, b.y + b.h, kInk, 1);
-  c.text(b.x + b.w / 2, b.y + b.h + 34, spec.x_label, 13, kInk, 1);
-  c.text(b.x - 58, b.y + b.h / 2, spec.y_label, 13, kInk, 1, true);
+  const LogAxes axes = draw_log_axes(c, b, xmin, xmax, ymin, ymax, spec.x_label, spec.y_label);
+  auto px = [&](double x) { return axes.px(x); };
+  auto py = [&](double y) { return axes.py(y); };
   for (size_t k = 0; k < spec.lines.size(); ++k) {
     const Series& s = spec.lines[k];
     const Colour col = kPalette[k % std::size(kPalette)];
@@ -237,6 +262,47 @@ void draw(Canvas& c, double width, double height, const ChartSpec& spec) {
   if (two) draw_bars(c, {80 + panel + 20, 60, panel - 150, height - 130}, spec);
 }
 
+void draw_scatter(Canvas& c, double width, double height, const ScatterChart& chart) {
+  c.rect(0, 0, width, height, {255, 255, 255});
+  c.text(width / 2, 22, chart.title, 16, kInk, 1);
+  double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
+  for (const ScatterSeries& s : chart.series) {
+    for (const ScatterPoint& p : s.points) {
+      if (!(p.x > 0) || !(p.y > 0) || !std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      xmin = std::min(xmin, p.x);
+      xmax = std::max(xmax, p.x);
+      ymin = std::min(ymin, p.y);
+      ymax = std::max(ymax, p.y);
+    }
+  }
+  if (xmax == 0) return;
+  const Box b{90, 60, width - 330, height - 130};
+  const LogAxes a = draw_log_axes(c, b, xmin, xmax, ymin, ymax, chart.x_label, chart.y_label);
+  for (size_t k = 0; k < chart.series.size(); ++k) {
+    const ScatterSeries& s = chart.series[k];
+    const Colour col = kPalette[k % std::size(kPalette)];
+    std::vector<const ScatterPoint*> front;
+    for (const ScatterPoint& p : s.points) {
+      if (!(p.x > 0) || !(p.y > 0) || !std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+      if (p.on_front) front.push_back(&p);
+      const double r = p.on_front ? 5 : 3;
+      c.rect(a.px(p.x) - r, a.py(p.y) - r, 2 * r, 2 * r, col);
+      c.text(a.px(p.x) + 7, a.py(p.y) - 8, p.label, 10, col, 0);
+    }
+    std::sort(front.begin(), front.end(),
+              [](const ScatterPoint* p, const ScatterPoint* q) { return p->x < q->x; });
+    for (size_t i = 0; i + 1 < front.size(); ++i) {
+      c.line(a.px(front[i]->x), a.py(front[i]->y), a.px(front[i + 1]->x), a.py(front[i + 1]->y),
+             col, 1.5);
+    }
+    c.rect(b.x + b.w + 20, b.y + 18 * k, 14, 10, col);
+    c.text(b.x + b.w + 40, b.y + 5 + 18 * k, s.name, 12, kInk, 0);
+  }
+  const double note_y = b.y + 18 * chart.series.size() + 20;
+  c.text(b.x + b.w + 20, note_y, "large marks, joined:", 11, kInk, 0);
+  c.text(b.x + b.w + 20, note_y + 14, "each knob's Pareto front", 11, kInk, 0);
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -244,11 +310,14 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-void write_chart(const std::string& path, const ChartSpec& spec) {
-  const double width = spec.bars.categories.empty() ? 700 : 1300, height = 520;
+namespace {
+
+// Draws with `paint` onto an SVG or PNG canvas of width x height, chosen by `path`'s suffix.
+template <typename Paint>
+void write_canvas(const std::string& path, double width, double height, Paint paint) {
   if (ends_with(path, ".svg")) {
     SvgCanvas svg;
-    draw(svg, width, height, spec);
+    paint(svg);
     std::ofstream f(path);
     f << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
       << "' viewBox='0 0 " << width << " " << height << "'>\n"
@@ -258,8 +327,20 @@ void write_chart(const std::string& path, const ChartSpec& spec) {
   }
   if (!ends_with(path, ".png")) throw Error("chart '" + path + "' must end in .svg or .png");
   PngCanvas png{static_cast<uint32_t>(width), static_cast<uint32_t>(height)};
-  draw(png, width, height, spec);
+  paint(png);
   write_png(path, png.image);
+}
+
+}  // namespace
+
+void write_chart(const std::string& path, const ChartSpec& spec) {
+  const double width = spec.bars.categories.empty() ? 700 : 1300, height = 520;
+  write_canvas(path, width, height, [&](Canvas& c) { draw(c, width, height, spec); });
+}
+
+void write_scatter_chart(const std::string& path, const ScatterChart& chart) {
+  const double width = 1000, height = 600;
+  write_canvas(path, width, height, [&](Canvas& c) { draw_scatter(c, width, height, chart); });
 }
 
 }  // namespace tessera

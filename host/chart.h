@@ -28,6 +28,24 @@ struct ChartSpec {
   StackedBars bars;
 };
 
+/// A scatter chart of settings: one series per knob, each point a setting, log-log axes.
+struct ScatterPoint {
+  double x = 0.0, y = 0.0;  // > 0; other points are left out of the drawing
+  std::string label;
+  bool on_front = false;  // marked, and joined to the series' other front points
+};
+struct ScatterSeries {
+  std::string name;
+  std::vector<ScatterPoint> points;
+};
+struct ScatterChart {
+  std::string title, x_label, y_label;
+  std::vector<ScatterSeries> series;
+};
+
+/// Writes `chart` to `path` (.svg or .png; throws Error otherwise or if it cannot be written).
+void write_scatter_chart(const std::string& path, const ScatterChart& chart);
+
 /// Writes `spec` to `path`, which must end in .svg or .png. Throws Error otherwise or if the
 /// file cannot be written.
 void write_chart(const std::string& path, const ChartSpec& spec);

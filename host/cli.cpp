@@ -7,18 +7,20 @@
 #include "core/builtin_scenes.h"
 #include "host/cli_values.h"
 #include "host/scene_source.h"
+#include "host/tradeoff.h"
 
 namespace tessera {
 namespace {
 
-const std::vector<std::string> kCommands = {"render", "bench", "view", "devices", "scenes"};
+const std::vector<std::string> kCommands = {"render",   "bench",   "view",
+                                            "tradeoff", "devices", "scenes"};
 
-// Checks that a scene exists; the builders throw Error naming the known scenes otherwise.
-// A scene file (a path) is read when the command runs, where its errors name file and place.
+// Checks that a scene exists, naming every known scene otherwise (as `tessera scenes` lists
+// them). A scene file (a path) is read when the command runs, where its errors name file and
+// place.
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_named_scene(name))
-      make_builtin_scene(name);
+    if (!is_scene_path(name)) check_scene_name(name);
   });
 }
 
@@ -46,6 +48,18 @@ void add_lod_options(CLI::App& app, Lod& lod, float& error_px) {
       ->check(finite_number(0.001, 1000.0));
 }
 
+// --samples: visibility samples per pixel (FrameSettings::samples).
+CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& help) {
+  return app.add_option("--samples", samples, help)
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        const size_t digits = text.find_first_not_of("0123456789");
+        if (text.empty() || digits != std::string::npos || text.size() > 9)
+          throw Error("expects 1, 4, 8 or 16 samples per pixel, got '" + text + "'");
+        validate_samples(uint32_t(std::stoul(text)));
+      }));
+}
+
 CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {
   auto set = [&width, &height](const std::string& text) {
     std::tie(width, height) = read_size(text);
@@ -53,6 +67,19 @@ CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const st
   return app.add_option_function<std::string>("--size", set, help)
       ->type_name("WxH")
       ->check(image_size());
+}
+
+// --validate of the commands that only report it (render's help says more).
+void add_validate(CLI::App& app, bool& validate) {
+  app.add_flag("--validate", validate,
+               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+}
+
+// --chart of bench and tradeoff.
+void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
+  app.add_option("--chart", chart, help)
+      ->type_name("FILE")
+      ->check(file_with_suffix({".svg", ".png"}));
 }
 
 void add_render_options(CLI::App& app, RenderArgs& a) {
@@ -132,6 +159,10 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "texture filtering: 1 trilinear (default),\n2..16 anisotropic")
       ->type_name("N")
       ->check(whole_number(1, 16));
+  add_samples(app, a.frame.samples,
+              "anti-aliasing: visibility samples per pixel,\n"
+              "1 (default), 4, 8 or 16; each triangle in a\n"
+              "pixel is shaded once, weighted by its samples");
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_choice(app, "--view", a.frame.view,
              {{"shaded", View::shaded},
@@ -159,10 +190,11 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
 
 void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--scene", a.scene,
-                 "grid (default), scatter or huge; or a\n"
-                 "built-in scene of `tessera scenes` (one point:\n"
-                 "its own object count); or a scene file or\n"
-                 ".gltf/.glb/.obj model placed N times on the\ngrid")
+                 "grid (default), scatter, huge or yardstick;\n"
+                 "or a built-in scene of `tessera scenes` (one\n"
+                 "point: its own object count); or a scene file\n"
+                 "or .gltf/.glb/.obj model placed N times on the\n"
+                 "grid")
       ->type_name("NAME")
       ->check(bench_scene());
   app.add_option("--objects", a.objects, "object counts, e.g. 1,10,100,1000 (default\n1,10,100)")
@@ -171,6 +203,10 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->allow_extra_args(false)
       ->check(whole_number(1, 100'000'000));
   add_size(app, a.width, a.height, "image size, each side 1..16384 (default\n512x512)");
+  add_samples(app, a.samples,
+              "anti-aliasing samples per pixel, 1 (default),\n"
+              "4, 8 or 16; compute and reference backends\n"
+              "only (the default backends are then compute)");
   app.add_option("--segments", a.segments,
                  "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
       ->type_name("S")
@@ -187,9 +223,28 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--repeat", a.repeat, "timed frames per point, 1..1000 (default 10)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
-  app.add_option("--warmup", a.warmup, "untimed frames first, 0..100 (default 2)")
+  app.add_option("--warmup", a.warmup, "untimed frames first, at least, 0..100\n(default 2)")
       ->type_name("K")
       ->check(whole_number(0, 100));
+  app.add_option("--warmup-ms", a.warmup_ms,
+                 "and for at least MS ms after the first, then\n"
+                 "until the median of the last 5 frames is\n"
+                 "within 2 % of the 5 before (at most 4 x MS),\n"
+                 "0..600000 (default 500; 0: --warmup frames\n"
+                 "only)")
+      ->type_name("MS")
+      ->check(whole_number(0, 600000));
+  app.add_option("--runs", a.runs,
+                 "repeat the whole sweep K times, 1..100\n"
+                 "(default 1): figures are the medians of the\n"
+                 "runs' medians, with their spread")
+      ->type_name("K")
+      ->check(whole_number(1, 100));
+  app.add_option("--compare", a.compare,
+                 "print each point's time against a saved\n"
+                 "--json run (old, new, new / old), matched by\n"
+                 "scene, objects, size and backend")
+      ->type_name("BASE.json");
   app.add_option("--reference-max-triangles", a.reference_max_triangles,
                  "skip the reference above T triangles\n(default 2000000)")
       ->type_name("T")
@@ -208,14 +263,11 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--csv", a.csv, "write every measurement as CSV")->type_name("FILE");
   app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
       ->type_name("FILE");
-  app.add_option("--chart", a.chart,
-                 "time against objects (log-log, one line per\n"
-                 "backend) and the compute path's per-pass\n"
-                 "breakdown, as SVG or PNG")
-      ->type_name("FILE")
-      ->check(file_with_suffix({".svg", ".png"}));
-  app.add_flag("--validate", a.validate,
-               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+  add_chart(app, a.chart,
+            "time against objects (log-log, one line per\n"
+            "backend) and the compute path's per-pass\n"
+            "breakdown, as SVG or PNG");
+  add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet, "no progress bar or table");
 }
 
@@ -239,10 +291,75 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
       ->type_name("FILE");
+  add_choice(app, "--present", a.present,
+             {{"auto", PresentPath::automatic},
+              {"copy", PresentPath::copy},
+              {"direct", PresentPath::direct}},
+             "direct: the resolve pass writes the swapchain\n"
+             "image; copy: it writes Tessera's image, which\n"
+             "is copied; auto (default): direct where the\n"
+             "surface allows storage use");
+  add_choice(app, "--surface-format", a.surface_format,
+             {{"auto", SurfaceFormat::automatic},
+              {"unorm", SurfaceFormat::unorm},
+              {"srgb", SurfaceFormat::srgb}},
+             "the swapchain's 8-bit format: auto (default)\n"
+             "takes UNORM where offered, else sRGB; the\n"
+             "window shows the PNG's colours with either");
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
-  app.add_flag("--validate", a.validate,
-               "enable the Khronos validation layer (exit\nstatus 3 on reports)");
+  add_validate(app, a.validate);
+}
+
+void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
+  app.add_option("--scene", a.scene,
+                 "built-in scene (default spheres), scene file,\n"
+                 "or a benchmark family: grid, scatter, huge")
+      ->type_name("S")
+      ->check(bench_scene());
+  app.add_option("--objects", a.objects,
+                 "objects of a benchmark family (grid, scatter,\nhuge; default 100)")
+      ->type_name("N")
+      ->check(whole_number(1, 100'000'000));
+  app.add_option("--knob", a.knobs,
+                 "the knobs to sweep, e.g. brdf,tessellation:\n"
+                 "brdf, tessellation, anisotropy, env-size,\n"
+                 "env-samples, small-triangle (docs/tradeoffs.md)")
+      ->type_name("K[,K...]")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->required()
+      ->check(checked_by([](const std::string& knob) { knob_settings(knob, {}, {}); }));
+  app.add_option("--device", a.device,
+                 "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
+      ->type_name("D");
+  add_size(app, a.frame.width, a.frame.height,
+           "image size, each side 1..16384 (default: the\nscene's, else 512x512)");
+  app.add_option("--repeat", a.repeat, "timed frames per setting and round, 1..1000\n(default 10)")
+      ->type_name("K")
+      ->check(whole_number(1, 1000));
+  app.add_option("--rounds", a.rounds,
+                 "passes over all settings, interleaved so that\n"
+                 "clock changes affect all alike, 1..100\n(default 3)")
+      ->type_name("R")
+      ->check(whole_number(1, 100));
+  app.add_option("--truth-samples", a.truth_samples,
+                 "N: N x N samples per pixel of the ground\ntruth, 1..32 (default 8)")
+      ->type_name("N")
+      ->check(whole_number(1, 32));
+  app.add_option("--truth-env-samples", a.truth_env_samples,
+                 "environment directions per lobe and pixel of\n"
+                 "the ground truth, 1..1048576 (default 1024)")
+      ->type_name("N")
+      ->check(whole_number(1, 1u << 20));
+  app.add_option("--json", a.json, "every point as JSON, with device and command")
+      ->type_name("FILE");
+  add_chart(app, a.chart,
+            "error against GPU time, a series per knob,\n"
+            "each knob's Pareto front joined, SVG or PNG");
+  add_validate(app, a.validate);
+  app.add_flag("--quiet", a.quiet, "no progress or table");
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors");
 }
 
 // CLI11's message, reworded where it is unclear for a missing value.
@@ -294,6 +411,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::App* view =
       app.add_subcommand("view", "show a scene in a window: camera, picking, live edits");
   add_view_options(*view, line.view);
+  CLI::App* tradeoff =
+      app.add_subcommand("tradeoff", "chart GPU time against error from the truth, knob by knob");
+  add_tradeoff_options(*tradeoff, line.tradeoff);
   CLI::App* devices =
       app.add_subcommand("devices", "list the Vulkan devices and whether Tessera can use them");
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes");
@@ -301,14 +421,17 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "Exit status: 0 success, 1 a failure while running, 2 a bad command line,\n"
       "3 reports of the validation layer (--validate).";
   app.footer("Run `tessera COMMAND --help` for a command's options.\n" + exit_statuses);
-  for (CLI::App* sub : {render, bench, view, devices, scenes}) {
+  for (CLI::App* sub : {render, bench, view, tradeoff, devices, scenes}) {
     sub->allow_extras();
     sub->footer(exit_statuses);
   }
   bench->footer(
-      "Figures are medians of GPU timestamps over --repeat frames after --warmup\n"
-      "untimed ones: per pass for the compute path, around the render pass for\n"
-      "the hardware baseline; wall time for the CPU reference.\n" +
+      "Figures are medians of GPU timestamps over --repeat frames after the\n"
+      "warm-up (--warmup, --warmup-ms; its frames and time are reported), with\n"
+      "the fastest and slowest frame: per pass for the compute path, around the\n"
+      "render pass for the hardware baseline; wall time for the CPU reference.\n"
+      "With --runs K, the median of the K runs' medians and their spread,\n"
+      "(max - min) / median.\n" +
       exit_statuses);
 
   // CLI11 takes the arguments last first.
@@ -324,19 +447,34 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   } catch (const CLI::ParseError& e) {
     throw UsageError(message_of(e), help_command);
   }
-  for (CLI::App* sub : {render, bench, view, devices, scenes}) reject_extras(*sub, help_command);
+  for (CLI::App* sub : {render, bench, view, tradeoff, devices, scenes})
+    reject_extras(*sub, help_command);
   RenderArgs& r = line.render;
   r.size_given = render->count("--size") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
   r.brdf_given = render->count("--brdf") > 0;
   line.view.size_given = view->count("--size") > 0;
+  BenchArgs& b = line.bench;
+  const bool hardware =
+      std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
+  if (b.samples > 1 && hardware) {
+    if (bench->count("--backends") > 0) {
+      throw UsageError("--samples " + std::to_string(b.samples) +
+                           ": the hardware backend renders 1 sample per pixel; leave it out of "
+                           "--backends",
+                       help_command);
+    }
+    b.backends = {"compute"};
+  }
+  line.tradeoff.size_given = tradeoff->count("--size") > 0;
   reject_extras(app, help_command);
-  line.command = render->parsed()    ? Command::render
-                 : bench->parsed()   ? Command::bench
-                 : view->parsed()    ? Command::view
-                 : devices->parsed() ? Command::devices
-                                     : Command::scenes;
+  line.command = render->parsed()     ? Command::render
+                 : bench->parsed()    ? Command::bench
+                 : view->parsed()     ? Command::view
+                 : tradeoff->parsed() ? Command::tradeoff
+                 : devices->parsed()  ? Command::devices
+                                      : Command::scenes;
   return line;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compute/environment_gpu.h"
+#include "compute/swapchain.h"
 #include "core/check.h"
 #include "core/frame_settings.h"
 #include "core/scene.h"
@@ -40,10 +41,14 @@ struct BenchArgs {
   uint32_t width = 512;
   uint32_t height = 512;
   uint32_t segments = 32;  // sphere tessellation: 960 triangles per sphere
+  uint32_t samples = 1;    // FrameSettings::samples (compute and reference backends)
   std::string device = "auto";
   std::vector<std::string> backends = {"compute", "hardware"};  // and/or "reference"
-  uint32_t repeat = 10;  // timed frames per point; figures are their medians
-  uint32_t warmup = 2;   // untimed frames first
+  uint32_t repeat = 10;    // timed frames per point; figures are their medians
+  uint32_t warmup = 2;     // untimed frames first, at least
+  double warmup_ms = 500;  // and at least this long, until the frame time settles (0: no)
+  uint32_t runs = 1;       // whole sweeps; figures are the medians of their medians
+  std::string compare;     // --compare: a saved --json run to print ratios against
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
   uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
   bool generic_shading = false;                  // RendererOptions::specialize_lights off
@@ -63,9 +68,30 @@ struct ViewArgs {
   bool overlay = true;
   bool validate = false;
   bool size_given = false;
+  PresentPath present = PresentPath::automatic;             // --present
+  SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format
 };
 
-enum class Command { help, render, bench, devices, scenes, view };
+struct TradeoffArgs {
+  std::string scene = "spheres";   // a scene of `tessera scenes`, a scene file, or a bench family
+  uint32_t objects = 0;            // objects of a bench family (grid, scatter, huge); 0: 100
+  std::vector<std::string> knobs;  // host/tradeoff.h, knobs()
+  FrameSettings frame;             // --size; the rest is each knob setting's
+  EnvironmentOptions env_options;  // the environment knobs' defaults
+  std::string device = "auto";
+  uint32_t repeat = 10;               // timed frames per setting and round
+  uint32_t warmup = 2;                // untimed frames per setting and round
+  uint32_t rounds = 3;                // passes over all settings, interleaved
+  uint32_t truth_samples = 8;         // N x N samples per pixel of the ground truth
+  uint32_t truth_env_samples = 1024;  // environment directions per lobe and pixel of the truth
+  std::string json, chart;
+  bool quiet = false;
+  bool strict = false;
+  bool validate = false;
+  bool size_given = false;
+};
+
+enum class Command { help, render, bench, devices, scenes, view, tradeoff };
 
 /// A parsed command line.
 struct CommandLine {
@@ -74,6 +100,7 @@ struct CommandLine {
   RenderArgs render;
   BenchArgs bench;
   ViewArgs view;
+  TradeoffArgs tradeoff;
 };
 
 /// A command line that does not parse: an unknown command or option, a missing or bad value.

@@ -12,6 +12,7 @@
 #include "host/cli.h"
 #include "host/render_command.h"
 #include "host/scene_source.h"
+#include "host/tradeoff.h"
 #include "host/view_command.h"
 
 namespace {
@@ -50,6 +51,8 @@ int run(const tessera::CommandLine& line, const std::string& command_line) {
       return tessera::run_bench(line.bench, command_line);
     case tessera::Command::view:
       return tessera::run_view(line.view);
+    case tessera::Command::tradeoff:
+      return tessera::run_tradeoff(line.tradeoff, command_line);
     case tessera::Command::devices:
       return run_devices();
     case tessera::Command::scenes:

@@ -16,7 +16,8 @@ void check_imgui_result(VkResult result) {
 }
 
 VkRenderPass create_render_pass(const Context& ctx, VkFormat format) {
-  // Draws over what the blit wrote (load), then hands the image to presentation.
+  // Draws over what the resolve pass or the copy wrote (load), then hands the image to
+  // presentation.
   VkAttachmentDescription colour{};
   colour.format = format;
   colour.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -87,13 +88,13 @@ void start_imgui(const Context& ctx, Window& window, const Swapchain& chain, Ove
 
 void prepare_overlay(const Context& ctx, Window& window, const Swapchain& chain, Overlay& overlay) {
   destroy_framebuffers(ctx, overlay);
-  if (overlay.render_pass && overlay.format != chain.format) {
+  if (overlay.render_pass && overlay.format != chain.view_format) {
     // ImGui's pipeline was built for the old render pass; rare enough to start over.
     destroy_overlay(ctx, overlay);
   }
   if (!overlay.render_pass) {
-    overlay.render_pass = create_render_pass(ctx, chain.format);
-    overlay.format = chain.format;
+    overlay.render_pass = create_render_pass(ctx, chain.view_format);
+    overlay.format = chain.view_format;
   }
   if (!overlay.started) {
     start_imgui(ctx, window, chain, overlay);

@@ -1,7 +1,7 @@
 #pragma once
 // The Dear ImGui overlay of `tessera view` (libimgui 1.86 with its GLFW and Vulkan backends):
-// a render pass that draws the panel over the swapchain image after the output image was
-// blitted into it and after a screenshot's read-back, so it never enters a screenshot. What
+// a render pass that draws the panel over the swapchain image after the frame was resolved
+// into it and after a screenshot's read-back, so it never enters a screenshot. What
 // the panel shows and edits is host/view_panel.h.
 
 #include <vector>

@@ -33,6 +33,30 @@ bool is_named_scene(const std::string& name) {
   return false;
 }
 
+std::vector<std::string> known_scene_names() {
+  std::set<std::string> names;
+  for (const auto& s : builtin_scenes()) names.insert(std::string(s.name));
+  for (const std::string& folder : scene_folders()) {
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) continue;
+    bool any = false;
+    for (const auto& e : fs::directory_iterator(folder, ec)) {
+      if (e.path().extension() != ".json") continue;
+      names.insert(e.path().stem().string());
+      any = true;
+    }
+    if (any) break;  // the folder scene_listing() shows
+  }
+  return {names.begin(), names.end()};
+}
+
+void check_scene_name(const std::string& name) {
+  if (is_builtin_scene(name) || is_named_scene(name)) return;
+  std::string known;
+  for (const std::string& n : known_scene_names()) known += (known.empty() ? "" : ", ") + n;
+  throw Error("unknown scene '" + name + "' (known scenes: " + known + "; or a scene file's path)");
+}
+
 bool is_model_path(const std::string& argument) {
   const std::string ext = fs::path(argument).extension().string();
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
@@ -67,6 +91,7 @@ SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool
   SceneFile file;
   if (path.empty()) {
     // No scenes folder (a binary moved without share/): the same scene from code.
+    check_scene_name(name_or_file);
     file.scene = make_builtin_scene(name_or_file);
     return file;
   }

@@ -21,6 +21,14 @@ bool is_scene_path(const std::string& argument);
 /// lists).
 bool is_named_scene(const std::string& name);
 
+/// Every scene a name loads, sorted: the scene files of the first scenes folder that has any
+/// (what `tessera scenes` lists) and the built-in scenes made in code.
+std::vector<std::string> known_scene_names();
+
+/// Throws Error "unknown scene 'NAME' (known scenes: ...)" listing known_scene_names(), unless
+/// `name` is one of them.
+void check_scene_name(const std::string& name);
+
 /// True if `argument` names a model file an importer reads: it ends in .gltf, .glb or .obj.
 bool is_model_path(const std::string& argument);
 

@@ -69,8 +69,11 @@ void pick(Viewer& v, glm::vec2 at) {
       v.selected = int(v.renderer->object_of_triangle(*triangle));
   }
   char text[96];
-  std::snprintf(text, sizeof(text), "click at %g %g: selected %s%d", at.x, at.y,
-                v.selected < 0 ? "nothing " : "object ", v.selected);
+  if (v.selected < 0) {
+    std::snprintf(text, sizeof(text), "click at %g %g: nothing under the cursor", at.x, at.y);
+  } else {
+    std::snprintf(text, sizeof(text), "click at %g %g: selected object %d", at.x, at.y, v.selected);
+  }
   log(v, text);
 }
 
@@ -137,6 +140,29 @@ void edit_material(Viewer& v, const InputEvent& e) {
     m.roughness = e.value.x;
   }
   set_selected_material(v, m);
+}
+
+// A scripted light edit, as the panel's light list makes it.
+void edit_light(Viewer& v, const InputEvent& e) {
+  PanelChanges c;
+  if (e.field == "add") {
+    c.add_light = true;
+  } else if (e.index >= v.scene.lights.size()) {
+    log(v, "no light " + std::to_string(e.index) + " (the scene has " +
+               std::to_string(v.scene.lights.size()) + ")");
+    return;
+  } else if (e.field == "delete") {
+    c.delete_light = true;
+    c.light_index = e.index;
+  } else {
+    Light light = v.scene.lights[e.index];
+    if (e.field == "position") light.position = e.value;
+    if (e.field == "color") light.color = e.value;
+    if (e.field == "intensity") light.intensity = e.value.x;
+    c.light = light;
+    c.light_index = e.index;
+  }
+  apply_panel_changes(v, c);
 }
 
 // The selected object's transform with its origin moved to `point`.
@@ -322,6 +348,9 @@ void handle_event(Viewer& v, const InputEvent& e) {
       break;
     case EventKind::material:
       edit_material(v, e);
+      break;
+    case EventKind::light:
+      edit_light(v, e);
       break;
   }
 }

@@ -5,9 +5,11 @@
 #include <cstdio>
 
 #include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include "compute/vk_check.h"
 #include "core/check.h"
+#include "core/image.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 #include "host/viewer.h"
@@ -27,15 +29,28 @@ void build_panel(Viewer& v) {
   in.environment_on = v.scene.environment != nullptr;
   in.unsaved = v.history.dirty();
   apply_panel_changes(v, draw_view_panel(in, v.frame));
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  draw_selection_mark(v.scene, v.selected, display.x, display.y);
 }
 
 // Renders and presents one frame at the framebuffer's size; false if nothing was shown.
 bool draw(Viewer& v, uint32_t width, uint32_t height) {
   if (v.recreate || v.chain.extent.width != width || v.chain.extent.height != height) {
     VK_CHECK(vkDeviceWaitIdle(v.ctx->device));
-    create_swapchain(*v.ctx, v.chain, width, height, v.args.vsync);
+    const bool first = v.chain.swapchain == VK_NULL_HANDLE;
+    const bool was_direct = v.chain.direct;
+    const VkFormat old_format = v.chain.format;
+    create_swapchain(*v.ctx, v.chain, width, height,
+                     {v.args.vsync, v.args.present, v.args.surface_format});
+    prepare_presenter(*v.ctx, v.presenter, v.chain, *v.renderer);
     if (v.args.overlay) prepare_overlay(*v.ctx, *v.window, v.chain, v.overlay);
     v.recreate = false;
+    if (first || was_direct != v.chain.direct || old_format != v.chain.format) {
+      std::printf("frame %" PRIu64 ": presenting %s images %s\n", v.frame_number,
+                  format_name(v.chain.format).c_str(),
+                  v.chain.direct ? "directly (the resolve pass writes them)"
+                                 : ("by copy: " + v.chain.path_reason).c_str());
+    }
   }
   const bool overlay = v.args.overlay && v.overlay_visible;
   if (overlay) build_panel(v);
@@ -55,9 +70,8 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
       overlay_drawn = true;
     };
   }
-  const PresentResult result =
-      present_frame(*v.ctx, v.presenter, v.chain, v.renderer->output_image(), recorder,
-                    wants_shot ? &shot : nullptr);
+  const PresentResult result = present_frame(*v.ctx, v.presenter, v.chain, *v.renderer, recorder,
+                                             wants_shot ? &shot : nullptr, &v.last_stats);
   if (overlay && !overlay_drawn) discard_overlay_frame();
   if (result != PresentResult::presented) v.recreate = true;
   if (result == PresentResult::out_of_date) return false;
@@ -75,9 +89,17 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     v.scene_changed = false;
   }
   if (wants_shot) {
-    write_png(v.screenshot, shot);
-    std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
-                shot.width, shot.height);
+    // A screenshot that cannot be written says why and leaves the session running.
+    const std::string reason = unwritable_reason(v.screenshot);
+    try {
+      if (!reason.empty()) throw Error(reason);
+      write_png(v.screenshot, shot);
+      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
+                  shot.width, shot.height);
+    } catch (const Error& error) {
+      std::printf("frame %" PRIu64 ": screenshot %s not written: %s\n", v.frame_number,
+                  v.screenshot.c_str(), error.what());
+    }
     v.screenshot.clear();
   }
   return true;
@@ -130,7 +152,8 @@ int run_view(const ViewArgs& args) {
   v.ctx = create_context(options);
   v.chain.surface = create_window_surface(v.ctx->instance, *v.window);
   create_presenter(*v.ctx, v.presenter);
-  v.renderer = std::make_unique<Renderer>(*v.ctx);
+  // The presenter records the resolve pass, into the swapchain image where it can.
+  v.renderer = std::make_unique<Renderer>(*v.ctx, RendererOptions{.resolve = false});
   v.renderer->set_scene(v.scene);
   run_loop(v);
   autosave_if_unsaved(v);

@@ -23,6 +23,8 @@ enum class EventKind {
   memory,      // print the process's resident memory (script only: leak checks)
   material,    // the selected object's material: `field` set to `value` or preset `path`
                // (script only: what the panel's material editor does)
+  light,       // the panel's light controls: `field` add (at the eye), or for light `index`
+               // delete, position, color (`value`) or intensity (`value.x`) (script only)
 };
 
 enum class MouseButton { left, middle, right };
@@ -39,7 +41,8 @@ struct InputEvent {
   uint32_t width = 0;
   uint32_t height = 0;
   std::string path;
-  std::string field;  // material: preset, base_color, metallic, roughness or emissive
+  std::string field;   // material: preset, base_color, metallic, roughness or emissive; light
+  uint32_t index = 0;  // light: which
   glm::vec3 value{0.0f};
   bool scripted = false;  // from a script: a key of the fly set moves one step (no key is held)
 };

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <utility>
 
 #include <imgui.h>
 
@@ -35,8 +37,15 @@ void draw_timings(const PanelInput& in) {
 void draw_counts(const FrameStats& s) {
   ImGui::Text("triangles: %llu submitted, %llu rasterized",
               (unsigned long long)s.triangles_submitted, (unsigned long long)s.raster_triangles);
-  ImGui::Text("%llu small, %llu binned, %llu back-facing, %llu outside",
-              (unsigned long long)s.small_triangles, (unsigned long long)s.big_triangles,
+  ImGui::Text("%llu small, %llu binned to tiles", (unsigned long long)s.small_triangles,
+              (unsigned long long)s.big_triangles);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "small: a pixel box of at most 64 pixels, rasterized one thread per triangle\n"
+        "binned to tiles: larger, sorted into the 16x16-pixel tiles they touch and\n"
+        "rasterized one workgroup per tile (docs/architecture.md)");
+  }
+  ImGui::Text("culled: %llu back-facing, %llu outside the view",
               (unsigned long long)s.culled_backface, (unsigned long long)s.culled_frustum);
 }
 
@@ -128,7 +137,56 @@ void draw_options(const PanelInput& in, FrameSettings& frame, PanelChanges& chan
   ImGui::SliderFloat("exposure (EV)", &frame.exposure_ev, -8.0f, 8.0f);
 }
 
+// The axis-aligned box around the vertices of `mesh` (empty: lo > hi).
+void mesh_box(const Mesh& mesh, glm::vec3& lo, glm::vec3& hi) {
+  lo = glm::vec3(std::numeric_limits<float>::max());
+  hi = -lo;
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+}
+
 }  // namespace
+
+void draw_selection_mark(const Scene& scene, int selected, float width, float height) {
+  if (selected < 0 || size_t(selected) >= scene.objects.size() || width <= 0 || height <= 0) return;
+  const Object& object = scene.objects[size_t(selected)];
+  glm::vec3 lo, hi;
+  mesh_box(scene.meshes[object.mesh], lo, hi);
+  if (lo.x > hi.x) return;
+  const glm::mat4 clip = projection_matrix(scene.camera, width / height) *
+                         view_matrix(scene.camera) * object.transform;
+  // The rectangle around the box's corners in front of the eye; a box reaching behind the eye
+  // spans the whole window.
+  glm::vec2 a(std::numeric_limits<float>::max()), b(-std::numeric_limits<float>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+    const glm::vec4 c = clip * glm::vec4(p, 1.0f);
+    if (c.w <= scene.camera.near_plane * 0.5f) {
+      a = glm::vec2(0.0f);
+      b = glm::vec2(width, height);
+      break;
+    }
+    // Vulkan's clip space: y grows down the image, as window pixels do.
+    const glm::vec2 pixel{(c.x / c.w * 0.5f + 0.5f) * width, (c.y / c.w * 0.5f + 0.5f) * height};
+    a = glm::min(a, pixel);
+    b = glm::max(b, pixel);
+  }
+  a = glm::clamp(a, glm::vec2(1.0f), glm::vec2(width - 2, height - 2));
+  b = glm::clamp(b, glm::vec2(1.0f), glm::vec2(width - 2, height - 2));
+  if (a.x >= b.x || a.y >= b.y) return;  // off screen
+  // Corner brackets a quarter of the shorter side long, dark under light so they show on any
+  // background.
+  const float arm = std::max(4.0f, 0.25f * std::min(b.x - a.x, b.y - a.y));
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  for (const auto& [colour, thickness] :
+       {std::pair{IM_COL32(0, 0, 0, 200), 4.0f}, std::pair{IM_COL32(255, 200, 40, 255), 2.0f}}) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const ImVec2 at{corner & 1 ? b.x : a.x, corner & 2 ? b.y : a.y};
+      const float sx = corner & 1 ? -arm : arm, sy = corner & 2 ? -arm : arm;
+      const ImVec2 bend[] = {{at.x + sx, at.y}, at, {at.x, at.y + sy}};
+      draw->AddPolyline(bend, 3, colour, ImDrawFlags_None, thickness);
+    }
+  }
+}
 
 PanelChanges draw_view_panel(const PanelInput& in, FrameSettings& frame) {
   PanelChanges changes;

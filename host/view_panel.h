@@ -35,4 +35,10 @@ struct PanelChanges {
 /// Draws the panel; `frame` (render options) is changed in place.
 PanelChanges draw_view_panel(const PanelInput& in, FrameSettings& frame);
 
+/// Marks object `selected` of `scene` (an index, or -1 for none) in the window: corner brackets
+/// around the screen rectangle of its mesh's bounding box seen through `scene.camera`, in
+/// ImGui's background layer over the whole `width` x `height` window pixels. The overlay
+/// draws it after the screenshot's read-back, so it never enters the compared image.
+void draw_selection_mark(const Scene& scene, int selected, float width, float height);
+
 }  // namespace tessera

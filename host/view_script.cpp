@@ -159,13 +159,35 @@ InputEvent parse_event(Line& line) {
                 "' (preset, base_color, metallic, roughness or emissive)");
     }
     line.end();
+  } else if (kind == "light") {
+    e.kind = EventKind::light;
+    if (line.more() && line.words[line.next] == "add") {
+      e.field = line.word("light action");
+      line.end();
+      return e;
+    }
+    const double index = line.number_of("light index", 0, 65535);
+    if (index != double(uint32_t(index))) line.fail("light index expects a whole number");
+    e.index = uint32_t(index);
+    e.field = line.word("light action");
+    if (e.field == "position") {
+      for (int c = 0; c < 3; ++c) e.value[c] = float(line.number_of("coordinate", -1e6, 1e6));
+    } else if (e.field == "color") {
+      for (int c = 0; c < 3; ++c) e.value[c] = float(line.number_of("colour component", 0, 1e6));
+    } else if (e.field == "intensity") {
+      e.value.x = float(line.number_of("intensity", 0, 1e9));
+    } else if (e.field != "delete") {
+      line.fail("unknown light action '" + e.field +
+                "' (add, or after the light's index: delete, position, color, intensity)");
+    }
+    line.end();
   } else if (kind == "memory") {
     e.kind = EventKind::memory;
     line.end();
   } else {
     line.fail("unknown event '" + kind +
               "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit, "
-              "memory, material)");
+              "memory, material, light)");
   }
   return e;
 }

@@ -16,6 +16,9 @@
 //   FRAME material preset NAME           the selected object's material, as the panel edits
 //   FRAME material base_color|emissive R G B
 //   FRAME material metallic|roughness X
+//   FRAME light add                      a point light at the eye, as the panel's button
+//   FRAME light N delete | position X Y Z | color R G B | intensity X
+//                                        light N (0-based), as the panel's light list edits it
 //
 // FRAME counts presented-or-skipped loop iterations from 0; frames never decrease from one line
 // to the next. Positions are window pixels from the top left. '#' starts a comment.

@@ -22,9 +22,10 @@ if [[ ! -f .gl/libvulkan1_1.3.239.0-1_amd64.deb || ! -f .gl/libglvnd0_1.6.0-1_am
 fi
 [[ -f build-device/CMakeCache.txt ]] ||
   cmake -S . -B build-device -DCMAKE_BUILD_TYPE=Release -DTESSERA_STATIC_RUNTIME=ON -DTESSERA_BUILD_TESTS=OFF >/dev/null
-cmake --build build-device -j "$(nproc)" --target tessera tessera_bench
+cmake --build build-device -j "$(nproc)" --target tessera tessera_bench tessera_minimal_graphics
 rm -rf .device-build && mkdir -p .device-build
-cp build-device/host/tessera build-device/bench/tessera_bench .device-build/
+cp build-device/host/tessera build-device/bench/tessera_bench \
+  build-device/bench/tessera_minimal_graphics .device-build/
 cp "$(ldd build-device/bench/tessera_bench | awk '/libbenchmark/ {print $3}')" .device-build/
 # The window's libraries (GLFW, FreeType and what they load: X11, PNG, ...) are not on the GPU
 # machine: every shared library `tessera` needs beyond glibc, the C++ runtime (Ubuntu's is newer)

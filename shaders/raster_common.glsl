@@ -2,6 +2,8 @@
 // Both paths must produce bit-identical keys, so every value here is either exact integer
 // arithmetic or float arithmetic marked `precise` and evaluated in one fixed order.
 
+#include "samples.glsl"
+
 layout(constant_id = TS_SPEC_DEBUG_COVERAGE) const bool DEBUG_COVERAGE = false;
 
 struct RasterTri {
@@ -27,6 +29,11 @@ RasterTri load_raster_tri(uint index) {
 // Fixed-point position of the centre of pixel (x, y).
 ivec2 pixel_centre(ivec2 pixel) {
   return pixel * TS_SUBPIXEL_ONE + TS_SUBPIXEL_ONE / 2;
+}
+
+// Fixed-point position of sample s of pixel (x, y) (the centre with one sample).
+ivec2 sample_position(ivec2 pixel, uint s) {
+  return pixel * TS_SUBPIXEL_ONE + sample_offset(s);
 }
 
 // Edge function of the directed edge a->b at p: twice the signed area of (a, b, p).
@@ -75,6 +82,16 @@ bool is_covered(Edges e, Thresholds h) {
   return e.e0 >= h.t0 && e.e1 >= h.t1 && e.e2 >= h.t2;
 }
 
+// Edge values `d` fixed-point units away from where `e` was taken: E is affine, so this is
+// exact and equals edges_at at the moved point (d = 0 with one sample: folded away).
+Edges edges_moved(RasterTri t, Edges e, ivec2 d) {
+  Edges m;
+  m.e0 = e.e0 + int64_t(t.v2.x - t.v1.x) * d.y - int64_t(t.v2.y - t.v1.y) * d.x;
+  m.e1 = e.e1 + int64_t(t.v0.x - t.v2.x) * d.y - int64_t(t.v0.y - t.v2.y) * d.x;
+  m.e2 = e.e2 + int64_t(t.v1.x - t.v0.x) * d.y - int64_t(t.v1.y - t.v0.y) * d.x;
+  return m;
+}
+
 // Reverse depth near/w at a covered sample: an affine function of screen position, so the
 // screen-space barycentrics (edge values over the doubled area) interpolate it exactly.
 // The weights are >= 0 and the vertex depths > 0, so the result is > 0 and finite.
@@ -91,12 +108,12 @@ uint64_t visibility_key(float depth, uint id) {
   return (uint64_t(~floatBitsToUint(depth)) << 32) | uint64_t(id);
 }
 
-// Conservative test: can any pixel centre of `tile` be covered by the triangle? Each edge
-// function is maximised over the tile's corner sample positions; below the edge's threshold
-// there, no sample of the tile is inside. Used identically by counting and filling.
+// Conservative test: can any sample of `tile` be covered by the triangle? Each edge function
+// is maximised over the corners of the rectangle holding the tile's samples; below the edge's
+// threshold there, no sample of the tile is inside. Used identically by counting and filling.
 bool tile_may_overlap(RasterTri t, ivec2 tile) {
-  ivec2 lo = pixel_centre(tile * TS_TILE_SIZE);
-  ivec2 hi = pixel_centre(tile * TS_TILE_SIZE + (TS_TILE_SIZE - 1));
+  ivec2 lo = tile * TS_TILE_SIZE * TS_SUBPIXEL_ONE + sample_offset_min();
+  ivec2 hi = (tile * TS_TILE_SIZE + (TS_TILE_SIZE - 1)) * TS_SUBPIXEL_ONE + sample_offset_max();
   Thresholds h = thresholds_of(t);
   ivec2 a[3] = ivec2[3](t.v1, t.v2, t.v0);
   ivec2 b[3] = ivec2[3](t.v2, t.v0, t.v1);

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
-// integer edge functions, and atomicMin's each covered sample into the visibility buffer.
+// integer edge functions from pixel centre to pixel centre, and atomicMin's each covered sample
+// (SAMPLES per pixel) into the visibility buffer.
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
@@ -25,12 +26,15 @@ void main() {
   for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
     Edges e = row;
     for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-      if (is_covered(e, h)) {
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        Edges es = edges_moved(t, e, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+        if (!is_covered(es, h)) continue;
         uint p = pixel_index(ivec2(x, y));
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint64_t key = visibility_key(depth_at(t, e), t.id);
+        uint64_t key = visibility_key(depth_at(t, es), t.id);
+        uint v = sample_index(p, s);
         // A plain read first skips most atomics; a stale value is never below the true one.
-        if (visibility[p] > key) atomicMin(visibility[p], key);
+        if (visibility[v] > key) atomicMin(visibility[v], key);
       }
       e.e0 += step_x.e0;
       e.e1 += step_x.e1;

@@ -1,9 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Resolve: tone mapping and sRGB encoding of the HDR image into the RGBA8 image.
+// Resolve: tone mapping and sRGB encoding of the HDR image into the RGBA8 image. The window
+// binds a swapchain image there instead (compute/present.cpp), viewed as R8G8B8A8_UNORM: its
+// bytes are the sRGB-encoded ones whether the swapchain is UNORM or sRGB.
 #include "bindings.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// A B8G8R8A8 swapchain image holds blue in its first byte; through its R8G8B8A8 view the store
+// swaps red and blue so that each byte holds the channel the presentation engine reads there.
+layout(constant_id = TS_SPEC_OUTPUT_BGRA) const bool OUTPUT_BGRA = false;
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve": a fit of the ACES reference rendering
 // transform's luminance response.
@@ -34,5 +40,6 @@ void main() {
   vec3 mapped = op == TS_TONEMAP_ACES       ? tonemap_aces(hdr)
                 : op == TS_TONEMAP_REINHARD ? tonemap_reinhard(hdr)
                                             : clamp(hdr, 0.0, 1.0);
-  imageStore(ldr_image, pixel, vec4(srgb_encode(mapped), 1.0));
+  vec3 encoded = srgb_encode(mapped);
+  imageStore(ldr_image, pixel, vec4(OUTPUT_BGRA ? encoded.bgr : encoded, 1.0));
 }

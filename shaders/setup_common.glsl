@@ -73,18 +73,23 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool do
 
   ivec2 lo = min(min(t.v0, t.v1), t.v2);
   ivec2 hi = max(max(t.v0, t.v1), t.v2);
-  // Pixel x has its centre at x*256 + 128: the first centre >= lo and the last <= hi.
-  t.box_min = max((lo - TS_SUBPIXEL_ONE / 2 + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
-  t.box_max = min((hi - TS_SUBPIXEL_ONE / 2) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size) - 1);
+  // Pixel x has its samples at x*256 + [first, last] offsets (its centre x*256 + 128 with one
+  // sample): the first pixel whose last sample is >= lo, the last whose first is <= hi.
+  ivec2 first = sample_offset_min();
+  ivec2 last = sample_offset_max();
+  t.box_min = max((lo - last + (TS_SUBPIXEL_ONE - 1)) >> TS_SUBPIXEL_BITS, ivec2(0));
+  t.box_max = min((hi - first) >> TS_SUBPIXEL_BITS, ivec2(frame.image_size) - 1);
   if (any(greaterThan(t.box_min, t.box_max))) return OUTCOME_EMPTY;
-  // Slivers and sub-pixel triangles often cover no pixel centre: for boxes of up to 2x2
-  // pixels, test the centres here rather than pay for a raster triangle that writes nothing.
+  // Slivers and sub-pixel triangles often cover no sample: for boxes of up to 2x2 pixels, test
+  // the samples here rather than pay for a raster triangle that writes nothing.
   if (all(lessThanEqual(t.box_max - t.box_min, ivec2(1)))) {
     Thresholds h = thresholds_of(t);
     bool any_covered = false;
     for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
       for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-        any_covered = any_covered || is_covered(edges_at(t, pixel_centre(ivec2(x, y))), h);
+        for (uint s = 0u; s < SAMPLES; ++s) {
+          any_covered = any_covered || is_covered(edges_at(t, sample_position(ivec2(x, y), s)), h);
+        }
       }
     }
     if (!any_covered) return OUTCOME_EMPTY;

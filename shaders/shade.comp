@@ -4,10 +4,12 @@
 // in world space, intersects the pixel's camera ray with it for perspective-correct
 // barycentrics and texture footprints, applies the material's texture maps, and evaluates the
 // shading model (lighting.glsl) into linear HDR. Empty pixels get the background: the
-// environment along the pixel's ray, or the scene's background colour.
+// environment along the pixel's ray, or the scene's background colour. With several samples
+// per pixel, each distinct triangle among them is shaded once (resolve_samples).
 #include "bindings.glsl"
 #include "material.glsl"
 #include "lighting.glsl"
+#include "samples.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -16,10 +18,6 @@ vec3 camera_ray_at(vec2 pixel_point) {
   vec2 ndc = pixel_point / vec2(frame.image_size) * 2.0 - 1.0;
   vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
   return normalize(far_point.xyz / far_point.w - frame.camera_position);
-}
-
-vec3 camera_ray(ivec2 pixel) {
-  return camera_ray_at(vec2(pixel) + 0.5);
 }
 
 // Unclamped barycentrics of the ray's hit on the triangle's plane, for texture footprints;
@@ -64,7 +62,9 @@ vec3 id_colour(uint id) {
   return vec3(h & 0xFFu, (h >> 8) & 0xFFu, (h >> 16) & 0xFFu) / 255.0;
 }
 
-vec3 shade_sample(uint id, ivec2 pixel) {
+// Shaded colour of triangle-instance `id` seen along the ray through `point` (in pixels: the
+// pixel centre, or the mean of the triangle's samples in a partly covered pixel).
+vec3 shade_triangle(uint id, vec2 point) {
   uint slot = find_object(id);
   GpuObject o = objects[slot];
   uvec3 vi = triangle_vertices(o, id);
@@ -80,7 +80,7 @@ vec3 shade_sample(uint id, ivec2 pixel) {
     tan[k] = mat3(o.model) * vert.tangent.xyz;
   }
   vec3 origin = frame.camera_position;
-  vec3 dir = camera_ray(pixel);
+  vec3 dir = camera_ray_at(point);
   vec3 b = ray_barycentrics(origin, dir, p[0], p[1], p[2]);
   vec3 P = b.x * p[0] + b.y * p[1] + b.z * p[2];
   vec3 N = b.x * n[0] + b.y * n[1] + b.z * n[2];
@@ -95,8 +95,8 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   // right and below meet the triangle's plane. Compute shaders have no implicit derivatives.
   vec3 bx, by;
   const float INF = uintBitsToFloat(0x7F800000u);
-  bool has_dx = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(1.5, 0.5)), p[0], p[1], p[2], bx);
-  bool has_dy = plane_barycentrics(origin, camera_ray_at(vec2(pixel) + vec2(0.5, 1.5)), p[0], p[1], p[2], by);
+  bool has_dx = plane_barycentrics(origin, camera_ray_at(point + vec2(1.0, 0.0)), p[0], p[1], p[2], bx);
+  bool has_dy = plane_barycentrics(origin, camera_ray_at(point + vec2(0.0, 1.0)), p[0], p[1], p[2], by);
   g.duv_dx = has_dx ? bx.x * t[0] + bx.y * t[1] + bx.z * t[2] - g.uv : vec2(INF);
   g.duv_dy = has_dy ? by.x * t[0] + by.y * t[1] + by.z * t[2] - g.uv : vec2(INF);
   // Uv set 1 the same way, only where the material reads it (else uv1s may hold nothing).
@@ -127,18 +127,63 @@ vec3 shade_sample(uint id, ivec2 pixel) {
   return shade_surface(P, -dir, ms);
 }
 
-// What pixels no triangle covers show.
-vec3 background(ivec2 pixel) {
+// What samples no triangle covers show, seen through `point` (in pixels).
+vec3 background(vec2 point) {
   if (ibl_enabled() && frame.view == TS_VIEW_SHADED) {
-    return textureLod(env_map, equirect_uv(camera_ray(pixel)), 0.0).rgb;
+    return textureLod(env_map, equirect_uv(camera_ray_at(point)), 0.0).rgb;
   }
   return frame.background;
+}
+
+// The colour a group of samples stores: pre-exposed and clamped to what fp16 holds.
+vec3 stored(vec3 color) {
+  return min(color * pre_exposure(), vec3(TS_MAX_HALF));
+}
+
+// Anti-aliased pixel (SAMPLES > 1): each distinct triangle among the pixel's samples, and the
+// background if a sample is empty, is shaded once, at the pixel centre if it holds every sample
+// and else at the mean of its samples (inside the triangle, which is convex), weighted by the
+// fraction of samples it holds. Groups are visited in increasing id, the empty id (all ones)
+// last, so the sum is the same whatever order the samples were written in.
+vec3 resolve_samples(ivec2 pixel) {
+  uint base = sample_index(pixel_index(pixel), 0u);
+  uint ids[SAMPLES];
+  for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
+  vec3 sum = vec3(0.0);
+  uint next = 0u;  // every id below this has been shaded
+  for (uint group = 0u; group < SAMPLES; ++group) {
+    uint id = 0xFFFFFFFFu;
+    for (uint s = 0u; s < SAMPLES; ++s) {
+      if (ids[s] >= next) id = min(id, ids[s]);
+    }
+    uint count = 0u;
+    ivec2 offsets = ivec2(0);
+    for (uint s = 0u; s < SAMPLES; ++s) {
+      if (ids[s] == id) {
+        count++;
+        offsets += sample_offset(s);
+      }
+    }
+    if (count == 0u) break;
+    vec2 point = count == SAMPLES ? vec2(pixel) + 0.5
+                                  : vec2(pixel) + vec2(offsets) / float(TS_SUBPIXEL_ONE * count);
+    vec3 color = id == 0xFFFFFFFFu ? background(point) : shade_triangle(id, point);
+    sum += stored(color) * (float(count) / float(SAMPLES));
+    if (id == 0xFFFFFFFFu) break;
+    next = id + 1u;
+  }
+  return sum;
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
+  if (SAMPLES > 1u) {
+    imageStore(hdr_image, pixel, vec4(resolve_samples(pixel), 1.0));
+    return;
+  }
   uint64_t key = visibility[pixel_index(pixel)];
-  vec3 color = key == TS_VIS_EMPTY ? background(pixel) : shade_sample(uint(key & 0xFFFFFFFFul), pixel);
-  imageStore(hdr_image, pixel, vec4(min(color * pre_exposure(), vec3(TS_MAX_HALF)), 1.0));
+  vec2 centre = vec2(pixel) + 0.5;
+  vec3 color = key == TS_VIS_EMPTY ? background(centre) : shade_triangle(uint(key & 0xFFFFFFFFul), centre);
+  imageStore(hdr_image, pixel, vec4(stored(color), 1.0));
 }

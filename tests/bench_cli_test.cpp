@@ -1,15 +1,21 @@
 // `tessera bench` as a smoke test on lavapipe: a short sweep over every backend writes CSV, JSON
 // and charts. Not a timing assertion: speed is measured in bench/ and docs/performance.md.
+#include <algorithm>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/bench_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
 #include "core/mesh.h"
+#include "core/warmup.h"
+#include "host/bench_compare.h"
 #include "host/cli.h"
 #include "tests/vulkan_fixture.h"
 
@@ -29,7 +35,7 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
         std::string(TESSERA_BINARY) + " bench --device lavapipe --validate --scene " +
         std::string(family.name) +
         " --objects 1,3 --size 64x48 --segments 8 --backends compute,hardware,reference "
-        "--repeat 2 --warmup 0 --csv " +
+        "--repeat 2 --warmup 0 --warmup-ms 0 --csv " +
         base + ".csv --json " + base + ".json --chart " + base + ".svg";
     ASSERT_EQ(test::run_command(command, out), 0) << out;
     EXPECT_NE(out.find("compute / hardware"), std::string::npos) << out;
@@ -49,7 +55,7 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
   ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
                                   " bench --device lavapipe --validate --objects 1,2 --size 32x32 "
                                   "--segments 6 --repeat 1 "
-                                  "--warmup 0 --quiet --chart " +
+                                  "--warmup 0 --warmup-ms 0 --quiet --chart " +
                                   png,
                               out),
             0)
@@ -71,7 +77,7 @@ TEST(BenchCli, ModelFileIsPlacedNTimesOnTheGrid) {
   ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " bench --device lavapipe --validate " +
                                   "--scene " + obj +
                                   " --objects 1,3 --size 32x32 --backends compute,reference "
-                                  "--repeat 1 --warmup 0 --quiet --csv " +
+                                  "--repeat 1 --warmup 0 --warmup-ms 0 --quiet --csv " +
                                   csv_path,
                               out),
             0)
@@ -110,6 +116,80 @@ TEST(BenchCli, InstancedCopiesFillGridCells) {
   EXPECT_EQ(s.lights.size(), 4u) << "content without lights gets the grid's four";
 }
 
+// The yardstick family against the issue's formulas worked by hand: side = ceil(sqrt N),
+// centre (((i mod side) + 0.5) / side * 2 - 1) * 3, (((i div side) + 0.5) / side * 2 - 1) * 1.7,
+// radius 0.45 * 3.4 / side = 1.53 / side.
+TEST(BenchCli, YardstickLayoutIsTheMinimalProgramsLayout) {
+  struct Case {
+    uint32_t objects, i;
+    glm::vec3 centre;
+    float radius;
+  };
+  const Case cases[] = {
+      {1, 0, {0.0f, 0.0f, 0.0f}, 1.53f},           // side 1: the one cell's centre
+      {10, 0, {-2.25f, -1.275f, 0.0f}, 0.3825f},   // side 4: (0.25 - 1) * 3, (0.25 - 1) * 1.7
+      {10, 9, {-0.75f, 0.425f, 0.0f}, 0.3825f},    // column 1, row 2: (0.75 - 1) * 3, 0.25 * 1.7
+      {49, 24, {0.0f, 0.0f, 0.0f}, 1.53f / 7.0f},  // side 7: the middle cell (3, 3)
+      {49, 48, {18.0f / 7.0f, 10.2f / 7.0f, 0.0f}, 1.53f / 7.0f},  // (13/7 - 1) * 3, * 1.7
+  };
+  for (const Case& c : cases) {
+    const Scene s = make_bench_scene("yardstick", c.objects, 32, 16.0f / 9.0f);
+    ASSERT_EQ(s.objects.size(), c.objects);
+    EXPECT_EQ(s.meshes[0].triangle_count(), 960u);
+    const glm::mat4& m = s.objects[c.i].transform;
+    const glm::vec3 centre = glm::vec3(m * glm::vec4(0, 0, 0, 1));
+    const glm::vec3 east = glm::vec3(m * glm::vec4(1, 0, 0, 1));  // the unit sphere's +x pole
+    EXPECT_NEAR(glm::distance(centre, c.centre), 0.0f, 1e-5f) << c.objects << " " << c.i;
+    EXPECT_NEAR(glm::distance(east, c.centre + glm::vec3(c.radius, 0, 0)), 0.0f, 1e-5f)
+        << c.objects << " " << c.i;
+    EXPECT_EQ(s.camera.position, glm::vec3(0, 0, 3));
+    EXPECT_EQ(s.camera.target, glm::vec3(0));
+    EXPECT_NEAR(s.camera.vertical_fov, 3.14159265f / 3.0f, 1e-6f);
+    ASSERT_EQ(s.lights.size(), 4u);
+    EXPECT_EQ(s.lights[3].position, glm::vec3(4, -4, 4));
+  }
+}
+
+// The minimal graphics program computes its layout from the issue's formulas itself, projects
+// with its own matrices and rasterizes on the device's graphics pipeline: the pixels it covers
+// must be those the compute path's visibility buffer holds for the yardstick family.
+TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
+#ifndef TESSERA_MINIMAL_GRAPHICS
+  GTEST_SKIP() << "built without bench/ (TESSERA_BUILD_BENCH off)";
+#else
+  const std::string minimal = test::output_path("minimal.json");
+  const std::string bench = test::output_path("yardstick.json");
+  const std::string common =
+      " --device lavapipe --objects 1,10,49 --size 96x54 --repeat 1 "
+      "--warmup 0 --warmup-ms 0 --json ";
+  std::string out;
+  // The validation layer prints to stdout when no messenger is installed.
+  ASSERT_EQ(test::run_command("VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation " +
+                                  std::string(TESSERA_MINIMAL_GRAPHICS) + common + minimal,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --validate --scene yardstick --backends compute "
+                                  "--quiet" +
+                                  common + bench,
+                              out),
+            0)
+      << out;
+  std::ifstream m(minimal), b(bench);
+  const nlohmann::json mj = nlohmann::json::parse(m), bj = nlohmann::json::parse(b);
+  ASSERT_EQ(mj["results"].size(), 3u);
+  ASSERT_EQ(bj["results"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(mj["results"][i]["objects"], bj["results"][i]["objects"]);
+    EXPECT_GT(int(mj["results"][i]["pixels_shaded"]), 1000);
+    EXPECT_EQ(mj["results"][i]["pixels_shaded"], bj["results"][i]["pixels_shaded"])
+        << "objects " << mj["results"][i]["objects"];
+  }
+#endif
+}
+
 TEST(BenchCli, ParsesEveryOption) {
   const CommandLine line = parse_command_line({"bench",
                                                "--scene",
@@ -128,6 +208,12 @@ TEST(BenchCli, ParsesEveryOption) {
                                                "4",
                                                "--warmup",
                                                "1",
+                                               "--warmup-ms",
+                                               "250",
+                                               "--runs",
+                                               "3",
+                                               "--compare",
+                                               "base.json",
                                                "--reference-max-triangles",
                                                "1000",
                                                "--small-triangle-area",
@@ -152,6 +238,9 @@ TEST(BenchCli, ParsesEveryOption) {
   EXPECT_EQ(a.backends, (std::vector<std::string>{"reference", "compute"}));
   EXPECT_EQ(a.repeat, 4u);
   EXPECT_EQ(a.warmup, 1u);
+  EXPECT_EQ(a.warmup_ms, 250.0);
+  EXPECT_EQ(a.runs, 3u);
+  EXPECT_EQ(a.compare, "base.json");
   EXPECT_EQ(a.reference_max_triangles, 1000u);
   EXPECT_EQ(a.small_triangle_area, 16u);
   EXPECT_TRUE(a.generic_shading);
@@ -166,16 +255,35 @@ TEST(BenchCli, ParsesEveryOption) {
   EXPECT_EQ(d.backends, (std::vector<std::string>{"compute", "hardware"}));
   EXPECT_EQ(d.repeat, 10u);
   EXPECT_EQ(d.warmup, 2u);
+  EXPECT_EQ(d.warmup_ms, 500.0);
+  EXPECT_EQ(d.runs, 1u);
+  EXPECT_EQ(d.compare, "");
 }
 
 TEST(BenchCli, HelpListsEveryOption) {
   const CommandLine line = parse_command_line({"bench", "--help"});
   ASSERT_EQ(line.command, Command::help);
-  for (const char* option :
-       {"Usage: tessera bench", "--scene NAME", "--objects LIST", "--size WxH", "--segments S",
-        "--device D", "--backends LIST", "--repeat K", "--warmup K", "--reference-max-triangles T",
-        "--small-triangle-area A", "--generic-shading", "--csv FILE", "--json FILE", "--chart FILE",
-        "--validate", "--quiet", "Exit status"}) {
+  for (const char* option : {"Usage: tessera bench",
+                             "--scene NAME",
+                             "--objects LIST",
+                             "--size WxH",
+                             "--segments S",
+                             "--device D",
+                             "--backends LIST",
+                             "--repeat K",
+                             "--warmup K",
+                             "--warmup-ms MS",
+                             "--runs K",
+                             "--compare BASE.json",
+                             "--reference-max-triangles T",
+                             "--small-triangle-area A",
+                             "--generic-shading",
+                             "--csv FILE",
+                             "--json FILE",
+                             "--chart FILE",
+                             "--validate",
+                             "--quiet",
+                             "Exit status"}) {
     EXPECT_NE(line.help.find(option), std::string::npos) << option << " in\n" << line.help;
   }
 }
@@ -208,6 +316,9 @@ TEST(BenchCli, BadArgumentsNameTheOption) {
   EXPECT_NE(error({"--repeat", "0"}).find("--repeat:"), std::string::npos);
   EXPECT_NE(error({"--warmup", "101"}).find("--warmup: expects a whole number from 0 to 100"),
             std::string::npos);
+  EXPECT_NE(error({"--warmup-ms", "-1"}).find("--warmup-ms:"), std::string::npos);
+  EXPECT_NE(error({"--runs", "0"}).find("--runs: expects a whole number from 1 to 100"),
+            std::string::npos);
   EXPECT_NE(error({"--size", "0x5"}).find("--size: width"), std::string::npos);
   EXPECT_NE(error({"--small-triangle-area", "-1"}).find("--small-triangle-area:"),
             std::string::npos);
@@ -228,6 +339,219 @@ TEST(BenchCli, UnwritableOutputFailsBeforeMeasuring) {
             std::string::npos)
       << out;
   EXPECT_EQ(out.find("objects"), std::string::npos) << "no table: nothing was measured\n" << out;
+}
+
+// Frames for warm_up with a clock of their own: frame k (from 1) returns sequence[k - 1] (then
+// the last value again) and moves the clock to k ms.
+struct FakeFrames {
+  std::vector<double> sequence;
+  int calls = 0;
+  std::function<double()> frame() {
+    return [this] { return sequence[std::min<size_t>(calls++, sequence.size() - 1)]; };
+  }
+  std::function<double()> clock() {
+    return [this] { return double(calls); };
+  }
+};
+
+TEST(BenchWarmup, StopsWhenTheMedianOfTheLastFiveFramesSettles) {
+  // Frame times 10 8 6 4 2 then 1s, 5 ms asked for. After frame 13 the last five (9..13) are
+  // all 1 and the five before (4..8: 4 2 1 1 1) have median 1 too: settled. After frame 12
+  // the five before (3..7: 6 4 2 1 1) have median 2: not yet.
+  FakeFrames f{{10, 8, 6, 4, 2, 1}};
+  const WarmupStats w =
+      warm_up(f.frame(), {.min_frames = 2, .ms = 5, .window = 5, .tolerance = 0.02}, f.clock());
+  EXPECT_EQ(w.frames, 13u);
+  EXPECT_EQ(w.ms, 13.0);
+  EXPECT_TRUE(w.stable);
+  // Settled from the start, it still runs for the time asked: 5 ms after the first frame.
+  FakeFrames flat{{1}};
+  const WarmupStats early =
+      warm_up(flat.frame(), {.min_frames = 0, .ms = 30, .window = 5}, flat.clock());
+  EXPECT_EQ(early.frames, 31u);
+  EXPECT_TRUE(early.stable);
+}
+
+TEST(BenchWarmup, GivesUpAtTheCapAndSaysSo) {
+  // Medians of five alternate between 1 and 2 forever: never settled. 5 ms capped at 4x:
+  // stops once 20 ms have passed after the first frame, at frame 21.
+  FakeFrames f{{}};
+  for (int i = 0; i < 100; ++i) f.sequence.push_back(1 + i % 2);
+  const WarmupStats w = warm_up(
+      f.frame(), {.min_frames = 2, .ms = 5, .window = 5, .tolerance = 0.02, .cap_factor = 4},
+      f.clock());
+  EXPECT_FALSE(w.stable);
+  EXPECT_EQ(w.frames, 21u);
+}
+
+TEST(BenchWarmup, ZeroMillisecondsMeansTheFrameCountAlone) {
+  FakeFrames f{{5, 4, 3}};
+  const WarmupStats w = warm_up(f.frame(), {.min_frames = 3, .ms = 0}, f.clock());
+  EXPECT_EQ(w.frames, 3u);
+  EXPECT_FALSE(w.stable);
+  FakeFrames none{{5}};
+  EXPECT_EQ(warm_up(none.frame(), {.min_frames = 0, .ms = 0}, none.clock()).frames, 0u);
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream f(path);
+  return nlohmann::json::parse(f);
+}
+
+TEST(BenchCli, RunsRepeatTheSweepAndReportTheirSpreadAndWarmup) {
+  const std::string json_path = test::output_path("runs.json");
+  const std::string csv_path = test::output_path("runs.csv");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --validate --scene yardstick "
+                                  "--objects 1,2 --size 32x32 --segments 8 --repeat 2 --runs 3 "
+                                  "--warmup 1 --warmup-ms 20 --json " +
+                                  json_path + " --csv " + csv_path,
+                              out),
+            0)
+      << out;
+  for (const char* text : {"median ms", "min ms", "max ms", "spread", "warm-up", "3 runs"})
+    EXPECT_NE(out.find(text), std::string::npos) << text << " in\n" << out;
+  const nlohmann::json j = read_json(json_path);
+  EXPECT_EQ(j["runs"], 3);
+  EXPECT_EQ(j["warmup"]["min_ms"], 20.0);
+  ASSERT_EQ(j["results"].size(), 4u);
+  for (const nlohmann::json& r : j["results"]) {
+    const std::vector<double> runs = r["run_ms"];
+    ASSERT_EQ(runs.size(), 3u) << r;
+    std::vector<double> sorted = runs;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(double(r["total_ms"]), sorted[1]) << "the median of three runs' medians";
+    // The file holds 9 significant digits.
+    const double spread = (sorted[2] - sorted[0]) / sorted[1] * 100.0;
+    EXPECT_NEAR(double(r["run_spread_pct"]), spread, 1e-6 * spread + 1e-9);
+    EXPECT_LE(double(r["min_ms"]), sorted[0]);
+    EXPECT_GE(double(r["max_ms"]), sorted[2]);
+    // Each run warms up for at least one frame and 20 ms after its first frame.
+    EXPECT_GE(int(r["warmup_frames"]), 3 * 2) << r;
+    EXPECT_GE(double(r["warmup_ms"]), 3 * 20.0) << r;
+  }
+  const std::string csv = read_text(csv_path);
+  EXPECT_NE(csv.find("min_ms,max_ms,runs,run_spread_pct,warmup_frames,warmup_ms,warmup_stable"),
+            std::string::npos)
+      << csv;
+}
+
+// A saved run written by hand; the ratios expected below are worked out from it.
+constexpr const char* kBase = R"({
+  "device": "hand", "date": "2026-11-29T00:00:00Z", "scene": "yardstick", "width": 32,
+  "height": 32, "results": [
+    {"objects": 1, "backend": "compute", "total_ms": 2.0},
+    {"objects": 1, "backend": "hardware", "total_ms": 4.0},
+    {"objects": 7, "backend": "compute", "total_ms": 1.0}
+  ]
+})";
+
+TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {
+  const std::string base_path = test::output_path("base.json");
+  std::ofstream(base_path) << kBase;
+  const SavedRun base = read_bench_json(base_path);
+  ASSERT_EQ(base.points.size(), 3u);
+  EXPECT_EQ(base.device, "hand");
+  BenchResults results;
+  for (auto [objects, backend, ms] :
+       {std::tuple{1u, "compute", 3.0}, {1u, "hardware", 1.0}, {2u, "compute", 5.0}}) {
+    BenchRow r;
+    r.objects = objects;
+    r.backend = backend;
+    r.total_ms = ms;
+    results.rows.push_back(r);
+  }
+  BenchArgs a;
+  a.scene = "yardstick";
+  a.width = a.height = 32;
+  const std::vector<ComparedPoint> c = compare_runs(base, results, a);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_TRUE(c[0].matched());
+  EXPECT_EQ(c[0].ratio(), 1.5);   // 3 / 2
+  EXPECT_EQ(c[1].ratio(), 0.25);  // 1 / 4
+  EXPECT_FALSE(c[2].matched());   // 2 objects: only in this run
+  EXPECT_EQ(c[2].new_ms, 5.0);
+  EXPECT_FALSE(c[3].matched());  // 7 objects: only in the base
+  EXPECT_EQ(c[3].point.objects, 7u);
+  // Another size matches nothing: every point is unmatched on one side or the other.
+  a.width = 64;
+  const std::vector<ComparedPoint> other = compare_runs(base, results, a);
+  EXPECT_EQ(other.size(), 6u);
+  for (const ComparedPoint& p : other) EXPECT_FALSE(p.matched());
+}
+
+TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
+  const std::string base_path = test::output_path("base_cli.json");
+  std::ofstream(base_path) << kBase;
+  const std::string json_path = test::output_path("compared.json");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --scene yardstick --objects 1,2 "
+                                  "--size 32x32 --segments 8 --repeat 1 --warmup 0 "
+                                  "--warmup-ms 0 --json " +
+                                  json_path + " --compare " + base_path,
+                              out),
+            0)
+      << out;
+  const nlohmann::json j = read_json(json_path);
+  for (const nlohmann::json& r : j["results"]) {
+    if (r["objects"] != 1) continue;
+    const double old_ms = r["backend"] == "compute" ? 2.0 : 4.0;
+    char line[128];
+    std::snprintf(line, sizeof(line), "%10.3f %10.3f %10.3f", old_ms, double(r["total_ms"]),
+                  double(r["total_ms"]) / old_ms);
+    EXPECT_NE(out.find(line), std::string::npos) << line << " in\n" << out;
+  }
+  EXPECT_NE(out.find("only in this run: yardstick, 2 objects, 32x32, compute"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("only in the base: yardstick, 7 objects, 32x32, compute"), std::string::npos)
+      << out;
+}
+
+TEST(BenchCli, BadCompareFilesAreClearErrors) {
+  auto error_of = [](const std::string& name, const std::string& text) {
+    const std::string path = test::output_path(name);
+    std::ofstream(path) << text;
+    try {
+      read_bench_json(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("truncated.json", R"({"scene": "grid", "width": )")
+                .find("truncated.json' is not valid JSON: parse error at line 1, column 28"),
+            std::string::npos)
+      << error_of("truncated.json", R"({"scene": "grid", "width": )");
+  EXPECT_NE(error_of("array.json", "[1, 2]").find("is not a `tessera bench --json` file"),
+            std::string::npos);
+  EXPECT_NE(error_of("no_results.json", R"({"scene": "grid", "width": 8, "height": 8})")
+                .find("results is missing or not an array"),
+            std::string::npos);
+  EXPECT_NE(error_of("no_size.json", R"({"scene": "grid", "results": []})")
+                .find("width is missing or not a whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of("no_time.json", R"({"scene": "grid", "width": 8, "height": 8,
+      "results": [{"objects": 1, "backend": "compute", "total_ms": 1},
+                  {"objects": 2, "backend": "compute", "total_ms": "fast"}]})")
+                .find("results[1].total_ms is missing or not a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("twice.json", R"({"scene": "grid", "width": 8, "height": 8,
+      "results": [{"objects": 1, "backend": "compute", "total_ms": 1},
+                  {"objects": 1, "backend": "compute", "total_ms": 2}]})")
+                .find("results[1]. repeats the point grid, 1 objects, 8x8, compute"),
+            std::string::npos);
+  // From the command line: status 1, named, before anything is measured.
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --compare /nonexistent/base.json",
+                              out),
+            1);
+  EXPECT_NE(out.find("tessera: error: --compare: cannot read '/nonexistent/base.json'"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("objects"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // running).
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -159,7 +160,8 @@ TEST(Cli, ReadmeQuotesTheHelpTexts) {
   for (const auto& args : {std::vector<std::string>{"--help"},
                            {"render", "--help"},
                            {"bench", "--help"},
-                           {"view", "--help"}}) {
+                           {"view", "--help"},
+                           {"tradeoff", "--help"}}) {
     std::string command = "$ tessera";
     for (const std::string& arg : args) command += " " + arg;
     EXPECT_NE(readme.find(command + "\n" + help_of(args)), std::string::npos)
@@ -206,7 +208,7 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},
       {{"--verbose"}, "unknown option '--verbose'"},
-      {{}, "a command is required: render, bench, view, devices or scenes"},
+      {{}, "a command is required: render, bench, view, tradeoff, devices or scenes"},
       {{"view", "--vsync", "maybe"}, "--vsync: expects on or off, got 'maybe'"},
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
@@ -258,6 +260,32 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
   std::string help;
   EXPECT_EQ(test::run_command(tool() + " render --help", help), 0);
   EXPECT_NE(help.find("--size WxH"), std::string::npos) << help;
+}
+
+// An unknown scene's message names every scene `tessera scenes` lists (the scene files, the
+// benchmark ones among them), for render and view alike.
+TEST(Cli, UnknownSceneListsEverySceneThatScenesLists) {
+  std::string listing;
+  ASSERT_EQ(test::run_command(tool() + " scenes", listing), 0);
+  std::vector<std::string> names;
+  std::istringstream lines(listing);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line.starts_with("scene files in")) continue;
+    names.push_back(line.substr(0, line.find(' ')));
+  }
+  ASSERT_GE(names.size(), 5u) << listing;
+  for (const char* command : {"render", "view"}) {
+    std::string out;
+    EXPECT_EQ(test::run_command(tool() + " " + command + " --scene nosuchscene", out), 2);
+    const size_t known = out.find("(known scenes: ");
+    ASSERT_NE(known, std::string::npos) << out;
+    for (const std::string& name : names) {
+      // Each name ends at a comma, or at the semicolon after the last.
+      const bool listed = out.find(" " + name + ",", known) != std::string::npos ||
+                          out.find(" " + name + ";", known) != std::string::npos;
+      EXPECT_TRUE(listed) << command << ": '" << name << "' missing from: " << out;
+    }
+  }
 }
 
 // An environment file round trip: a .hdr written by Tessera lights a scene under validation.
@@ -323,6 +351,24 @@ TEST(Cli, RenderReportsTheFirstFrameApartAndCountsTheTimedOnes) {
       << out;
   EXPECT_NE(out.find("wrote " + reference), std::string::npos) << out;
   EXPECT_EQ(count_of(out, "CPU time, median of 2 frames:"), 1u) << out;
+}
+
+TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
+  EXPECT_EQ(parse_command_line({"render", "--samples", "8"}).render.frame.samples, 8u);
+  EXPECT_EQ(parse_command_line({"render"}).render.frame.samples, 1u);
+  const CommandLine bench = parse_command_line({"bench", "--samples", "4"});
+  EXPECT_EQ(bench.bench.samples, 4u);
+  EXPECT_EQ(bench.bench.backends, std::vector<std::string>{"compute"});  // no hardware MSAA
+  for (const std::string bad : {"3", "0", "32", "-4", "four", "4.0"}) {
+    for (const std::string command : {"render", "bench"}) {
+      const std::string message = usage_error({command, "--samples", bad});
+      EXPECT_NE(message.find("--samples"), std::string::npos) << message;
+      EXPECT_NE(message.find(bad), std::string::npos) << message;
+    }
+  }
+  EXPECT_NE(usage_error({"bench", "--samples", "4", "--backends", "compute,hardware"})
+                .find("--samples 4: the hardware backend"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/check.h"
 #include "core/image.h"
@@ -307,6 +308,22 @@ TEST(GltfImport, SecondUvSetIsReadForTheMapsThatUseIt) {
   for (const Mesh& b : box.scene.meshes) EXPECT_TRUE(b.uvs1.empty());
 }
 
+// features.gltf with a normal map on its material: tangents are generated. The strip's first
+// triangle, (0,0,0) (1,0,0) (0,1,0) with uvs (0,0) (1,0) (0,1) before the uv transform (which
+// scales both by 2), has u growing along +x and v along +y: tangent +x, bitangent +y = cross(+z,
+// +x), so w = +1. Its three flat vertices are the mesh's first three.
+TEST(GltfImport, NormalMappedMaterialGetsGeneratedTangents) {
+  std::ifstream in(kData + "/features.gltf");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  const std::string text = doc.dump();
+  const ImportedModel m =
+      import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "features", kData);
+  const Mesh& mesh = m.scene.meshes[m.scene.objects[0].mesh];
+  ASSERT_EQ(mesh.tangents.size(), 6u);
+  for (int v = 0; v < 3; ++v) EXPECT_EQ(mesh.tangents[v], glm::vec4(1, 0, 0, 1)) << v;
+}
+
 TEST(GltfImport, HandMadeFeaturesFile) {
   const ImportedModel m = import_gltf(kData + "/features.gltf");
   EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
@@ -325,7 +342,8 @@ TEST(GltfImport, HandMadeFeaturesFile) {
   EXPECT_EQ(mesh.uvs[0], glm::vec2(0.5f, 0.0f));  // vertex 0, uv (0, 0)
   EXPECT_EQ(mesh.uvs[1], glm::vec2(2.5f, 0.0f));  // vertex 1, uv (1, 0)
   EXPECT_EQ(mesh.uvs[4], glm::vec2(2.5f, 2.0f));  // vertex 3, uv (1, 1)
-  EXPECT_EQ(mesh.tangents.size(), 6u);
+  // Its material has no normal map, the one reader of tangents: none are generated.
+  EXPECT_TRUE(mesh.tangents.empty());
   // World = translate(1, 2, 3) * scale 2 (the child's matrix).
   const glm::mat4 world(2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1);
   EXPECT_EQ(s.objects[0].transform, world);
@@ -479,6 +497,47 @@ TEST_F(GltfRender, SecondUvSetMatchesTheReference) {
   const Image8 set0 = render(scene, size, size).ldr;
   EXPECT_GT(red_over_blue(set0, left), 4.0);
   EXPECT_GT(red_over_blue(set0, right), 4.0);
+}
+
+// A single-sided triangle under a node that mirrors it (scale -1 in x): its front face stays
+// its front (glTF 2.0, 3.7.4), so seen from +z it covers as many pixels as its unmirrored twin.
+// The importer once wound mirrored instances the other way on top of the renderer doing so
+// (is_mirroring), and such triangles were culled.
+TEST_F(GltfRender, MirroredNodeKeepsItsFrontFace) {
+  const auto triangle_under = [](const std::string& scale) {
+    const std::string text = R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0, "scale": )" +
+                             scale + R"(}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36,
+        "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    Scene s = import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()),
+                                "triangle.gltf", ".")
+                  .scene;
+    s.camera.position = glm::vec3(0, 0.4f, 3);
+    s.camera.target = glm::vec3(0, 0.4f, 0);
+    s.ambient = glm::vec3(1.0f);
+    return s;
+  };
+  const auto covered = [](const std::vector<uint64_t>& visibility) {
+    return std::count_if(visibility.begin(), visibility.end(),
+                         [](uint64_t key) { return key != ~0ull; });
+  };
+  const Scene plain = triangle_under("[1, 1, 1]"), mirrored = triangle_under("[-1, 1, 1]");
+  const long long plain_pixels = covered(render(plain, 64, 64).visibility);
+  EXPECT_GT(plain_pixels, 200);
+  EXPECT_EQ(covered(render(mirrored, 64, 64).visibility), plain_pixels)
+      << "the mirrored triangle must show its front face, the mirror image of the plain one";
+  ReferenceSettings rs;
+  rs.frame.width = rs.frame.height = 64;
+  const ReferenceFrame ref = render_reference(mirrored, rs);
+  EXPECT_EQ(std::count_if(ref.owner.begin(), ref.owner.end(),
+                          [](uint32_t o) { return o != kNoTriangle; }),
+            plain_pixels);
 }
 
 }  // namespace

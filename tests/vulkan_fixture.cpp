@@ -27,12 +27,13 @@ void VulkanTest::TearDown() {
 }
 
 VulkanTest::Frame VulkanTest::render(const Scene& scene, uint32_t width, uint32_t height,
-                                     RendererOptions options) {
+                                     RendererOptions options, uint32_t samples) {
   Renderer renderer(*ctx_, options);
   renderer.set_scene(scene);
   FrameSettings settings;
   settings.width = width;
   settings.height = height;
+  settings.samples = samples;
   Frame f;
   f.stats = renderer.render(settings);
   f.hdr = renderer.read_hdr();

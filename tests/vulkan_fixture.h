@@ -20,7 +20,8 @@ class VulkanTest : public ::testing::Test {
   void TearDown() override;
   Context& context() { return *ctx_; }
 
-  /// Renders `scene` once with a fresh renderer and returns what the tests look at.
+  /// Renders `scene` once with a fresh renderer, at `samples` per pixel (FrameSettings), and
+  /// returns what the tests look at.
   struct Frame {
     FrameStats stats;
     ImageF hdr;
@@ -28,7 +29,11 @@ class VulkanTest : public ::testing::Test {
     std::vector<uint64_t> visibility;
     std::vector<uint32_t> coverage;  // only with options.debug_coverage
   };
-  Frame render(const Scene& scene, uint32_t width, uint32_t height, RendererOptions options = {});
+  Frame render(const Scene& scene, uint32_t width, uint32_t height, RendererOptions options,
+               uint32_t samples);
+  Frame render(const Scene& scene, uint32_t width, uint32_t height, RendererOptions options = {}) {
+    return render(scene, width, height, options, 1);
+  }
 
  private:
   std::unique_ptr<Context> ctx_;

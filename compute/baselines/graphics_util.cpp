@@ -24,10 +24,20 @@ void require_graphics_queue(const Context& ctx) {
   }
 }
 
+double timestamp_interval_ms(const Context& ctx, uint64_t begin, uint64_t end) {
+  const uint64_t mask =
+      ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
+  return double(((end & mask) - (begin & mask)) & mask) * ctx.properties.limits.timestampPeriod *
+         1e-6;
+}
+
 VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPipelineLayout layout,
                                     const GraphicsPipelineDesc& desc) {
-  VkShaderModule vert = create_shader_module(ctx, find_baseline_shader(desc.vertex_shader));
-  VkShaderModule frag = create_shader_module(ctx, find_baseline_shader(desc.fragment_shader));
+  VkShaderModule vert = create_shader_module(
+      ctx, desc.vertex_code.empty() ? find_baseline_shader(desc.vertex_shader) : desc.vertex_code);
+  VkShaderModule frag = create_shader_module(ctx, desc.fragment_code.empty()
+                                                      ? find_baseline_shader(desc.fragment_shader)
+                                                      : desc.fragment_code);
   VkPipelineShaderStageCreateInfo stages[2] = {};
   stages[0].sType = stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -36,13 +46,10 @@ VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPip
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = frag;
   stages[1].pName = "main";
-  const struct {
-    uint32_t brdf;
-    VkBool32 energy_compensation;
-  } values{desc.brdf, desc.energy_compensation};
-  const VkSpecializationMapEntry entries[] = {{TS_SPEC_BRDF, 0, sizeof(uint32_t)},
-                                              {TS_SPEC_ENERGY_COMPENSATION, 4, sizeof(VkBool32)}};
-  const VkSpecializationInfo spec{2, entries, sizeof(values), &values};
+  const std::vector<VkSpecializationMapEntry> entries = specialization_entries();
+  const VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), sizeof(desc.shading),
+                                  &desc.shading};
+  stages[0].pSpecializationInfo = &spec;
   stages[1].pSpecializationInfo = &spec;
   const VkVertexInputBindingDescription binding{0, sizeof(glm::vec4), VK_VERTEX_INPUT_RATE_VERTEX};
   const VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0};
@@ -53,6 +60,11 @@ VkPipeline create_graphics_pipeline(const Context& ctx, VkRenderPass pass, VkPip
     input.pVertexBindingDescriptions = &binding;
     input.vertexAttributeDescriptionCount = 1;
     input.pVertexAttributeDescriptions = &attribute;
+  } else {
+    input.vertexBindingDescriptionCount = uint32_t(desc.bindings.size());
+    input.pVertexBindingDescriptions = desc.bindings.data();
+    input.vertexAttributeDescriptionCount = uint32_t(desc.attributes.size());
+    input.pVertexAttributeDescriptions = desc.attributes.data();
   }
   VkPipelineInputAssemblyStateCreateInfo assembly{
       VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};

@@ -1,10 +1,11 @@
 // The graphics-pipeline baseline: benchmarks and tests only. It draws the scene the compute
 // path renders, from the same buffers, with the same shading code (shaders/lighting.glsl),
-// into the same HDR image, then runs the same resolve pass, all through the renderer's
-// internal interface (compute/renderer_internal.h).
+// into an RGBA16F attachment copied into the same HDR image, then runs the same resolve pass,
+// all through the renderer's internal interface (compute/renderer_internal.h).
 #include "compute/baselines/hardware_baseline.h"
 
 #include <chrono>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -16,22 +17,19 @@
 namespace tessera {
 namespace {
 
+constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // as the renderer's HDR image
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-// Brdf values are passed as the TS_SPEC_BRDF specialization constant.
-static_assert(uint32_t(Brdf::classic) == TS_BRDF_CLASSIC &&
-              uint32_t(Brdf::filament) == TS_BRDF_FILAMENT &&
-              uint32_t(Brdf::blinn_phong) == TS_BRDF_BLINN_PHONG);
 
 VkRenderPass create_pass(const Context& ctx) {
   VkAttachmentDescription a[2] = {};
-  a[0].format = VK_FORMAT_R16G16B16A16_SFLOAT;  // the renderer's HDR image
+  a[0].format = kColorFormat;
   a[0].samples = VK_SAMPLE_COUNT_1_BIT;
   a[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   a[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   a[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   a[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  a[0].initialLayout = VK_IMAGE_LAYOUT_GENERAL;  // where the compute passes keep it
-  a[0].finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+  a[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;           // cleared
+  a[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;  // copied into the renderer's image
   a[1] = a[0];
   a[1].format = kDepthFormat;
   a[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
@@ -55,11 +53,10 @@ VkRenderPass create_pass(const Context& ctx) {
            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
        0},
-      // The resolve pass reads what the draws wrote.
+      // The copy into the renderer's HDR image reads what the draws wrote.
       {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT, 0},
+       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+       VK_ACCESS_TRANSFER_READ_BIT, 0},
   };
   VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
   info.attachmentCount = 2;
@@ -73,6 +70,26 @@ VkRenderPass create_pass(const Context& ctx) {
   return pass;
 }
 
+// Moves the renderer's HDR image between GENERAL (where its passes keep it) and the copy's
+// destination layout; every earlier access to it (the initial barrier made them available)
+// and the copy are ordered around the change.
+void hdr_layout(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  const bool to_copy = to == VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.srcAccessMask = to_copy ? 0 : VK_ACCESS_TRANSFER_WRITE_BIT;
+  b.dstAccessMask = to_copy ? VK_ACCESS_TRANSFER_WRITE_BIT
+                            : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(
+      cmd, to_copy ? VK_PIPELINE_STAGE_ALL_COMMANDS_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT,
+      to_copy ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
+      nullptr, 0, nullptr, 1, &b);
+}
+
 }  // namespace
 
 HardwareBaseline::HardwareBaseline(Renderer& renderer)
@@ -81,7 +98,7 @@ HardwareBaseline::HardwareBaseline(Renderer& renderer)
 HardwareBaseline::~HardwareBaseline() {
   vkDeviceWaitIdle(ctx_.device);
   destroy_targets();
-  for (VkPipeline p : pipelines_) {
+  for (const auto& [key, p] : pipelines_) {
     if (p) vkDestroyPipeline(ctx_.device, p, nullptr);
   }
   if (pass_) vkDestroyRenderPass(ctx_.device, pass_, nullptr);
@@ -92,17 +109,22 @@ void HardwareBaseline::destroy_targets() {
   if (framebuffer_) vkDestroyFramebuffer(ctx_.device, framebuffer_, nullptr);
   framebuffer_ = VK_NULL_HANDLE;
   destroy_image(ctx_, depth_);
+  destroy_image(ctx_, color_);
 }
 
 // Depth image and framebuffer for the renderer's current HDR image, rebuilt whenever the
 // renderer recreated its images (a new size).
-void HardwareBaseline::ensure_targets(VkImageView hdr_view, uint64_t generation, uint32_t width,
-                                      uint32_t height) {
+void HardwareBaseline::ensure_targets(uint64_t generation, uint32_t width, uint32_t height) {
   if (framebuffer_ && images_generation_ == generation) return;
   destroy_targets();
+  // An attachment-only colour image, as a graphics renderer would draw into: the renderer's
+  // HDR image is a storage image in GENERAL layout, which a driver may keep uncompressed.
+  color_ = create_image(ctx_, width, height, kColorFormat,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT);
   depth_ = create_image(ctx_, width, height, kDepthFormat,
                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-  VkImageView views[2] = {hdr_view, depth_.view};
+  VkImageView views[2] = {color_.view, depth_.view};
   VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fb.renderPass = pass_;
   fb.attachmentCount = 2;
@@ -117,6 +139,12 @@ void HardwareBaseline::ensure_targets(VkImageView hdr_view, uint64_t generation,
 BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const Context& ctx = ctx_;
   require_graphics_queue(ctx);
+  if (settings.samples != 1) {
+    throw Error("the hardware baseline renders 1 sample per pixel, not " +
+                std::to_string(settings.samples) +
+                " (--samples applies to the compute path and "
+                "the reference)");
+  }
   if (settings.lod == Lod::automatic && !ctx.multi_draw_indirect) {
     throw Error(
         "the hardware baseline's level of detail needs multiDrawIndirect and "
@@ -125,12 +153,15 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   const RendererInternal::Frame frame = RendererInternal::prepare_frame(renderer_, settings);
   if (!pass_) pass_ = create_pass(ctx);
   // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2
-  // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided.
+  // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided. Each is
+  // specialized as the compute path's shading pass is for this frame (frame.shading).
   VkPipeline pipelines[4];
   for (int v = 0; v < 4; ++v) {
     const int mirrored = v & 1, double_sided = v >> 1;
-    VkPipeline& pipeline =
-        pipelines_[size_t(settings.brdf) * 8 + (settings.energy_compensation ? 4 : 0) + v];
+    PipelineKey key{};
+    std::memcpy(key.data(), &frame.shading, sizeof(frame.shading));
+    key.back() = uint32_t(v);
+    VkPipeline& pipeline = pipelines_[key];
     if (!pipeline) {
       const GraphicsPipelineDesc desc{
           "baseline_shade_vert",
@@ -143,14 +174,13 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
           VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
           VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
               VK_COLOR_COMPONENT_A_BIT,
-          uint32_t(settings.brdf),
-          settings.energy_compensation ? VK_TRUE : VK_FALSE,
-          mirrored == 1};
+          mirrored == 1,
+          frame.shading};
       pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
     }
     pipelines[v] = pipeline;
   }
-  ensure_targets(frame.hdr_view, frame.images_generation, frame.width, frame.height);
+  ensure_targets(frame.images_generation, frame.width, frame.height);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
   if (timestamps && !queries_) {
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -232,6 +262,14 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     }
     vkCmdEndRenderPass(cmd);
     if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+    // Bit for bit into the image the resolve pass reads, which is back in GENERAL after.
+    hdr_layout(cmd, frame.hdr_image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkImageCopy region{};
+    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.extent = {frame.width, frame.height, 1};
+    vkCmdCopyImage(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, frame.hdr_image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    hdr_layout(cmd, frame.hdr_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     RendererInternal::record_resolve(renderer_, cmd);
     if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
     stats.cpu_record_submit_ms =
@@ -242,11 +280,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     VK_CHECK(vkGetQueryPoolResults(ctx.device, queries_, 0, 3, sizeof(ticks), ticks,
                                    sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const uint64_t mask =
-        ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
-    const double ms = ctx.properties.limits.timestampPeriod * 1e-6;
-    stats.render_pass_ms = double(((ticks[1] & mask) - (ticks[0] & mask)) & mask) * ms;
-    stats.resolve_ms = double(((ticks[2] & mask) - (ticks[1] & mask)) & mask) * ms;
+    stats.render_pass_ms = timestamp_interval_ms(ctx, ticks[0], ticks[1]);
+    stats.resolve_ms = timestamp_interval_ms(ctx, ticks[1], ticks[2]);
     stats.gpu_total_ms = stats.render_pass_ms + stats.resolve_ms;
     stats.has_timestamps = true;
   }

@@ -1,11 +1,14 @@
 #pragma once
 // The graphics-pipeline baseline, for benchmarks and tests only (never the product path): a
 // renderer's current scene drawn by the device's graphics pipeline (vertex and fragment shaders
-// with the same BRDF code, reverse depth, the same face culling) into the renderer's HDR image,
-// then the renderer's own resolve pass. Renderer::read_hdr() / read_ldr() then return its images.
+// with the same BRDF code, reverse depth, the same face culling) into an RGBA16F colour
+// attachment of its own, copied bit for bit into the renderer's HDR image after the timed render
+// pass, then the renderer's own resolve pass. Renderer::read_hdr() / read_ldr() then return its
+// images.
 
 #include <array>
 #include <cstdint>
+#include <map>
 
 #include <vulkan/vulkan.h>
 
@@ -18,7 +21,7 @@ struct BaselineStats {
   bool has_timestamps = false;
   double render_pass_ms = 0.0;  // GPU time of the level-of-detail passes (--lod auto) and
                                 // the render pass (clear, draws)
-  double resolve_ms = 0.0;
+  double resolve_ms = 0.0;      // the copy into the renderer's HDR image and its resolve pass
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;
   uint32_t draws = 0;  // one instanced draw (multi-draw under level of detail) per mesh run
@@ -34,19 +37,21 @@ class HardwareBaseline {
   HardwareBaseline& operator=(const HardwareBaseline&) = delete;
 
   /// Renders the renderer's current scene with `settings`. Throws Error if the queue has no
-  /// graphics support, and as Renderer::render does (no scene, bad settings).
+  /// graphics support or settings.samples is not 1, and as Renderer::render does (no scene,
+  /// bad settings).
   BaselineStats render(const FrameSettings& settings);
 
  private:
-  void ensure_targets(VkImageView hdr_view, uint64_t generation, uint32_t width, uint32_t height);
+  void ensure_targets(uint64_t generation, uint32_t width, uint32_t height);
   void destroy_targets();
 
   Renderer& renderer_;
   const Context& ctx_;
   VkRenderPass pass_ = VK_NULL_HANDLE;
-  // Per Brdf variant, with and without compensation, for objects with and without mirroring.
-  std::array<VkPipeline, 24> pipelines_{};
-  Attachment depth_;
+  // By the shading specialization's words and the variant (mirrored, double-sided).
+  using PipelineKey = std::array<uint32_t, sizeof(Specialization) / 4 + 1>;
+  std::map<PipelineKey, VkPipeline> pipelines_;
+  Attachment color_, depth_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
   uint64_t images_generation_ = 0;  // of the renderer's images the framebuffer holds
   VkQueryPool queries_ = VK_NULL_HANDLE;

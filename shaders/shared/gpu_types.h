@@ -98,10 +98,12 @@ using glm::vec4;
 #define TS_SPEC_TEXTURE_MAPS 4  // maps the shader can sample (TS_MAP_* bits; all if generic)
 #define TS_SPEC_IBL 5           // image-based lighting: TS_IBL_OFF, _ON, or _RUNTIME (generic)
 #define TS_SPEC_UV1_MAPS 6      // maps that may read uv set 1 (TS_MAP_* bits; all if generic)
-#define TS_SPEC_LOD 7           // setup: the batch's triangle count is the level-of-detail pass's
+#define TS_SPEC_SAMPLES 7       // samples per pixel: 1, 4, 8 or 16 (shaders/samples.glsl)
+#define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
+#define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 8
+#define TS_SPEC_LIGHT_COUNT_BASE 10
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u

@@ -7,6 +7,9 @@
 #include "material.glsl"
 #include "lighting.glsl"
 
+// Nothing here discards or writes depth: hidden fragments are rejected before shading.
+layout(early_fragment_tests) in;
+
 layout(location = 0) in vec3 world_position;
 layout(location = 1) in vec3 world_normal;
 layout(location = 2) flat in uint material;

@@ -1,0 +1,141 @@
+#include "host/bench_compare.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <type_traits>
+
+#include <nlohmann/json.hpp>
+
+#include "core/check.h"
+
+namespace tessera {
+namespace {
+
+using nlohmann::json;
+
+std::string point_name(const SavedPoint& p) {
+  return p.scene + ", " + std::to_string(p.objects) + " objects, " + std::to_string(p.width) + "x" +
+         std::to_string(p.height) + ", " + p.backend;
+}
+
+bool same_point(const SavedPoint& a, const SavedPoint& b) {
+  return a.scene == b.scene && a.objects == b.objects && a.width == b.width &&
+         a.height == b.height && a.backend == b.backend;
+}
+
+// The member `key` of `object` (at JSON path `where`) as T; Error naming both if absent or of
+// another type.
+template <typename T>
+T member(const json& object, const char* key, const std::string& where, const std::string& path) {
+  const auto it = object.find(key);
+  const bool ok = it != object.end() && (std::is_same_v<T, std::string> ? it->is_string()
+                                         : std::is_floating_point_v<T>  ? it->is_number()
+                                                                        : it->is_number_unsigned());
+  if (!ok) {
+    const char* kind = std::is_same_v<T, std::string> ? "a string"
+                       : std::is_floating_point_v<T>  ? "a number"
+                                                      : "a whole number";
+    throw Error("--compare: '" + path + "': " + where + key + " is missing or not " + kind +
+                " (not a `tessera bench --json` file?)");
+  }
+  if constexpr (std::is_floating_point_v<T> || std::is_same_v<T, std::string>) {
+    return it->template get<T>();
+  } else {
+    const uint64_t v = it->template get<uint64_t>();
+    if (v > UINT32_MAX) throw Error("--compare: '" + path + "': " + where + key + " is too large");
+    return T(v);
+  }
+}
+
+}  // namespace
+
+SavedRun read_bench_json(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw Error("--compare: cannot read '" + path + "'");
+  json doc;
+  try {
+    doc = json::parse(f);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message starts with its own tag, "[json.exception.parse_error.101] ".
+    std::string what = e.what();
+    if (const size_t end = what.find("] "); end != std::string::npos) what = what.substr(end + 2);
+    throw Error("--compare: '" + path + "' is not valid JSON: " + what);
+  }
+  if (!doc.is_object())
+    throw Error("--compare: '" + path + "' is not a `tessera bench --json` file (not an object)");
+  SavedRun run;
+  run.path = path;
+  if (doc.contains("device") && doc["device"].is_string()) run.device = doc["device"];
+  if (doc.contains("date") && doc["date"].is_string()) run.date = doc["date"];
+  const std::string scene = member<std::string>(doc, "scene", "", path);
+  const uint32_t width = member<uint32_t>(doc, "width", "", path);
+  const uint32_t height = member<uint32_t>(doc, "height", "", path);
+  const auto results = doc.find("results");
+  if (results == doc.end() || !results->is_array())
+    throw Error("--compare: '" + path +
+                "': results is missing or not an array (not a `tessera bench --json` file?)");
+  for (size_t i = 0; i < results->size(); ++i) {
+    const json& r = (*results)[i];
+    const std::string where = "results[" + std::to_string(i) + "].";
+    if (!r.is_object()) throw Error("--compare: '" + path + "': " + where + " is not an object");
+    SavedPoint p{scene,
+                 member<uint32_t>(r, "objects", where, path),
+                 width,
+                 height,
+                 member<std::string>(r, "backend", where, path),
+                 member<double>(r, "total_ms", where, path)};
+    for (const SavedPoint& q : run.points) {
+      if (same_point(p, q))
+        throw Error("--compare: '" + path + "': " + where + " repeats the point " + point_name(p));
+    }
+    run.points.push_back(p);
+  }
+  return run;
+}
+
+std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults& results,
+                                        const BenchArgs& a) {
+  std::vector<ComparedPoint> out;
+  std::vector<bool> used(base.points.size(), false);
+  for (const BenchRow& r : results.rows) {
+    if (r.skipped) continue;
+    ComparedPoint c;
+    c.point = {a.scene, r.objects, a.width, a.height, r.backend, 0.0};
+    c.new_ms = r.total_ms;
+    for (size_t i = 0; i < base.points.size(); ++i) {
+      if (!used[i] && same_point(base.points[i], c.point)) {
+        c.old_ms = base.points[i].total_ms;
+        used[i] = true;
+      }
+    }
+    out.push_back(c);
+  }
+  for (size_t i = 0; i < base.points.size(); ++i) {
+    if (used[i]) continue;
+    ComparedPoint c;
+    c.point = base.points[i];
+    c.old_ms = base.points[i].total_ms;
+    out.push_back(c);
+  }
+  return out;
+}
+
+void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points) {
+  std::printf("compared with %s (device '%s', %s): new / old < 1 is faster\n", base.path.c_str(),
+              base.device.c_str(), base.date.c_str());
+  std::printf("%9s %9s %10s %10s %10s\n", "objects", "backend", "old ms", "new ms", "new / old");
+  for (const ComparedPoint& c : points) {
+    if (c.matched()) {
+      std::printf("%9u %9s %10.3f %10.3f %10.3f\n", c.point.objects, c.point.backend.c_str(),
+                  c.old_ms, c.new_ms, c.ratio());
+    }
+  }
+  for (const ComparedPoint& c : points) {
+    if (c.matched()) continue;
+    std::printf("%s: %s\n", c.new_ms >= 0 ? "only in this run" : "only in the base",
+                point_name(c.point).c_str());
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,51 @@
+#pragma once
+// `tessera bench --compare BASE.json`: each point's time against a saved `--json` run, as
+// Google Benchmark's compare.py does (old, new, new / old), points matched by scene, object
+// count, image size and backend.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/bench_measure.h"
+#include "host/cli.h"
+
+namespace tessera {
+
+/// A point of a saved run: what identifies it and its figure (total_ms, the median).
+struct SavedPoint {
+  std::string scene;
+  uint32_t objects = 0;
+  uint32_t width = 0, height = 0;
+  std::string backend;
+  double total_ms = 0.0;
+};
+
+struct SavedRun {
+  std::string path;
+  std::string device, date;  // as recorded (empty if the file has none)
+  std::vector<SavedPoint> points;
+};
+
+/// Reads the points of a file `tessera bench --json` wrote. Throws Error naming `path` when it
+/// cannot be read, is not JSON (with the parser's line and column), or lacks a field of that
+/// format (scene, width, height, results[i].objects / backend / total_ms).
+SavedRun read_bench_json(const std::string& path);
+
+/// One row of the comparison. `old_ms` < 0: only in this run; `new_ms` < 0: only in the base.
+struct ComparedPoint {
+  SavedPoint point;  // scene, objects, size, backend (total_ms unused)
+  double old_ms = -1.0, new_ms = -1.0;
+  bool matched() const { return old_ms >= 0 && new_ms >= 0; }
+  double ratio() const { return old_ms > 0 ? new_ms / old_ms : 0.0; }  // new / old
+};
+
+/// This run's points in their order (matched, or only here), then the base's points this run
+/// does not have. Skipped rows (the reference over its triangle limit) count as absent.
+std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults& results,
+                                        const BenchArgs& args);
+
+/// Prints the comparison table: old ms, new ms, new / old, and the unmatched points by name.
+void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points);
+
+}  // namespace tessera

@@ -1,0 +1,84 @@
+#pragma once
+// `tessera tradeoff`: every setting of each speed-against-accuracy knob rendered by the compute
+// path, its GPU time against its error with respect to a ground truth from the CPU reference,
+// and the Pareto front of each knob (docs/tradeoffs.md). The knobs are listed here; measuring
+// is in host/tradeoff_measure.cpp, reporting (table, JSON, chart) in host/tradeoff_report.cpp.
+
+#include <string>
+#include <vector>
+
+#include "compute/renderer.h"
+#include "core/frame_settings.h"
+#include "core/image_metrics.h"
+#include "core/statistics.h"
+#include "host/cli.h"
+
+namespace tessera {
+
+/// One setting of a knob: the frame settings and renderer options it renders with.
+struct KnobSetting {
+  std::string knob;   // the knob's name, e.g. "brdf"
+  std::string label;  // the setting, e.g. "filament+ec"
+  FrameSettings frame;
+  RendererOptions renderer;
+  /// The tessellation knob: spheres (meshes with Mesh::analytic_sphere) are remade as uv
+  /// spheres of this many slices and half as many stacks; 0 keeps the scene's meshes.
+  uint32_t sphere_segments = 0;
+  /// True for the setting that equals the defaults the command line gave.
+  bool is_default = false;
+  /// A knob that trades speed only: every setting must give the default's image bit for bit.
+  bool speed_only = false;
+};
+
+struct KnobInfo {
+  const char* name;
+  const char* description;
+};
+
+/// The knobs, in the order they are documented.
+const std::vector<KnobInfo>& knobs();
+
+/// The settings of knob `knob`, each starting from `frame` and `options` (the command line's).
+/// Throws Error naming the known knobs if `knob` is not one of knobs().
+std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
+                                       const RendererOptions& options);
+
+/// One measured setting.
+struct TradeoffPoint {
+  KnobSetting setting;
+  Summary gpu_ms;    // GPU time of a frame, over every timed frame of every round
+  TruthError error;  // against the ground truth
+  /// Mean relative error over the pixels the truth shows a single object (or only the
+  /// background) in all its samples: the shading's error, apart from the edges'.
+  double interior_mean_relative = 0.0;
+  bool identical_to_default = false;  // the 8-bit image equals the knob's default setting's
+  bool on_front = false;              // on the Pareto front of its knob (time, mean_relative)
+  uint64_t triangles_rasterized = 0;
+  /// GPU time of the environment's precomputation (the first frame after set_scene only): what
+  /// the env-size and env-samples knobs cost, which the per-frame time does not show.
+  double precompute_ms = 0.0;
+};
+
+struct TradeoffResults {
+  std::string device, driver;
+  std::string truth;                  // how the ground truth was made, in words
+  double truth_seconds = 0.0;         // CPU wall time of the ground truth
+  std::vector<TradeoffPoint> points;  // by knob in the order asked, then by setting
+};
+
+/// Renders every setting of every knob of `args` on `ctx` (rounds interleave the settings so
+/// that a clock change affects them alike) and the ground truth on the CPU. Throws Error for
+/// a bad scene, knob or size.
+TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args);
+
+void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args);
+void write_tradeoff_json(const std::string& path, const TradeoffResults& results,
+                         const TradeoffArgs& args, const std::string& command_line);
+/// Error (mean relative, log) against GPU ms (log), a series per knob, the front joined.
+void write_tradeoff_chart(const std::string& path, const TradeoffResults& results,
+                          const TradeoffArgs& args);
+
+/// The command: measures, prints, writes the files asked for. Returns the exit status.
+int run_tradeoff(const TradeoffArgs& args, const std::string& command_line);
+
+}  // namespace tessera

@@ -1,0 +1,106 @@
+// The knobs of `tessera tradeoff` and their settings (docs/tradeoffs.md says why these).
+#include <string>
+
+#include "core/check.h"
+#include "host/tradeoff.h"
+
+namespace tessera {
+
+const std::vector<KnobInfo>& knobs() {
+  static const std::vector<KnobInfo> list = {
+      {"brdf", "BRDF variant and energy compensation (blinn-phong, classic, filament, +ec)"},
+      {"tessellation", "sphere slices 8..128 (fixed tessellations of every sphere)"},
+      {"anisotropy", "texture filtering: trilinear, then 2..16 anisotropic probes"},
+      {"env-size", "side of the prefiltered specular cube, 16..256 texels"},
+      {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
+      {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
+  };
+  return list;
+}
+
+namespace {
+
+// A copy of the command line's settings labelled `label`, marked default if it changes nothing.
+KnobSetting base(const std::string& knob, const std::string& label, const FrameSettings& frame,
+                 const RendererOptions& options) {
+  KnobSetting s;
+  s.knob = knob;
+  s.label = label;
+  s.frame = frame;
+  s.renderer = options;
+  return s;
+}
+
+std::string known_knobs() {
+  std::string names;
+  for (const KnobInfo& k : knobs()) names += (names.empty() ? "" : ", ") + std::string(k.name);
+  return names;
+}
+
+}  // namespace
+
+std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
+                                       const RendererOptions& options) {
+  std::vector<KnobSetting> out;
+  if (knob == "brdf") {
+    struct Variant {
+      const char* label;
+      Brdf brdf;
+      bool ec;
+    };
+    for (const Variant v :
+         {Variant{"blinn-phong", Brdf::blinn_phong, false},
+          Variant{"classic", Brdf::classic, false}, Variant{"classic+ec", Brdf::classic, true},
+          Variant{"filament", Brdf::filament, false},
+          Variant{"filament+ec", Brdf::filament, true}}) {
+      KnobSetting s = base(knob, v.label, frame, options);
+      s.frame.brdf = v.brdf;
+      s.frame.energy_compensation = v.ec;
+      s.is_default = v.brdf == frame.brdf && v.ec == frame.energy_compensation;
+      out.push_back(s);
+    }
+  } else if (knob == "tessellation") {
+    KnobSetting own = base(knob, "scene's own", frame, options);
+    own.is_default = true;
+    out.push_back(own);
+    for (uint32_t segments : {8u, 16u, 32u, 64u, 128u}) {
+      KnobSetting s = base(knob, std::to_string(segments) + " slices", frame, options);
+      s.sphere_segments = segments;
+      out.push_back(s);
+    }
+  } else if (knob == "anisotropy") {
+    for (uint32_t n : {1u, 2u, 4u, 8u, 16u}) {
+      KnobSetting s = base(knob, n == 1 ? "trilinear" : std::to_string(n) + "x", frame, options);
+      s.frame.max_anisotropy = n;
+      s.is_default = n == frame.max_anisotropy;
+      out.push_back(s);
+    }
+  } else if (knob == "env-size") {
+    for (uint32_t side : {16u, 32u, 64u, 128u, 256u}) {
+      KnobSetting s = base(knob, std::to_string(side) + " px", frame, options);
+      s.renderer.environment.specular_size = side;
+      s.is_default = side == options.environment.specular_size;
+      out.push_back(s);
+    }
+  } else if (knob == "env-samples") {
+    for (uint32_t n : {8u, 32u, 128u, 512u, 2048u}) {
+      KnobSetting s = base(knob, std::to_string(n), frame, options);
+      s.renderer.environment.specular_samples = n;
+      s.is_default = n == options.environment.specular_samples;
+      out.push_back(s);
+    }
+  } else if (knob == "small-triangle") {
+    for (uint32_t area : {0u, 16u, 64u, 256u, 4096u}) {
+      KnobSetting s = base(knob, std::to_string(area) + " px", frame, options);
+      s.renderer.small_triangle_max_area = area;
+      s.is_default = area == options.small_triangle_max_area;
+      s.speed_only = true;
+      out.push_back(s);
+    }
+  } else {
+    throw Error("unknown knob '" + knob + "' (known: " + known_knobs() + ")");
+  }
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,223 @@
+// Measuring `tessera tradeoff`: the compute path at every knob setting, interleaved in rounds,
+// and the ground truths from the CPU reference renderer (docs/accuracy.md, "Ground truth").
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include "core/bench_scenes.h"
+#include "core/check.h"
+#include "core/mesh.h"
+#include "core/pareto.h"
+#include "core/pick.h"
+#include "core/reference_renderer.h"
+#include "host/scene_source.h"
+#include "host/tradeoff.h"
+
+namespace tessera {
+namespace {
+
+bool is_bench_family(const std::string& name) {
+  for (const BenchFamilyInfo& f : bench_families())
+    if (f.name == name) return true;
+  return false;
+}
+
+// The scene to measure, with the file's render defaults filling in what the command left unset.
+Scene load_scene(const TradeoffArgs& args, FrameSettings& frame) {
+  if (is_bench_family(args.scene)) {
+    return make_bench_scene(args.scene, args.objects ? args.objects : 100, 32,
+                            float(frame.width) / float(frame.height));
+  }
+  if (args.objects) {
+    throw Error("--objects applies to the benchmark families (grid, scatter, huge), not to '" +
+                args.scene + "'");
+  }
+  SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
+  apply_render_defaults(file.render, frame, args.size_given, false, false, false);
+  return std::move(file.scene);
+}
+
+// `scene` with every sphere remade with `segments` slices (0: unchanged).
+Scene with_sphere_segments(const Scene& scene, uint32_t segments) {
+  Scene out = scene;
+  if (segments == 0) return out;
+  for (Mesh& mesh : out.meshes) {
+    if (mesh.analytic_sphere) mesh = make_uv_sphere(segments, segments / 2);
+  }
+  return out;
+}
+
+// Which object (index into Scene::objects, kNoObject for none) each pixel of a compute frame
+// shows, from its visibility buffer.
+Ownership compute_ownership(const Renderer& renderer, const Scene& scene, uint32_t width,
+                            uint32_t height) {
+  const ObjectNumbering numbering = number_objects(scene);
+  const std::vector<uint64_t> keys = renderer.read_visibility();
+  std::vector<uint32_t> objects(keys.size());
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const std::optional<uint32_t> o = pick_object(numbering, keys[i]);
+    objects[i] = o ? *o : kNoObject;
+  }
+  return make_ownership(width, height, 1, objects);
+}
+
+// The reference's ownership is by ObjectNumbering slot; the compute one's by Scene::objects.
+Ownership by_scene_object(Ownership ownership, const Scene& scene) {
+  const ObjectNumbering numbering = number_objects(scene);
+  for (OwnerShare& share : ownership.shares) {
+    if (share.object != kNoObject) share.object = numbering.objects[share.object];
+  }
+  // Shares of a pixel stay sorted by object only if the numbering kept the order; resort.
+  for (size_t i = 0; i + 1 < ownership.first.size(); ++i) {
+    std::sort(ownership.shares.begin() + ptrdiff_t(ownership.first[i]),
+              ownership.shares.begin() + ptrdiff_t(ownership.first[i + 1]),
+              [](const OwnerShare& a, const OwnerShare& b) { return a.object < b.object; });
+  }
+  return ownership;
+}
+
+struct Candidate {
+  KnobSetting setting;
+  Scene scene;
+  std::unique_ptr<Renderer> renderer;
+  std::vector<double> times;
+  uint64_t triangles = 0;
+  double precompute_ms = 0.0;
+};
+
+}  // namespace
+
+TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
+  TradeoffResults results;
+  results.device = ctx.properties.deviceName;
+  results.driver = ctx.driver;
+  FrameSettings frame = args.frame;
+  const Scene scene = load_scene(args, frame);
+  validate_scene(scene);
+  RendererOptions options;
+  options.environment = args.env_options;
+
+  std::vector<Candidate> candidates;
+  for (const std::string& knob : args.knobs) {
+    for (KnobSetting& s : knob_settings(knob, frame, options)) {
+      Candidate c;
+      c.scene = with_sphere_segments(scene, s.sphere_segments);
+      c.setting = std::move(s);
+      c.renderer = std::make_unique<Renderer>(ctx, c.setting.renderer);
+      c.renderer->set_scene(c.scene);
+      candidates.push_back(std::move(c));
+    }
+  }
+  const size_t total = candidates.size() * args.rounds;
+  size_t done = 0;
+  for (uint32_t round = 0; round < args.rounds; ++round) {
+    for (Candidate& c : candidates) {
+      // The first round's first frames pay for pipeline compilation and the environment's
+      // precomputation; later rounds warm up again after the other settings ran.
+      const uint32_t warmup = round == 0 ? args.warmup + 1 : args.warmup;
+      for (uint32_t i = 0; i < warmup; ++i) {
+        const FrameStats stats = c.renderer->render(c.setting.frame);
+        if (round == 0 && i == 0) c.precompute_ms = stats.pass_ms[size_t(Pass::environment)];
+      }
+      for (uint32_t i = 0; i < args.repeat; ++i) {
+        const FrameStats stats = c.renderer->render(c.setting.frame);
+        if (!stats.has_timestamps) throw Error("the device's queue cannot write timestamps");
+        c.times.push_back(stats.gpu_total_ms);
+        c.triangles = stats.raster_triangles;
+      }
+      if (!args.quiet) std::fprintf(stderr, "\rmeasured %zu of %zu", ++done, total);
+    }
+  }
+  if (!args.quiet) std::fprintf(stderr, "\n");
+
+  // The ground truths: exact spheres, N x N samples per pixel, the environment integrated by
+  // Monte Carlo. The BRDF knob is measured against the most faithful shading model (filament
+  // with energy compensation); every other knob against the command line's model, so that its
+  // chart shows what the knob itself costs in accuracy.
+  ReferenceSettings truth;
+  truth.frame = frame;
+  truth.frame.max_anisotropy = 16;
+  truth.ground_truth.analytic_spheres = true;
+  truth.ground_truth.supersampling = args.truth_samples;
+  const uint32_t per_sample = args.truth_env_samples / (args.truth_samples * args.truth_samples);
+  truth.environment_samples = std::max(16u, per_sample);
+  results.truth =
+      "CPU reference, double precision: analytic spheres, " + std::to_string(args.truth_samples) +
+      "x" + std::to_string(args.truth_samples) +
+      " samples per pixel (box filter), 16x anisotropic filtering, " +
+      std::to_string(truth.environment_samples * args.truth_samples * args.truth_samples) +
+      " environment directions per lobe and pixel; the BRDF knob against filament "
+      "with energy compensation, the others against the command line's BRDF";
+  struct Truth {
+    ReferenceFrame frame;
+    Ownership ownership;            // by index into Scene::objects
+    std::vector<uint8_t> interior;  // pixels the truth shows one object in, in all samples
+  };
+  std::map<std::pair<Brdf, bool>, Truth> truths;
+  auto truth_key = [&](const KnobSetting& s) {
+    return s.knob == "brdf" ? std::pair{Brdf::filament, true}
+                            : std::pair{frame.brdf, frame.energy_compensation};
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (const Candidate& c : candidates) {
+    const auto key = truth_key(c.setting);
+    if (truths.count(key)) continue;
+    if (!args.quiet) std::fprintf(stderr, "rendering a ground truth\n");
+    ReferenceSettings settings = truth;
+    settings.frame.brdf = key.first;
+    settings.frame.energy_compensation = key.second;
+    Truth t{render_reference(scene, settings), {}, {}};
+    t.ownership = by_scene_object(t.frame.ownership, scene);
+    t.interior.resize(t.ownership.first.size() - 1);
+    for (size_t i = 0; i < t.interior.size(); ++i)
+      t.interior[i] = t.ownership.first[i + 1] - t.ownership.first[i] == 1;
+    truths.emplace(key, std::move(t));
+  }
+  results.truth_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Each knob's default image, for the speed-only knobs' check.
+  std::map<std::string, Image8> default_image;
+  std::vector<Image8> images;
+  for (Candidate& c : candidates) {
+    c.renderer->render(c.setting.frame);
+    images.push_back(c.renderer->read_ldr());
+    if (c.setting.is_default) default_image[c.setting.knob] = images.back();
+  }
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    Candidate& c = candidates[i];
+    TradeoffPoint p;
+    p.setting = c.setting;
+    p.gpu_ms = summarize(c.times);
+    p.triangles_rasterized = c.triangles;
+    p.precompute_ms = c.precompute_ms;
+    const Truth& t = truths.at(truth_key(c.setting));
+    const Ownership own =
+        compute_ownership(*c.renderer, c.scene, c.setting.frame.width, c.setting.frame.height);
+    const ImageF hdr = c.renderer->read_hdr();
+    p.error = error_against_truth(hdr, images[i], t.frame.hdr, t.frame.ldr, &own, &t.ownership);
+    p.interior_mean_relative = radiance_error(hdr, t.frame.hdr, &t.interior).mean_relative;
+    const auto d = default_image.find(c.setting.knob);
+    p.identical_to_default = d != default_image.end() && d->second.pixels == images[i].pixels;
+    results.points.push_back(std::move(p));
+    c.renderer.reset();
+  }
+  // The front of each knob.
+  for (size_t first = 0; first < results.points.size();) {
+    size_t last = first;
+    while (last < results.points.size() &&
+           results.points[last].setting.knob == results.points[first].setting.knob)
+      ++last;
+    std::vector<CostError> points;
+    for (size_t i = first; i < last; ++i)
+      points.push_back({results.points[i].gpu_ms.median, results.points[i].error.mean_relative});
+    const std::vector<bool> front = pareto_front(points);
+    for (size_t i = first; i < last; ++i) results.points[i].on_front = front[i - first];
+    first = last;
+  }
+  return results;
+}
+
+}  // namespace tessera

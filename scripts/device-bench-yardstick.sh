@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Runs ON THE GPU MACHINE (the device tool) and builds nothing: the binaries come staged by
+# scripts/stage-device.sh (run it here first; pass carry [".gl", ".device-build"]). Measures
+# issue 13's yardstick in one session: the minimal graphics program (bench/minimal_graphics.cpp)
+# and `tessera bench --scene yardstick` with both backends, 3 whole runs each, then the hardware
+# baseline once more with --generic-shading (as it was before it was specialized to the scene).
+# Writes JSON, CSV, an SVG chart and the printed tables under $OUT and prints a short table
+# last: each N's minimal, hardware and compute medians with their run-to-run spread.
+#
+#   device run: scripts/device-bench-yardstick.sh        (SIZE=WxH to change 1920x1080)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${OUT:?OUT must name the output folder (the device tool sets it)}
+size=${SIZE:-1920x1080}
+objects=${OBJECTS:-1,10,49,100,1000,10000,100000}
+tag=yardstick_${size}
+bin=$PWD/.device-build
+[[ -x $bin/tessera && -x $bin/tessera_minimal_graphics ]] ||
+  { echo "no staged binaries in $bin: run scripts/stage-device.sh first" >&2; exit 1; }
+
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+export LD_LIBRARY_PATH=$bin
+nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if ! "$bin/tessera" devices 2>/dev/null | grep -qi nvidia && [[ -f $nvidia_icd ]]; then
+  export VK_DRIVER_FILES=$nvidia_icd
+fi
+"$bin/tessera" devices | tee "$out/devices.txt"
+
+# Clocks up before anything is timed (a GPU starts at idle clocks): a few seconds of heavy
+# frames. Each point then warms up by time as well (--warmup-ms).
+"$bin/tessera" bench --device gpu --scene yardstick --objects 100000 --size "$size" \
+  --backends hardware --repeat 20 --warmup-ms 3000 --quiet
+
+"$bin/tessera_minimal_graphics" --device gpu --objects "$objects" --size "$size" --repeat 50 \
+  --runs 3 --warmup-ms 1000 --json "$out/minimal_$tag.json" --csv "$out/minimal_$tag.csv" |
+  tee "$out/minimal_$tag.txt"
+"$bin/tessera" bench --device gpu --scene yardstick --objects "$objects" --size "$size" \
+  --backends compute,hardware --repeat 50 --runs 3 --warmup-ms 1000 \
+  --json "$out/bench_$tag.json" --csv "$out/bench_$tag.csv" --chart "$out/bench_$tag.svg" |
+  tee "$out/bench_$tag.txt"
+"$bin/tessera" bench --device gpu --scene yardstick --objects "$objects" --size "$size" \
+  --backends hardware --generic-shading --repeat 50 --warmup-ms 1000 \
+  --json "$out/bench_${tag}_generic.json" --csv "$out/bench_${tag}_generic.csv" |
+  tee "$out/bench_${tag}_generic.txt"
+
+# The short table: columns of the CSVs by name.
+echo
+echo "yardstick $size, medians of 3 runs (run-to-run spread), ms"
+awk -F, '
+  FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; file++; next }
+  file == 1 { m[$2] = $col["total_ms"]; ms[$2] = $col["run_spread_pct"]; order[++n] = $2 }
+  file == 2 { t[$3, $2] = $col["total_ms"]; s[$3, $2] = $col["run_spread_pct"] }
+  file == 3 { g[$2] = $col["total_ms"] }
+  END {
+    printf "%8s %18s %18s %10s %14s %18s %10s\n", "objects", "minimal", "hardware",
+           "hw/minimal", "hw generic", "compute", "hw/compute"
+    for (k = 1; k <= n; ++k) {
+      o = order[k]
+      printf "%8s %10.3f (%4.1f%%) %10.3f (%4.1f%%) %10.2f %14.3f %10.3f (%4.1f%%) %10.2f\n",
+             o, m[o], ms[o], t["hardware", o], s["hardware", o], t["hardware", o] / m[o], g[o],
+             t["compute", o], s["compute", o], t["hardware", o] / t["compute", o]
+    }
+  }' "$out/minimal_$tag.csv" "$out/bench_$tag.csv" "$out/bench_${tag}_generic.csv" |
+  tee "$out/summary_$tag.txt"

@@ -1,0 +1,372 @@
+// Anti-aliasing (FrameSettings::samples): the same bits whatever the order, agreement with the
+// reference at the same sample positions, the edge error against the supersampled truth, and
+// where it fails: triangles smaller than a pixel.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "compute/baselines/hardware_baseline.h"
+#include "core/builtin_scenes.h"
+#include "core/image_metrics.h"
+#include "core/mesh.h"
+#include "core/reference_renderer.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+class AntiAliasing : public test::VulkanTest {
+ protected:
+  Frame render_at(const Scene& scene, uint32_t size, uint32_t samples,
+                  RendererOptions options = {}) {
+    return render(scene, size, size, options, samples);
+  }
+};
+
+bool same_bits(const ImageF& a, const ImageF& b) {
+  return a.pixels.size() == b.pixels.size() &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
+}
+
+std::vector<uint32_t> ids_of(const std::vector<uint64_t>& keys) {
+  std::vector<uint32_t> ids(keys.size());
+  for (size_t i = 0; i < keys.size(); ++i) ids[i] = uint32_t(keys[i] & 0xFFFFFFFFu);
+  return ids;
+}
+
+// The default scene with overlapping copies and cubes big enough for the per-tile rasterizer,
+// so that depth ties, both raster paths and pixels shared by several triangles all occur.
+Scene crowded_scene() {
+  Scene s = make_sphere_grid_scene();
+  const size_t n = s.objects.size();
+  for (size_t i = 0; i < n; i += 3) {
+    Object o = s.objects[i];
+    o.transform[3] += glm::vec4(0.3f, 0.2f, 0.1f, 0.0f);
+    s.objects.push_back(o);
+  }
+  for (size_t i = 0; i < 5; ++i) s.objects.push_back(s.objects[i * 4]);  // exact duplicates
+  s.meshes.push_back(make_cube());
+  glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 0.5f, 0.5f));
+  t = glm::rotate(t, 0.6f, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
+  s.objects.push_back({uint32_t(s.meshes.size() - 1), 2, glm::scale(t, glm::vec3(1.8f))});
+  return s;
+}
+
+TEST_F(AntiAliasing, SameBitsAcrossRunsObjectOrderAndRasterPaths) {
+  Scene scene = crowded_scene();
+  for (uint32_t samples : {4u, 16u}) {
+    const Frame first = render_at(scene, 96, samples);
+    ASSERT_EQ(first.visibility.size(), 96u * 96u * samples);
+    const Frame again = render_at(scene, 96, samples);
+    EXPECT_TRUE(same_bits(first.hdr, again.hdr)) << samples << " samples";
+    EXPECT_EQ(first.visibility, again.visibility);
+
+    Scene shuffled = scene;
+    std::mt19937 rng(samples);
+    std::shuffle(shuffled.objects.begin(), shuffled.objects.end(), rng);
+    const Frame reordered = render_at(shuffled, 96, samples);
+    EXPECT_TRUE(same_bits(first.hdr, reordered.hdr)) << samples << " samples, shuffled";
+    EXPECT_EQ(first.visibility, reordered.visibility);
+
+    // Everything per tile, then everything per triangle: the same key in every sample.
+    RendererOptions tiles, small;
+    tiles.small_triangle_max_area = 0;
+    small.small_triangle_max_area = 1u << 16;
+    const Frame tiled = render_at(scene, 96, samples, tiles);
+    const Frame walked = render_at(scene, 96, samples, small);
+    EXPECT_EQ(first.visibility, tiled.visibility) << samples << " samples, per tile";
+    EXPECT_EQ(first.visibility, walked.visibility) << samples << " samples, per triangle";
+    EXPECT_TRUE(same_bits(first.hdr, tiled.hdr));
+  }
+}
+
+// lavapipe reads LP_NUM_THREADS when its device is created, so each count runs the tool anew.
+TEST(AntiAliasingAcrossThreads, OneAndTwoLavapipeThreadsGiveIdenticalFiles) {
+  std::string outputs[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    const std::string pfm = test::output_path("aa" + std::to_string(threads) + ".pfm");
+    std::string log;
+    const std::string command = "LP_NUM_THREADS=" + std::to_string(threads) +
+                                " " TESSERA_BINARY
+                                " render --device lavapipe --validate --size 128x96 --samples 8 "
+                                "--quiet --out " +
+                                test::output_path("aa.png") + " --hdr-out " + pfm;
+    ASSERT_EQ(test::run_command(command, log), 0) << log;
+    std::ifstream f(pfm, std::ios::binary);
+    outputs[threads - 1] = std::string(std::istreambuf_iterator<char>(f), {});
+  }
+  EXPECT_GT(outputs[0].size(), 128u * 96 * 12);
+  EXPECT_TRUE(outputs[0] == outputs[1]) << "HDR differs between 1 and 2 threads";
+}
+
+TEST_F(AntiAliasing, EveryPixelOfAClosedMeshCountsEachSampleOnce) {
+  // Disjoint closed meshes with back faces culled: every sample is covered by at most one
+  // triangle, so the covered-sample count per pixel equals its non-empty keys (no sample
+  // covered twice along a shared edge, none dropped).
+  Scene scene = make_sphere_grid_scene();
+  RendererOptions options;
+  options.debug_coverage = true;
+  for (uint32_t samples : {4u, 8u, 16u}) {
+    const Frame f = render_at(scene, 64, samples, options);
+    for (size_t p = 0; p < f.coverage.size(); ++p) {
+      uint32_t covered = 0;
+      for (uint32_t s = 0; s < samples; ++s)
+        covered += f.visibility[p * samples + s] != TS_VIS_EMPTY ? 1 : 0;
+      ASSERT_EQ(f.coverage[p], covered) << "pixel " << p << ", " << samples << " samples";
+    }
+  }
+}
+
+TEST_F(AntiAliasing, AgreesWithTheReferenceAtTheSameSamples) {
+  const Scene scene = make_sphere_grid_scene();
+  const uint32_t size = 96;
+  for (uint32_t samples : {4u, 16u}) {
+    const Frame gpu = render_at(scene, size, samples);
+    ReferenceSettings rs;
+    rs.frame.width = rs.frame.height = size;
+    rs.frame.samples = samples;
+    rs.threads = 2;
+    const ReferenceFrame ref = render_reference(scene, rs);
+    ASSERT_EQ(ref.sample_ids.size(), gpu.visibility.size());
+    // Ownership per sample: float and double snapping may disagree by one sub-pixel step where
+    // an exact edge passes within 1/256 px of a sample (docs/accuracy.md), so a few may differ.
+    const std::vector<uint32_t> gpu_ids = ids_of(gpu.visibility);
+    const size_t mismatches = count_mismatches(gpu_ids, ref.sample_ids);
+    EXPECT_LE(double(mismatches), 1e-3 * double(gpu_ids.size()))
+        << mismatches << " of " << gpu_ids.size() << " samples";
+    // 8-bit images within 1 level where every sample agrees, as the other accuracy tests.
+    std::vector<uint8_t> agree(size_t(size) * size, 1);
+    for (size_t p = 0; p < agree.size(); ++p) {
+      for (uint32_t s = 0; s < samples; ++s) {
+        if (gpu_ids[p * samples + s] != ref.sample_ids[p * samples + s]) agree[p] = 0;
+      }
+    }
+    const ImageDifference d = compare_images(gpu.ldr, ref.ldr, 1.0, &agree);
+    EXPECT_LE(d.max_abs_error, 1.0) << samples << " samples at " << d.worst_x << "," << d.worst_y;
+    std::printf("AA %u samples vs reference: %zu of %zu samples owned differently, max %g levels\n",
+                samples, mismatches, gpu_ids.size(), d.max_abs_error);
+  }
+}
+
+// Area of the unit pixel [0, 1]^2 on the side n.p < d of a line (Sutherland-Hodgman clip of
+// the square, then the shoelace formula): exact, for the expected error of a pattern.
+double half_plane_coverage(glm::dvec2 n, double d) {
+  const glm::dvec2 square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  std::vector<glm::dvec2> poly;
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec2 a = square[i], b = square[(i + 1) % 4];
+    const double fa = d - glm::dot(n, a), fb = d - glm::dot(n, b);
+    if (fa >= 0) poly.push_back(a);
+    if ((fa >= 0) != (fb >= 0)) poly.push_back(a + (b - a) * (fa / (fa - fb)));
+  }
+  double area = 0.0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const glm::dvec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    area += a.x * b.y - a.y * b.x;
+  }
+  return 0.5 * std::abs(area);
+}
+
+// Mean |k / N - c| of a pattern over straight edges crossing a pixel, uniform in angle and in
+// offset: what counting N samples can do for edges, with no shading error at all.
+double straight_edge_error(const std::vector<glm::ivec2>& pattern) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * 3.14159265358979), offset(-1.0, 1.0);
+  double sum = 0.0;
+  int edges = 0;
+  while (edges < 20000) {
+    const double a = angle(rng);
+    const glm::dvec2 n(std::cos(a), std::sin(a));
+    const double d = glm::dot(n, glm::dvec2(0.5)) + offset(rng) * 0.75;
+    const double c = half_plane_coverage(n, d);
+    if (c <= 0.0 || c >= 1.0) continue;  // the line misses the pixel
+    int k = 0;
+    for (glm::ivec2 s : pattern)
+      k += glm::dot(n, glm::dvec2(s) / double(TS_SAMPLE_GRID)) < d ? 1 : 0;
+    sum += std::abs(double(k) / double(pattern.size()) - c);
+    ++edges;
+  }
+  return sum / edges;
+}
+
+TEST_F(AntiAliasing, FourSamplesCutTheEdgeErrorAsTheirPatternAllows) {
+  // Edge error: the mean relative radiance error (radiance_error) over the pixels an outline
+  // crosses (outline_pixels of the truth's ownership), against the 16 x 16 supersampled
+  // truth of the same triangles. Issue 12 asks 4 samples to cut it 3x from 1 sample. Counting
+  // samples cannot: over straight edges of every angle and offset, the standard 4-sample
+  // pattern's coverage error is 1/2.7 of one centre sample's (straight_edge_error, computed
+  // here exactly per edge), and any 4 point samples land near that (an ordered 2x2 grid
+  // 2.9x). Asserted: the scene gets at least 90 % of the pattern's straight-edge factor (the
+  // rest is curvature and shading once per triangle), and more samples keep improving it.
+  const double one = straight_edge_error({TS_SAMPLES_1(glm::ivec2)});
+  const double four = straight_edge_error({TS_SAMPLES_4(glm::ivec2)});
+  std::printf("AA straight edges: coverage error %.4f (1 sample), %.4f (4): factor %.2f\n", one,
+              four, one / four);
+  const Scene scene = make_sphere_grid_scene();
+  const uint32_t size = 128;
+  ReferenceSettings rs;
+  rs.frame.width = rs.frame.height = size;
+  rs.ground_truth.supersampling = 16;
+  rs.threads = 2;
+  const ReferenceFrame truth = render_reference(scene, rs);
+  const std::vector<uint8_t> edges = outline_pixels(truth.ownership);
+  const size_t edge_pixels = size_t(std::count(edges.begin(), edges.end(), uint8_t(1)));
+  ASSERT_GT(edge_pixels, 500u);
+  double error[17] = {};
+  for (uint32_t samples : {1u, 4u, 8u, 16u}) {
+    const Frame f = render_at(scene, size, samples);
+    error[samples] = radiance_error(f.hdr, truth.hdr, &edges).mean_relative;
+    std::printf("AA edge error, %u sample(s): %.4f over %zu pixels\n", samples, error[samples],
+                edge_pixels);
+  }
+  EXPECT_GE(error[1] / error[4], 0.9 * one / four);
+  EXPECT_LT(error[8], error[4]);
+  EXPECT_LT(error[16], error[8]);
+}
+
+// Triangles smaller than a pixel, each alone in a 3 x 3 block of pixels and moved by a random
+// fraction of a pixel, of uniform radiance 1 on black: the radiance summed over its block is
+// the area its samples see, in px^2. The camera looks down -z at the plane z = 0 from
+// `distance`, so areas in that plane scale by px_per_unit^2 exactly.
+struct TriangleField {
+  Scene scene;
+  std::vector<double> areas;  // px^2, analytic, per block
+  uint32_t blocks_per_side;
+};
+
+TriangleField triangle_field(uint32_t blocks_per_side, uint32_t seed) {
+  const uint32_t size = 3 * blocks_per_side;
+  const float distance = 10.0f, fov = glm::radians(30.0f);
+  const double px_per_unit = (size / 2.0) / std::tan(double(fov) / 2.0) / distance;
+  TriangleField field;
+  field.blocks_per_side = blocks_per_side;
+  Scene& s = field.scene;
+  s.camera.position = {0.0f, 0.0f, distance};
+  s.camera.vertical_fov = fov;
+  s.camera.near_plane = 0.1f;
+  s.ambient = glm::vec3(0.0f);
+  s.background = glm::vec3(0.0f);
+  Material m;
+  m.base_color = glm::vec3(0.0f);
+  m.emissive = glm::vec3(1.0f);
+  m.double_sided = true;
+  s.materials.push_back(m);
+  Mesh mesh;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (uint32_t by = 0; by < blocks_per_side; ++by) {
+    for (uint32_t bx = 0; bx < blocks_per_side; ++bx) {
+      // Corners within 0.6 px of the centre of the block's middle pixel (so an area of at most
+      // 3 sqrt(3) / 4 * 0.6^2 = 0.47 px^2), moved by up to a pixel: inside the block.
+      const glm::dvec2 shift(unit(rng), unit(rng));
+      glm::dvec2 px[3];
+      for (glm::dvec2& p : px) {
+        const double r = 0.6 * std::sqrt(unit(rng)), a = 2.0 * 3.14159265358979 * unit(rng);
+        p = glm::dvec2(3.0 * bx + 1.0, 3.0 * by + 1.0) + shift +
+            r * glm::dvec2(std::cos(a), std::sin(a));
+      }
+      field.areas.push_back(0.5 * std::abs((px[1].x - px[0].x) * (px[2].y - px[0].y) -
+                                           (px[1].y - px[0].y) * (px[2].x - px[0].x)));
+      for (const glm::dvec2& p : px) {
+        // Pixels (y down) to the plane z = 0 (y up).
+        mesh.positions.push_back(glm::vec3(float((p.x - size / 2.0) / px_per_unit),
+                                           float((size / 2.0 - p.y) / px_per_unit), 0.0f));
+        mesh.normals.push_back({0.0f, 0.0f, 1.0f});
+        mesh.uvs.push_back({0.0f, 0.0f});
+        mesh.indices.push_back(uint32_t(mesh.indices.size()));
+      }
+    }
+  }
+  s.meshes.push_back(std::move(mesh));
+  s.objects.push_back({0, 0, glm::mat4(1.0f)});
+  return field;
+}
+
+TEST_F(AntiAliasing, SubPixelTrianglesCoverTheirAreaWithinTheSamplingBand) {
+  // Where anti-aliasing fails: a triangle smaller than a pixel is seen by the few samples it
+  // happens to hold. Moved uniformly over a pixel, each sample lies in it with probability
+  // equal to its area a (px^2), so the measured area is unbiased; with N independent uniform
+  // samples per pixel it would have variance a (1 - a) / N. The stated band: the field's mean
+  // within 4 standard errors of the analytic mean, and the RMS error per triangle within
+  // 1.25 sqrt(mean a (1 - a) / N): well-spread fixed patterns do no worse than independent
+  // samples, and 1.25 allows for the field's size (576 triangles of ~0.1 px^2 give the RMS
+  // at one sample, where it equals the band on average, a spread of about 7 %).
+  const TriangleField field = triangle_field(24, 5);
+  const uint32_t size = 3 * field.blocks_per_side;
+  double mean_area = 0.0, variance = 0.0;
+  for (double a : field.areas) {
+    mean_area += a;
+    variance += a * (1.0 - a);
+  }
+  mean_area /= double(field.areas.size());
+  variance /= double(field.areas.size());
+  double previous_rms = 1e9;
+  for (uint32_t samples : {1u, 4u, 8u, 16u}) {
+    const Frame f = render_at(field.scene, size, samples);
+    double sum_error = 0.0, sum_squared = 0.0;
+    for (uint32_t by = 0; by < field.blocks_per_side; ++by) {
+      for (uint32_t bx = 0; bx < field.blocks_per_side; ++bx) {
+        double seen = 0.0;
+        for (uint32_t y = 3 * by; y < 3 * by + 3; ++y) {
+          for (uint32_t x = 3 * bx; x < 3 * bx + 3; ++x) seen += f.hdr.pixels[y * size + x].r;
+        }
+        const double e = seen - field.areas[by * field.blocks_per_side + bx];
+        sum_error += e;
+        sum_squared += e * e;
+      }
+    }
+    const double n = double(field.areas.size());
+    const double bias = sum_error / n, rms = std::sqrt(sum_squared / n);
+    const double band = std::sqrt(variance / samples);
+    std::printf(
+        "AA sub-pixel field, %u sample(s): mean area %.4f px^2, bias %+.4f (4 sigma "
+        "%.4f), rms %.4f (band %.4f)\n",
+        samples, mean_area, bias, 4.0 * band / std::sqrt(n), rms, band);
+    EXPECT_LE(std::abs(bias), 4.0 * band / std::sqrt(n)) << samples << " samples";
+    EXPECT_LE(rms, 1.25 * band) << samples << " samples";
+    EXPECT_LT(rms, previous_rms);
+    previous_rms = rms;
+  }
+}
+
+TEST_F(AntiAliasing, BadSampleCountsAreErrorsNamingTheValue) {
+  const Scene scene = make_sphere_grid_scene();
+  Renderer renderer(context());
+  renderer.set_scene(scene);
+  for (uint32_t bad : {0u, 2u, 3u, 5u, 32u}) {
+    FrameSettings fs;
+    fs.width = fs.height = 16;
+    fs.samples = bad;
+    try {
+      renderer.render(fs);
+      ADD_FAILURE() << bad << " samples rendered";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("samples per pixel " + std::to_string(bad)),
+                std::string::npos)
+          << e.what();
+    }
+    ReferenceSettings rs;
+    rs.frame = fs;
+    EXPECT_THROW(render_reference(scene, rs), Error);
+  }
+  ReferenceSettings truth;
+  truth.frame.width = truth.frame.height = 8;
+  truth.frame.samples = 4;
+  truth.ground_truth.supersampling = 4;
+  EXPECT_THROW(render_reference(scene, truth), Error);
+  FrameSettings four;
+  four.width = four.height = 16;
+  four.samples = 4;
+  HardwareBaseline hardware(renderer);
+  EXPECT_THROW(hardware.render(four), Error);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,141 @@
+// `tessera tradeoff`: the Pareto front by hand, the knobs' settings, and a short run on lavapipe
+// whose errors must order as physics says (the truth's own BRDF is the most accurate) and whose
+// speed-only knob must not change the image. No timing is asserted.
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/check.h"
+#include "core/pareto.h"
+#include "host/cli.h"
+#include "host/tradeoff.h"
+#include "tests/vulkan_fixture.h"
+
+namespace tessera {
+namespace {
+
+TEST(Tradeoff, ParetoFrontByHand) {
+  // (1, 5) and (2, 3) and (4, 1) are each best at something; (3, 4) is beaten by (2, 3);
+  // (4, 2) by (4, 1) on error alone; the duplicate (2, 3) stays with its twin; NaN never counts.
+  const std::vector<CostError> points = {{1, 5}, {2, 3}, {3, 4},    {4, 1},
+                                         {4, 2}, {2, 3}, {0.5, NAN}};
+  const std::vector<bool> expected = {true, true, false, true, false, true, false};
+  EXPECT_EQ(pareto_front(points), expected);
+  EXPECT_EQ(pareto_front({}), std::vector<bool>{});
+}
+
+TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
+  FrameSettings frame;
+  frame.brdf = Brdf::filament;
+  RendererOptions options;
+  for (const KnobInfo& k : knobs()) {
+    const std::vector<KnobSetting> settings = knob_settings(k.name, frame, options);
+    EXPECT_GE(settings.size(), 3u) << k.name;
+    EXPECT_EQ(std::count_if(settings.begin(), settings.end(),
+                            [](const KnobSetting& s) { return s.is_default; }),
+              1)
+        << k.name << ": exactly one setting is the command line's";
+  }
+  const std::vector<KnobSetting> brdf = knob_settings("brdf", frame, options);
+  EXPECT_EQ(brdf[3].label, "filament");
+  EXPECT_TRUE(brdf[3].is_default);
+  EXPECT_TRUE(brdf[4].frame.energy_compensation);
+  try {
+    knob_settings("msaa", frame, options);
+    FAIL() << "an unknown knob must throw";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown knob 'msaa' (known: brdf, tessellation"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
+  const CommandLine line = parse_command_line({"tradeoff", "--scene", "grid", "--objects", "49",
+                                               "--knob", "brdf,small-triangle", "--size", "64x32",
+                                               "--rounds", "2", "--truth-samples", "4"});
+  ASSERT_EQ(line.command, Command::tradeoff);
+  EXPECT_EQ(line.tradeoff.scene, "grid");
+  EXPECT_EQ(line.tradeoff.objects, 49u);
+  EXPECT_EQ(line.tradeoff.knobs, (std::vector<std::string>{"brdf", "small-triangle"}));
+  EXPECT_EQ(line.tradeoff.frame.width, 64u);
+  EXPECT_EQ(line.tradeoff.rounds, 2u);
+  EXPECT_EQ(line.tradeoff.truth_samples, 4u);
+  auto message = [](const std::vector<std::string>& args) {
+    try {
+      parse_command_line(args);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({"tradeoff"}).find("--knob is required"), std::string::npos)
+      << message({"tradeoff"});
+  EXPECT_NE(message({"tradeoff", "--knob", "speed"}).find("unknown knob 'speed'"),
+            std::string::npos);
+  EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--truth-samples", "64"})
+                .find("--truth-samples: expects a whole number from 1 to 32"),
+            std::string::npos);
+  EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--chart", "c.jpg"}).find("--chart"),
+            std::string::npos);
+}
+
+TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
+  const std::string base = test::output_path("tradeoff");
+  std::string out;
+  const std::string command = std::string(TESSERA_BINARY) +
+                              " tradeoff --device lavapipe --validate --scene spheres --knob "
+                              "brdf,small-triangle --size 48x48 --repeat 1 --rounds 1 "
+                              "--truth-samples 4 --json " +
+                              base + ".json --chart " + base + ".svg";
+  ASSERT_EQ(test::run_command(command, out), 0) << out;
+  std::ifstream f(base + ".json");
+  ASSERT_TRUE(f) << base << ".json";
+  const nlohmann::json j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["width"], 48);
+  const auto& points = j["points"];
+  ASSERT_EQ(points.size(), 10u);
+  // The truth shades with filament and energy compensation: that setting's interior error
+  // (shading alone, edges apart) must be the lowest of the BRDF knob's, and well below
+  // Blinn-Phong's, which is a different model altogether.
+  double filament_ec = 0.0, blinn = 0.0, lowest_other = 1e9;
+  for (const auto& p : points) {
+    if (p["knob"] != "brdf") continue;
+    const double e = p["interior_mean_relative_error"];
+    if (p["setting"] == "filament+ec") {
+      filament_ec = e;
+    } else {
+      lowest_other = std::min(lowest_other, e);
+      if (p["setting"] == "blinn-phong") blinn = e;
+    }
+  }
+  EXPECT_LT(filament_ec, lowest_other) << out;
+  EXPECT_LT(filament_ec, 0.5 * blinn) << out;
+  // The small-triangle threshold trades speed only: every image equals the default's.
+  for (const auto& p : points) {
+    if (p["knob"] != "small-triangle") continue;
+    EXPECT_TRUE(p["identical_to_default"].get<bool>()) << p.dump();
+    EXPECT_GT(p["gpu_ms"]["median"].get<double>(), 0.0);
+  }
+  int on_front = 0;
+  for (const auto& p : points) on_front += p["pareto_front"].get<bool>();
+  EXPECT_GE(on_front, 2);
+  std::ifstream svg(base + ".svg");
+  const std::string chart(std::istreambuf_iterator<char>(svg), {});
+  EXPECT_NE(chart.find("Pareto front"), std::string::npos);
+  EXPECT_NE(chart.find("filament+ec"), std::string::npos);
+}
+
+TEST(Tradeoff, ObjectsNeedABenchFamily) {
+  std::string out;
+  const std::string command = std::string(TESSERA_BINARY) +
+                              " tradeoff --device lavapipe --scene spheres --objects 5 --knob brdf";
+  EXPECT_EQ(test::run_command(command, out), 1) << out;
+  EXPECT_NE(out.find("--objects applies to the benchmark families"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace tessera
