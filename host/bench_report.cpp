@@ -66,17 +66,13 @@ static std::string warmup_text(const BenchRow& r, const BenchArgs& a) {
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
       "scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, device "
-      "'%s' (%s),
-          % s ",
-            a.scene.c_str(),
-      a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments, a.small_triangle_area,
-      results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
-  std::printf(
-      "%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s
-      ", " objects ", " backend
-      ",
-      "triangles",
-      "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s", "cpu ms", "warm-up");
+      "'%s' (%s),\n%s\n",
+      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments,
+      a.small_triangle_area, results.device.c_str(), results.driver.c_str(),
+      method_phrase(a).c_str());
+  std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
+              "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
+              "cpu ms", "warm-up");
   for (const BenchRow& r : results.rows) {
     if (r.skipped) {
       std::printf("%9u %9s %10s  skipped (over --reference-max-triangles)\n", r.objects,
