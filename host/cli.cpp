@@ -324,7 +324,8 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, anisotropy, env-size,\n"
-                 "env-samples, small-triangle (docs/tradeoffs.md)")
+                 "env-samples, samples, small-triangle\n"
+                 "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
       ->allow_extra_args(false)

@@ -13,6 +13,7 @@ const std::vector<KnobInfo>& knobs() {
       {"anisotropy", "texture filtering: trilinear, then 2..16 anisotropic probes"},
       {"env-size", "side of the prefiltered specular cube, 16..256 texels"},
       {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
+      {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
   };
   return list;
@@ -87,6 +88,14 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       KnobSetting s = base(knob, std::to_string(n), frame, options);
       s.renderer.environment.specular_samples = n;
       s.is_default = n == options.environment.specular_samples;
+      out.push_back(s);
+    }
+  } else if (knob == "samples") {
+    for (uint32_t n : {1u, 4u, 8u, 16u}) {
+      KnobSetting s =
+          base(knob, n == 1 ? "1 sample" : std::to_string(n) + " samples", frame, options);
+      s.frame.samples = n;
+      s.is_default = n == frame.samples;
       out.push_back(s);
     }
   } else if (knob == "small-triangle") {

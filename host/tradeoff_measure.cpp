@@ -60,7 +60,8 @@ Ownership compute_ownership(const Renderer& renderer, const Scene& scene, uint32
     const std::optional<uint32_t> o = pick_object(numbering, keys[i]);
     objects[i] = o ? *o : kNoObject;
   }
-  return make_ownership(width, height, 1, objects);
+  // FrameSettings::samples keys per pixel, each pixel's together.
+  return make_ownership(width, height, uint32_t(keys.size() / (size_t(width) * height)), objects);
 }
 
 // The reference's ownership is by ObjectNumbering slot; the compute one's by Scene::objects.
@@ -139,6 +140,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   ReferenceSettings truth;
   truth.frame = frame;
   truth.frame.max_anisotropy = 16;
+  truth.frame.samples = 1;  // the truth's own N x N supersampling instead
   truth.ground_truth.analytic_spheres = true;
   truth.ground_truth.supersampling = args.truth_samples;
   const uint32_t per_sample = args.truth_env_samples / (args.truth_samples * args.truth_samples);
