@@ -44,8 +44,12 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
                        sizeof(uint32_t)});
   }
   // Every member of Specialization (4 bytes each) has its entry: a member without one would be
-  // silently ignored by the driver.
+  // silently ignored by the driver. The ids are the members' indices, so none is used twice
+  // (two branches adding a constant each may otherwise both take the next free id) and the
+  // light counts stay last.
   TESSERA_CHECK(entries.size() * 4 == sizeof(Specialization));
+  for (uint32_t i = 0; i < entries.size(); ++i)
+    TESSERA_CHECK(entries[i].constantID == i && entries[i].offset == 4 * i);
   return entries;
 }
 
