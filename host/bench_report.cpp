@@ -128,7 +128,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
     << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
-    << ",\n  \"segments\": " << a.segments
+    << ",\n  \"lod\": " << json_string(a.lod == Lod::automatic ? "auto" : "off")
+    << ",\n  \"lod_error_px\": " << a.lod_error_px << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
     << ",\n  \"runs\": " << a.runs << ",\n  \"warmup\": {\"min_frames\": " << a.warmup
     << ", \"min_ms\": " << a.warmup_ms << "},\n  \"statistic\": \"median\",\n  \"results\": [";
@@ -169,8 +170,9 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
   ChartSpec spec;
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
                std::to_string(a.height) +
-               (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") + ", " +
-               results.device + " (" + frames_phrase(a.repeat) +
+               (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
+               (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " + results.device + " (" +
+               frames_phrase(a.repeat) +
                (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
