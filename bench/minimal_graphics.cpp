@@ -172,7 +172,9 @@ Buffer upload(const Context& ctx, const void* data, VkDeviceSize bytes, VkBuffer
     const VkBufferCopy region{0, 0, bytes};
     vkCmdCopyBuffer(cmd, staging.buffer, b.buffer, 1, &region);
     memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_VERTEX_INPUT_BIT,
+                   // Vertex and index fetch; the uniforms are read by both shader stages.
+                   VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                    VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT |
                        VK_ACCESS_UNIFORM_READ_BIT);
   });
