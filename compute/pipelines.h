@@ -70,7 +70,9 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& variant);
 
-/// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V.
+/// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V,
+/// except the generic shading pipelines of kPipelines (shader "shade"), left null for the
+/// renderer to build on first use.
 Pipelines create_pipelines(const Context& ctx);
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
 
