@@ -11,15 +11,7 @@ cd "$(dirname "$0")/.."
 out=${OUT:?OUT must name the output folder (the device tool sets it)}
 size=${SIZE:-1920x1080}
 objects=${OBJECTS:-1,10,100,1000,10000,100000,1000000}
-bin=$PWD/.device-build
-[[ -x $bin/tessera ]] || { echo "no staged binaries in $bin: run scripts/stage-device.sh first" >&2; exit 1; }
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export LD_LIBRARY_PATH=$bin
-nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-if ! "$bin/tessera" devices 2>/dev/null | grep -qi nvidia && [[ -f $nvidia_icd ]]; then
-  export VK_DRIVER_FILES=$nvidia_icd
-fi
+source scripts/device-env.sh
 work=$(mktemp -d)
 "$bin/tessera" devices | tee "$work/devices.txt"
 # Clocks up before anything is timed.
