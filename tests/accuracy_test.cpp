@@ -18,8 +18,8 @@ TEST_F(Accuracy, BuiltinScenes) {
     // With an environment only ownership and finiteness are held to bars (below): ownership is
     // the reference's rasterization and finiteness the compute path's image, neither of which
     // depends on the reference's shading. So its Monte Carlo integral takes 1 direction per
-    // pixel instead of 1024, which was most of this test's time (the printed HDR and 8-bit
-    // errors of that scene then measure against a noisy reference).
+    // pixel instead of 1024, which was about half of this test's time (the printed HDR and
+    // 8-bit errors of that scene then measure against a noisy reference).
     const uint32_t environment_samples = scene.environment ? 1 : 1024;
     test::AccuracyReport r =
         test::compare_with_reference(context(), scene, 512, 512, std::string(info.name), {},
