@@ -27,7 +27,7 @@ struct RendererOptions {
   /// triangle; larger ones are binned into tiles. Any value gives the same image.
   uint32_t small_triangle_max_area = 64;
   /// Side of the screen tiles that large triangles are binned into and rasterized by, one
-  /// workgroup of tile_size^2 threads per tile: 8, 16 or 32 (validate_tile_size). Any size gives
+  /// workgroup of tile_size^2 threads per tile: 8 or 16 (validate_tile_size). Either gives
   /// the same image; it trades binning work against idle threads. Size 8 holds images up to
   /// 8192 px a side (TS_MAX_TILES_PER_SIDE); the renderer throws Error for a size the device's
   /// workgroup limits cannot hold.
@@ -61,7 +61,7 @@ struct RendererOptions {
   EnvironmentOptions environment;
 };
 
-/// Throws Error naming `tile_size` unless it is 8, 16 or 32.
+/// Throws Error naming `tile_size` unless it is 8 or 16.
 void validate_tile_size(uint32_t tile_size);
 
 struct FrameStats {

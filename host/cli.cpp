@@ -61,13 +61,13 @@ void add_hdr_format(CLI::App& app, HdrFormat& format) {
 void add_tile_size(CLI::App& app, uint32_t& tile_size) {
   app.add_option("--tile-size", tile_size,
                  "side of the screen tiles large triangles are\n"
-                 "binned into, 8, 16 (default) or 32 px; the\n"
-                 "image is the same with each")
+                 "binned into, 8 or 16 (default) px; the image\n"
+                 "is the same with either")
       ->type_name("N")
       ->check(checked_by([](const std::string& text) {
         const size_t digits = text.find_first_not_of("0123456789");
         if (text.empty() || digits != std::string::npos || text.size() > 9)
-          throw Error("expects a tile size of 8, 16 or 32 px, got '" + text + "'");
+          throw Error("expects a tile size of 8 or 16 px, got '" + text + "'");
         validate_tile_size(uint32_t(std::stoul(text)));
       }));
 }
@@ -79,7 +79,7 @@ void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
               {"reference", Quality::reference}},
              "a preset picked from the measured Pareto\n"
              "fronts (docs/tradeoffs.md, \"Presets\"): sets\n" +
-                 sets + "; options given explicitly win");
+                 sets + ";\noptions given explicitly win");
 }
 
 // Whether `app`'s command line gave the option `name`.

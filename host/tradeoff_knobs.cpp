@@ -18,7 +18,7 @@ const std::vector<KnobInfo>& knobs() {
       {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
       {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
-      {"tile-size", "side of the binned rasterizer's tiles: 8, 16, 32 px (speed only)"},
+      {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
   };
   return list;
 }
@@ -134,7 +134,7 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       out.push_back(s);
     }
   } else if (knob == "tile-size") {
-    for (uint32_t side : {8u, 16u, 32u}) {
+    for (uint32_t side : {8u, 16u}) {
       KnobSetting s = base(knob, std::to_string(side) + " px", frame, options);
       s.renderer.tile_size = side;
       s.is_default = side == options.tile_size;

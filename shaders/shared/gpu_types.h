@@ -29,7 +29,7 @@ using glm::vec4;
 
 // Screen tiles used by binning and the per-tile rasterizer, in pixels per side: the default of
 // RendererOptions::tile_size, which specializes the passes that bin and rasterize by tiles
-// (TS_SPEC_TILE_SIZE; the renderer accepts 8, 16 and 32).
+// (TS_SPEC_TILE_SIZE; the renderer accepts 8 and 16).
 #define TS_TILE_SIZE 16
 // A bin entry packs tile coordinates in 10 bits (setup_common.glsl): at most 1024 tiles per
 // side, so a tile size s holds images up to 1024 s pixels per side.
