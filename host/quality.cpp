@@ -4,16 +4,16 @@
 
 namespace tessera {
 
-// Rows of docs/tradeoffs.md, "Presets": per knob, on the front measured for it, draft takes the
-// cheapest setting within 0.01 mean relative error of the knob's best, balanced the cheapest
-// within 0.001, reference the best (ties: the setting without a documented failure). Speed-only
-// knobs keep their default unless a setting was faster by more than 5 % on every measured scene.
+// The table of docs/tradeoffs.md, "Presets" (tests/quality_test.cpp reads it from there), which
+// gives the rule and the measured figures behind each entry: per knob, on its measured front,
+// draft takes the cheapest setting within 0.01 mean relative error of the knob's best setting,
+// balanced the cheapest within 0.001, reference the best.
 const QualityPreset& quality_preset(Quality quality) {
   static const QualityPreset draft{.brdf = Brdf::classic,
                                    .energy_compensation = true,
                                    .samples = 1,
                                    .lod = Lod::automatic,
-                                   .lod_error_px = 1.0f,
+                                   .lod_error_px = 0.5f,
                                    .max_anisotropy = 1,
                                    .env_specular_size = 16,
                                    .env_specular_samples = 8,
@@ -23,7 +23,7 @@ const QualityPreset& quality_preset(Quality quality) {
   static const QualityPreset balanced{.brdf = Brdf::filament,
                                       .energy_compensation = true,
                                       .samples = 4,
-                                      .lod = Lod::automatic,
+                                      .lod = Lod::off,
                                       .lod_error_px = 0.5f,
                                       .max_anisotropy = 4,
                                       .env_specular_size = 32,
@@ -34,8 +34,8 @@ const QualityPreset& quality_preset(Quality quality) {
   static const QualityPreset reference{.brdf = Brdf::filament,
                                        .energy_compensation = true,
                                        .samples = 16,
-                                       .lod = Lod::automatic,
-                                       .lod_error_px = 0.25f,
+                                       .lod = Lod::off,
+                                       .lod_error_px = 0.5f,
                                        .max_anisotropy = 16,
                                        .env_specular_size = 256,
                                        .env_specular_samples = 512,
