@@ -188,8 +188,10 @@ TEST_F(PreExposure, Fp32StorageKeepsWhatFp16Clamps) {
   }
 }
 
-// The default scene at both formats: fp16 rounds each channel to 11 significant bits, a
-// relative change of at most 2^-11 (about 0.05 %; 2^-25 absolute below fp16's normal range).
+// The default scene at both formats: fp16 keeps 11 significant bits of each channel, and Vulkan
+// lets the store round to nearest or toward zero (lavapipe truncates), so a value moves by less
+// than one fp16 ulp: at most 2^-10 relative (about 0.1 %; 2^-24 absolute below fp16's normal
+// range).
 // Through the tone curve and sRGB that moves a display value by well under one 8-bit step, so
 // a pixel changes by at most 1, and only where the fp32 value lies that close to a rounding
 // boundary: a few percent of the pixels at most (0.8 % measured at 200 x 150). The fp16 images
@@ -211,7 +213,7 @@ TEST_F(PreExposure, OrdinaryScenesAgreeUpToFp16Rounding) {
   for (size_t p = 0; p < hdr[0].pixels.size(); ++p) {
     for (int c = 0; c < 3; ++c) {
       const float half = hdr[0].pixels[p][c], full = hdr[1].pixels[p][c];
-      ASSERT_LE(std::abs(half - full), std::abs(full) * 0x1p-11f + 0x1p-25f)
+      ASSERT_LE(std::abs(half - full), std::abs(full) * 0x1p-10f + 0x1p-24f)
           << "pixel " << p << " channel " << c;
       ASSERT_LE(std::abs(int(ldr[0].pixels[p][c]) - int(ldr[1].pixels[p][c])), 1)
           << "pixel " << p << " channel " << c;
