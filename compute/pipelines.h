@@ -70,8 +70,9 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
 VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& variant);
 
-/// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V.
-Pipelines create_pipelines(const Context& ctx);
+/// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V,
+/// the passes specialized to tiles of `tile_size` pixels per side (validate_tile_size).
+Pipelines create_pipelines(const Context& ctx, uint32_t tile_size);
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
 
 }  // namespace tessera

@@ -123,6 +123,7 @@ int run_render(const RenderArgs& given) {
   std::unique_ptr<Context> ctx = create_context(options);
   RendererOptions renderer_options;
   renderer_options.environment = args.env_options;
+  renderer_options.tile_size = args.tile_size;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 

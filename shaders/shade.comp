@@ -135,9 +135,10 @@ vec3 background(vec2 point) {
   return frame.background;
 }
 
-// The colour a group of samples stores: pre-exposed and clamped to what fp16 holds.
+// The colour a group of samples stores: pre-exposed and clamped to what the HDR image's format
+// holds (65504 for fp16), so that overflow saturates instead of becoming Inf.
 vec3 stored(vec3 color) {
-  return min(color * pre_exposure(), vec3(TS_MAX_HALF));
+  return min(color * pre_exposure(), vec3(frame.hdr_max));
 }
 
 // Anti-aliased pixels (SAMPLES > 1): each distinct triangle among a pixel's samples, and the
