@@ -137,10 +137,13 @@ void discard_overlay_frame() {
   ImGui::EndFrame();
 }
 
-bool overlay_wants_input() {
-  if (!ImGui::GetCurrentContext()) return false;
-  const ImGuiIO& io = ImGui::GetIO();
-  return io.WantCaptureMouse || io.WantCaptureKeyboard;
+bool overlay_wants_keyboard() {
+  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
+}
+
+bool overlay_popup_open() {
+  return ImGui::GetCurrentContext() &&
+         ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
 }
 
 void destroy_overlay(const Context& ctx, Overlay& overlay) {

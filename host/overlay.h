@@ -38,8 +38,12 @@ void record_overlay(const Overlay& overlay, const Swapchain& chain, VkCommandBuf
 /// Ends an ImGui frame begun but not drawn (the frame was not presented).
 void discard_overlay_frame();
 
-/// True while the panel wants the mouse or keyboard, so the camera should not take them.
-bool overlay_wants_input();
+/// True while the panel has the keyboard (a text field or an active widget), so the camera's
+/// keys should not act.
+bool overlay_wants_keyboard();
+
+/// True while one of the panel's popups (a combo's list) is open: it takes any press.
+bool overlay_popup_open();
 
 /// Shuts ImGui down and destroys the overlay's objects; the device must be idle.
 void destroy_overlay(const Context& ctx, Overlay& overlay);
