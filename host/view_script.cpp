@@ -113,7 +113,7 @@ int key_code(const std::string& name) {
   const std::pair<const char*, int> named[] = {
       {"Delete", GLFW_KEY_DELETE}, {"Escape", GLFW_KEY_ESCAPE}, {"Space", GLFW_KEY_SPACE},
       {"Left", GLFW_KEY_LEFT},     {"Right", GLFW_KEY_RIGHT},   {"Up", GLFW_KEY_UP},
-      {"Down", GLFW_KEY_DOWN}};
+      {"Down", GLFW_KEY_DOWN},     {"Home", GLFW_KEY_HOME}};
   for (const auto& [n, code] : named) {
     if (name == n) return code;
   }
@@ -129,7 +129,7 @@ InputEvent parse_event(Line& line) {
     e.key = key_code(name);
     if (e.key < 0) {
       line.fail("unknown key '" + name +
-                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down)");
+                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down, Home)");
     }
     line.modifiers(e, true);
   } else if (kind == "drag") {

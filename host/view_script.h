@@ -3,7 +3,7 @@
 // every interaction can be tested and demonstrated without a person. One event a line:
 //
 //   FRAME key NAME [ctrl] [shift]        NAME: A..Z, 0..9, F1..F12, Delete, Escape, Space,
-//                                        Left, Right, Up, Down
+//                                        Left, Right, Up, Down, Home
 //   FRAME drag left|middle X0 Y0 X1 Y1 [shift]
 //   FRAME click X Y
 //   FRAME wheel NOTCHES                  positive zooms in
