@@ -61,6 +61,9 @@ void start_imgui(const Context& ctx, Window& window, const Swapchain& chain, Ove
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini written into the working folder
   ImGui::StyleColorsDark();
+  // Tighter rows than ImGui's default, so the panel's open sections fit a 512-pixel window.
+  ImGui::GetStyle().ItemSpacing.y = 3.0f;
+  ImGui::GetStyle().FramePadding.y = 2.0f;
   // Installed after the window's callbacks, which ImGui's call in turn.
   if (!ImGui_ImplGlfw_InitForVulkan(window.handle, true)) {
     throw Error("Dear ImGui's GLFW backend did not initialise");

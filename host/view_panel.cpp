@@ -56,7 +56,7 @@ void draw_material(const PanelInput& in, PanelChanges& changes) {
   }
   const Object& object = in.scene->objects[size_t(in.selected)];
   Material m = in.scene->materials[object.material];
-  ImGui::Text("object %d: mesh %u, material %u", in.selected, object.mesh, object.material);
+  ImGui::TextWrapped("object %d (mesh %u, material %u)", in.selected, object.mesh, object.material);
   bool changed = false;
   if (ImGui::BeginCombo("preset", "metal preset...")) {
     for (const MetalPreset& p : metal_presets()) {
@@ -69,11 +69,15 @@ void draw_material(const PanelInput& in, PanelChanges& changes) {
     }
     ImGui::EndCombo();
   }
-  changed |= ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float);
+  // Three number fields need room; a narrow panel shows the swatch, whose picker has them.
+  const ImGuiColorEditFlags fields =
+      ImGui::CalcItemWidth() < 150.0f ? ImGuiColorEditFlags_NoInputs : ImGuiColorEditFlags_None;
+  changed |=
+      ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float | fields);
   changed |= ImGui::SliderFloat("metallic", &m.metallic, 0.0f, 1.0f);
   changed |= ImGui::SliderFloat("roughness", &m.roughness, 0.0f, 1.0f);
   changed |= ImGui::ColorEdit3("emissive", &m.emissive.x,
-                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR | fields);
   if (changed) changes.material = m;
 }
 
@@ -100,7 +104,10 @@ void draw_lights(const PanelInput& in, PanelChanges& changes) {
       if (light.kind != LightKind::directional) {
         changed |= ImGui::DragFloat3("position", &light.position.x, 0.05f);
       }
-      changed |= ImGui::ColorEdit3("colour", &light.color.x, ImGuiColorEditFlags_Float);
+      changed |= ImGui::ColorEdit3(
+          "colour", &light.color.x,
+          ImGuiColorEditFlags_Float |
+              (ImGui::CalcItemWidth() < 150.0f ? ImGuiColorEditFlags_NoInputs : 0));
       changed |= ImGui::DragFloat("intensity", &light.intensity, 1.0f, 0.0f, 1e6f);
       if (changed) {
         changes.light = light;
@@ -239,8 +246,8 @@ PanelChanges draw_view_panel(const PanelInput& in, const FrameSettings& frame, f
                    ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove)) {
     // Labels get a fixed column at the right; the widgets the rest.
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 7.5f);
-    ImGui::Text("frame %.2f ms (%.1f fps), GPU %.2f ms", in.frame_ms,
-                in.frame_ms > 0 ? 1000.0 / in.frame_ms : 0, in.stats->gpu_total_ms);
+    ImGui::TextWrapped("frame %.1f ms (%.1f fps), GPU %.1f ms", in.frame_ms,
+                       in.frame_ms > 0 ? 1000.0 / in.frame_ms : 0, in.stats->gpu_total_ms);
     if (ImGui::CollapsingHeader("material", ImGuiTreeNodeFlags_DefaultOpen))
       draw_material(in, changes);
     if (ImGui::CollapsingHeader("render options", ImGuiTreeNodeFlags_DefaultOpen))
@@ -248,7 +255,8 @@ PanelChanges draw_view_panel(const PanelInput& in, const FrameSettings& frame, f
     if (ImGui::CollapsingHeader("lights")) draw_lights(in, changes);
     if (ImGui::CollapsingHeader("timing")) draw_timings(in);
     if (ImGui::CollapsingHeader("triangles")) draw_counts(*in.stats);
-    if (ImGui::CollapsingHeader("keys", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The keys open at the start where the window has room for them under the rest.
+    if (ImGui::CollapsingHeader("keys", height >= 600.0f ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
       ImGui::PushTextWrapPos(0.0f);  // wrap at the panel's right edge
       ImGui::TextUnformatted(
           "click selects; Delete deletes; C copies, N adds a sphere, M moves the selection to "
