@@ -1,5 +1,7 @@
 #include "host/overlay.h"
 
+#include <cfloat>
+
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
@@ -118,9 +120,15 @@ void prepare_overlay(const Context& ctx, Window& window, const Swapchain& chain,
   }
 }
 
-void begin_overlay_frame() {
+void begin_overlay_frame(bool mouse_elsewhere) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (mouse_elsewhere) {
+    // Between the backend reading GLFW's state and ImGui using it.
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    for (bool& down : io.MouseDown) down = false;
+  }
   ImGui::NewFrame();
 }
 

@@ -27,8 +27,11 @@ struct Overlay {
 /// Throws Error if a backend fails to initialise.
 void prepare_overlay(const Context& ctx, Window& window, const Swapchain& chain, Overlay& overlay);
 
-/// Starts an ImGui frame (the panel is built between this and record_overlay).
-void begin_overlay_frame();
+/// Starts an ImGui frame (the panel is built between this and record_overlay). With
+/// `mouse_elsewhere` (the camera has the mouse: a press outside the panel, held or not yet
+/// seen by ImGui) the panel sees no pointer and no button in this frame, so a camera drag
+/// that crosses it neither hovers nor presses its widgets.
+void begin_overlay_frame(bool mouse_elsewhere);
 
 /// Ends the ImGui frame and records its drawing into `cmd` over swapchain image `index`
 /// (COLOR_ATTACHMENT_OPTIMAL on entry, PRESENT_SRC_KHR after).

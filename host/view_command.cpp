@@ -22,7 +22,9 @@ namespace {
 
 // Builds this frame's panel; its changes apply to the frame about to be rendered.
 void build_panel(Viewer& v) {
-  begin_overlay_frame();
+  Window& w = *v.window;
+  begin_overlay_frame(w.camera_press || (w.held >= 0 && !w.held_by_panel));
+  w.camera_press = false;
   PanelInput in;
   in.scene = &v.scene;
   in.stats = &v.last_stats;
@@ -137,10 +139,11 @@ constexpr int kSettleFrames = 3;
 constexpr double kIdleWaitSeconds = 0.25;
 
 void run_loop(Viewer& v) {
-  const bool scripted = !v.args.script.empty();
   int settle = kSettleFrames;  // frames still to draw after the last activity
   uint64_t seen_activity = 0;
   for (;;) {
+    // Until its last event has played; then the window is left to a person.
+    const bool scripted = v.next_script_event < v.script.size();
     uint32_t width = 0, height = 0;
     framebuffer_size(*v.window, width, height);
     // X11 keeps an iconified window's size, so both the flag and a 0 x 0 framebuffer count.
@@ -171,6 +174,10 @@ void run_loop(Viewer& v) {
                        !v.screenshots.empty() || v.recreate || fly_keys_held(v);
     if (!draws) continue;
     for (const InputEvent& e : events) handle_event(v, e);
+    // The window's title says what the panel's does, for a hidden panel too.
+    const std::string title = "tessera view: " + v.args.scene +
+                              (v.history.dirty() ? " (unsaved edits)" : "");
+    if (title != v.title) set_window_title(*v.window, v.title = title);
     // A frame's time is the time it takes to draw one, whatever the idle time before it.
     fly_held_keys(v, float(std::min(v.frame_ms, 100.0)) * 1e-3f);
     if (window_should_close(*v.window)) break;
@@ -230,7 +237,6 @@ int run_view(const ViewArgs& args) {
   poll_window(*v.window, 0.0);
   v.renderer = std::make_unique<Renderer>(*v.ctx, RendererOptions{.resolve = false});
   v.renderer->set_scene(v.scene);
-  set_window_title(*v.window, "tessera view: " + args.scene);
   catch_stop_signals();
   run_loop(v);
   bool lost = !autosave_if_unsaved(v);

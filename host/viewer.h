@@ -63,6 +63,7 @@ struct Viewer {
   std::chrono::steady_clock::time_point changed_at{};
   bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
   bool exit = false;
+  std::string title;  // the window's, as last set
   std::vector<std::string> screenshots;  // written from the next presented frame
 
   ~Viewer() { release(); }

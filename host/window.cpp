@@ -59,6 +59,7 @@ void on_button(GLFWwindow* handle, int button, int action, int mods) {
     w.last = cursor(handle);
     w.pressed_at = w.last;
     w.held_by_panel = on_panel(w, w.last);
+    w.camera_press = !w.held_by_panel;
   } else if (action == GLFW_RELEASE && button == w.held) {
     if (!w.moved && button == GLFW_MOUSE_BUTTON_LEFT && !w.held_by_panel) {
       InputEvent e;

@@ -25,6 +25,7 @@ struct Window {
   glm::vec2 last{0.0f};
   bool shift = false;
   bool held_by_panel = false;  // the held button was pressed on the panel, which has the drag
+  bool camera_press = false;   // a press off the panel since the viewer last cleared this
   // Set each frame by the viewer: where the overlay's panel was last drawn (empty if it was
   // not), whether one of its popups is open (it takes every press), and whether it has the
   // keyboard. A press is the panel's if the pointer is inside at the time of the press; the
