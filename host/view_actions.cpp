@@ -323,8 +323,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
       if (!e.shift) {
         if (frame_scene(v.orbit, v.scene, aspect_of(v))) camera_moved(v);
       } else if (has_selection(v, "frame")) {
-        if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v)))
-          camera_moved(v);
+        if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v))) camera_moved(v);
       }
       break;
     case GLFW_KEY_HOME:

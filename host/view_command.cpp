@@ -1,7 +1,7 @@
 #include "host/view_command.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cinttypes>
 #include <csignal>
 #include <cstdio>
@@ -103,8 +103,8 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     try {
       if (!reason.empty()) throw Error(reason);
       write_png(path, shot);
-      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, path.c_str(),
-                  shot.width, shot.height);
+      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, path.c_str(), shot.width,
+                  shot.height);
     } catch (const Error& error) {
       std::printf("frame %" PRIu64 ": screenshot %s not written: %s\n", v.frame_number,
                   path.c_str(), error.what());
@@ -124,7 +124,7 @@ void on_signal(int signal) {
 // Ctrl+C and SIGTERM end the session normally (autosave, summary); a second one, with the
 // handler reset, ends the process at once.
 void catch_stop_signals() {
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = on_signal;
   action.sa_flags = SA_RESETHAND;
   sigemptyset(&action.sa_mask);
@@ -175,8 +175,8 @@ void run_loop(Viewer& v) {
     if (!draws) continue;
     for (const InputEvent& e : events) handle_event(v, e);
     // The window's title says what the panel's does, for a hidden panel too.
-    const std::string title = "tessera view: " + v.args.scene +
-                              (v.history.dirty() ? " (unsaved edits)" : "");
+    const std::string title =
+        "tessera view: " + v.args.scene + (v.history.dirty() ? " (unsaved edits)" : "");
     if (title != v.title) set_window_title(*v.window, v.title = title);
     // A frame's time is the time it takes to draw one, whatever the idle time before it.
     fly_held_keys(v, float(std::min(v.frame_ms, 100.0)) * 1e-3f);
@@ -241,8 +241,10 @@ int run_view(const ViewArgs& args) {
   run_loop(v);
   bool lost = !autosave_if_unsaved(v);
   for (const std::string& path : v.screenshots) {
-    std::fprintf(stderr, "tessera view: screenshot %s not written: no frame was presented after "
-                 "it was asked for (the window stayed minimised)\n", path.c_str());
+    std::fprintf(stderr,
+                 "tessera view: screenshot %s not written: no frame was presented after "
+                 "it was asked for (the window stayed minimised)\n",
+                 path.c_str());
     lost = true;
   }
   if (v.frames_presented > 1) {

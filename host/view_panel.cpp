@@ -72,8 +72,7 @@ void draw_material(const PanelInput& in, PanelChanges& changes) {
   // Three number fields need room; a narrow panel shows the swatch, whose picker has them.
   const ImGuiColorEditFlags fields =
       ImGui::CalcItemWidth() < 150.0f ? ImGuiColorEditFlags_NoInputs : ImGuiColorEditFlags_None;
-  changed |=
-      ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float | fields);
+  changed |= ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float | fields);
   changed |= ImGui::SliderFloat("metallic", &m.metallic, 0.0f, 1.0f);
   changed |= ImGui::SliderFloat("roughness", &m.roughness, 0.0f, 1.0f);
   changed |= ImGui::ColorEdit3("emissive", &m.emissive.x,
@@ -235,11 +234,10 @@ PanelChanges draw_view_panel(const PanelInput& in, const FrameSettings& frame, f
   // At most 40% of the window's width (but room for the widgets in a small window), as tall as
   // its content up to the window's height, scrolling inside beyond that.
   constexpr float kMargin = 8.0f;
-  const float panel_width =
-      std::clamp(0.4f * width, std::min(220.0f, width - 2 * kMargin), 460.0f);
+  const float panel_width = std::clamp(0.4f * width, std::min(220.0f, width - 2 * kMargin), 460.0f);
   ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
-  ImGui::SetNextWindowSizeConstraints(
-      ImVec2(panel_width, 0.0f), ImVec2(panel_width, std::max(height - 2 * kMargin, 32.0f)));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(panel_width, 0.0f),
+                                      ImVec2(panel_width, std::max(height - 2 * kMargin, 32.0f)));
   const std::string title = std::string("tessera") + (in.unsaved ? " (unsaved edits)" : "") +
                             "###panel";  // ### keeps the window's identity across titles
   if (ImGui::Begin(title.c_str(), nullptr,

@@ -274,8 +274,7 @@ std::vector<ScriptEvent> parse_view_script(const std::string& text, const std::s
 
 std::vector<ScriptEvent> load_view_script(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw Error("script file '" + path + "' not found");
+  if (!std::filesystem::exists(path, ec)) throw Error("script file '" + path + "' not found");
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error("cannot read script file '" + path + "': " + std::strerror(errno));
   std::stringstream text;

@@ -29,14 +29,14 @@ struct Viewer {
   RenderDefaults render_defaults;  // the scene file's "render" block, written back on save
   std::string description;         // the scene file's "description", written back on save
   FrameSettings frame;
-  OrbitCamera orbit;  // scene.camera is to_camera(orbit) once the camera has moved
+  OrbitCamera orbit;   // scene.camera is to_camera(orbit) once the camera has moved
   Camera home_camera;  // the scene's own, for the Home key
   EditHistory history;
   // The render options at each state of the history (EditHistory::state): a render option
   // edit is an edit of no scene operations, and undo and redo restore the options of the state
   // they reach.
   std::map<uint64_t, RenderOptions> options_at;
-  uint64_t options_drag_state = ~0ull;  // the state the panel's last option edit made
+  uint64_t options_drag_state = ~0ull;             // the state the panel's last option edit made
   std::shared_ptr<const Environment> environment;  // the scene's, kept while switched off
   std::vector<ScriptEvent> script;
   size_t next_script_event = 0;
@@ -63,7 +63,7 @@ struct Viewer {
   std::chrono::steady_clock::time_point changed_at{};
   bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
   bool exit = false;
-  std::string title;  // the window's, as last set
+  std::string title;                     // the window's, as last set
   std::vector<std::string> screenshots;  // written from the next presented frame
 
   ~Viewer() { release(); }

@@ -149,8 +149,7 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
       {"1 jump\n", "s.txt:1: unknown event 'jump'"},
       {"\n1 key\n", "s.txt:2: key: missing key name (key NAME [ctrl] [shift])"},
       {"1 key Tab\n", "s.txt:1: unknown key 'Tab'"},
-      {"1 drag left 1 2 3\n",
-       "s.txt:1: drag: missing y (drag left|middle X0 Y0 X1 Y1 [shift])"},
+      {"1 drag left 1 2 3\n", "s.txt:1: drag: missing y (drag left|middle X0 Y0 X1 Y1 [shift])"},
       {"1 drag up 1 2 3 4\n", "s.txt:1: unknown button 'up'"},
       // A right drag does nothing in the window.
       {"1 drag right 1 2 3 4\n", "s.txt:1: unknown button 'right' (left orbits, middle pans)"},
@@ -496,12 +495,12 @@ TEST_F(View, RenderOptionsAreUndoableEditsSavedInTheRenderBlock) {
   }
   // A 640 x 240 window: the panel is 40% of the width, 256 px from x = 8; the ball is at the
   // centre.
-  const ViewRun run = run_view("0 key S ctrl\n1 tonemap reinhard\n1 tonemap reinhard\n"
-                               "2 exposure 1.5\n3 screenshot " +
-                                   png + "\n3 save " + edited +
-                                   "\n4 key Z ctrl\n5 key Z ctrl\n6 save " + undone +
-                                   "\n6 click 20 20\n6 click 320 120\n7 exit\n",
-                               "--scene " + scene_path + " --size 640x240");
+  const ViewRun run = run_view(
+      "0 key S ctrl\n1 tonemap reinhard\n1 tonemap reinhard\n"
+      "2 exposure 1.5\n3 screenshot " +
+          png + "\n3 save " + edited + "\n4 key Z ctrl\n5 key Z ctrl\n6 save " + undone +
+          "\n6 click 20 20\n6 click 320 120\n7 exit\n",
+      "--scene " + scene_path + " --size 640x240");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("nothing to save"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("tone map reinhard: already so"), std::string::npos) << run.output;
@@ -569,9 +568,8 @@ TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   const std::string scene = write_ball_scene();
   const std::string autosave = output_path("ball.autosave.json");
   std::filesystem::remove(autosave);
-  const ViewRun run =
-      run_view("1 click 32 24\n2 key Delete\n3 exit\n",
-               "--scene " + scene + " --size 64x48 --overlay off");
+  const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 exit\n",
+                               "--scene " + scene + " --size 64x48 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("unsaved edits written to " + autosave), std::string::npos)
       << run.output;
