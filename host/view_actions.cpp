@@ -432,11 +432,12 @@ void handle_event(Viewer& v, const InputEvent& e) {
       handle_key(v, e);
       break;
     case EventKind::drag: {
-      if (scripted_on_panel(v, e)) break;
+      // A right drag does nothing (scripts cannot ask for one).
+      if (e.button == MouseButton::right || scripted_on_panel(v, e)) break;
       const glm::vec2 d = e.to - e.from;
-      if (e.button == MouseButton::middle || (e.button == MouseButton::left && e.shift)) {
+      if (e.button == MouseButton::middle || e.shift) {
         pan(v.orbit, d.x, d.y, viewport_of(v));
-      } else if (e.button == MouseButton::left) {
+      } else {
         orbit(v.orbit, d.x, d.y, viewport_of(v));
       }
       v.pointer = e.to;

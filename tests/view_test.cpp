@@ -277,7 +277,7 @@ TEST_F(View, ScriptedOrbitMovesTheCameraAsComputedByHand) {
       "2 drag left 110 50 110 10\n"
       "4 screenshot " +
           png + "\n4 exit\n",
-      "--scene spheres --size 128x96");
+      "--scene spheres --size 128x96 --overlay off");  // the panel would take the drags
   ASSERT_EQ(run.status, 0) << run.output;
   Camera camera;
   ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
