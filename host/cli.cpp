@@ -1,6 +1,7 @@
 #include "host/cli.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 #include <tuple>
 
@@ -31,6 +32,20 @@ CLI::Validator bench_scene() {
     if (!is_builtin_scene(name) && !is_scene_path(name) && !is_model_path(name) &&
         !is_named_scene(name))
       make_bench_scene(name, 1, 8, 1.0f);
+  });
+}
+
+// --device: what create_context's choose_device accepts (and, for render, the CPU
+// reference), checked here so that a misspelt device is a bad command line (exit status 2).
+CLI::Validator device_choice(bool reference) {
+  return checked_by([reference](const std::string& text) {
+    const bool index = !text.empty() && text.size() <= 9 &&
+                       text.find_first_not_of("0123456789") == std::string::npos;
+    if (index || text == "auto" || text == "lavapipe" || text == "gpu" ||
+        (reference && text == "reference"))
+      return;
+    throw Error("unknown device '" + text + "' (lavapipe, gpu, " +
+                (reference ? "reference, " : "") + "or a device index of `tessera devices`)");
   });
 }
 
@@ -146,7 +161,8 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "discrete GPU if there is one, else lavapipe),\n"
                  "or reference: the CPU reference renderer in\n"
                  "double precision")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(true));
   app.add_option("--exposure", a.frame.exposure_ev,
                  "exposure in stops, applied before tone\nmapping, -64..64 (default 0)")
       ->type_name("EV")
@@ -332,7 +348,8 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
       ->check(builtin_scene());
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(false));
   add_size(app, a.frame.width, a.frame.height,
            "window size in pixels at the start (default:\nthe scene's, else 512x512)");
   add_choice(app, "--vsync", a.vsync, {{"on", true}, {"off", false}},
@@ -342,7 +359,12 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "replay input events at frame numbers from\n"
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(checked_by([](const std::string& path) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec))
+          throw Error("script file '" + path + "' not found");
+      }));
   add_choice(app, "--present", a.present,
              {{"auto", PresentPath::automatic},
               {"copy", PresentPath::copy},
@@ -361,6 +383,7 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
 }
 
 void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
@@ -525,6 +548,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.tonemap_given = render->count("--tonemap") > 0;
   apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
+  r.view_given = render->count("--view") > 0;
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
   {

@@ -35,7 +35,8 @@ struct RenderArgs {
   bool strict = false;  // --strict: unknown keys in a scene file are errors
   // Which frame options the command line gave: the others come from the scene file's
   // "render" block when it has them.
-  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false;
+  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
+       view_given = false;
 };
 
 struct BenchArgs {
@@ -73,6 +74,7 @@ struct ViewArgs {
   std::string script;  // --script: input events replayed at frame numbers (host/view_script.h)
   bool overlay = true;
   bool validate = false;
+  bool strict = false;  // --strict: unknown keys in a scene file are errors
   bool size_given = false;
   PresentPath present = PresentPath::automatic;             // --present
   SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format

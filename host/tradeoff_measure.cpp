@@ -36,7 +36,7 @@ Scene load_scene(const TradeoffArgs& args, FrameSettings& frame) {
                 args.scene + "'");
   }
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  apply_render_defaults(file.render, frame, args.size_given, false, false, args.brdf_given);
+  apply_render_defaults(file.render, frame, args.size_given, false, false, args.brdf_given, true);
   return std::move(file.scene);
 }
 
