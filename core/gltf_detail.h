@@ -3,7 +3,9 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -40,6 +42,16 @@ const nlohmann::json& member_object(const nlohmann::json& o, const char* key);
 /// Fails unless 0 <= index < count: `where` holds an index into the file's `array`.
 void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
                  const char* array);
+
+/// The JSON document of `text` with only the members that the importer reads from it (asset,
+/// extensionsUsed, extensionsRequired, scene, scenes, nodes, cameras, materials, textures,
+/// samplers, images, buffers, extensions), after a scan of the whole text that checks its syntax
+/// and check_document's property types without building the rest (accessors, bufferViews and
+/// meshes, the bulk of a large file, are read from TinyGLTF's model). Empty when the text has an
+/// error or anything the scan does not vouch for: the caller then parses the whole text with
+/// nlohmann::json and check_document, which name the error. Given a document, check_document
+/// gives the same result on it as on the whole text's.
+std::optional<nlohmann::json> scan_document(std::string_view text);
 
 /// Checks the JSON document before TinyGLTF reads it (TinyGLTF ignores properties of the wrong
 /// type): the type of every property Tessera reads, extensionsRequired, and that each external
