@@ -2,6 +2,7 @@
 // Internals of the glTF 2.0 importer (core/gltf_*.cpp), not a public interface.
 
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <string>
@@ -72,12 +73,27 @@ struct AccessorValues {
   std::vector<double> values;
   std::vector<float> floats;
   std::vector<uint32_t> uints;
+  // Tightly packed float values left in the model's buffer, which outlives this, and read in
+  // place (PackedFloats) instead of being copied into `floats`; null for the others.
+  const unsigned char* packed = nullptr;
 };
 
-/// f(p) with p a pointer to the array of `v` that holds its values (const double*, const
-/// float* or const uint32_t*).
+/// Element i of tightly packed floats in a buffer: the float at byte 4 i, loaded with memcpy
+/// (the buffer holds bytes, not float objects).
+struct PackedFloats {
+  const unsigned char* bytes;
+  float operator[](size_t i) const {
+    float v;
+    std::memcpy(&v, bytes + 4 * i, sizeof v);
+    return v;
+  }
+};
+
+/// f(values) with `values` indexable as the flat array of `v`'s values: PackedFloats, or a
+/// const float*, const uint32_t* or const double* to the array of `v` that holds them.
 template <typename F>
 decltype(auto) visit(const AccessorValues& v, F&& f) {
+  if (v.packed) return f(PackedFloats{v.packed});
   if (!v.floats.empty()) return f(v.floats.data());
   if (!v.uints.empty()) return f(v.uints.data());
   return f(v.values.data());
