@@ -48,7 +48,10 @@ namespace {
 // which cases ran before: tinygltf alone on 2CylinderEngine.glb took 1.9 ms in one process and
 // 3.1 ms in another. Setting the threshold to glibc's initial 128 KiB turns the adjustment off:
 // every large buffer gets fresh pages in every iteration, as in a process that loads one file.
-const int kFixedMmapThreshold = mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+// Malloc settings given through GLIBC_TUNABLES are left alone, so that the same cases can be
+// timed with the heap kept warm (docs/performance.md).
+const int kFixedMmapThreshold =
+    std::getenv("GLIBC_TUNABLES") ? 0 : mallopt(M_MMAP_THRESHOLD, 128 * 1024);
 
 struct BenchFile {
   std::string path;
