@@ -641,6 +641,12 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       stats.triangles_submitted = counters[0].lod_total;
       if (counters[0].lod_total > uint64_t(batches) * s.batch_triangles) {
         s.lod_triangles = counters[0].lod_total;
+        // The batch size came from the scene's own meshes, which the levels may outnumber many
+        // times over (one large sphere: 960 triangles, its level 16,128). Every batch costs a
+        // full sequence of dependent passes, so grow the batch instead of adding batches; the
+        // raster buffer then grows on demand below, or the batch halves again at its limit.
+        s.batch_triangles = uint32_t(std::min<uint64_t>(
+            std::max<uint64_t>(s.lod_triangles, s.batch_triangles), s.max_batch()));
         continue;  // more batches
       }
       s.lod_triangles = counters[0].lod_total;

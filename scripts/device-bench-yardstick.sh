@@ -14,17 +14,9 @@ out=${OUT:?OUT must name the output folder (the device tool sets it)}
 size=${SIZE:-1920x1080}
 objects=${OBJECTS:-1,10,49,100,1000,10000,100000}
 tag=yardstick_${size}
-bin=$PWD/.device-build
-[[ -x $bin/tessera && -x $bin/tessera_minimal_graphics ]] ||
-  { echo "no staged binaries in $bin: run scripts/stage-device.sh first" >&2; exit 1; }
-
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export LD_LIBRARY_PATH=$bin
-nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-if ! "$bin/tessera" devices 2>/dev/null | grep -qi nvidia && [[ -f $nvidia_icd ]]; then
-  export VK_DRIVER_FILES=$nvidia_icd
-fi
+source scripts/device-env.sh
+[[ -x $bin/tessera_minimal_graphics ]] ||
+  { echo "no staged tessera_minimal_graphics in $bin: run scripts/stage-device.sh" >&2; exit 1; }
 "$bin/tessera" devices | tee "$out/devices.txt"
 
 # Clocks up before anything is timed (a GPU starts at idle clocks): a few seconds of heavy
