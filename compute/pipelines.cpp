@@ -129,6 +129,10 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size) {
     }
   }
   for (const PipelineInfo& info : kPipelines) {
+    // The generic shading pipelines are the largest shaders (each costs lavapipe about as much
+    // as all the others together) and serve only RendererOptions::specialize_lights off:
+    // shade_pipeline builds them on first use.
+    if (std::string_view(info.shader) == "shade") continue;
     p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, p.layout, info.shader, info.spec);
   }
   return p;

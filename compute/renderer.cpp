@@ -546,7 +546,13 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
       generic = Pipeline::shade_blinn_phong;
       break;
   }
-  if (settings.samples == 1) return s.pipelines[generic];
+  if (settings.samples == 1) {
+    VkPipeline& pipeline = s.pipelines.pipelines[size_t(generic)];  // null until first used
+    const PipelineInfo& info = kPipelines[size_t(generic)];
+    if (!pipeline)
+      pipeline = create_compute_pipeline(s.ctx, s.pipelines.layout, info.shader, info.spec);
+    return pipeline;
+  }
   return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader,
                           kPipelines[size_t(generic)].spec, settings.samples);
 }

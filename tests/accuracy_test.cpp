@@ -15,8 +15,15 @@ class Accuracy : public test::VulkanTest {};
 TEST_F(Accuracy, BuiltinScenes) {
   for (const auto& info : builtin_scenes()) {
     const Scene scene = make_builtin_scene(info.name);
+    // With an environment only ownership and finiteness are held to bars (below): ownership is
+    // the reference's rasterization and finiteness the compute path's image, neither of which
+    // depends on the reference's shading. So its Monte Carlo integral takes 1 direction per
+    // pixel instead of 1024, which was most of this test's time (the printed HDR and 8-bit
+    // errors of that scene then measure against a noisy reference).
+    const uint32_t environment_samples = scene.environment ? 1 : 1024;
     test::AccuracyReport r =
-        test::compare_with_reference(context(), scene, 512, 512, std::string(info.name));
+        test::compare_with_reference(context(), scene, 512, 512, std::string(info.name), {},
+                                     Brdf::classic, 1, environment_samples);
     if (scene.environment) {
       // The split-sum is an approximation of the reference's Monte Carlo integral, with its
       // own bars (ibl_test.cpp); here only what the rasterizer decides is held to these.

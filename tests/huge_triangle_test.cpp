@@ -5,6 +5,8 @@
 // exactly once (or, for closed meshes, as often by front faces as by back faces), which
 // follows from the geometry alone: the expected values need no renderer.
 #include <cmath>
+#include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -33,11 +35,16 @@ class HugeTriangles : public test::VulkanTest {
     const std::pair<const char*, uint32_t> paths[] = {
         {"default split", RendererOptions{}.small_triangle_max_area}, {"all per-tile", 0u}};
     for (const auto& [name, small] : paths) {
-      RendererOptions o;
-      o.debug_coverage = true;
-      o.cull = cull;
-      o.small_triangle_max_area = small;
-      out.push_back({name, render(scene, kSide, kSide, o).coverage});
+      // One renderer per path and culling mode, kept for the test's scenes.
+      std::unique_ptr<Renderer>& renderer = renderers_[{small, cull}];
+      if (!renderer) {
+        RendererOptions o;
+        o.debug_coverage = true;
+        o.cull = cull;
+        o.small_triangle_max_area = small;
+        renderer = std::make_unique<Renderer>(context(), o);
+      }
+      out.push_back({name, render(*renderer, scene, kSide, kSide, 1, true).coverage});
     }
     ReferenceSettings rs;
     rs.frame.width = rs.frame.height = kSide;
@@ -46,6 +53,13 @@ class HugeTriangles : public test::VulkanTest {
     return out;
   }
   static constexpr uint32_t kSide = 256;
+  void TearDown() override {
+    renderers_.clear();  // before the fixture checks that the device is destroyed cleanly
+    VulkanTest::TearDown();
+  }
+
+ private:
+  std::map<std::pair<uint32_t, CullMode>, std::unique_ptr<Renderer>> renderers_;
 };
 
 // Pixels covered twice or more and pixels not covered, and the first of them (x + y * 256).

@@ -73,6 +73,11 @@ glm::dvec3 pixel_ray(const Camera& c, uint32_t w, uint32_t h, uint32_t x, uint32
 // prefiltered environment being 1 everywhere. With energy compensation, 1 at every roughness.
 TEST_F(ImageBasedLighting, WhiteFurnace) {
   const uint32_t size = 96;
+  RendererOptions options;
+  options.environment.specular_size = 16;
+  options.environment.specular_samples = 32;
+  Renderer renderer(context(),
+                    options);  // one for every case: its pipelines cost more than the frames
   for (Brdf variant : {Brdf::classic, Brdf::filament}) {
     for (double roughness : {0.25, 0.5, 0.75, 1.0}) {
       Scene scene;
@@ -91,10 +96,6 @@ TEST_F(ImageBasedLighting, WhiteFurnace) {
         const int i = std::min(int(p), 31);
         return table[i] + (table[i + 1] - table[i]) * (p - i);
       };
-      RendererOptions options;
-      options.environment.specular_size = 16;
-      options.environment.specular_samples = 32;
-      Renderer renderer(context(), options);
       renderer.set_scene(scene);
       FrameSettings fs;
       fs.width = fs.height = size;

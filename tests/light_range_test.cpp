@@ -139,13 +139,13 @@ std::vector<Case> cases() {
 class LightRange : public test::VulkanTest {};
 
 TEST_F(LightRange, HeadOnPlaneMatchesHandDerivedRadiance) {
+  Renderer renderer(context());  // one for every case: its pipelines cost more than the frames
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     const Scene scene = lit_plane(c.light);
     const double expected = head_on_brdf(0.8) * c.irradiance;
     const size_t centre = size_t(kSize / 2) * kSize + kSize / 2;
 
-    Renderer renderer(context());
     renderer.set_scene(scene);
     renderer.render({.width = kSize, .height = kSize, .exposure_ev = c.exposure_ev});
     const ImageF hdr = renderer.read_hdr();

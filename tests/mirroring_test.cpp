@@ -10,9 +10,12 @@
 // The compute path, the hardware baseline and the reference renderer are each checked on
 // their own against these expectations.
 #include <cmath>
+#include <iterator>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -32,14 +35,15 @@ class Mirroring : public test::VulkanTest {};
 // Visibility value of an empty pixel (docs/architecture.md).
 constexpr uint64_t kEmpty = ~uint64_t(0);
 
-// What the compute path and the hardware baseline make of a scene with one renderer (building
-// pipelines once per culling mode keeps the test short on lavapipe).
+// What the compute path and the hardware baseline make of a scene with one renderer and its
+// baseline (building pipelines once per culling mode keeps the test short on lavapipe).
 struct Images {
   ImageF hdr, hardware_hdr;
   std::vector<uint64_t> visibility;
   uint64_t culled_backface = 0;
 };
-Images render_both(Renderer& renderer, const Scene& scene, uint32_t w, uint32_t h) {
+Images render_both(Renderer& renderer, HardwareBaseline& baseline, const Scene& scene, uint32_t w,
+                   uint32_t h) {
   renderer.set_scene(scene);
   FrameSettings fs;
   fs.width = w;
@@ -48,7 +52,7 @@ Images render_both(Renderer& renderer, const Scene& scene, uint32_t w, uint32_t 
   out.culled_backface = renderer.render(fs).culled_backface;
   out.hdr = renderer.read_hdr();
   out.visibility = renderer.read_visibility();
-  HardwareBaseline(renderer).render(fs);
+  baseline.render(fs);
   out.hardware_hdr = renderer.read_hdr();
   return out;
 }
@@ -157,14 +161,15 @@ size_t owner_mask_differences(const ReferenceFrame& a, const ReferenceFrame& b) 
 
 TEST_F(Mirroring, MirroredCubeLooksLikeTheCubeOnEveryPathAndAxis) {
   const uint32_t w = 96, h = 96;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (CullMode cull : kCullModes) {
+  for (CullMode cull : kCullModes) {
+    Renderer renderer(context(), culling(cull));
+    HardwareBaseline baseline(renderer);
+    for (int axis = 0; axis < 3; ++axis) {
       const std::string what = "mirror axis " + std::to_string(axis) + ", " + cull_name(cull);
       const Scene plain = cube_scene(glm::mat4(1.0f));
       const Scene mirrored = cube_scene(axis_mirror(axis));
-      Renderer renderer(context(), culling(cull));
-      const Images a = render_both(renderer, plain, w, h);
-      const Images b = render_both(renderer, mirrored, w, h);
+      const Images a = render_both(renderer, baseline, plain, w, h);
+      const Images b = render_both(renderer, baseline, mirrored, w, h);
       // Seen from outside on every axis, the cube shows 3 faces (6 triangles): culling keeps
       // those (back), the 6 others (front), or all 12 (none).
       const uint64_t culled = cull == CullMode::none ? 0 : 6;
@@ -204,6 +209,13 @@ TEST_F(Mirroring, MirrorWithRotationAndScaleMatchesTheMirroredMesh) {
                                                        {"z", {1, 1, -1}},
                                                        {"xyz", {-1, -1, -1}},
                                                        {"xy (half turn)", {-1, -1, 1}}};
+  // One renderer and baseline per culling mode, for every mirror.
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  std::vector<std::unique_ptr<HardwareBaseline>> baselines;
+  for (CullMode cull : kCullModes) {
+    renderers.push_back(std::make_unique<Renderer>(context(), culling(cull)));
+    baselines.push_back(std::make_unique<HardwareBaseline>(*renderers.back()));
+  }
   for (const auto& [name, diagonal] : mirrors) {
     const glm::mat4 m = glm::scale(glm::mat4(1.0f), diagonal);
     const bool det_negative = diagonal.x * diagonal.y * diagonal.z < 0.0f;
@@ -212,11 +224,11 @@ TEST_F(Mirroring, MirrorWithRotationAndScaleMatchesTheMirroredMesh) {
     const Mesh reversed = det_negative ? mirrored_mesh(mesh, m) : mesh;
     const Scene a = bumpy_scene(mesh, rs * m);
     const Scene b = bumpy_scene(reversed, det_negative ? rs : rs * m);
-    for (CullMode cull : kCullModes) {
+    for (size_t c = 0; c < std::size(kCullModes); ++c) {
+      const CullMode cull = kCullModes[c];
       const std::string what = std::string("mirror ") + name + ", " + cull_name(cull);
-      Renderer renderer(context(), culling(cull));
-      const Images fa = render_both(renderer, a, w, h);
-      const Images fb = render_both(renderer, b, w, h);
+      const Images fa = render_both(*renderers[c], *baselines[c], a, w, h);
+      const Images fb = render_both(*renderers[c], *baselines[c], b, w, h);
       EXPECT_EQ(fa.visibility, fb.visibility) << what;
       EXPECT_EQ(fa.culled_backface, fb.culled_backface) << what;
       EXPECT_EQ(hdr_differences(fa.hdr, fb.hdr, kHalfTolerance), 0u) << what;
@@ -254,8 +266,9 @@ TEST_F(Mirroring, MixedInstancesOfOneMesh) {
   b.objects = {{1, 0, places[0]}, {0, 0, places[1]}, {1, 0, places[2]}};
   for (CullMode cull : kCullModes) {
     Renderer renderer(context(), culling(cull));
-    const Images fa = render_both(renderer, a, w, h);
-    const Images fb = render_both(renderer, b, w, h);
+    HardwareBaseline baseline(renderer);
+    const Images fa = render_both(renderer, baseline, a, w, h);
+    const Images fb = render_both(renderer, baseline, b, w, h);
     EXPECT_EQ(mask_differences(fa.visibility, fb.visibility), 0u) << cull_name(cull);
     EXPECT_EQ(hdr_differences(fa.hdr, fb.hdr, kHalfTolerance), 0u) << cull_name(cull);
     EXPECT_EQ(hdr_differences(fa.hardware_hdr, fb.hardware_hdr, kHalfTolerance), 0u)
@@ -273,6 +286,8 @@ TEST_F(Mirroring, NormalMapsOfMirroredObjectsKeepTheirRelief) {
   const glm::mat4 r = glm::rotate(glm::mat4(1.0f), -1.0f, glm::vec3(1.0f, 0.0f, 0.0f));
   // Mirrors about x and y flip the tangent and the bitangent respectively; a mirror about z
   // would only turn this plane (at z = 0) away from the camera.
+  Renderer renderer(context(), culling(CullMode::back));
+  HardwareBaseline baseline(renderer);
   for (int axis = 0; axis < 2; ++axis) {
     const glm::mat4 m = axis_mirror(axis);
     auto scene = [&](const Mesh& mesh, const glm::mat4& transform) {
@@ -291,9 +306,8 @@ TEST_F(Mirroring, NormalMapsOfMirroredObjectsKeepTheirRelief) {
     const Mesh cpu = mirrored_mesh(plane, m);
     const Scene b = scene(cpu, r);
     const std::string what = "mirror axis " + std::to_string(axis);
-    Renderer renderer(context(), culling(CullMode::back));
-    const Images fa = render_both(renderer, a, w, h);
-    const Images fb = render_both(renderer, b, w, h);
+    const Images fa = render_both(renderer, baseline, a, w, h);
+    const Images fb = render_both(renderer, baseline, b, w, h);
     size_t covered = 0;
     for (uint64_t v : fa.visibility) covered += v != kEmpty;
     EXPECT_GT(covered, 1500u) << what;

@@ -59,12 +59,14 @@ struct Result {
   int ldr;
 };
 
-Result render_centre(test::VulkanTest& t, const Scene& scene, float ev, bool hardware) {
-  Renderer renderer(t.context());
+// `baseline` draws with `renderer`; a test keeps one of each for all its scenes, as building
+// their pipelines costs lavapipe more than the frames.
+Result render_centre(Renderer& renderer, HardwareBaseline& baseline, const Scene& scene, float ev,
+                     bool hardware) {
   renderer.set_scene(scene);
   const FrameSettings fs{.width = kSize, .height = kSize, .exposure_ev = ev};
   if (hardware) {
-    HardwareBaseline(renderer).render(fs);
+    baseline.render(fs);
   } else {
     renderer.render(fs);
   }
@@ -83,6 +85,8 @@ Result reference_centre(const Scene& scene, float ev) {
 // exposed 0.942, displayed 230 (it was 206: the radiance was stored as 65504 first). At -16 EV
 // with half the irradiance the exposed value is the same.
 TEST_F(PreExposure, SunlightInPhysicalUnits) {
+  Renderer renderer(context());
+  HardwareBaseline baseline(renderer);
   for (auto [irradiance, ev] : {std::pair{4e5f, -17.0f}, std::pair{2e5f, -16.0f}}) {
     SCOPED_TRACE(ev);
     const double radiance = head_on_radiance(irradiance);
@@ -90,7 +94,7 @@ TEST_F(PreExposure, SunlightInPhysicalUnits) {
     EXPECT_EQ(expected_ldr, 230);  // the figure, from the same formulas
     for (bool hardware : {false, true}) {
       SCOPED_TRACE(hardware ? "hardware baseline" : "compute");
-      const Result r = render_centre(*this, sunlit_plane(irradiance), ev, hardware);
+      const Result r = render_centre(renderer, baseline, sunlit_plane(irradiance), ev, hardware);
       EXPECT_EQ(r.ldr, expected_ldr);
       EXPECT_NEAR(r.hdr, radiance, 1e-3 * radiance);  // true radiance, fp16 precision
     }
@@ -116,10 +120,13 @@ TEST_F(PreExposure, HdrRangeFollowsTheExposure) {
       {1e-2f, -20.0f, 0.0},                     // 3e-3 * 2^-20 < 6e-8
       {2e9f, -20.0f, head_on_radiance(2e9)},    // 6.2e8: far above fp16, kept
   };
+  Renderer renderer(context());
+  HardwareBaseline baseline(renderer);
   for (const Case& c : cases) {
     SCOPED_TRACE(testing::Message() << c.irradiance << " W/m^2 at " << c.ev << " EV");
     for (bool hardware : {false, true}) {
-      const Result r = render_centre(*this, sunlit_plane(c.irradiance), c.ev, hardware);
+      const Result r =
+          render_centre(renderer, baseline, sunlit_plane(c.irradiance), c.ev, hardware);
       EXPECT_NEAR(r.hdr, c.expected_hdr, 1e-3 * c.expected_hdr) << hardware;
     }
     // The reference models the clamp, not fp16's rounding or subnormals.

@@ -29,6 +29,11 @@ void VulkanTest::TearDown() {
 VulkanTest::Frame VulkanTest::render(const Scene& scene, uint32_t width, uint32_t height,
                                      RendererOptions options, uint32_t samples) {
   Renderer renderer(*ctx_, options);
+  return render(renderer, scene, width, height, samples, options.debug_coverage);
+}
+
+VulkanTest::Frame VulkanTest::render(Renderer& renderer, const Scene& scene, uint32_t width,
+                                     uint32_t height, uint32_t samples, bool coverage) {
   renderer.set_scene(scene);
   FrameSettings settings;
   settings.width = width;
@@ -39,7 +44,7 @@ VulkanTest::Frame VulkanTest::render(const Scene& scene, uint32_t width, uint32_
   f.hdr = renderer.read_hdr();
   f.ldr = renderer.read_ldr();
   f.visibility = renderer.read_visibility();
-  if (options.debug_coverage) f.coverage = renderer.read_coverage();
+  if (coverage) f.coverage = renderer.read_coverage();
   return f;
 }
 

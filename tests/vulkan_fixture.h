@@ -34,6 +34,12 @@ class VulkanTest : public ::testing::Test {
   Frame render(const Scene& scene, uint32_t width, uint32_t height, RendererOptions options = {}) {
     return render(scene, width, height, options, 1);
   }
+  /// The same with `renderer` and its options, which keeps the pipelines it built: building
+  /// them costs lavapipe more than rendering a small frame, so tests that render many scenes
+  /// with one set of options reuse one renderer. `coverage`: the renderer was made with
+  /// RendererOptions::debug_coverage, and Frame::coverage is read.
+  static Frame render(Renderer& renderer, const Scene& scene, uint32_t width, uint32_t height,
+                      uint32_t samples = 1, bool coverage = false);
 
  private:
   std::unique_ptr<Context> ctx_;

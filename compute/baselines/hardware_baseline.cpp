@@ -160,9 +160,10 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   if (!pass_) pass_ = create_pass(ctx);
   // Mirrored objects need the opposite front face and double-sided ones no culling: Vulkan 1.2
   // has no dynamic state for either. Variant v: bit 0 mirrored, bit 1 double-sided. Each is
-  // specialized as the compute path's shading pass is for this frame (frame.shading).
-  VkPipeline pipelines[4];
-  for (int v = 0; v < 4; ++v) {
+  // specialized as the compute path's shading pass is for this frame (frame.shading). Only the
+  // variants the scene's objects use are built: each costs lavapipe about as much as a frame.
+  VkPipeline pipelines[4] = {};
+  auto build_variant = [&](uint32_t v) {
     const int mirrored = v & 1, double_sided = v >> 1;
     PipelineKey key{};
     std::memcpy(key.data(), &frame.shading, sizeof(frame.shading));
@@ -185,7 +186,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
       pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
     }
     pipelines[v] = pipeline;
-  }
+  };
   ensure_targets(frame.images_generation, frame.width, frame.height);
   const bool timestamps = ctx.timestamp_valid_bits > 0;
   if (timestamps && !queries_) {
@@ -214,6 +215,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     } else {
       draws.push_back(
           {o.first_index, o.triangle_count * 3, o.base_vertex, slot, 1, variant, o.mesh});
+      if (!pipelines[variant]) build_variant(variant);
     }
   }
 
