@@ -16,6 +16,7 @@
 // added_peak_MB, the peak during the case above the resident memory at its start (the kernel's
 // high-water mark reset through /proc/self/clear_refs after malloc_trim), which is what the
 // reader itself needed.
+// Large allocations always get fresh pages (kFixedMmapThreshold), whatever ran before.
 // Times are process CPU time (MeasureProcessCPUTime): the importers use several threads, and
 // the machine may be shared, so wall time would mislead.
 #include <malloc.h>
@@ -41,6 +42,16 @@
 #include "core/scene_file.h"
 
 namespace {
+
+// glibc raises its mmap threshold to the size of each large block freed, so whether a case's
+// megabyte-sized buffers get fresh pages (a page fault per 4 KiB) or reuse freed heap depended on
+// which cases ran before: tinygltf alone on 2CylinderEngine.glb took 1.9 ms in one process and
+// 3.1 ms in another. Setting the threshold to glibc's initial 128 KiB turns the adjustment off:
+// every large buffer gets fresh pages in every iteration, as in a process that loads one file.
+// Malloc settings given through GLIBC_TUNABLES are left alone, so that the same cases can be
+// timed with the heap kept warm (docs/performance.md).
+const int kFixedMmapThreshold =
+    std::getenv("GLIBC_TUNABLES") ? 0 : mallopt(M_MMAP_THRESHOLD, 128 * 1024);
 
 struct BenchFile {
   std::string path;

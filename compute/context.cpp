@@ -107,6 +107,10 @@ std::string missing_features(VkPhysicalDevice device) {
   features.pNext = &v12;
   vkGetPhysicalDeviceFeatures2(device, &features);
   if (!features.features.shaderInt64) add("shaderInt64 (64-bit integers in shaders)");
+  // The HDR image is written without a format so that one shader serves fp16 and fp32
+  // (shaders/bindings.glsl).
+  if (!features.features.shaderStorageImageWriteWithoutFormat)
+    add("shaderStorageImageWriteWithoutFormat (storing to an image of any format)");
   VkPhysicalDeviceSubgroupProperties subgroup{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -308,6 +312,7 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &v12;
   features.features.shaderInt64 = VK_TRUE;
+  features.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
   VkPhysicalDeviceFeatures available{};
   vkGetPhysicalDeviceFeatures(ctx->physical_device, &available);
   ctx->multi_draw_indirect = available.multiDrawIndirect && available.drawIndirectFirstInstance;

@@ -51,6 +51,7 @@ struct Specialization {
   uint32_t samples = 1;  // per pixel (FrameSettings::samples); others are built on first use
   VkBool32 output_bgra = VK_FALSE;
   VkBool32 lod = VK_FALSE;
+  uint32_t tile_size = TS_TILE_SIZE;                         // RendererOptions::tile_size
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -71,7 +72,7 @@ enum class Dispatch {
   per_batch_triangle,  // one thread per triangle of the batch, `group_size` per workgroup
   per_object,          // one thread per object, `group_size` per workgroup
   per_pixel,           // `group_size` x `group_size` pixels per workgroup
-  per_tile,            // one workgroup per TS_TILE_SIZE^2 screen tile
+  per_tile,            // one workgroup per screen tile (RendererOptions::tile_size)
   indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
 };
 
@@ -226,7 +227,8 @@ enum class Source {
   frame_constants,  // the GpuFrame uniform buffer, written before each frame
   scene,            // an array of the scene, uploaded by Renderer::set_scene
   environment,      // a buffer or sampled image of EnvironmentGpu (environment_gpu.h)
-  output_image,     // the HDR (RGBA16F) or display (RGBA8) storage image, sized by the frame
+  output_image,     // the HDR (RGBA16F or RGBA32F; stored, or sampled by the resolve pass) or
+                    // display (RGBA8) image, sized by the frame
   sized,            // a buffer the renderer allocates by `size` below
 };
 
@@ -304,6 +306,7 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_LOD_SUMS, kStorageBuffer, Source::sized, Scale::lod_groups, 4},
     {TS_BINDING_LOD_DRAWS, kStorageBuffer, Source::sized, Scale::objects_if_lod_draws,
      sizeof(VkDrawIndexedIndirectCommand), 0, Clear::never, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
+    {TS_BINDING_HDR_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::output_image},
 };
 
 constexpr bool binding_table_is_complete() {
@@ -314,7 +317,8 @@ constexpr bool binding_table_is_complete() {
         b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     if (b.source == Source::sized && (!buffer || b.bytes == 0)) return false;
     if (b.source != Source::sized && (b.bytes != 0 || b.clear != Clear::never)) return false;
-    if (b.source == Source::output_image && b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
+    if (b.source == Source::output_image && b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE &&
+        b.binding != TS_BINDING_HDR_TEXTURE)
       return false;
   }
   return std::size(kBindings) == TS_BINDING_COUNT;

@@ -80,12 +80,37 @@ uint32_t view_id(View v) {
   return TS_VIEW_SHADED;
 }
 
+// Throws Error unless the device's workgroups hold a tile of `tile_size`^2 threads.
+void check_tile_size(const Context& ctx, uint32_t tile_size) {
+  validate_tile_size(tile_size);
+  const VkPhysicalDeviceLimits& l = ctx.properties.limits;
+  if (tile_size * tile_size > l.maxComputeWorkGroupInvocations ||
+      tile_size > l.maxComputeWorkGroupSize[0] || tile_size > l.maxComputeWorkGroupSize[1]) {
+    throw Error("tile size " + std::to_string(tile_size) + " needs workgroups of " +
+                std::to_string(tile_size) + "x" + std::to_string(tile_size) +
+                " threads, more than this device's maxComputeWorkGroupInvocations (" +
+                std::to_string(l.maxComputeWorkGroupInvocations) + ")");
+  }
+}
+
+VkFormat hdr_vk_format(HdrFormat format) {
+  return format == HdrFormat::fp32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+}
+
 }  // namespace
+
+void validate_tile_size(uint32_t tile_size) {
+  // 32 (1024 threads a tile) gave other images than 16 on lavapipe at 4 samples per pixel with
+  // every triangle binned (docs/architecture.md, "Tile size"): refused until that is explained.
+  if (tile_size != 8 && tile_size != 16)
+    throw Error("tile size " + std::to_string(tile_size) + " is not 8 or 16");
+}
 
 Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
-  s_->pipelines = create_pipelines(ctx);
+  check_tile_size(ctx, options.tile_size);
+  s_->pipelines = create_pipelines(ctx, options.tile_size);
 
   constexpr VkDescriptorType kTypes[] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
@@ -320,7 +345,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
 
 namespace {
 
-void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples) {
+void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples,
+                      uint32_t tile_size) {
   const VkPhysicalDeviceLimits& l = ctx.properties.limits;
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width == 0 || height == 0) throw Error("image size " + size + " is empty");
@@ -328,6 +354,11 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint3
   if (width > max_side || height > max_side) {
     throw Error("image size " + size + " is over the largest side of " + std::to_string(max_side) +
                 " px");
+  }
+  if (div_up(std::max(width, height), tile_size) > TS_MAX_TILES_PER_SIDE) {
+    throw Error("image size " + size + " is over the largest side of " +
+                std::to_string(TS_MAX_TILES_PER_SIDE * tile_size) + " px that tiles of " +
+                std::to_string(tile_size) + " px hold");
   }
   const uint64_t vis_bytes = uint64_t(width) * height * samples * sizeof(uint64_t);
   if (vis_bytes > l.maxStorageBufferRange) {
@@ -411,14 +442,16 @@ constexpr bool has_clear(Clear when) {
 
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
-  check_frame_size(ctx, settings.width, settings.height, settings.samples);
-  if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples)
+  check_frame_size(ctx, settings.width, settings.height, settings.samples, s.options.tile_size);
+  if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples &&
+      settings.hdr_format == s.hdr_format)
     return false;
   s.width = settings.width;
   s.height = settings.height;
   s.samples = settings.samples;
-  s.tiles_x = div_up(s.width, TS_TILE_SIZE);
-  s.tiles_y = div_up(s.height, TS_TILE_SIZE);
+  s.hdr_format = settings.hdr_format;
+  s.tiles_x = div_up(s.width, s.options.tile_size);
+  s.tiles_y = div_up(s.height, s.options.tile_size);
   for (const BindingInfo& b : kBindings) {
     if (b.source != Source::sized || !sized_by_frame(b.scale)) continue;
     Buffer& buffer = s.buffer(b.binding);
@@ -428,9 +461,10 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   }
   destroy_image(ctx, s.hdr);
   destroy_image(ctx, s.ldr);
-  // A copy destination too: the hardware baseline copies its colour attachment into it.
-  s.hdr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R16G16B16A16_SFLOAT,
-                               VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  // A copy destination too: the hardware baseline copies its colour attachment into it. Sampled
+  // by the resolve pass (TS_BINDING_HDR_TEXTURE).
+  s.hdr = create_storage_image(ctx, s.width, s.height, hdr_vk_format(s.hdr_format),
+                               VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
   s.ldr = create_storage_image(ctx, s.width, s.height, VK_FORMAT_R8G8B8A8_UNORM);
   s.images_generation++;
   s.descriptors_dirty = true;
@@ -736,6 +770,9 @@ void Renderer::update_descriptors() {
         b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
       VkDescriptorImageInfo image{VK_NULL_HANDLE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL};
       if (b.binding == TS_BINDING_HDR_IMAGE) image.imageView = s.hdr.view;
+      // texelFetch ignores a sampler's filtering and addressing: any sampler serves.
+      if (b.binding == TS_BINDING_HDR_TEXTURE)
+        image = {s.env.cube_sampler, s.hdr.view, image.imageLayout};
       if (b.binding == TS_BINDING_LDR_IMAGE) image.imageView = s.ldr.view;
       if (b.binding == TS_BINDING_ENV_MAP) {
         image = {s.env.map_sampler, s.env.map.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -796,7 +833,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .lod_scale = float(lod_pixels_per_unit(camera, s.width, s.height) /
                                            double(settings.lod_error_px)),
                         .batch_count = s.frame_batches,
-                        .batch_triangles = s.batch_triangles};
+                        .batch_triangles = s.batch_triangles,
+                        .hdr_max = float(hdr_max(settings.hdr_format))};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -980,14 +1018,18 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
 ImageF Renderer::read_hdr() const {
   const State& s = *s_;
   TESSERA_CHECK(s.hdr.image != VK_NULL_HANDLE);
-  std::vector<uint16_t> halves = download_image<uint16_t>(s.ctx, s.hdr, 4);
   ImageF out{s.width, s.height, std::vector<glm::vec4>(size_t(s.width) * s.height)};
-  // The image holds radiance times the pre-exposure: divided back out (alpha excepted), a
-  // stored 65504 reads as 65504 / 2^EV, the largest radiance the frame can carry.
-  for (size_t i = 0; i < out.pixels.size(); ++i) {
-    for (int c = 0; c < 4; ++c) out.pixels[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
-    out.pixels[i] /= glm::vec4(glm::vec3(s.hdr_pre_exposure), 1.0f);
+  if (s.hdr_format == HdrFormat::fp32) {
+    out.pixels = download_image<glm::vec4>(s.ctx, s.hdr, 1);
+  } else {
+    std::vector<uint16_t> halves = download_image<uint16_t>(s.ctx, s.hdr, 4);
+    for (size_t i = 0; i < out.pixels.size(); ++i) {
+      for (int c = 0; c < 4; ++c) out.pixels[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+    }
   }
+  // The image holds radiance times the pre-exposure: divided back out (alpha excepted), a
+  // stored 65504 (fp16) reads as 65504 / 2^EV, the largest radiance the frame can carry.
+  for (glm::vec4& p : out.pixels) p /= glm::vec4(glm::vec3(s.hdr_pre_exposure), 1.0f);
   return out;
 }
 
@@ -1030,8 +1072,12 @@ const StorageImage& Renderer::output_image() const {
 }
 
 uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
+  return tessera::object_of_triangle(triangle_numbering(), triangle_id);
+}
+
+ObjectNumbering Renderer::triangle_numbering() const {
   const State& s = *s_;
-  if (!s.objects_hold_lod) return tessera::object_of_triangle(s.uploaded.numbering, triangle_id);
+  if (!s.objects_hold_lod) return s.uploaded.numbering;
   // The last frame's levels numbered the triangles: its first_triangle per object.
   const std::vector<gpu::GpuObject> objects = download_buffer<gpu::GpuObject>(
       s.ctx, s.buffer(TS_BINDING_OBJECTS), s.uploaded.objects.size());
@@ -1041,7 +1087,7 @@ uint32_t Renderer::object_of_triangle(uint32_t triangle_id) const {
     numbering.first_triangle[i] = objects[i].first_triangle;
     numbering.triangle_count = uint64_t(objects[i].first_triangle) + objects[i].triangle_count;
   }
-  return tessera::object_of_triangle(numbering, triangle_id);
+  return numbering;
 }
 
 RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
@@ -1074,7 +1120,7 @@ RendererInternal::Frame RendererInternal::prepare_frame(Renderer& renderer,
   f.indices = s.buffer(TS_BINDING_INDICES).buffer;
   f.objects = s.uploaded.objects;
   // Pre-exposed and clamped like every value the shading pass writes (shade.comp).
-  f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(65504.0f));
+  f.background = glm::min(s.background * s.hdr_pre_exposure, glm::vec3(hdr_max(s.hdr_format)));
   f.cull = s.options.cull;
   f.lod = lod;
   f.lod_draws = s.buffer(TS_BINDING_LOD_DRAWS).buffer;

@@ -4,7 +4,8 @@
 // Per frame: the passes of compute/passes.h (setup -> clip -> count -> scan -> fill ->
 // raster_tiles -> raster_small per batch of triangle instances, then shade -> resolve; see
 // docs/architecture.md). The output
-// stays on the GPU in two storage images (linear HDR RGBA16F and display RGBA8) until read back.
+// stays on the GPU in two storage images (linear HDR, RGBA16F or RGBA32F as
+// FrameSettings::hdr_format says, and display RGBA8) until read back.
 
 #include <array>
 #include <cstdint>
@@ -23,8 +24,14 @@ namespace tessera {
 
 struct RendererOptions {
   /// Triangles whose pixel box has at most this many pixels are rasterized one thread per
-  /// triangle; larger ones are binned into 16x16 tiles. Any value gives the same image.
+  /// triangle; larger ones are binned into tiles. Any value gives the same image.
   uint32_t small_triangle_max_area = 64;
+  /// Side of the screen tiles that large triangles are binned into and rasterized by, one
+  /// workgroup of tile_size^2 threads per tile: 8 or 16 (validate_tile_size). Either gives
+  /// the same image; it trades binning work against idle threads. Size 8 holds images up to
+  /// 8192 px a side (TS_MAX_TILES_PER_SIDE); the renderer throws Error for a size the device's
+  /// workgroup limits cannot hold.
+  uint32_t tile_size = TS_TILE_SIZE;
   /// Most triangle instances set up per batch (0: as many as the scratch buffers allow).
   uint32_t max_batch_triangles = 0;
   /// Starting capacities of the scratch buffers (0: sized from the scene). They grow, and the
@@ -53,6 +60,9 @@ struct RendererOptions {
   /// environment is set (set_scene throws Error for values out of range).
   EnvironmentOptions environment;
 };
+
+/// Throws Error naming `tile_size` unless it is 8 or 16.
+void validate_tile_size(uint32_t tile_size);
 
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
@@ -123,6 +133,10 @@ class Renderer {
   /// Maps a triangle-instance id from read_visibility to its index in Scene::objects (after a
   /// frame with level of detail, through the levels that frame chose: a read-back).
   uint32_t object_of_triangle(uint32_t triangle_id) const;
+  /// How the last frame numbered its triangle instances (core/pick.h): the scene's numbering,
+  /// or after a frame with level of detail the levels it chose (a read-back). For mapping many
+  /// visibility keys at once with pick_object.
+  ObjectNumbering triangle_numbering() const;
 
   struct State;  // internal (compute/renderer_state.h)
 

@@ -53,6 +53,7 @@ struct Renderer::State {
   // Sized by the image.
   uint32_t width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   uint32_t samples = 1;  // per pixel (FrameSettings::samples) of the visibility buffer
+  HdrFormat hdr_format = HdrFormat::fp16;  // of `hdr` (FrameSettings::hdr_format)
   StorageImage hdr, ldr;
   // What the last frame multiplied the HDR image by (pre-exposure, shaders/bindings.glsl):
   // 2^EV for shaded frames, 1 for debug views. read_hdr divides it back out.

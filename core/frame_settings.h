@@ -4,9 +4,11 @@
 // all take these. No Vulkan here.
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "core/check.h"
+#include "shaders/shared/constants.h"
 
 #include "core/scene.h"
 
@@ -18,12 +20,26 @@ enum class Lod {
   automatic,  // each object's level chosen per frame from its projected error (core/lod.h)
 };
 
+/// Storage of the linear HDR image (docs/architecture.md, "HDR storage").
+enum class HdrFormat {
+  fp16,  // RGBA16F: 8 bytes a pixel, radiance * 2^EV saturates at 65504 (TS_MAX_HALF)
+  fp32,  // RGBA32F: 16 bytes a pixel, saturates only at the largest float (about 3.4e38)
+};
+
+/// The largest pre-exposed value an HDR image of `format` stores; larger ones saturate to it.
+inline double hdr_max(HdrFormat format) {
+  return format == HdrFormat::fp16 ? TS_MAX_HALF : double(std::numeric_limits<float>::max());
+}
+
 struct FrameSettings {
   uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
   uint32_t height = 512;
-  /// Radiance is multiplied by 2^exposure_ev before it is stored in the fp16 HDR image
+  /// Radiance is multiplied by 2^exposure_ev before it is stored in the HDR image
   /// (pre-exposure) and tone mapped; read_hdr / --hdr-out divide it back out.
   float exposure_ev = 0.0f;
+  /// Format of the HDR image: fp16 (the default) or fp32, which removes the clamp at 65504
+  /// (hdr_max) for twice the memory and bandwidth. The reference renderer clamps alike.
+  HdrFormat hdr_format = HdrFormat::fp16;
   ToneMap tonemap = ToneMap::aces;
   View view = View::shaded;  // debug views are written as they are, without exposure or curve
   Brdf brdf = Brdf::classic;

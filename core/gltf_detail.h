@@ -2,8 +2,11 @@
 // Internals of the glTF 2.0 importer (core/gltf_*.cpp), not a public interface.
 
 #include <cstdint>
+#include <cstring>
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -31,9 +34,25 @@ struct Context {
 /// "name[i]", the JSON path of element i of a top-level array.
 std::string at(const char* array, size_t i);
 
+/// o[key] when `o` has it, else an empty array (`member`) or object (`member_object`), by
+/// reference: json::value(key, default) returns a copy, which for the top-level arrays cost a
+/// seventh of the import when taken per material or texture.
+const nlohmann::json& member(const nlohmann::json& o, const char* key);
+const nlohmann::json& member_object(const nlohmann::json& o, const char* key);
+
 /// Fails unless 0 <= index < count: `where` holds an index into the file's `array`.
 void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
                  const char* array);
+
+/// The JSON document of `text` with only the members that the importer reads from it (asset,
+/// extensionsUsed, extensionsRequired, scene, scenes, nodes, cameras, materials, textures,
+/// samplers, images, buffers, extensions), after a scan of the whole text that checks its syntax
+/// and check_document's property types without building the rest (accessors, bufferViews and
+/// meshes, the bulk of a large file, are read from TinyGLTF's model). Empty when the text has an
+/// error or anything the scan does not vouch for: the caller then parses the whole text with
+/// nlohmann::json and check_document, which name the error. Given a document, check_document
+/// gives the same result on it as on the whole text's.
+std::optional<nlohmann::json> scan_document(std::string_view text);
 
 /// Checks the JSON document before TinyGLTF reads it (TinyGLTF ignores properties of the wrong
 /// type): the type of every property Tessera reads, extensionsRequired, and that each external
@@ -54,12 +73,27 @@ struct AccessorValues {
   std::vector<double> values;
   std::vector<float> floats;
   std::vector<uint32_t> uints;
+  // Tightly packed float values left in the model's buffer, which outlives this, and read in
+  // place (PackedFloats) instead of being copied into `floats`; null for the others.
+  const unsigned char* packed = nullptr;
 };
 
-/// f(p) with p a pointer to the array of `v` that holds its values (const double*, const
-/// float* or const uint32_t*).
+/// Element i of tightly packed floats in a buffer: the float at byte 4 i, loaded with memcpy
+/// (the buffer holds bytes, not float objects).
+struct PackedFloats {
+  const unsigned char* bytes;
+  float operator[](size_t i) const {
+    float v;
+    std::memcpy(&v, bytes + 4 * i, sizeof v);
+    return v;
+  }
+};
+
+/// f(values) with `values` indexable as the flat array of `v`'s values: PackedFloats, or a
+/// const float*, const uint32_t* or const double* to the array of `v` that holds them.
 template <typename F>
 decltype(auto) visit(const AccessorValues& v, F&& f) {
+  if (v.packed) return f(PackedFloats{v.packed});
   if (!v.floats.empty()) return f(v.floats.data());
   if (!v.uints.empty()) return f(v.uints.data());
   return f(v.values.data());

@@ -7,7 +7,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
+#include <span>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -36,6 +38,18 @@ std::string at(const char* array, size_t i) {
   return std::string(array) + "[" + std::to_string(i) + "]";
 }
 
+const json& member(const json& o, const char* key) {
+  static const json empty = json::array();
+  const auto it = o.find(key);
+  return it == o.end() ? empty : *it;
+}
+
+const json& member_object(const json& o, const char* key) {
+  static const json empty = json::object();
+  const auto it = o.find(key);
+  return it == o.end() ? empty : *it;
+}
+
 void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
                  const char* array) {
   if (index < 0 || uint64_t(index) >= count) {
@@ -55,14 +69,21 @@ void check_file_size(const Context& ctx, uintmax_t size) {
   if (size > UINT32_MAX) ctx.fail("", "is over 4 GiB, more than glTF files may be");
 }
 
-std::vector<unsigned char> read_file(const Context& ctx, const std::string& path) {
+// A file's bytes, not zero-filled before reading (the fill was a twentieth of a large glb's
+// import).
+struct FileBytes {
+  std::unique_ptr<unsigned char[]> data;
+  size_t size = 0;
+};
+
+FileBytes read_file(const Context& ctx, const std::string& path) {
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
   if (error) ctx.fail("", "cannot read the file: " + error.message());
   check_file_size(ctx, size);
-  std::vector<unsigned char> bytes(size);
+  FileBytes bytes{std::make_unique_for_overwrite<unsigned char[]>(size), size_t(size)};
   std::ifstream in(path, std::ios::binary);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))) {
+  if (!in.read(reinterpret_cast<char*>(bytes.data.get()), std::streamsize(size))) {
     ctx.fail("", "cannot read the file");
   }
   return bytes;
@@ -75,7 +96,7 @@ uint32_t load_u32(const unsigned char* p) {
 }
 
 // The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths.
-std::string glb_json(const Context& ctx, const std::vector<unsigned char>& bytes) {
+std::string glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
   if (bytes.size() < 20) ctx.fail("", "is truncated: a .glb needs a 20-byte header");
   if (load_u32(&bytes[4]) != 2) {
     ctx.fail("", "is a binary glTF of version " + std::to_string(load_u32(&bytes[4])) + ", not 2");
@@ -191,7 +212,7 @@ Light make_light(const Context& ctx, const json& lights, int index, const glm::d
   light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
   light.direction = glm::vec3(glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0))));
   if (light.kind == LightKind::spot) {
-    const json spot = l.value("spot", json::object());
+    const json& spot = member_object(l, "spot");
     double inner = spot.value("innerConeAngle", 0.0);
     double outer = spot.value("outerConeAngle", std::numbers::pi / 4);
     if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2)) {
@@ -217,14 +238,14 @@ Light make_light(const Context& ctx, const json& lights, int index, const glm::d
 std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
                                  const std::map<int, glm::dmat4>& placements) {
   std::vector<Camera> cameras;
-  const json list = doc.value("cameras", json::array());
+  const json& list = member(doc, "cameras");
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string where = at("cameras", i);
     auto placed = placements.find(int(i));
     Camera c = place_camera(placed == placements.end() ? glm::dmat4(1.0) : placed->second);
     const std::string type = list[i].value("type", "");
     if (type == "perspective") {
-      const json p = list[i].value("perspective", json::object());
+      const json& p = member_object(list[i], "perspective");
       const double yfov = p.value("yfov", 0.0), znear = p.value("znear", 0.0);
       if (!(yfov > 0.0 && yfov < 3.1)) {
         ctx.fail(where + ".perspective.yfov", "must be in (0, 3.1) radians");
@@ -250,15 +271,13 @@ std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
 // hierarchies), placing mesh instances, lights and cameras by their world transforms.
 void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Model& model,
                        ImportedModel& out) {
-  const json scenes = doc.value("scenes", json::array());
+  const json& scenes = member(doc, "scenes");
   if (scenes.empty()) ctx.fail("scenes", "the file has no scene to render");
   const int scene_index = doc.value("scene", 0);
   check_index(ctx, "scene", scene_index, scenes.size(), "scenes");
-  const json nodes = doc.value("nodes", json::array());
-  const json lights =
-      doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual")
-          ? doc["extensions"]["KHR_lights_punctual"].value("lights", json::array())
-          : json::array();
+  const json& nodes = member(doc, "nodes");
+  const json& lights =
+      member(member_object(member_object(doc, "extensions"), "KHR_lights_punctual"), "lights");
 
   MaterialTable table;
   decode_images(ctx, model, table);
@@ -272,7 +291,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     std::string from;  // where the reference to this node is, for messages
   };
   std::vector<Visit> stack;
-  const json roots = scenes[scene_index].value("nodes", json::array());
+  const json& roots = member(scenes[scene_index], "nodes");
   for (size_t i = roots.size(); i-- > 0;) {
     stack.push_back({roots[i].get<int>(), glm::dmat4(1.0), false,
                      at("scenes", scene_index) + ".nodes[" + std::to_string(i) + "]"});
@@ -295,7 +314,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
     if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
     stack.push_back({v.node, {}, true, {}});
-    const json children = node.value("children", json::array());
+    const json& children = member(node, "children");
     for (size_t c = children.size(); c-- > 0;) {
       stack.push_back(
           {children[c].get<int>(), world, false, where + ".children[" + std::to_string(c) + "]"});
@@ -328,8 +347,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     }
     if (node.contains("camera")) {
       const int camera = node["camera"].get<int>();
-      check_index(ctx, where + ".camera", camera, doc.value("cameras", json::array()).size(),
-                  "cameras");
+      check_index(ctx, where + ".camera", camera, member(doc, "cameras").size(), "cameras");
       camera_placements.try_emplace(camera, world);
     }
     if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
@@ -354,15 +372,22 @@ namespace tessera {
 namespace {
 
 ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
-                               const std::vector<unsigned char>& bytes) {
+                               std::span<const unsigned char> bytes) {
   using namespace gltf;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const std::string text = binary ? glb_json(ctx, bytes) : std::string(bytes.begin(), bytes.end());
+  // The scan's partial document on the common path (the whole document was a quarter of the
+  // import's time), the whole one when the scan finds something for check_document to name.
+  std::optional<json> scanned = scan_document(text);
   json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    ctx.fail("", std::string("is not valid JSON: ") + e.what());
+  if (scanned) {
+    doc = std::move(*scanned);
+  } else {
+    try {
+      doc = json::parse(text);
+    } catch (const json::exception& e) {
+      ctx.fail("", std::string("is not valid JSON: ") + e.what());
+    }
   }
   check_document(ctx, doc);
 
@@ -388,7 +413,8 @@ ImportedModel import_gltf(const std::string& path, const ImportOptions& options)
   ImportedModel out;
   gltf::Context ctx{path, std::filesystem::path(path).parent_path().string(), options,
                     out.warnings};
-  return import_gltf_from(ctx, out, gltf::read_file(ctx, path));
+  const gltf::FileBytes bytes = gltf::read_file(ctx, path);
+  return import_gltf_from(ctx, out, {bytes.data.get(), bytes.size});
 }
 
 ImportedModel import_gltf_bytes(const std::vector<unsigned char>& bytes, const std::string& name,

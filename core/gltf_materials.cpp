@@ -78,7 +78,7 @@ struct TextureSource {
 // textures[index], referenced from `where`, after checking the texture and its sampler.
 TextureSource texture_source(const Context& ctx, const json& doc, const tinygltf::Model& model,
                              int index, const std::string& where) {
-  const json& textures = doc.value("textures", json::array());
+  const json& textures = member(doc, "textures");
   check_index(ctx, where + ".index", index, textures.size(), "textures");
   const json& texture = textures[index];
   const std::string name = at("textures", index);
@@ -92,7 +92,7 @@ TextureSource texture_source(const Context& ctx, const json& doc, const tinygltf
   check_index(ctx, name + ".source", source.image, model.images.size(), "images");
   if (texture.contains("sampler")) {
     const int sampler = texture["sampler"].get<int>();
-    const json& samplers = doc.value("samplers", json::array());
+    const json& samplers = member(doc, "samplers");
     check_index(ctx, name + ".sampler", sampler, samplers.size(), "samplers");
     source.wrap_u = wrap_mode(ctx, samplers[sampler], "wrapS", at("samplers", sampler));
     source.wrap_v = wrap_mode(ctx, samplers[sampler], "wrapT", at("samplers", sampler));
@@ -179,7 +179,7 @@ void decode_images(const Context& ctx, const tinygltf::Model& model, MaterialTab
 uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Model& model,
                         int index, MaterialTable& table, Scene& scene) {
   if (auto it = table.materials.find(index); it != table.materials.end()) return it->second;
-  const json& materials = doc.value("materials", json::array());
+  const json& materials = member(doc, "materials");
   Material mat;
   PrimitiveOptions uv;
   if (index < 0) {
@@ -190,7 +190,7 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
   } else {
     const json& m = materials[index];
     const std::string where = at("materials", index);
-    const json pbr = m.value("pbrMetallicRoughness", json::object());
+    const json& pbr = member_object(m, "pbrMetallicRoughness");
     const std::string pbr_where = where + ".pbrMetallicRoughness";
     const std::vector<double> base = pbr.value("baseColorFactor", std::vector<double>{1, 1, 1, 1});
     for (int k = 0; k < 4; ++k) {

@@ -1,7 +1,8 @@
 // Mesh primitives into Tessera meshes: topology, attributes, generated normals and tangents.
 
+#include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -30,8 +31,14 @@ const char* mode_name(int mode) {
 // Fails naming the element if any value of an attribute is NaN or infinite.
 void require_finite(const Context& ctx, const AccessorValues& v, const std::string& where) {
   if (!v.uints.empty()) return;
-  visit(v, [&](const auto* values) {
-    for (size_t i = 0; i < v.count * size_t(v.components); ++i) {
+  visit(v, [&](auto values) {
+    const size_t n = v.count * size_t(v.components);
+    // A pass without an early exit, which the compiler vectorizes; the element is looked for
+    // only when there is one.
+    bool finite = true;
+    for (size_t i = 0; i < n; ++i) finite &= std::isfinite(values[i]);
+    if (finite) return;
+    for (size_t i = 0; i < n; ++i) {
       if (!std::isfinite(values[i])) {
         ctx.fail(where, "element " + std::to_string(i / v.components) +
                             " has a NaN or infinite component");
@@ -120,16 +127,13 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   };
 
   Mesh mesh;
-  if (!positions.floats.empty()) {
-    mesh.positions.resize(n);
-    std::memcpy(mesh.positions.data(), positions.floats.data(), n * sizeof(glm::vec3));
-  } else {
-    mesh.positions.reserve(n);
-    visit(positions, [&](const auto* values) {
-      for (size_t i = 0; i < n; ++i)
-        mesh.positions.push_back(glm::vec3(glm::make_vec3(&values[3 * i])));
-    });
-  }
+  mesh.positions.reserve(n);
+  visit(positions, [&](auto values) {
+    for (size_t i = 0; i < n; ++i) {
+      mesh.positions.emplace_back(float(values[3 * i]), float(values[3 * i + 1]),
+                                  float(values[3 * i + 2]));
+    }
+  });
   // TEXCOORD_n (zero where absent) through set n's texture transform.
   auto read_uvs = [&](int set) {
     std::vector<glm::vec2> out(n, glm::vec2(0.0f));
@@ -137,7 +141,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
     const glm::dmat3 transform(options.uv_transform[set]);
-    visit(uvs, [&](const auto* values) {
+    visit(uvs, [&](auto values) {
       for (size_t i = 0; i < n; ++i) {
         out[i] = glm::vec2(transform * glm::dvec3(values[2 * i], values[2 * i + 1], 1.0));
       }
@@ -164,7 +168,12 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
       ctx.fail(path, "has componentType " + std::to_string(type) +
                          ", must be an unsigned byte, short or int");
     }
-    visit(indices, [&](const auto* values) {
+    visit(indices, [&](auto values) {
+      // The largest index first, in a loop without an exit that the compiler vectorizes; the
+      // element is looked for only when one is out of range.
+      std::remove_cvref_t<decltype(values[0])> largest = 0;
+      for (size_t i = 0; i < indices.count; ++i) largest = std::max(largest, values[i]);
+      if (largest < n) return;
       for (size_t i = 0; i < indices.count; ++i) {
         if (values[i] >= n) {
           ctx.fail(path, "element " + std::to_string(i) + " is vertex " +
@@ -177,7 +186,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
       vertices = std::move(indices.uints);
     } else {
       vertices.reserve(indices.count);
-      visit(indices, [&](const auto* values) {
+      visit(indices, [&](auto values) {
         for (size_t i = 0; i < indices.count; ++i) vertices.push_back(uint32_t(values[i]));
       });
     }
@@ -197,26 +206,28 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // The specification says to ignore given tangents when normals are generated.
   } else {
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3);
-    mesh.normals.resize(n);
+    mesh.normals.reserve(n);
     bool renormalized = false;
-    visit(normals, [&](const auto* values) {
+    size_t zero = n;  // the first zero normal; the loop has no exit, which makes it faster
+    visit(normals, [&](auto values) {
       for (size_t i = 0; i < n; ++i) {
         const glm::dvec3 v(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
         const double length = glm::length(v);
-        if (!(length > 0.0)) {
-          ctx.fail(attributes + "NORMAL", "element " + std::to_string(i) + " is the zero vector");
-        }
+        if (!(length > 0.0) && zero == n) zero = i;
         renormalized |= std::abs(length - 1.0) > 1e-3;
-        mesh.normals[i] = glm::vec3(v / length);
+        mesh.normals.push_back(glm::vec3(v / length));
       }
     });
+    if (zero != n) {
+      ctx.fail(attributes + "NORMAL", "element " + std::to_string(zero) + " is the zero vector");
+    }
     if (renormalized) {
       ctx.warn(attributes + "NORMAL", "has normals that are not unit length; normalized");
     }
     if (attribute("TANGENT") >= 0) {
       const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
       mesh.tangents.resize(n);
-      visit(tangents, [&](const auto* values) {
+      visit(tangents, [&](auto values) {
         for (size_t i = 0; i < n; ++i) {
           const glm::dvec3 t(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
           const double w = values[4 * i + 3];

@@ -2,7 +2,9 @@
 // files that buffers and images name.
 
 #include <cctype>
+#include <cstring>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "core/check.h"
@@ -335,7 +337,250 @@ void check_files(const Context& ctx, const json& doc, const char* array, bool is
   }
 }
 
+// The members of the document that the importer reads from the JSON after TinyGLTF (the rest,
+// the large accessors, bufferViews and meshes among them, it reads from TinyGLTF's model).
+const std::set<std::string, std::less<>> kDocumentMembers = {
+    "asset",  "extensionsUsed", "extensionsRequired", "scene",    "scenes",
+    "nodes",  "cameras",        "materials",          "textures", "samplers",
+    "images", "buffers",        "extensions"};
+
+// A strict JSON reader that checks the property types of document_schema without building a
+// document: it only says whether the text is valid JSON whose checked properties all have their
+// types, and where each top-level member's value lies. Wherever nlohmann::json and check_value
+// might see the text differently from this simple reading (escapes \u, bytes of 0x80 and more,
+// integers of 19 digits or more, exponents of 4 digits or more, a byte-order mark, keys with
+// escapes, deep nesting), it gives up, as it does at the first error, and the caller parses the
+// whole document instead, whose checks name the error. It accepts only what nlohmann::json
+// parses to the same values and check_value accepts.
+class Scan {
+ public:
+  explicit Scan(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {}
+
+  // The top-level object: true with members[key] = its value's text for every member.
+  bool document(std::map<std::string, std::string_view, std::less<>>& members) {
+    space();
+    if (!take('{')) return false;
+    space();
+    if (take('}')) return at_end();
+    for (;;) {
+      std::string_view key;
+      if (!key_string(key) || !colon()) return false;
+      space();
+      const char* begin = p_;
+      const Field* field = find(document_schema(), key);
+      if (!(field ? checked(*field) : any())) return false;
+      members[std::string(key)] = std::string_view(begin, size_t(p_ - begin));  // last wins
+      space();
+      if (take('}')) return at_end();
+      if (!take(',')) return false;
+      space();
+    }
+  }
+
+ private:
+  static constexpr int kMaxDepth = 256;
+  enum class Number { count, other };  // count: an integer >= 0 that nlohmann stores as one
+
+  const char* p_;
+  const char* end_;
+  int depth_ = 0;
+
+  static const Field* find(const std::vector<Field>& fields, std::string_view key) {
+    for (const Field& f : fields) {
+      if (key == f.name) return &f;
+    }
+    return nullptr;
+  }
+  void space() {
+    while (p_ < end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
+  }
+  bool take(char c) {
+    if (p_ == end_ || *p_ != c) return false;
+    ++p_;
+    return true;
+  }
+  bool at_end() {
+    space();
+    return p_ == end_;
+  }
+  bool colon() {
+    space();
+    return take(':');
+  }
+  bool digits() {
+    const char* begin = p_;
+    while (p_ < end_ && *p_ >= '0' && *p_ <= '9') ++p_;
+    return p_ > begin;
+  }
+  // A string; `plain` is set when it has no escape (its text is its value).
+  bool string(bool& plain) {
+    if (!take('"')) return false;
+    plain = true;
+    while (p_ < end_) {
+      const unsigned char c = static_cast<unsigned char>(*p_++);
+      if (c == '"') return true;
+      if (c < 0x20 || c >= 0x80) return false;
+      if (c == '\\') {
+        if (p_ == end_ || std::strchr("\"\\/bfnrt", *p_) == nullptr || *p_ == '\0') return false;
+        ++p_;
+        plain = false;
+      }
+    }
+    return false;
+  }
+  bool key_string(std::string_view& key) {
+    const char* begin = p_ + 1;
+    bool plain = false;
+    if (!string(plain) || !plain) return false;
+    key = std::string_view(begin, size_t(p_ - 1 - begin));
+    return true;
+  }
+  bool number(Number& kind) {
+    const bool negative = take('-');
+    const char* begin = p_;
+    if (p_ < end_ && *p_ == '0') {
+      ++p_;
+    } else if (!digits()) {
+      return false;
+    }
+    const bool integer = p_ == end_ || (*p_ != '.' && *p_ != 'e' && *p_ != 'E');
+    if (integer && p_ - begin > 18) return false;
+    if (take('.') && !digits()) return false;
+    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
+      ++p_;
+      if (!take('+')) take('-');
+      const char* exponent = p_;
+      if (!digits() || p_ - exponent > 3) return false;
+    }
+    kind = integer && !negative ? Number::count : Number::other;
+    return true;
+  }
+  bool literal(std::string_view word) {
+    if (size_t(end_ - p_) < word.size() || std::string_view(p_, word.size()) != word) return false;
+    p_ += word.size();
+    return true;
+  }
+  // Elements of an array, each read by `element`; counts them.
+  template <typename F>
+  bool array(F&& element, size_t& count) {
+    count = 0;
+    if (!take('[')) return false;
+    space();
+    if (take(']')) return true;
+    for (;;) {
+      space();
+      if (!element()) return false;
+      ++count;
+      space();
+      if (take(']')) return true;
+      if (!take(',')) return false;
+    }
+  }
+  // Members of an object, each value read by `member(key)`.
+  template <typename F>
+  bool object(F&& member) {
+    if (!take('{')) return false;
+    space();
+    if (take('}')) return true;
+    for (;;) {
+      std::string_view key;
+      space();
+      if (!key_string(key) || !colon()) return false;
+      space();
+      if (!member(key)) return false;
+      space();
+      if (take('}')) return true;
+      if (!take(',')) return false;
+    }
+  }
+  bool nested(bool (Scan::*read)(const Field*), const Field* f) {
+    if (++depth_ > kMaxDepth) return false;
+    const bool ok = (this->*read)(f);
+    --depth_;
+    return ok;
+  }
+  bool any() { return nested(&Scan::any_value, nullptr); }
+  bool any_value(const Field*) {
+    if (p_ == end_) return false;
+    size_t count = 0;
+    bool plain = false;
+    Number kind;
+    switch (*p_) {
+      case '{':
+        return object([&](std::string_view) { return any(); });
+      case '[':
+        return array([&] { return any(); }, count);
+      case '"':
+        return string(plain);
+      case 't':
+        return literal("true");
+      case 'f':
+        return literal("false");
+      case 'n':
+        return literal("null");
+      default:
+        return number(kind);
+    }
+  }
+  bool fields(const std::vector<Field>& fields) {
+    return object([&](std::string_view key) {
+      const Field* f = find(fields, key);
+      return f ? checked(*f) : any();
+    });
+  }
+  bool count() {
+    Number kind;
+    return number(kind) && kind == Number::count;
+  }
+  bool checked(const Field& f) { return nested(&Scan::checked_value, &f); }
+  // check_value's test of `f`, on the text.
+  bool checked_value(const Field* field) {
+    const Field& f = *field;
+    size_t n = 0;
+    bool plain = false;
+    Number kind;
+    switch (f.kind) {
+      case Kind::index:
+      case Kind::uint:
+        return count();
+      case Kind::number:
+        return number(kind);
+      case Kind::string:
+        return string(plain);
+      case Kind::boolean:
+        return literal("true") || literal("false");
+      case Kind::object:
+        return fields(f.fields);
+      case Kind::objects:
+        return array([&] { return fields(f.fields); }, n);
+      case Kind::numbers:
+        return array([&] { return number(kind); }, n) && (f.length == 0 || n == f.length);
+      case Kind::indices:
+        return array([&] { return count(); }, n);
+      case Kind::strings:
+        return array([&] { return string(plain); }, n);
+      case Kind::index_map:
+        return object([&](std::string_view) { return count(); });
+    }
+    return false;
+  }
+};
+
 }  // namespace
+
+std::optional<json> scan_document(std::string_view text) {
+  std::map<std::string, std::string_view, std::less<>> members;
+  if (!Scan(text).document(members)) return std::nullopt;
+  json doc = json::object();
+  try {
+    for (const auto& [key, value] : members) {
+      if (kDocumentMembers.count(key)) doc[key] = json::parse(value.begin(), value.end());
+    }
+  } catch (const json::exception&) {
+    return std::nullopt;  // not expected (the scan is stricter); the full parse names it
+  }
+  return doc;
+}
 
 void check_document(const Context& ctx, const json& doc) {
   if (!doc.is_object()) ctx.fail("", "the JSON document is not an object");

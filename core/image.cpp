@@ -1,5 +1,6 @@
 #include "core/image.h"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -27,9 +28,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 void write_png(const std::string& path, const Image8& image) {
   TESSERA_CHECK(image.pixels.size() == size_t(image.width) * image.height);
+  errno = 0;
   if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 4, image.pixels.data(),
                       int(image.width * 4))) {
-    throw Error("cannot write PNG '" + path + "'");
+    // stb opens and writes with stdio, which leave the reason (no space, no permission) here.
+    throw Error("cannot write PNG '" + path + "'" +
+                (errno ? std::string(": ") + std::strerror(errno) : std::string()));
   }
 }
 

@@ -797,9 +797,11 @@ bool triangulate(const std::vector<glm::vec3>& corners, glm::vec3 normal,
     p[i] =
         flip ? glm::dvec2(corners[i][v], corners[i][u]) : glm::dvec2(corners[i][u], corners[i][v]);
   }
+  // Wrapped by comparison, not %: two integer divisions per corner were most of a quad's time.
+  const auto after = [n](size_t i) { return i + 1 == n ? 0 : i + 1; };
   bool convex = true;
   for (size_t i = 0; i < n && convex; ++i) {
-    convex = orient(p[i], p[(i + 1) % n], p[(i + 2) % n]) >= 0.0;
+    convex = orient(p[i], p[after(i)], p[after(after(i))]) >= 0.0;
   }
   if (convex) {
     for (uint32_t i = 1; i + 1 < n; ++i) out.insert(out.end(), {0u, i, i + 1});
@@ -840,7 +842,7 @@ glm::vec3 newell_normal(const std::vector<glm::vec3>& corners) {
   glm::vec3 n(0.0f);
   for (size_t i = 0; i < corners.size(); ++i) {
     const glm::vec3& a = corners[i];
-    const glm::vec3& b = corners[(i + 1) % corners.size()];
+    const glm::vec3& b = corners[i + 1 == corners.size() ? 0 : i + 1];  // no division (as above)
     n += glm::vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
   }
   return n;

@@ -114,25 +114,39 @@ void fly(OrbitCamera& camera, const FlyKeys& keys, float seconds) {
       glm::normalize(d) * (camera.fly_distances_per_second * camera.distance * seconds);
 }
 
+namespace {
+
+// The sphere about the centre of the vertex bounding box of `mesh` through its farthest vertex
+// (radius < 0 for a mesh without vertices).
+BoundingSphere mesh_sphere(const Mesh& mesh) {
+  const std::vector<glm::vec3>& p = mesh.positions;
+  BoundingSphere s;
+  if (p.empty()) return s;
+  glm::vec3 lo = p[0], hi = p[0];
+  for (const glm::vec3& v : p) lo = glm::min(lo, v), hi = glm::max(hi, v);
+  s.centre = 0.5f * (lo + hi);
+  s.radius = 0.0f;
+  for (const glm::vec3& v : p) s.radius = std::max(s.radius, glm::length(v - s.centre));
+  return s;
+}
+
+// `s` placed by `transform`: the radius grows by the transform's largest axis scale.
+BoundingSphere placed_sphere(const BoundingSphere& s, const glm::mat4& transform) {
+  const glm::mat3 m(transform);
+  const float scale = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+  return {glm::vec3(transform * glm::vec4(s.centre, 1.0f)), s.radius * scale};
+}
+
+}  // namespace
+
 BoundingSphere scene_bounds(const Scene& scene) {
   std::vector<BoundingSphere> mesh_spheres(scene.meshes.size());
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const std::vector<glm::vec3>& p = scene.meshes[m].positions;
-    if (p.empty()) continue;
-    glm::vec3 lo = p[0], hi = p[0];
-    for (const glm::vec3& v : p) lo = glm::min(lo, v), hi = glm::max(hi, v);
-    BoundingSphere& s = mesh_spheres[m];
-    s.centre = 0.5f * (lo + hi);
-    s.radius = 0.0f;
-    for (const glm::vec3& v : p) s.radius = std::max(s.radius, glm::length(v - s.centre));
-  }
+  for (size_t m = 0; m < scene.meshes.size(); ++m) mesh_spheres[m] = mesh_sphere(scene.meshes[m]);
   std::vector<BoundingSphere> placed;
   for (const Object& o : scene.objects) {
     const BoundingSphere& s = mesh_spheres[o.mesh];
     if (s.radius < 0.0f) continue;
-    const glm::mat3 m(o.transform);
-    const float scale = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-    placed.push_back({glm::vec3(o.transform * glm::vec4(s.centre, 1.0f)), s.radius * scale});
+    placed.push_back(placed_sphere(s, o.transform));
   }
   BoundingSphere all;
   if (placed.empty()) return all;
@@ -148,10 +162,18 @@ BoundingSphere scene_bounds(const Scene& scene) {
   return all;
 }
 
-bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect) {
+BoundingSphere object_bounds(const Scene& scene, uint32_t object) {
+  if (object >= scene.objects.size())
+    throw Error("object " + std::to_string(object) + " out of range (the scene has " +
+                std::to_string(scene.objects.size()) + ")");
+  const Object& o = scene.objects[object];
+  const BoundingSphere s = mesh_sphere(scene.meshes[o.mesh]);
+  return s.radius < 0.0f ? s : placed_sphere(s, o.transform);
+}
+
+bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect) {
   if (!(std::isfinite(aspect) && aspect > 0.0f))
-    throw Error("framing the scene needs an aspect ratio > 0, not " + std::to_string(aspect));
-  const BoundingSphere bounds = scene_bounds(scene);
+    throw Error("framing needs an aspect ratio > 0, not " + std::to_string(aspect));
   if (bounds.radius < 0.0f) return false;
   const float half_vertical = 0.5f * camera.vertical_fov;
   const float half_horizontal = std::atan(std::tan(half_vertical) * aspect);
@@ -159,6 +181,10 @@ bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect) {
   camera.distance =
       clamp_distance(bounds.radius / std::sin(std::min(half_vertical, half_horizontal)));
   return true;
+}
+
+bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect) {
+  return frame_sphere(camera, scene_bounds(scene), aspect);
 }
 
 }  // namespace tessera

@@ -107,12 +107,19 @@ struct BoundingSphere {
 };
 BoundingSphere scene_bounds(const Scene& scene);
 
-/// F key: keeps yaw, pitch and up, moves the target to the centre of scene_bounds and sets the
-/// distance so that the sphere just fits the narrower of the two fields of view:
-/// distance = radius / sin(min(vertical_fov, horizontal_fov) / 2), horizontal_fov =
-/// 2 atan(tan(vertical_fov / 2) aspect), clamped to [kMinOrbitDistance, kMaxOrbitDistance].
-/// `aspect` = width / height > 0 (throws Error otherwise). Returns false, changing nothing, if
-/// the scene has no vertex.
+/// The sphere of `object` (an index into scene.objects; throws Error naming it otherwise) as
+/// scene_bounds places each object's: radius < 0 if its mesh has no vertex.
+BoundingSphere object_bounds(const Scene& scene, uint32_t object);
+
+/// Keeps yaw, pitch and up, moves the target to `bounds.centre` and sets the distance so that
+/// the sphere just fits the narrower of the two fields of view: distance = radius /
+/// sin(min(vertical_fov, horizontal_fov) / 2), horizontal_fov = 2 atan(tan(vertical_fov / 2)
+/// aspect), clamped to [kMinOrbitDistance, kMaxOrbitDistance]. `aspect` = width / height > 0
+/// (throws Error otherwise). Returns false, changing nothing, if the radius is < 0.
+bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect);
+
+/// F key: frame_sphere of scene_bounds. Returns false, changing nothing, if the scene has no
+/// vertex.
 bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect);
 
 }  // namespace tessera

@@ -598,7 +598,7 @@ void resolve_pixel(const FrameSettings& frame, dvec3 c, glm::vec4& hdr, glm::u8v
   const bool shaded = frame.view == View::shaded;
   const double exposure = shaded ? std::exp2(double(frame.exposure_ev)) : 1.0;
   const ToneMap op = shaded ? frame.tonemap : ToneMap::clamp;
-  const dvec3 exposed = glm::min(c * exposure, dvec3(TS_MAX_HALF));
+  const dvec3 exposed = glm::min(c * exposure, dvec3(hdr_max(frame.hdr_format)));
   hdr = glm::vec4(glm::vec3(exposed / exposure), 1.0f);
   ldr = glm::u8vec4(0, 0, 0, 255);
   for (int ch = 0; ch < 3; ++ch) {
@@ -950,7 +950,8 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
         const uint32_t count = end - k;
         const dvec2 point = count == n ? dvec2(x + 0.5, y + 0.5) : mean / double(count);
         const dvec3 radiance = shade_sample(c, {}, px[order[k]], point.x, point.y, 1.0);
-        sum += glm::min(radiance * exposure, dvec3(TS_MAX_HALF)) * (double(count) / n);
+        sum +=
+            glm::min(radiance * exposure, dvec3(hdr_max(frame.hdr_format))) * (double(count) / n);
         k = end;
       }
       resolve_pixel(frame, sum / exposure, f.hdr.pixels[i], f.ldr.pixels[i]);

@@ -141,6 +141,10 @@ class EditHistory {
   bool dirty() const { return state_ != saved_state_; }
   /// Marks the current state as saved (after writing the scene to a file).
   void mark_saved() { saved_state_ = state_; }
+  /// The current state's id: 0 before any edit, then a new id for each applied edit; undo and
+  /// redo return to the ids of the states they go back to. For state kept beside the scene
+  /// (the viewer's render options), keyed by it.
+  uint64_t state() const { return state_; }
 
  private:
   struct Entry {

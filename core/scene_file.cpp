@@ -794,7 +794,7 @@ void Reader::read_environment(const Node& n) {
 }
 
 void Reader::read_render(const Node& n) {
-  object(n, {"width", "height", "exposure_ev", "tonemap", "brdf"});
+  object(n, {"width", "height", "exposure_ev", "tonemap", "brdf", "energy_compensation", "view"});
   RenderDefaults& r = out.render;
   if (has(n, "width")) r.width = uint32_t(integer(child(n, "width"), 1, 16384));
   if (has(n, "height")) r.height = uint32_t(integer(child(n, "height"), 1, 16384));
@@ -807,6 +807,14 @@ void Reader::read_render(const Node& n) {
     r.brdf = choice(child(n, "brdf"), {std::pair{"classic", Brdf::classic},
                                        {"filament", Brdf::filament},
                                        {"blinn_phong", Brdf::blinn_phong}});
+  if (has(n, "energy_compensation"))
+    r.energy_compensation = boolean(child(n, "energy_compensation"));
+  if (has(n, "view"))
+    r.view = choice(child(n, "view"), {std::pair{"shaded", View::shaded},
+                                       {"normal", View::normal},
+                                       {"uv", View::uv},
+                                       {"triangle", View::triangle},
+                                       {"object", View::object}});
 }
 
 void Reader::read(const Node& root) {

@@ -28,6 +28,8 @@ struct RenderDefaults {
   std::optional<float> exposure_ev;
   std::optional<ToneMap> tonemap;
   std::optional<Brdf> brdf;
+  std::optional<bool> energy_compensation;
+  std::optional<View> view;
 };
 
 struct SceneFile {

@@ -213,12 +213,18 @@ Json render_json(const RenderDefaults& r) {
                 : *r.brdf == Brdf::filament ? "filament"
                                             : "blinn_phong";
   }
+  if (r.energy_compensation) j["energy_compensation"] = *r.energy_compensation;
+  if (r.view) {
+    const char* names[] = {"shaded", "normal", "uv", "triangle", "object"};
+    j["view"] = names[int(*r.view)];
+  }
   return j;
 }
 
 }  // namespace
 
-void save_scene_file(const Scene& scene, const std::string& path, const RenderDefaults* render) {
+void save_scene_file(const Scene& scene, const std::string& path, const RenderDefaults* render,
+                     const std::string& description) {
   validate_scene(scene);
   const std::filesystem::path file(path);
   const std::filesystem::path folder = file.parent_path();
@@ -227,6 +233,7 @@ void save_scene_file(const Scene& scene, const std::string& path, const RenderDe
     throw Error("cannot write the scene file '" + path + "': " + reason);
 
   Json root = {{"version", 1}};
+  if (!description.empty()) root["description"] = description;
   const Camera& c = scene.camera;
   const float fov = degrees_for(c.vertical_fov);
   require_range(fov, FLT_MIN, 179.0f, "camera.vertical_fov_degrees");

@@ -29,7 +29,8 @@ namespace tessera {
 /// existing file as it was. Throws Error naming the path when a file cannot be written, and
 /// naming the field when a value is outside what the format accepts (e.g. roughness outside
 /// [0, 1], a field of view over 179 degrees) or the file would exceed the reader's 64 MiB.
+/// A non-empty `description` is written as the file's "description".
 void save_scene_file(const Scene& scene, const std::string& path,
-                     const RenderDefaults* render = nullptr);
+                     const RenderDefaults* render = nullptr, const std::string& description = {});
 
 }  // namespace tessera

@@ -1,6 +1,7 @@
 #include "core/texture.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -39,12 +40,19 @@ MipChain build_mip_chain(const Texture& texture) {
   MipChain chain;
   chain.wrap_u = texture.wrap_u;
   chain.wrap_v = texture.wrap_v;
+  // srgb_to_linear of each byte value, computed once: a pow per channel and texel was most of
+  // a chain's time.
+  static const std::array<float, 256> kLinear = [] {
+    std::array<float, 256> table{};
+    for (int v = 0; v < 256; ++v) table[size_t(v)] = float(srgb_to_linear(uint8_t(v)));
+    return table;
+  }();
   MipChain::Level base{texture.width, texture.height, {}};
   base.texels.reserve(texture.texels.size());
   for (const glm::u8vec4& t : texture.texels) {
     glm::vec4 c = glm::vec4(t) / 255.0f;
     if (texture.srgb) {
-      for (int k = 0; k < 3; ++k) c[k] = float(srgb_to_linear(t[k]));
+      for (int k = 0; k < 3; ++k) c[k] = kLinear[t[k]];
     }
     base.texels.push_back(c);
   }

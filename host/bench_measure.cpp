@@ -143,6 +143,7 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
   fs.lod = a.lod;
   fs.lod_error_px = a.lod_error_px;
   fs.samples = a.samples;
+  fs.hdr_format = a.hdr_format;
   const float aspect = float(a.width) / float(a.height);
 
   // A built-in scene has a fixed object count: it is one point of the sweep. A scene or model
@@ -244,6 +245,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   if (ctx) {
     RendererOptions options;
     options.small_triangle_max_area = a.small_triangle_area;
+    options.tile_size = a.tile_size;
     options.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options);
     results.device = ctx->properties.deviceName;

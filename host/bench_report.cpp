@@ -130,9 +130,12 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
     << ",\n  \"lod\": " << json_string(a.lod == Lod::automatic ? "auto" : "off")
     << ",\n  \"lod_error_px\": " << a.lod_error_px << ",\n  \"segments\": " << a.segments
-    << ",\n  \"small_triangle_area\": " << a.small_triangle_area << ",\n  \"frames\": " << a.repeat
-    << ",\n  \"runs\": " << a.runs << ",\n  \"warmup\": {\"min_frames\": " << a.warmup
-    << ", \"min_ms\": " << a.warmup_ms << "},\n  \"statistic\": \"median\",\n  \"results\": [";
+    << ",\n  \"small_triangle_area\": " << a.small_triangle_area
+    << ",\n  \"tile_size\": " << a.tile_size
+    << ",\n  \"hdr_format\": " << json_string(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16")
+    << ",\n  \"frames\": " << a.repeat << ",\n  \"runs\": " << a.runs
+    << ",\n  \"warmup\": {\"min_frames\": " << a.warmup << ", \"min_ms\": " << a.warmup_ms
+    << "},\n  \"statistic\": \"median\",\n  \"results\": [";
   bool first = true;
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;

@@ -1,8 +1,11 @@
 #include "host/cli.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <functional>
 #include <tuple>
 
+#include "compute/renderer.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "host/cli_values.h"
@@ -32,6 +35,20 @@ CLI::Validator bench_scene() {
   });
 }
 
+// --device: what create_context's choose_device accepts (and, for render, the CPU
+// reference), checked here so that a misspelt device is a bad command line (exit status 2).
+CLI::Validator device_choice(bool reference) {
+  return checked_by([reference](const std::string& text) {
+    const bool index = !text.empty() && text.size() <= 9 &&
+                       text.find_first_not_of("0123456789") == std::string::npos;
+    if (index || text == "auto" || text == "lavapipe" || text == "gpu" ||
+        (reference && text == "reference"))
+      return;
+    throw Error("unknown device '" + text + "' (lavapipe, gpu, " +
+                (reference ? "reference, " : "") + "or a device index of `tessera devices`)");
+  });
+}
+
 // --lod and --lod-error, for render and bench.
 void add_lod_options(CLI::App& app, Lod& lod, float& error_px) {
   add_choice(app, "--lod", lod, {{"off", Lod::off}, {"auto", Lod::automatic}},
@@ -46,6 +63,45 @@ void add_lod_options(CLI::App& app, Lod& lod, float& error_px) {
                  "0.5)")
       ->type_name("PIXELS")
       ->check(finite_number(0.001, 1000.0));
+}
+
+// --hdr-format, --tile-size and --quality, for render, bench and tradeoff.
+void add_hdr_format(CLI::App& app, HdrFormat& format) {
+  add_choice(app, "--hdr-format", format, {{"fp16", HdrFormat::fp16}, {"fp32", HdrFormat::fp32}},
+             "storage of the linear HDR image: fp16\n"
+             "(default; radiance x 2^EV saturates at 65504)\n"
+             "or fp32 (no such clamp, twice the bytes)");
+}
+
+void add_tile_size(CLI::App& app, uint32_t& tile_size) {
+  app.add_option("--tile-size", tile_size,
+                 "side of the screen tiles large triangles are\n"
+                 "binned into, 8 or 16 (default) px; the image\n"
+                 "is the same with either")
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        const size_t digits = text.find_first_not_of("0123456789");
+        if (text.empty() || digits != std::string::npos || text.size() > 9)
+          throw Error("expects a tile size of 8 or 16 px, got '" + text + "'");
+        validate_tile_size(uint32_t(std::stoul(text)));
+      }));
+}
+
+void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
+  add_choice(app, "--quality", quality,
+             {{"draft", Quality::draft},
+              {"balanced", Quality::balanced},
+              {"reference", Quality::reference}},
+             "a preset picked from the measured Pareto\n"
+             "fronts (docs/tradeoffs.md, \"Presets\"): sets\n" +
+                 sets + ";\noptions given explicitly win");
+}
+
+// Whether `app`'s command line gave the option `name`.
+std::function<bool(const std::string&)> given_in(const CLI::App& app) {
+  return [&app](const std::string& name) {
+    return app.get_option_no_throw(name) != nullptr && app.count(name) > 0;
+  };
 }
 
 // --samples: visibility samples per pixel (FrameSettings::samples).
@@ -105,7 +161,8 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "discrete GPU if there is one, else lavapipe),\n"
                  "or reference: the CPU reference renderer in\n"
                  "double precision")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(true));
   app.add_option("--exposure", a.frame.exposure_ev,
                  "exposure in stops, applied before tone\nmapping, -64..64 (default 0)")
       ->type_name("EV")
@@ -164,6 +221,12 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
               "1 (default), 4, 8 or 16; each triangle in a\n"
               "pixel is shaded once, weighted by its samples");
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
+  add_hdr_format(app, a.frame.hdr_format);
+  add_tile_size(app, a.tile_size);
+  add_quality(app, a.quality,
+              "--brdf, --energy-compensation, --samples,\n"
+              "--lod, --lod-error, --anisotropy, --env-size,\n"
+              "--env-samples, --hdr-format, --tile-size");
   add_choice(app, "--view", a.frame.view,
              {{"shaded", View::shaded},
               {"normal", View::normal},
@@ -256,6 +319,11 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->type_name("A")
       ->check(whole_number(0, 1u << 24));
   add_lod_options(app, a.lod, a.lod_error_px);
+  add_hdr_format(app, a.hdr_format);
+  add_tile_size(app, a.tile_size);
+  add_quality(app, a.quality,
+              "--samples, --lod, --lod-error, --hdr-format,\n"
+              "--small-triangle-area, --tile-size");
   app.add_flag("--generic-shading", a.generic_shading,
                "shade with the generic pipeline instead of one\n"
                "specialized to the scene's light counts, to\n"
@@ -280,7 +348,8 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
       ->check(builtin_scene());
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(false));
   add_size(app, a.frame.width, a.frame.height,
            "window size in pixels at the start (default:\nthe scene's, else 512x512)");
   add_choice(app, "--vsync", a.vsync, {{"on", true}, {"off", false}},
@@ -290,7 +359,12 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "replay input events at frame numbers from\n"
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(checked_by([](const std::string& path) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec))
+          throw Error("script file '" + path + "' not found");
+      }));
   add_choice(app, "--present", a.present,
              {{"auto", PresentPath::automatic},
               {"copy", PresentPath::copy},
@@ -309,6 +383,7 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);
+  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
 }
 
 void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
@@ -323,9 +398,9 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
       ->check(whole_number(1, 100'000'000));
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
-                 "brdf, tessellation, anisotropy, env-size,\n"
-                 "env-samples, samples, small-triangle\n"
-                 "(docs/tradeoffs.md)")
+                 "brdf, tessellation, lod, anisotropy, env-size,\n"
+                 "env-samples, samples, hdr, small-triangle,\n"
+                 "tile-size (docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
       ->allow_extra_args(false)
@@ -336,9 +411,26 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
       ->type_name("D");
   add_size(app, a.frame.width, a.frame.height,
            "image size, each side 1..16384 (default: the\nscene's, else 512x512)");
+  add_hdr_format(app, a.frame.hdr_format);
+  add_tile_size(app, a.tile_size);
+  add_quality(app, a.quality,
+              "the base every knob's settings start from:\n"
+              "BRDF, samples, level of detail, anisotropy,\n"
+              "environment sizes, HDR format, tile size");
   app.add_option("--repeat", a.repeat, "timed frames per setting and round, 1..1000\n(default 10)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
+  app.add_option("--warmup", a.warmup,
+                 "untimed frames per setting and round, at\nleast, 0..100 (default 2)")
+      ->type_name("K")
+      ->check(whole_number(0, 100));
+  app.add_option("--warmup-ms", a.warmup_ms,
+                 "and for at least MS ms after the first, then\n"
+                 "until the frame time settles, as `tessera\n"
+                 "bench`, 0..600000 (default 200; 0: --warmup\n"
+                 "frames only)")
+      ->type_name("MS")
+      ->check(whole_number(0, 600000));
   app.add_option("--rounds", a.rounds,
                  "passes over all settings, interleaved so that\n"
                  "clock changes affect all alike, 1..100\n(default 3)")
@@ -454,21 +546,43 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.size_given = render->count("--size") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
-  r.brdf_given = render->count("--brdf") > 0;
+  apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
+  r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
+  r.view_given = render->count("--view") > 0;
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
+  {
+    FrameSettings preset;
+    preset.samples = b.samples;
+    preset.lod = b.lod;
+    preset.lod_error_px = b.lod_error_px;
+    preset.hdr_format = b.hdr_format;
+    apply_quality(b.quality, given_in(*bench), &preset, nullptr, &b.tile_size,
+                  &b.small_triangle_area);
+    b.samples = preset.samples;
+    b.lod = preset.lod;
+    b.lod_error_px = preset.lod_error_px;
+    b.hdr_format = preset.hdr_format;
+  }
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
-  if (b.samples > 1 && hardware) {
-    if (bench->count("--backends") > 0) {
-      throw UsageError("--samples " + std::to_string(b.samples) +
-                           ": the hardware backend renders 1 sample per pixel; leave it out of "
-                           "--backends",
-                       help_command);
-    }
+  // What the hardware baseline cannot render leaves it out of the default backends.
+  const std::string compute_only =
+      b.samples > 1 ? "--samples " + std::to_string(b.samples) +
+                          ": the hardware backend renders 1 sample per pixel"
+      : b.hdr_format != HdrFormat::fp16
+          ? std::string("--hdr-format fp32: the hardware backend renders into an fp16 image")
+          : std::string();
+  if (!compute_only.empty() && hardware) {
+    if (bench->count("--backends") > 0)
+      throw UsageError(compute_only + "; leave it out of --backends", help_command);
     b.backends = {"compute"};
   }
-  line.tradeoff.size_given = tradeoff->count("--size") > 0;
+  TradeoffArgs& t = line.tradeoff;
+  apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
+                &t.small_triangle_area);
+  t.size_given = tradeoff->count("--size") > 0;
+  t.brdf_given = t.quality != Quality::none;
   reject_extras(app, help_command);
   line.command = render->parsed()     ? Command::render
                  : bench->parsed()    ? Command::bench

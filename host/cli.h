@@ -12,6 +12,7 @@
 #include "core/check.h"
 #include "core/frame_settings.h"
 #include "core/scene.h"
+#include "host/quality.h"
 
 namespace tessera {
 
@@ -24,6 +25,8 @@ struct RenderArgs {
   std::string env;  // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
   EnvironmentOptions env_options;
   uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
+  uint32_t tile_size = TS_TILE_SIZE;      // RendererOptions::tile_size
+  Quality quality = Quality::none;        // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
   // first-use costs) are reported apart; the figures are medians over these.
   uint32_t repeat = 3;
@@ -32,7 +35,8 @@ struct RenderArgs {
   bool strict = false;  // --strict: unknown keys in a scene file are errors
   // Which frame options the command line gave: the others come from the scene file's
   // "render" block when it has them.
-  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false;
+  bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
+       view_given = false;
 };
 
 struct BenchArgs {
@@ -54,6 +58,9 @@ struct BenchArgs {
   bool generic_shading = false;                  // RendererOptions::specialize_lights off
   Lod lod = Lod::off;                            // FrameSettings::lod, for every backend
   float lod_error_px = 0.5f;                     // FrameSettings::lod_error_px
+  HdrFormat hdr_format = HdrFormat::fp16;        // FrameSettings::hdr_format (not hardware)
+  uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
+  Quality quality = Quality::none;               // --quality, applied by parse_command_line
   std::string csv, json, chart;
   bool quiet = false;
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
@@ -67,6 +74,7 @@ struct ViewArgs {
   std::string script;  // --script: input events replayed at frame numbers (host/view_script.h)
   bool overlay = true;
   bool validate = false;
+  bool strict = false;  // --strict: unknown keys in a scene file are errors
   bool size_given = false;
   PresentPath present = PresentPath::automatic;             // --present
   SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format
@@ -76,11 +84,15 @@ struct TradeoffArgs {
   std::string scene = "spheres";   // a scene of `tessera scenes`, a scene file, or a bench family
   uint32_t objects = 0;            // objects of a bench family (grid, scatter, huge); 0: 100
   std::vector<std::string> knobs;  // host/tradeoff.h, knobs()
-  FrameSettings frame;             // --size; the rest is each knob setting's
+  FrameSettings frame;             // --size, --hdr-format, --quality; the rest each knob's
   EnvironmentOptions env_options;  // the environment knobs' defaults
+  uint32_t tile_size = TS_TILE_SIZE;  // RendererOptions::tile_size of every setting but its knob's
+  uint32_t small_triangle_area = 64;  // RendererOptions::small_triangle_max_area, likewise
+  Quality quality = Quality::none;    // --quality, applied by parse_command_line
   std::string device = "auto";
   uint32_t repeat = 10;               // timed frames per setting and round
-  uint32_t warmup = 2;                // untimed frames per setting and round
+  uint32_t warmup = 2;                // untimed frames per setting and round, at least
+  double warmup_ms = 200;             // and this long, until the time settles (core/warmup.h)
   uint32_t rounds = 3;                // passes over all settings, interleaved
   uint32_t truth_samples = 8;         // N x N samples per pixel of the ground truth
   uint32_t truth_env_samples = 1024;  // environment directions per lobe and pixel of the truth
@@ -89,6 +101,7 @@ struct TradeoffArgs {
   bool strict = false;
   bool validate = false;
   bool size_given = false;
+  bool brdf_given = false;  // --brdf or a preset's: a scene file's "render" block does not set it
 };
 
 enum class Command { help, render, bench, devices, scenes, view, tradeoff };

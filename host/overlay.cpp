@@ -1,5 +1,7 @@
 #include "host/overlay.h"
 
+#include <cfloat>
+
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 #include <imgui.h>
@@ -61,6 +63,9 @@ void start_imgui(const Context& ctx, Window& window, const Swapchain& chain, Ove
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini written into the working folder
   ImGui::StyleColorsDark();
+  // Tighter rows than ImGui's default, so the panel's open sections fit a 512-pixel window.
+  ImGui::GetStyle().ItemSpacing.y = 3.0f;
+  ImGui::GetStyle().FramePadding.y = 2.0f;
   // Installed after the window's callbacks, which ImGui's call in turn.
   if (!ImGui_ImplGlfw_InitForVulkan(window.handle, true)) {
     throw Error("Dear ImGui's GLFW backend did not initialise");
@@ -115,9 +120,15 @@ void prepare_overlay(const Context& ctx, Window& window, const Swapchain& chain,
   }
 }
 
-void begin_overlay_frame() {
+void begin_overlay_frame(bool mouse_elsewhere) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  if (mouse_elsewhere) {
+    // Between the backend reading GLFW's state and ImGui using it.
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    for (bool& down : io.MouseDown) down = false;
+  }
   ImGui::NewFrame();
 }
 
@@ -137,10 +148,13 @@ void discard_overlay_frame() {
   ImGui::EndFrame();
 }
 
-bool overlay_wants_input() {
-  if (!ImGui::GetCurrentContext()) return false;
-  const ImGuiIO& io = ImGui::GetIO();
-  return io.WantCaptureMouse || io.WantCaptureKeyboard;
+bool overlay_wants_keyboard() {
+  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
+}
+
+bool overlay_popup_open() {
+  return ImGui::GetCurrentContext() &&
+         ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
 }
 
 void destroy_overlay(const Context& ctx, Overlay& overlay) {

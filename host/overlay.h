@@ -27,8 +27,11 @@ struct Overlay {
 /// Throws Error if a backend fails to initialise.
 void prepare_overlay(const Context& ctx, Window& window, const Swapchain& chain, Overlay& overlay);
 
-/// Starts an ImGui frame (the panel is built between this and record_overlay).
-void begin_overlay_frame();
+/// Starts an ImGui frame (the panel is built between this and record_overlay). With
+/// `mouse_elsewhere` (the camera has the mouse: a press outside the panel, held or not yet
+/// seen by ImGui) the panel sees no pointer and no button in this frame, so a camera drag
+/// that crosses it neither hovers nor presses its widgets.
+void begin_overlay_frame(bool mouse_elsewhere);
 
 /// Ends the ImGui frame and records its drawing into `cmd` over swapchain image `index`
 /// (COLOR_ATTACHMENT_OPTIMAL on entry, PRESENT_SRC_KHR after).
@@ -38,8 +41,12 @@ void record_overlay(const Overlay& overlay, const Swapchain& chain, VkCommandBuf
 /// Ends an ImGui frame begun but not drawn (the frame was not presented).
 void discard_overlay_frame();
 
-/// True while the panel wants the mouse or keyboard, so the camera should not take them.
-bool overlay_wants_input();
+/// True while the panel has the keyboard (a text field or an active widget), so the camera's
+/// keys should not act.
+bool overlay_wants_keyboard();
+
+/// True while one of the panel's popups (a combo's list) is open: it takes any press.
+bool overlay_popup_open();
 
 /// Shuts ImGui down and destroys the overlay's objects; the device must be idle.
 void destroy_overlay(const Context& ctx, Overlay& overlay);

@@ -22,7 +22,7 @@ namespace {
 Scene scene_of(RenderArgs& args) {
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
   apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
-                        args.tonemap_given, args.brdf_given);
+                        args.tonemap_given, args.brdf_given, args.view_given);
   Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();
@@ -123,6 +123,7 @@ int run_render(const RenderArgs& given) {
   std::unique_ptr<Context> ctx = create_context(options);
   RendererOptions renderer_options;
   renderer_options.environment = args.env_options;
+  renderer_options.tile_size = args.tile_size;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 

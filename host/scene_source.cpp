@@ -130,7 +130,8 @@ std::string scene_listing() {
 }
 
 void apply_render_defaults(const RenderDefaults& r, FrameSettings& frame, bool size_given,
-                           bool exposure_given, bool tonemap_given, bool brdf_given) {
+                           bool exposure_given, bool tonemap_given, bool brdf_given,
+                           bool view_given) {
   if (!size_given) {
     frame.width = r.width.value_or(frame.width);
     frame.height = r.height.value_or(frame.height);
@@ -138,6 +139,8 @@ void apply_render_defaults(const RenderDefaults& r, FrameSettings& frame, bool s
   if (!exposure_given) frame.exposure_ev = r.exposure_ev.value_or(frame.exposure_ev);
   if (!tonemap_given) frame.tonemap = r.tonemap.value_or(frame.tonemap);
   if (!brdf_given) frame.brdf = r.brdf.value_or(frame.brdf);
+  if (!view_given) frame.view = r.view.value_or(frame.view);
+  frame.energy_compensation = frame.energy_compensation || r.energy_compensation.value_or(false);
 }
 
 }  // namespace tessera

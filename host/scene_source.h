@@ -45,9 +45,11 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet);
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
 
 /// Fills in the frame settings a command line left unset (the `*_given` flags false) from a
-/// scene file's "render" block, where it has them.
+/// scene file's "render" block, where it has them. Energy compensation is on if either turns
+/// it on (the command line's flag cannot turn it off).
 void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame, bool size_given,
-                           bool exposure_given, bool tonemap_given, bool brdf_given);
+                           bool exposure_given, bool tonemap_given, bool brdf_given,
+                           bool view_given = false);
 
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.

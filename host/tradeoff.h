@@ -11,6 +11,7 @@
 #include "core/frame_settings.h"
 #include "core/image_metrics.h"
 #include "core/statistics.h"
+#include "core/warmup.h"
 #include "host/cli.h"
 
 namespace tessera {
@@ -57,6 +58,8 @@ struct TradeoffPoint {
   /// GPU time of the environment's precomputation (the first frame after set_scene only): what
   /// the env-size and env-samples knobs cost, which the per-frame time does not show.
   double precompute_ms = 0.0;
+  /// The warm-up before each round's timed frames (core/warmup.h; `--warmup`, `--warmup-ms`).
+  std::vector<WarmupStats> warmups;
 };
 
 struct TradeoffResults {

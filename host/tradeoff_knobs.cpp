@@ -1,4 +1,5 @@
 // The knobs of `tessera tradeoff` and their settings (docs/tradeoffs.md says why these).
+#include <cstdio>
 #include <string>
 
 #include "core/check.h"
@@ -10,11 +11,14 @@ const std::vector<KnobInfo>& knobs() {
   static const std::vector<KnobInfo> list = {
       {"brdf", "BRDF variant and energy compensation (blinn-phong, classic, filament, +ec)"},
       {"tessellation", "sphere slices 8..128 (fixed tessellations of every sphere)"},
+      {"lod", "level of detail: off, then auto at 0.25..4 px of projected error"},
       {"anisotropy", "texture filtering: trilinear, then 2..16 anisotropic probes"},
       {"env-size", "side of the prefiltered specular cube, 16..256 texels"},
       {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
       {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
+      {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
+      {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
   };
   return list;
 }
@@ -69,6 +73,29 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       s.sphere_segments = segments;
       out.push_back(s);
     }
+  } else if (knob == "lod") {
+    KnobSetting off = base(knob, "off", frame, options);
+    off.frame.lod = Lod::off;
+    off.is_default = frame.lod == Lod::off;
+    out.push_back(off);
+    // From a quarter pixel, below the half pixel of the default, to 4 px, where the coarsest
+    // levels already show as polygons (docs/tradeoffs.md, "Level of detail").
+    for (const float px : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
+      char label[32];
+      std::snprintf(label, sizeof(label), "auto %g px", double(px));
+      KnobSetting s = base(knob, label, frame, options);
+      s.frame.lod = Lod::automatic;
+      s.frame.lod_error_px = px;
+      s.is_default = frame.lod == Lod::automatic && frame.lod_error_px == px;
+      out.push_back(s);
+    }
+  } else if (knob == "hdr") {
+    for (const HdrFormat f : {HdrFormat::fp16, HdrFormat::fp32}) {
+      KnobSetting s = base(knob, f == HdrFormat::fp16 ? "fp16" : "fp32", frame, options);
+      s.frame.hdr_format = f;
+      s.is_default = f == frame.hdr_format;
+      out.push_back(s);
+    }
   } else if (knob == "anisotropy") {
     for (uint32_t n : {1u, 2u, 4u, 8u, 16u}) {
       KnobSetting s = base(knob, n == 1 ? "trilinear" : std::to_string(n) + "x", frame, options);
@@ -103,6 +130,14 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       KnobSetting s = base(knob, std::to_string(area) + " px", frame, options);
       s.renderer.small_triangle_max_area = area;
       s.is_default = area == options.small_triangle_max_area;
+      s.speed_only = true;
+      out.push_back(s);
+    }
+  } else if (knob == "tile-size") {
+    for (uint32_t side : {8u, 16u}) {
+      KnobSetting s = base(knob, std::to_string(side) + " px", frame, options);
+      s.renderer.tile_size = side;
+      s.is_default = side == options.tile_size;
       s.speed_only = true;
       out.push_back(s);
     }

@@ -12,6 +12,7 @@
 #include "core/pareto.h"
 #include "core/pick.h"
 #include "core/reference_renderer.h"
+#include "core/warmup.h"
 #include "host/scene_source.h"
 #include "host/tradeoff.h"
 
@@ -35,7 +36,7 @@ Scene load_scene(const TradeoffArgs& args, FrameSettings& frame) {
                 args.scene + "'");
   }
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  apply_render_defaults(file.render, frame, args.size_given, false, false, false);
+  apply_render_defaults(file.render, frame, args.size_given, false, false, args.brdf_given, true);
   return std::move(file.scene);
 }
 
@@ -50,10 +51,9 @@ Scene with_sphere_segments(const Scene& scene, uint32_t segments) {
 }
 
 // Which object (index into Scene::objects, kNoObject for none) each pixel of a compute frame
-// shows, from its visibility buffer.
-Ownership compute_ownership(const Renderer& renderer, const Scene& scene, uint32_t width,
-                            uint32_t height) {
-  const ObjectNumbering numbering = number_objects(scene);
+// shows, from its visibility buffer (numbered by the levels of detail the frame chose).
+Ownership compute_ownership(const Renderer& renderer, uint32_t width, uint32_t height) {
+  const ObjectNumbering numbering = renderer.triangle_numbering();
   const std::vector<uint64_t> keys = renderer.read_visibility();
   std::vector<uint32_t> objects(keys.size());
   for (size_t i = 0; i < keys.size(); ++i) {
@@ -86,6 +86,7 @@ struct Candidate {
   std::vector<double> times;
   uint64_t triangles = 0;
   double precompute_ms = 0.0;
+  std::vector<WarmupStats> warmups;  // one per round
 };
 
 }  // namespace
@@ -99,6 +100,8 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   validate_scene(scene);
   RendererOptions options;
   options.environment = args.env_options;
+  options.tile_size = args.tile_size;
+  options.small_triangle_max_area = args.small_triangle_area;
 
   std::vector<Candidate> candidates;
   for (const std::string& knob : args.knobs) {
@@ -115,13 +118,22 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   size_t done = 0;
   for (uint32_t round = 0; round < args.rounds; ++round) {
     for (Candidate& c : candidates) {
-      // The first round's first frames pay for pipeline compilation and the environment's
-      // precomputation; later rounds warm up again after the other settings ran.
-      const uint32_t warmup = round == 0 ? args.warmup + 1 : args.warmup;
-      for (uint32_t i = 0; i < warmup; ++i) {
+      // The first round's first frame pays for pipeline compilation and the environment's
+      // precomputation, which warm_up's clock leaves out; every round warms up again after
+      // the other settings ran, by time as `tessera bench` does (core/warmup.h).
+      if (round == 0) {
         const FrameStats stats = c.renderer->render(c.setting.frame);
-        if (round == 0 && i == 0) c.precompute_ms = stats.pass_ms[size_t(Pass::environment)];
+        c.precompute_ms = stats.pass_ms[size_t(Pass::environment)];
       }
+      WarmupRule rule;
+      rule.min_frames = args.warmup;
+      rule.ms = args.warmup_ms;
+      c.warmups.push_back(warm_up(
+          [&c] {
+            const FrameStats stats = c.renderer->render(c.setting.frame);
+            return stats.has_timestamps ? stats.gpu_total_ms : 0.0;
+          },
+          rule));
       for (uint32_t i = 0; i < args.repeat; ++i) {
         const FrameStats stats = c.renderer->render(c.setting.frame);
         if (!stats.has_timestamps) throw Error("the device's queue cannot write timestamps");
@@ -140,7 +152,9 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   ReferenceSettings truth;
   truth.frame = frame;
   truth.frame.max_anisotropy = 16;
-  truth.frame.samples = 1;  // the truth's own N x N supersampling instead
+  truth.frame.samples = 1;                   // the truth's own N x N supersampling instead
+  truth.frame.lod = Lod::off;                // the meshes as they are, spheres exact
+  truth.frame.hdr_format = HdrFormat::fp32;  // no clamp at fp16's 65504
   truth.ground_truth.analytic_spheres = true;
   truth.ground_truth.supersampling = args.truth_samples;
   const uint32_t per_sample = args.truth_env_samples / (args.truth_samples * args.truth_samples);
@@ -148,7 +162,8 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   results.truth =
       "CPU reference, double precision: analytic spheres, " + std::to_string(args.truth_samples) +
       "x" + std::to_string(args.truth_samples) +
-      " samples per pixel (box filter), 16x anisotropic filtering, " +
+      " samples per pixel (box filter), 16x anisotropic filtering, no level of detail, fp32 "
+      "HDR range, " +
       std::to_string(truth.environment_samples * args.truth_samples * args.truth_samples) +
       " environment directions per lobe and pixel; the BRDF knob against filament "
       "with energy compensation, the others against the command line's BRDF";
@@ -195,9 +210,10 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
     p.gpu_ms = summarize(c.times);
     p.triangles_rasterized = c.triangles;
     p.precompute_ms = c.precompute_ms;
+    p.warmups = c.warmups;
     const Truth& t = truths.at(truth_key(c.setting));
     const Ownership own =
-        compute_ownership(*c.renderer, c.scene, c.setting.frame.width, c.setting.frame.height);
+        compute_ownership(*c.renderer, c.setting.frame.width, c.setting.frame.height);
     const ImageF hdr = c.renderer->read_hdr();
     p.error = error_against_truth(hdr, images[i], t.frame.hdr, t.frame.ldr, &own, &t.ownership);
     p.interior_mean_relative = radiance_error(hdr, t.frame.hdr, &t.interior).mean_relative;

@@ -1,4 +1,5 @@
 // Reporting `tessera tradeoff`: the table, the JSON file and the chart.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -50,6 +51,26 @@ void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& ar
                 p.gpu_ms.max, p.error.mean_relative, p.interior_mean_relative, p.error.p99_relative,
                 p.error.psnr_db, p.error.silhouette_px, marks.c_str());
   }
+  // The warm-ups, over every setting and round.
+  uint32_t frames_min = ~0u, frames_max = 0, unsettled = 0, count = 0;
+  double ms_min = INFINITY, ms_max = 0.0;
+  for (const TradeoffPoint& p : results.points) {
+    for (const WarmupStats& w : p.warmups) {
+      frames_min = std::min(frames_min, w.frames);
+      frames_max = std::max(frames_max, w.frames);
+      ms_min = std::min(ms_min, w.ms);
+      ms_max = std::max(ms_max, w.ms);
+      unsettled += args.warmup_ms > 0 && !w.stable;
+      ++count;
+    }
+  }
+  if (count > 0) {
+    std::printf(
+        "warm-up per setting and round (at least %u frames and %g ms, then until the median of\n"
+        "5 frames is within 2 %% of the 5 before): %u..%u frames, %.0f..%.0f ms; %u of %u "
+        "unsettled\n",
+        args.warmup, args.warmup_ms, frames_min, frames_max, ms_min, ms_max, unsettled, count);
+  }
 }
 
 void write_tradeoff_json(const std::string& path, const TradeoffResults& results,
@@ -67,9 +88,15 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
   j["height"] = args.frame.height;
   j["rounds"] = args.rounds;
   j["frames_per_round"] = args.repeat;
+  j["warmup"] = {{"min_frames", args.warmup}, {"min_ms", args.warmup_ms}};
+  j["hdr_format"] = args.frame.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16";
+  j["tile_size"] = args.tile_size;
   j["truth"] = {{"description", results.truth}, {"cpu_seconds", results.truth_seconds}};
   nlohmann::json points = nlohmann::json::array();
   for (const TradeoffPoint& p : results.points) {
+    nlohmann::json warmups = nlohmann::json::array();
+    for (const WarmupStats& w : p.warmups)
+      warmups.push_back({{"frames", w.frames}, {"ms", w.ms}, {"stable", w.stable}});
     points.push_back({{"knob", p.setting.knob},
                       {"setting", p.setting.label},
                       {"default", p.setting.is_default},
@@ -87,7 +114,8 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
                       {"silhouette_px", finite_or_null(p.error.silhouette_px)},
                       {"speed_only", p.setting.speed_only},
                       {"identical_to_default", p.identical_to_default},
-                      {"pareto_front", p.on_front}});
+                      {"pareto_front", p.on_front},
+                      {"warmups", warmups}});
   }
   j["points"] = points;
   std::ofstream f(path);

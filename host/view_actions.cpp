@@ -102,15 +102,70 @@ glm::vec3 point_under(const Viewer& v, glm::vec2 at) {
   return c.position + w * (forward + ndc_x * t * aspect * right - ndc_y * t * up);
 }
 
-// Applies `edit` through the history (validated, undoable) and shows it next frame.
-void edit(Viewer& v, const Edit& e) {
+// Applies `edit` through the history (validated, undoable) and shows it next frame; false if
+// it was refused. The render options as they are now belong to the state it makes.
+bool edit(Viewer& v, const Edit& e) {
   try {
     v.history.apply(v.scene, e);
   } catch (const Error& error) {
     log(v, std::string("edit refused: ") + error.what());
+    return false;
+  }
+  v.options_at[v.history.state()] = render_options_of(v.frame);
+  mark_changed(v, e.label);
+  return true;
+}
+
+// Render options as an edit of no scene operations, so that they share the undo history and
+// the unsaved mark with the scene's edits. With `continuing` (a panel drag going on) and the
+// last edit being the drag's, the options of that edit's state change instead: one undo step
+// per drag.
+void set_options(Viewer& v, const RenderOptions& options, const std::string& label,
+                 bool continuing) {
+  if (options == render_options_of(v.frame)) return;
+  if (continuing && v.options_drag_state == v.history.state()) {
+    set_render_options(v.frame, options);
+    v.options_at[v.history.state()] = options;
+    mark_changed(v, label);
     return;
   }
-  mark_changed(v, e.label);
+  const RenderOptions before = render_options_of(v.frame);
+  set_render_options(v.frame, options);
+  if (!edit(v, Edit{label, {}})) {
+    set_render_options(v.frame, before);
+    return;
+  }
+  v.options_drag_state = v.history.state();
+  log(v, label);
+}
+
+// A scripted render option, as the panel sets it.
+void edit_option(Viewer& v, const InputEvent& e) {
+  RenderOptions o = render_options_of(v.frame);
+  const char* brdfs[] = {"classic", "filament", "blinn-phong"};
+  const char* tonemaps[] = {"aces", "reinhard", "clamp"};
+  const char* views[] = {"shaded", "normal", "uv", "triangle", "object"};
+  std::string label;
+  if (e.field == "brdf") {
+    o.brdf = Brdf(e.index);
+    label = std::string("BRDF ") + brdfs[e.index];
+  } else if (e.field == "tonemap") {
+    o.tonemap = ToneMap(e.index);
+    label = std::string("tone map ") + tonemaps[e.index];
+  } else if (e.field == "view") {
+    o.view = View(e.index);
+    label = std::string("view ") + views[e.index];
+  } else if (e.field == "energy_compensation") {
+    o.energy_compensation = e.index != 0;
+    label = e.index ? "energy compensation on" : "energy compensation off";
+  } else {
+    o.exposure_ev = e.value.x;
+    char text[48];
+    std::snprintf(text, sizeof(text), "exposure %g EV", e.value.x);
+    label = text;
+  }
+  if (o == render_options_of(v.frame)) return log(v, label + ": already so, nothing to undo");
+  set_options(v, o, label, false);
 }
 
 bool has_selection(const Viewer& v, const char* action) {
@@ -120,8 +175,10 @@ bool has_selection(const Viewer& v, const char* action) {
 }
 
 void set_selected_material(Viewer& v, const Material& m) {
-  if (has_selection(v, "change the material of"))
-    edit(v, set_object_material(v.scene, uint32_t(v.selected), m));
+  if (!has_selection(v, "change the material of")) return;
+  // The same material again is no edit (no undo step, no unsaved mark).
+  if (v.scene.materials[v.scene.objects[size_t(v.selected)].material] == m) return;
+  edit(v, set_object_material(v.scene, uint32_t(v.selected), m));
 }
 
 // A scripted material edit, as the panel's editor would make it.
@@ -180,18 +237,67 @@ void undo_or_redo(Viewer& v, bool redo) {
   }
   // Indices may have shifted: an undone add or redone delete removes an object.
   if (v.selected >= int(v.scene.objects.size())) v.selected = -1;
+  // Every state reached through the history has its render options.
+  if (auto it = v.options_at.find(v.history.state()); it != v.options_at.end())
+    set_render_options(v.frame, it->second);
+  v.options_drag_state = ~0ull;
   mark_changed(v, (redo ? "redo " : "undo ") + label);
 }
 
-void save(Viewer& v, const std::string& path) {
+// The scene file's "render" block with the render options as they are now: each option the
+// file gave, or that differs from the tool's default.
+RenderDefaults render_block(const Viewer& v) {
+  RenderDefaults r = v.render_defaults;
+  const FrameSettings defaults;
+  auto keep = [](auto& field, auto value, auto default_value) {
+    if (field || value != default_value) field = value;
+  };
+  keep(r.exposure_ev, v.frame.exposure_ev, defaults.exposure_ev);
+  keep(r.tonemap, v.frame.tonemap, defaults.tonemap);
+  keep(r.brdf, v.frame.brdf, defaults.brdf);
+  keep(r.energy_compensation, v.frame.energy_compensation, defaults.energy_compensation);
+  keep(r.view, v.frame.view, defaults.view);
+  return r;
+}
+
+void write_scene(const Viewer& v, const std::string& path) {
+  const RenderDefaults render = render_block(v);
+  save_scene_file(v.scene, path, &render, v.description);
+}
+
+// Ctrl+S (`to_own_file`: the scene's own file) or a script's `save PATH`.
+void save(Viewer& v, const std::string& path, bool to_own_file) {
+  if (to_own_file && !v.history.dirty()) {
+    // Saving rewrites the file in the generated form: never without a reason.
+    log(v, "nothing to save: no edits since the scene was loaded or saved (" + path +
+               " left as it is)");
+    return;
+  }
   try {
-    save_scene_file(v.scene, path, &v.render_defaults);
+    write_scene(v, path);
   } catch (const Error& error) {
     log(v, std::string("not saved: ") + error.what());
     return;
   }
-  v.history.mark_saved();
+  if (to_own_file || path == save_path(v)) v.history.mark_saved();
   log(v, "saved " + path);
+}
+
+// A scripted click or drag that starts where the panel was drawn is the panel's, as a person's
+// press there is; a script edits through the panel's own lines (material, light, brdf, ...).
+bool scripted_on_panel(const Viewer& v, const InputEvent& e) {
+  if (!e.scripted || !on_panel(*v.window, e.from)) return false;
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "%s at %g %g: on the panel, which takes it (F1 or --overlay off hides the panel)",
+                e.kind == EventKind::click ? "click" : "drag", e.from.x, e.from.y);
+  log(v, text);
+  return true;
+}
+
+float aspect_of(const Viewer& v) {
+  const Viewport viewport = viewport_of(v);
+  return float(viewport.width) / float(viewport.height);
 }
 
 void handle_key(Viewer& v, const InputEvent& e) {
@@ -205,7 +311,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
     case GLFW_KEY_Q:
     case GLFW_KEY_E:
       if (e.key == GLFW_KEY_S && e.ctrl) {
-        save(v, save_path(v));
+        save(v, save_path(v), true);
       } else if (e.scripted) {  // held keys of a person are polled each frame instead
         fly_keys = {e.key == GLFW_KEY_W, e.key == GLFW_KEY_S, e.key == GLFW_KEY_A,
                     e.key == GLFW_KEY_D, e.key == GLFW_KEY_Q, e.key == GLFW_KEY_E};
@@ -214,8 +320,15 @@ void handle_key(Viewer& v, const InputEvent& e) {
       }
       break;
     case GLFW_KEY_F:
-      if (frame_scene(v.orbit, v.scene, float(viewport_of(v).width) / viewport_of(v).height))
-        camera_moved(v);
+      if (!e.shift) {
+        if (frame_scene(v.orbit, v.scene, aspect_of(v))) camera_moved(v);
+      } else if (has_selection(v, "frame")) {
+        if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v))) camera_moved(v);
+      }
+      break;
+    case GLFW_KEY_HOME:
+      v.orbit = from_camera(v.home_camera);
+      camera_moved(v);
       break;
     case GLFW_KEY_Z:
       if (e.ctrl) undo_or_redo(v, e.shift);
@@ -255,7 +368,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
       break;
     }
     case GLFW_KEY_P:
-      v.screenshot = "tessera_view_" + std::to_string(v.frame_number) + ".png";
+      v.screenshots.push_back("tessera_view_" + std::to_string(v.frame_number) + ".png");
       break;
     case GLFW_KEY_ESCAPE:
       v.selected = -1;
@@ -291,13 +404,25 @@ void mark_changed(Viewer& v, const std::string& what) {
   v.scene_changed = true;
 }
 
-void fly_held_keys(Viewer& v, float seconds) {
+namespace {
+
+FlyKeys held_fly_keys(const Viewer& v) {
   auto held = [&](int key) { return glfwGetKey(v.window->handle, key) == GLFW_PRESS; };
-  if (v.window->wants_input_elsewhere || held(GLFW_KEY_LEFT_CONTROL)) return;
-  const FlyKeys keys{held(GLFW_KEY_W), held(GLFW_KEY_S), held(GLFW_KEY_A),
-                     held(GLFW_KEY_D), held(GLFW_KEY_Q), held(GLFW_KEY_E)};
-  if (!(keys.forward || keys.back || keys.left || keys.right || keys.down || keys.up)) return;
-  fly(v.orbit, keys, seconds);
+  if (v.window->panel_has_keyboard || held(GLFW_KEY_LEFT_CONTROL)) return {};
+  return {held(GLFW_KEY_W), held(GLFW_KEY_S), held(GLFW_KEY_A),
+          held(GLFW_KEY_D), held(GLFW_KEY_Q), held(GLFW_KEY_E)};
+}
+
+}  // namespace
+
+bool fly_keys_held(const Viewer& v) {
+  const FlyKeys k = held_fly_keys(v);
+  return k.forward || k.back || k.left || k.right || k.down || k.up;
+}
+
+void fly_held_keys(Viewer& v, float seconds) {
+  if (!fly_keys_held(v)) return;
+  fly(v.orbit, held_fly_keys(v), seconds);
   camera_moved(v);
 }
 
@@ -307,10 +432,12 @@ void handle_event(Viewer& v, const InputEvent& e) {
       handle_key(v, e);
       break;
     case EventKind::drag: {
+      // A right drag does nothing (scripts cannot ask for one).
+      if (e.button == MouseButton::right || scripted_on_panel(v, e)) break;
       const glm::vec2 d = e.to - e.from;
-      if (e.button == MouseButton::middle || (e.button == MouseButton::left && e.shift)) {
+      if (e.button == MouseButton::middle || e.shift) {
         pan(v.orbit, d.x, d.y, viewport_of(v));
-      } else if (e.button == MouseButton::left) {
+      } else {
         orbit(v.orbit, d.x, d.y, viewport_of(v));
       }
       v.pointer = e.to;
@@ -318,6 +445,7 @@ void handle_event(Viewer& v, const InputEvent& e) {
       break;
     }
     case EventKind::click:
+      if (scripted_on_panel(v, e)) break;
       v.pointer = e.from;
       pick(v, e.from);
       break;
@@ -335,10 +463,15 @@ void handle_event(Viewer& v, const InputEvent& e) {
       v.minimised = false;
       break;
     case EventKind::screenshot:
-      v.screenshot = e.path;
+      v.screenshots.push_back(e.path);
+      if (v.minimised || window_iconified(*v.window)) {
+        log(v, "screenshot " + e.path +
+                   " waits: the window is minimised; it is written from the first frame after "
+                   "the restore");
+      }
       break;
     case EventKind::save:
-      save(v, e.path.empty() ? save_path(v) : e.path);
+      save(v, e.path.empty() ? save_path(v) : e.path, e.path.empty());
       break;
     case EventKind::exit:
       v.exit = true;
@@ -352,33 +485,42 @@ void handle_event(Viewer& v, const InputEvent& e) {
     case EventKind::light:
       edit_light(v, e);
       break;
+    case EventKind::option:
+      edit_option(v, e);
+      break;
   }
 }
 
 void apply_panel_changes(Viewer& v, const PanelChanges& c) {
   if (c.material) set_selected_material(v, *c.material);
-  if (c.light) edit(v, set_light(v.scene, c.light_index, *c.light));
+  if (c.light && *c.light != v.scene.lights[c.light_index])
+    edit(v, set_light(v.scene, c.light_index, *c.light));
   if (c.delete_light) edit(v, delete_light(v.scene, c.light_index));
   if (c.add_light) handle_key(v, InputEvent{.kind = EventKind::key, .key = GLFW_KEY_L});
   if (c.toggle_environment)
     edit(v, set_environment(v.scene, v.scene.environment ? nullptr : v.environment));
+  if (c.options) set_options(v, *c.options, c.options_label, c.continuing);
 }
 
 std::string save_path(const Viewer& v) {
   return is_scene_path(v.args.scene) ? v.args.scene : v.args.scene + ".json";
 }
 
-void autosave_if_unsaved(Viewer& v) {
-  if (!v.history.dirty()) return;
-  std::filesystem::path path = is_scene_path(v.args.scene)
-                                   ? std::filesystem::path(v.args.scene)
-                                   : std::filesystem::path(v.args.scene + ".json");
-  path.replace_extension(".autosave.json");
+std::string autosave_path(const Viewer& v) {
+  std::filesystem::path path = save_path(v);
+  return path.replace_extension(".autosave.json").string();
+}
+
+bool autosave_if_unsaved(Viewer& v) {
+  if (!v.history.dirty()) return true;
+  const std::string path = autosave_path(v);
   try {
-    save_scene_file(v.scene, path.string(), &v.render_defaults);
+    write_scene(v, path);
     std::fprintf(stderr, "tessera view: unsaved edits written to %s\n", path.c_str());
+    return true;
   } catch (const Error& error) {
     std::fprintf(stderr, "tessera view: unsaved edits lost: %s\n", error.what());
+    return false;
   }
 }
 

@@ -1,8 +1,11 @@
 #include "host/view_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cinttypes>
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -19,7 +22,9 @@ namespace {
 
 // Builds this frame's panel; its changes apply to the frame about to be rendered.
 void build_panel(Viewer& v) {
-  begin_overlay_frame();
+  Window& w = *v.window;
+  begin_overlay_frame(w.camera_press || (w.held >= 0 && !w.held_by_panel));
+  w.camera_press = false;
   PanelInput in;
   in.scene = &v.scene;
   in.stats = &v.last_stats;
@@ -28,8 +33,10 @@ void build_panel(Viewer& v) {
   in.has_environment = v.environment != nullptr;
   in.environment_on = v.scene.environment != nullptr;
   in.unsaved = v.history.dirty();
-  apply_panel_changes(v, draw_view_panel(in, v.frame));
   const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const PanelChanges changes = draw_view_panel(in, v.frame, display.x, display.y);
+  v.window->panel = changes.rect;
+  apply_panel_changes(v, changes);
   draw_selection_mark(v.scene, v.selected, display.x, display.y);
 }
 
@@ -53,15 +60,17 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     }
   }
   const bool overlay = v.args.overlay && v.overlay_visible;
+  v.window->panel = PanelRect{};
   if (overlay) build_panel(v);
-  v.window->wants_input_elsewhere = overlay && overlay_wants_input();
+  v.window->panel_popup = overlay && overlay_popup_open();
+  v.window->panel_has_keyboard = overlay && overlay_wants_keyboard();
   UploadStats upload;
   if (v.scene_changed) upload = v.renderer->set_scene(v.scene);
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
   v.last_stats = v.renderer->render(v.frame);
   Image8 shot;
-  const bool wants_shot = !v.screenshot.empty();
+  const bool wants_shot = !v.screenshots.empty();
   bool overlay_drawn = false;
   OverlayRecorder recorder;
   if (overlay) {
@@ -88,60 +97,129 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
                 std::chrono::duration<double, std::milli>(now - v.changed_at).count());
     v.scene_changed = false;
   }
-  if (wants_shot) {
+  for (const std::string& path : v.screenshots) {
     // A screenshot that cannot be written says why and leaves the session running.
-    const std::string reason = unwritable_reason(v.screenshot);
+    const std::string reason = unwritable_reason(path);
     try {
       if (!reason.empty()) throw Error(reason);
-      write_png(v.screenshot, shot);
-      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, v.screenshot.c_str(),
-                  shot.width, shot.height);
+      write_png(path, shot);
+      std::printf("frame %" PRIu64 ": wrote %s (%ux%u)\n", v.frame_number, path.c_str(), shot.width,
+                  shot.height);
     } catch (const Error& error) {
       std::printf("frame %" PRIu64 ": screenshot %s not written: %s\n", v.frame_number,
-                  v.screenshot.c_str(), error.what());
+                  path.c_str(), error.what());
     }
-    v.screenshot.clear();
   }
+  v.screenshots.clear();
   return true;
 }
 
+// SIGINT or SIGTERM received: the loop leaves as if the window were closed.
+volatile std::sig_atomic_t g_signal = 0;
+
+void on_signal(int signal) {
+  g_signal = signal;
+}
+
+// Ctrl+C and SIGTERM end the session normally (autosave, summary); a second one, with the
+// handler reset, ends the process at once.
+void catch_stop_signals() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+// Interactive frames after the last input, so that ImGui's hover and animations settle.
+constexpr int kSettleFrames = 3;
+// An idle interactive viewer sleeps in the window system up to this long between checks of the
+// stop signals.
+constexpr double kIdleWaitSeconds = 0.25;
+
 void run_loop(Viewer& v) {
-  const bool scripted = !v.args.script.empty();
-  for (;; v.frame_number++) {
+  int settle = kSettleFrames;  // frames still to draw after the last activity
+  uint64_t seen_activity = 0;
+  for (;;) {
+    // Until its last event has played; then the window is left to a person.
+    const bool scripted = v.next_script_event < v.script.size();
     uint32_t width = 0, height = 0;
     framebuffer_size(*v.window, width, height);
     // X11 keeps an iconified window's size, so both the flag and a 0 x 0 framebuffer count.
     auto hidden = [&] {
       return v.minimised || window_iconified(*v.window) || width == 0 || height == 0;
     };
-    // A minimised window waits for events instead of spinning; a script keeps counting frames.
-    std::vector<InputEvent> events = poll_window(*v.window, hidden() && !scripted);
+    // A script renders every frame, so that its frame numbers mean the same on every run.
+    // Interactively, a frame is drawn only when something may have changed; otherwise the
+    // viewer waits for the window system.
+    const bool busy = scripted || settle > 0 || v.scene_changed || !v.screenshots.empty() ||
+                      v.recreate || fly_keys_held(v);
+    std::vector<InputEvent> events =
+        poll_window(*v.window, busy && !(hidden() && !scripted) ? 0.0 : kIdleWaitSeconds);
+    if (v.window->activity != seen_activity) {
+      seen_activity = v.window->activity;
+      settle = kSettleFrames;
+    }
+    if (g_signal) {
+      std::printf("frame %" PRIu64 ": %s received: leaving as if the window were closed\n",
+                  v.frame_number, g_signal == SIGINT ? "SIGINT" : "SIGTERM");
+      break;
+    }
     while (v.next_script_event < v.script.size() &&
            v.script[v.next_script_event].frame <= v.frame_number) {
       events.push_back(v.script[v.next_script_event++].event);
     }
+    const bool draws = scripted || settle > 0 || !events.empty() || v.scene_changed ||
+                       !v.screenshots.empty() || v.recreate || fly_keys_held(v);
+    if (!draws) continue;
     for (const InputEvent& e : events) handle_event(v, e);
-    fly_held_keys(v, float(v.frame_ms) * 1e-3f);
+    // The window's title says what the panel's does, for a hidden panel too.
+    const std::string title =
+        "tessera view: " + v.args.scene + (v.history.dirty() ? " (unsaved edits)" : "");
+    if (title != v.title) set_window_title(*v.window, v.title = title);
+    // A frame's time is the time it takes to draw one, whatever the idle time before it.
+    fly_held_keys(v, float(std::min(v.frame_ms, 100.0)) * 1e-3f);
     if (window_should_close(*v.window)) break;
     framebuffer_size(*v.window, width, height);
-    if (!hidden()) draw(v, width, height);
+    if (!hidden()) {
+      draw(v, width, height);
+      if (settle > 0) settle--;
+    }
     if (v.exit) break;
+    v.frame_number++;
   }
 }
 
 }  // namespace
 
 int run_view(const ViewArgs& args) {
+  // Messages reach a log file or a pipe as they happen, not when a buffer fills.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Viewer v;
   v.args = args;
   v.frame = args.frame;
-  if (!args.script.empty()) v.script = load_view_script(args.script);
-  SceneFile file = load_scene_argument(args.scene, false, false);
+  if (!args.script.empty()) {
+    // A script that does not parse is a bad command line, as a bad option value is.
+    try {
+      v.script = load_view_script(args.script);
+    } catch (const Error& e) {
+      throw UsageError(e.what(), "tessera view --help");
+    }
+  }
+  SceneFile file = load_scene_argument(args.scene, args.strict, false);
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
   v.scene = std::move(file.scene);
   v.render_defaults = file.render;
+  v.description = file.description;
+  v.options_at[v.history.state()] = render_options_of(v.frame);
+  if (std::filesystem::exists(autosave_path(v))) {
+    std::printf("note: %s holds unsaved edits of an earlier session (open it with --scene %s)\n",
+                autosave_path(v).c_str(), autosave_path(v).c_str());
+  }
   v.environment = v.scene.environment;
   v.orbit = from_camera(v.scene.camera);
+  v.home_camera = v.scene.camera;
 
   v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
   ContextOptions options;
@@ -152,18 +230,31 @@ int run_view(const ViewArgs& args) {
   v.ctx = create_context(options);
   v.chain.surface = create_window_surface(v.ctx->instance, *v.window);
   create_presenter(*v.ctx, v.presenter);
-  // The presenter records the resolve pass, into the swapchain image where it can.
+  // The presenter records the resolve pass, into the swapchain image where it can. Building
+  // the pipelines takes seconds on a CPU device, with the window still empty: say so.
+  std::printf("compiling shaders...\n");
+  set_window_title(*v.window, "tessera view: " + args.scene + " (compiling shaders...)");
+  poll_window(*v.window, 0.0);
   v.renderer = std::make_unique<Renderer>(*v.ctx, RendererOptions{.resolve = false});
   v.renderer->set_scene(v.scene);
+  catch_stop_signals();
   run_loop(v);
-  autosave_if_unsaved(v);
+  bool lost = !autosave_if_unsaved(v);
+  for (const std::string& path : v.screenshots) {
+    std::fprintf(stderr,
+                 "tessera view: screenshot %s not written: no frame was presented after "
+                 "it was asked for (the window stayed minimised)\n",
+                 path.c_str());
+    lost = true;
+  }
   if (v.frames_presented > 1) {
     const double seconds = std::chrono::duration<double>(v.last_present - v.first_present).count();
     std::printf("%llu frames presented, %.1f frames per second after the first\n",
                 (unsigned long long)v.frames_presented, double(v.frames_presented - 1) / seconds);
   }
   v.release();
-  return validation_exit_status(v.ctx.get());
+  const int status = validation_exit_status(v.ctx.get());
+  return status != 0 ? status : lost ? kExitRuntimeError : 0;
 }
 
 }  // namespace tessera

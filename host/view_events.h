@@ -25,6 +25,9 @@ enum class EventKind {
                // (script only: what the panel's material editor does)
   light,       // the panel's light controls: `field` add (at the eye), or for light `index`
                // delete, position, color (`value`) or intensity (`value.x`) (script only)
+  option,      // the panel's render options: `field` brdf, tonemap or view set to the choice
+               // `path`, exposure to `value.x` (EV), energy_compensation to `value.x` != 0
+               // (script only)
 };
 
 enum class MouseButton { left, middle, right };
@@ -41,7 +44,8 @@ struct InputEvent {
   uint32_t width = 0;
   uint32_t height = 0;
   std::string path;
-  std::string field;   // material: preset, base_color, metallic, roughness or emissive; light
+  std::string field;   // material: preset, base_color, metallic, roughness or emissive; light,
+                       // option: what the event sets
   uint32_t index = 0;  // light: which
   glm::vec3 value{0.0f};
   bool scripted = false;  // from a script: a key of the fly set moves one step (no key is held)

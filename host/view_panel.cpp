@@ -56,7 +56,7 @@ void draw_material(const PanelInput& in, PanelChanges& changes) {
   }
   const Object& object = in.scene->objects[size_t(in.selected)];
   Material m = in.scene->materials[object.material];
-  ImGui::Text("object %d: mesh %u, material %u", in.selected, object.mesh, object.material);
+  ImGui::TextWrapped("object %d (mesh %u, material %u)", in.selected, object.mesh, object.material);
   bool changed = false;
   if (ImGui::BeginCombo("preset", "metal preset...")) {
     for (const MetalPreset& p : metal_presets()) {
@@ -69,11 +69,14 @@ void draw_material(const PanelInput& in, PanelChanges& changes) {
     }
     ImGui::EndCombo();
   }
-  changed |= ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float);
+  // Three number fields need room; a narrow panel shows the swatch, whose picker has them.
+  const ImGuiColorEditFlags fields =
+      ImGui::CalcItemWidth() < 150.0f ? ImGuiColorEditFlags_NoInputs : ImGuiColorEditFlags_None;
+  changed |= ImGui::ColorEdit3("base colour", &m.base_color.x, ImGuiColorEditFlags_Float | fields);
   changed |= ImGui::SliderFloat("metallic", &m.metallic, 0.0f, 1.0f);
   changed |= ImGui::SliderFloat("roughness", &m.roughness, 0.0f, 1.0f);
   changed |= ImGui::ColorEdit3("emissive", &m.emissive.x,
-                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR | fields);
   if (changed) changes.material = m;
 }
 
@@ -100,7 +103,10 @@ void draw_lights(const PanelInput& in, PanelChanges& changes) {
       if (light.kind != LightKind::directional) {
         changed |= ImGui::DragFloat3("position", &light.position.x, 0.05f);
       }
-      changed |= ImGui::ColorEdit3("colour", &light.color.x, ImGuiColorEditFlags_Float);
+      changed |= ImGui::ColorEdit3(
+          "colour", &light.color.x,
+          ImGuiColorEditFlags_Float |
+              (ImGui::CalcItemWidth() < 150.0f ? ImGuiColorEditFlags_NoInputs : 0));
       changed |= ImGui::DragFloat("intensity", &light.intensity, 1.0f, 0.0f, 1e6f);
       if (changed) {
         changes.light = light;
@@ -117,24 +123,46 @@ void draw_lights(const PanelInput& in, PanelChanges& changes) {
   if (ImGui::Button("add a light at the eye (L)")) changes.add_light = true;
 }
 
-void draw_options(const PanelInput& in, FrameSettings& frame, PanelChanges& changes) {
-  int brdf = int(frame.brdf);
+// Each option's widget, with the label its undo step and log line get.
+void draw_options(const PanelInput& in, const FrameSettings& frame, PanelChanges& changes) {
+  RenderOptions o = render_options_of(frame);
+  auto changed = [&](const std::string& label) {
+    changes.options = o;
+    changes.options_label = label;
+    // The first change of a drag starts an undo step; the rest of the drag joins it.
+    changes.continuing = !ImGui::IsItemActivated();
+  };
+  int brdf = int(o.brdf);
   const char* brdfs[] = {"classic", "filament", "blinn-phong"};
   static_assert(uint32_t(Brdf::classic) == 0 && uint32_t(Brdf::filament) == 1 &&
                 uint32_t(Brdf::blinn_phong) == 2);
-  if (ImGui::Combo("BRDF", &brdf, brdfs, 3)) frame.brdf = Brdf(brdf);
-  ImGui::Checkbox("energy compensation", &frame.energy_compensation);
+  if (ImGui::Combo("BRDF", &brdf, brdfs, 3)) {
+    o.brdf = Brdf(brdf);
+    changed(std::string("BRDF ") + brdfs[brdf]);
+  }
+  if (ImGui::Checkbox("energy compensation", &o.energy_compensation))
+    changed(o.energy_compensation ? "energy compensation on" : "energy compensation off");
   if (in.has_environment) {
     bool on = in.environment_on;
     if (ImGui::Checkbox("environment", &on)) changes.toggle_environment = true;
   }
-  int view = int(frame.view);
+  int view = int(o.view);
   const char* views[] = {"shaded", "normal", "uv", "triangle", "object"};
-  if (ImGui::Combo("view", &view, views, 5)) frame.view = View(view);
-  int tonemap = int(frame.tonemap);
+  if (ImGui::Combo("view", &view, views, 5)) {
+    o.view = View(view);
+    changed(std::string("view ") + views[view]);
+  }
+  int tonemap = int(o.tonemap);
   const char* tonemaps[] = {"aces", "reinhard", "clamp"};
-  if (ImGui::Combo("tone map", &tonemap, tonemaps, 3)) frame.tonemap = ToneMap(tonemap);
-  ImGui::SliderFloat("exposure (EV)", &frame.exposure_ev, -8.0f, 8.0f);
+  if (ImGui::Combo("tone map", &tonemap, tonemaps, 3)) {
+    o.tonemap = ToneMap(tonemap);
+    changed(std::string("tone map ") + tonemaps[tonemap]);
+  }
+  if (ImGui::SliderFloat("exposure (EV)", &o.exposure_ev, -8.0f, 8.0f)) {
+    char label[48];
+    std::snprintf(label, sizeof(label), "exposure %.2f EV", o.exposure_ev);
+    changed(label);
+  }
 }
 
 // The axis-aligned box around the vertices of `mesh` (empty: lo > hi).
@@ -188,25 +216,56 @@ void draw_selection_mark(const Scene& scene, int selected, float width, float he
   }
 }
 
-PanelChanges draw_view_panel(const PanelInput& in, FrameSettings& frame) {
+RenderOptions render_options_of(const FrameSettings& f) {
+  return {f.brdf, f.tonemap, f.exposure_ev, f.energy_compensation, f.view};
+}
+
+void set_render_options(FrameSettings& f, const RenderOptions& o) {
+  f.brdf = o.brdf;
+  f.tonemap = o.tonemap;
+  f.exposure_ev = o.exposure_ev;
+  f.energy_compensation = o.energy_compensation;
+  f.view = o.view;
+}
+
+PanelChanges draw_view_panel(const PanelInput& in, const FrameSettings& frame, float width,
+                             float height) {
   PanelChanges changes;
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  // At most 40% of the window's width (but room for the widgets in a small window), as tall as
+  // its content up to the window's height, scrolling inside beyond that.
+  constexpr float kMargin = 8.0f;
+  const float panel_width = std::clamp(0.4f * width, std::min(220.0f, width - 2 * kMargin), 460.0f);
+  ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(panel_width, 0.0f),
+                                      ImVec2(panel_width, std::max(height - 2 * kMargin, 32.0f)));
   const std::string title = std::string("tessera") + (in.unsaved ? " (unsaved edits)" : "") +
                             "###panel";  // ### keeps the window's identity across titles
-  if (ImGui::Begin(title.c_str())) {
-    if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen)) draw_timings(in);
-    if (ImGui::CollapsingHeader("triangles")) draw_counts(*in.stats);
+  if (ImGui::Begin(title.c_str(), nullptr,
+                   ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove)) {
+    // Labels get a fixed column at the right; the widgets the rest.
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 7.5f);
+    ImGui::TextWrapped("frame %.1f ms (%.1f fps), GPU %.1f ms", in.frame_ms,
+                       in.frame_ms > 0 ? 1000.0 / in.frame_ms : 0, in.stats->gpu_total_ms);
     if (ImGui::CollapsingHeader("material", ImGuiTreeNodeFlags_DefaultOpen))
       draw_material(in, changes);
-    if (ImGui::CollapsingHeader("lights")) draw_lights(in, changes);
     if (ImGui::CollapsingHeader("render options", ImGuiTreeNodeFlags_DefaultOpen))
       draw_options(in, frame, changes);
-    ImGui::TextUnformatted(
-        "click selects; Delete deletes; C copies, N adds a sphere, M moves\n"
-        "the selection to the pointer; Ctrl+Z/Y undo/redo; Ctrl+S saves;\n"
-        "P screenshot; F frames the scene; F1 hides this panel");
+    if (ImGui::CollapsingHeader("lights")) draw_lights(in, changes);
+    if (ImGui::CollapsingHeader("timing")) draw_timings(in);
+    if (ImGui::CollapsingHeader("triangles")) draw_counts(*in.stats);
+    // The keys open at the start where the window has room for them under the rest.
+    if (ImGui::CollapsingHeader("keys", height >= 600.0f ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+      ImGui::PushTextWrapPos(0.0f);  // wrap at the panel's right edge
+      ImGui::TextUnformatted(
+          "click selects; Delete deletes; C copies, N adds a sphere, M moves the selection to "
+          "the pointer; Ctrl+Z/Y undo/redo; Ctrl+S saves; P screenshot; F frames the scene, "
+          "Shift+F the selection, Home the scene's camera; F1 hides this panel");
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::PopItemWidth();
   }
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  changes.rect = {{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}};
   ImGui::End();
   return changes;
 }

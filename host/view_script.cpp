@@ -2,7 +2,10 @@
 
 #include <GLFW/glfw3.h>
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -12,6 +15,23 @@
 
 namespace tessera {
 namespace {
+
+// Each event's form, for messages about a line that lacks a value.
+const std::pair<const char*, const char*> kUsages[] = {
+    {"key", "key NAME [ctrl] [shift]"},
+    {"drag", "drag left|middle X0 Y0 X1 Y1 [shift]"},
+    {"click", "click X Y"},
+    {"wheel", "wheel NOTCHES"},
+    {"resize", "resize W H"},
+    {"screenshot", "screenshot PATH.png"},
+    {"material", "material preset NAME | base_color|emissive R G B | metallic|roughness X"},
+    {"light", "light add | light N delete|position X Y Z|color R G B|intensity X"},
+    {"brdf", "brdf classic|filament|blinn-phong"},
+    {"tonemap", "tonemap aces|reinhard|clamp"},
+    {"exposure", "exposure EV"},
+    {"energy_compensation", "energy_compensation on|off"},
+    {"view", "view shaded|normal|uv|triangle|object"},
+};
 
 struct Line {
   const std::string& file;
@@ -24,8 +44,24 @@ struct Line {
   }
   bool more() const { return next < words.size(); }
   const std::string& word(const char* what) {
-    if (!more()) fail(std::string("missing ") + what);
+    if (!more()) {
+      if (next == 1) fail(std::string("missing ") + what);
+      // Which argument of which event, and the event's whole form.
+      std::string usage;
+      for (const auto& [kind, form] : kUsages)
+        if (words[1] == kind) usage = std::string(" (") + form + ")";
+      fail(words[1] + ": missing " + what + usage);
+    }
     return words[next++];
+  }
+  // One of `choices` (its index), or a failure listing them.
+  uint32_t choice(const char* what, const std::vector<std::string>& choices) {
+    const std::string& w = word(what);
+    for (size_t i = 0; i < choices.size(); ++i)
+      if (w == choices[i]) return uint32_t(i);
+    std::string list;
+    for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
+    fail("unknown " + std::string(what) + " '" + w + "' (" + list + ")");
   }
   double number_of(const char* what, double min, double max) {
     const std::string& w = word(what);
@@ -77,7 +113,7 @@ int key_code(const std::string& name) {
   const std::pair<const char*, int> named[] = {
       {"Delete", GLFW_KEY_DELETE}, {"Escape", GLFW_KEY_ESCAPE}, {"Space", GLFW_KEY_SPACE},
       {"Left", GLFW_KEY_LEFT},     {"Right", GLFW_KEY_RIGHT},   {"Up", GLFW_KEY_UP},
-      {"Down", GLFW_KEY_DOWN}};
+      {"Down", GLFW_KEY_DOWN},     {"Home", GLFW_KEY_HOME}};
   for (const auto& [n, code] : named) {
     if (name == n) return code;
   }
@@ -93,7 +129,7 @@ InputEvent parse_event(Line& line) {
     e.key = key_code(name);
     if (e.key < 0) {
       line.fail("unknown key '" + name +
-                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down)");
+                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down, Home)");
     }
     line.modifiers(e, true);
   } else if (kind == "drag") {
@@ -103,10 +139,9 @@ InputEvent parse_event(Line& line) {
       e.button = MouseButton::left;
     } else if (button == "middle") {
       e.button = MouseButton::middle;
-    } else if (button == "right") {
-      e.button = MouseButton::right;
     } else {
-      line.fail("unknown button '" + button + "' (left, middle or right)");
+      // A right drag does nothing in the window, so a script line with one is a mistake.
+      line.fail("unknown button '" + button + "' (left orbits, middle pans)");
     }
     e.from = line.position();
     e.to = line.position();
@@ -184,10 +219,26 @@ InputEvent parse_event(Line& line) {
   } else if (kind == "memory") {
     e.kind = EventKind::memory;
     line.end();
+  } else if (kind == "brdf" || kind == "tonemap" || kind == "view" ||
+             kind == "energy_compensation") {
+    // The choices in the order of their enums (core/scene.h), as the command line spells them.
+    e.kind = EventKind::option;
+    e.field = kind;
+    e.index = kind == "brdf"      ? line.choice("BRDF", {"classic", "filament", "blinn-phong"})
+              : kind == "tonemap" ? line.choice("tone map", {"aces", "reinhard", "clamp"})
+              : kind == "view"
+                  ? line.choice("view", {"shaded", "normal", "uv", "triangle", "object"})
+                  : line.choice("setting", {"off", "on"});
+    line.end();
+  } else if (kind == "exposure") {
+    e.kind = EventKind::option;
+    e.field = kind;
+    e.value.x = float(line.number_of("exposure", -64, 64));
+    line.end();
   } else {
     line.fail("unknown event '" + kind +
               "' (key, drag, click, wheel, resize, minimise, restore, screenshot, save, exit, "
-              "memory, material, light)");
+              "memory, material, light, brdf, tonemap, exposure, energy_compensation, view)");
   }
   return e;
 }
@@ -222,8 +273,10 @@ std::vector<ScriptEvent> parse_view_script(const std::string& text, const std::s
 }
 
 std::vector<ScriptEvent> load_view_script(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("script file '" + path + "' not found");
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error("cannot read script file '" + path + "'");
+  if (!file) throw Error("cannot read script file '" + path + "': " + std::strerror(errno));
   std::stringstream text;
   text << file.rdbuf();
   return parse_view_script(text.str(), path);

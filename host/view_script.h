@@ -3,8 +3,8 @@
 // every interaction can be tested and demonstrated without a person. One event a line:
 //
 //   FRAME key NAME [ctrl] [shift]        NAME: A..Z, 0..9, F1..F12, Delete, Escape, Space,
-//                                        Left, Right, Up, Down
-//   FRAME drag left|middle|right X0 Y0 X1 Y1 [shift]
+//                                        Left, Right, Up, Down, Home
+//   FRAME drag left|middle X0 Y0 X1 Y1 [shift]
 //   FRAME click X Y
 //   FRAME wheel NOTCHES                  positive zooms in
 //   FRAME resize W H
@@ -19,6 +19,11 @@
 //   FRAME light add                      a point light at the eye, as the panel's button
 //   FRAME light N delete | position X Y Z | color R G B | intensity X
 //                                        light N (0-based), as the panel's light list edits it
+//   FRAME brdf classic|filament|blinn-phong    the panel's render options, as undoable edits
+//   FRAME tonemap aces|reinhard|clamp
+//   FRAME exposure EV                    -64..64
+//   FRAME energy_compensation on|off
+//   FRAME view shaded|normal|uv|triangle|object
 //
 // FRAME counts presented-or-skipped loop iterations from 0; frames never decrease from one line
 // to the next. Positions are window pixels from the top left. '#' starts a comment.
@@ -41,7 +46,8 @@ struct ScriptEvent {
 /// frame smaller than the line before's.
 std::vector<ScriptEvent> parse_view_script(const std::string& text, const std::string& file);
 
-/// Reads and parses the script at `path`. Throws Error if it cannot be read, or as above.
+/// Reads and parses the script at `path`. Throws Error "script file 'PATH' not found" or
+/// naming why it cannot be read, or as above.
 std::vector<ScriptEvent> load_view_script(const std::string& path);
 
 }  // namespace tessera

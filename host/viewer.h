@@ -3,6 +3,7 @@
 // the frame loop is host/view_command.cpp. Internal to the tool.
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,9 +27,16 @@ struct Viewer {
   ViewArgs args;
   Scene scene;
   RenderDefaults render_defaults;  // the scene file's "render" block, written back on save
+  std::string description;         // the scene file's "description", written back on save
   FrameSettings frame;
-  OrbitCamera orbit;  // scene.camera is to_camera(orbit) once the camera has moved
+  OrbitCamera orbit;   // scene.camera is to_camera(orbit) once the camera has moved
+  Camera home_camera;  // the scene's own, for the Home key
   EditHistory history;
+  // The render options at each state of the history (EditHistory::state): a render option
+  // edit is an edit of no scene operations, and undo and redo restore the options of the state
+  // they reach.
+  std::map<uint64_t, RenderOptions> options_at;
+  uint64_t options_drag_state = ~0ull;             // the state the panel's last option edit made
   std::shared_ptr<const Environment> environment;  // the scene's, kept while switched off
   std::vector<ScriptEvent> script;
   size_t next_script_event = 0;
@@ -55,7 +63,8 @@ struct Viewer {
   std::chrono::steady_clock::time_point changed_at{};
   bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
   bool exit = false;
-  std::string screenshot;  // written from the next presented frame
+  std::string title;                     // the window's, as last set
+  std::vector<std::string> screenshots;  // written from the next presented frame
 
   ~Viewer() { release(); }
   /// Destroys the window's Vulkan objects and the renderer, leaving the context.
@@ -68,6 +77,8 @@ void handle_event(Viewer& v, const InputEvent& e);
 
 /// Moves the camera for the fly keys (WASD, Q, E) held now, over `seconds`.
 void fly_held_keys(Viewer& v, float seconds);
+/// True while a person holds a fly key (so frames must go on being drawn).
+bool fly_keys_held(const Viewer& v);
 
 /// Applies what the overlay's panel changed.
 void apply_panel_changes(Viewer& v, const PanelChanges& c);
@@ -80,9 +91,12 @@ void mark_changed(Viewer& v, const std::string& what);
 /// given by name (so the scenes folder is never written).
 std::string save_path(const Viewer& v);
 
-/// Leaving with unsaved edits writes them to the scene's autosave file (FILE.autosave.json
-/// beside a scene file, NAME.autosave.json in the working folder for a named scene) and says
-/// so on stderr.
-void autosave_if_unsaved(Viewer& v);
+/// The scene's autosave file: FILE.autosave.json beside a scene file, NAME.autosave.json in
+/// the working folder for a named scene.
+std::string autosave_path(const Viewer& v);
+
+/// Leaving with unsaved edits writes them to autosave_path and says so on stderr; false (and
+/// the reason on stderr) if they could not be written.
+bool autosave_if_unsaved(Viewer& v);
 
 }  // namespace tessera

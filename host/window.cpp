@@ -28,10 +28,17 @@ MouseButton button_of(int glfw_button) {
                                                   : MouseButton::left;
 }
 
+glm::vec2 cursor(GLFWwindow* handle) {
+  double x = 0, y = 0;
+  glfwGetCursorPos(handle, &x, &y);
+  return {float(x), float(y)};
+}
+
 void on_key(GLFWwindow* handle, int key, int, int action, int mods) {
   Window& w = of(handle);
+  w.activity++;
   w.shift = mods & GLFW_MOD_SHIFT;
-  if (w.wants_input_elsewhere || (action != GLFW_PRESS && action != GLFW_REPEAT)) return;
+  if (w.panel_has_keyboard || (action != GLFW_PRESS && action != GLFW_REPEAT)) return;
   InputEvent e;
   e.kind = EventKind::key;
   e.key = key;
@@ -42,13 +49,19 @@ void on_key(GLFWwindow* handle, int key, int, int action, int mods) {
 
 void on_button(GLFWwindow* handle, int button, int action, int mods) {
   Window& w = of(handle);
+  w.activity++;
   w.shift = mods & GLFW_MOD_SHIFT;
-  if (action == GLFW_PRESS && w.held < 0 && !w.wants_input_elsewhere) {
+  if (action == GLFW_PRESS && w.held < 0) {
+    // Decided now, from where the pointer is at the press (not from ImGui's WantCaptureMouse,
+    // which is the last frame's: a press right after arriving on the panel would also orbit).
     w.held = button;
     w.moved = false;
+    w.last = cursor(handle);
     w.pressed_at = w.last;
+    w.held_by_panel = on_panel(w, w.last);
+    w.camera_press = !w.held_by_panel;
   } else if (action == GLFW_RELEASE && button == w.held) {
-    if (!w.moved && button == GLFW_MOUSE_BUTTON_LEFT) {
+    if (!w.moved && button == GLFW_MOUSE_BUTTON_LEFT && !w.held_by_panel) {
       InputEvent e;
       e.kind = EventKind::click;
       e.from = w.pressed_at;
@@ -60,13 +73,14 @@ void on_button(GLFWwindow* handle, int button, int action, int mods) {
 
 void on_cursor(GLFWwindow* handle, double x, double y) {
   Window& w = of(handle);
+  w.activity++;
   const glm::vec2 now{float(x), float(y)};
   if (w.held >= 0) {
     if (!w.moved && glm::length(now - w.pressed_at) >= kClickSlop) {
       w.moved = true;
       w.last = w.pressed_at;
     }
-    if (w.moved) {
+    if (w.moved && !w.held_by_panel) {
       InputEvent e;
       e.kind = EventKind::drag;
       e.button = button_of(w.held);
@@ -81,11 +95,20 @@ void on_cursor(GLFWwindow* handle, double x, double y) {
 
 void on_scroll(GLFWwindow* handle, double, double dy) {
   Window& w = of(handle);
-  if (w.wants_input_elsewhere) return;
+  w.activity++;
+  if (w.held_by_panel || on_panel(w, cursor(handle))) return;  // the panel scrolls
   InputEvent e;
   e.kind = EventKind::wheel;
   e.wheel = float(dy);
   w.events.push_back(e);
+}
+
+void on_redraw(GLFWwindow* handle) {
+  of(handle).activity++;
+}
+
+void on_framebuffer(GLFWwindow* handle, int, int) {
+  of(handle).activity++;
 }
 
 }  // namespace
@@ -109,6 +132,8 @@ std::unique_ptr<Window> open_window(uint32_t width, uint32_t height, const std::
   glfwSetMouseButtonCallback(window->handle, on_button);
   glfwSetCursorPosCallback(window->handle, on_cursor);
   glfwSetScrollCallback(window->handle, on_scroll);
+  glfwSetWindowRefreshCallback(window->handle, on_redraw);
+  glfwSetFramebufferSizeCallback(window->handle, on_framebuffer);
   return window;
 }
 
@@ -133,9 +158,17 @@ void framebuffer_size(const Window& window, uint32_t& width, uint32_t& height) {
   height = uint32_t(std::max(h, 0));
 }
 
-std::vector<InputEvent> poll_window(Window& window, bool wait) {
-  if (wait) {
-    glfwWaitEvents();
+bool on_panel(const Window& window, glm::vec2 at) {
+  return window.panel_popup || window.panel.contains(at);
+}
+
+void wake_window() {
+  glfwPostEmptyEvent();
+}
+
+std::vector<InputEvent> poll_window(Window& window, double wait_seconds) {
+  if (wait_seconds > 0) {
+    glfwWaitEventsTimeout(wait_seconds);
   } else {
     glfwPollEvents();
   }

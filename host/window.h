@@ -9,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include "host/view_events.h"
+#include "host/view_panel.h"
 
 struct GLFWwindow;
 
@@ -23,7 +24,16 @@ struct Window {
   glm::vec2 pressed_at{0.0f};
   glm::vec2 last{0.0f};
   bool shift = false;
-  bool wants_input_elsewhere = false;  // set while the overlay has the mouse or keyboard
+  bool held_by_panel = false;  // the held button was pressed on the panel, which has the drag
+  bool camera_press = false;   // a press off the panel since the viewer last cleared this
+  // Set each frame by the viewer: where the overlay's panel was last drawn (empty if it was
+  // not), whether one of its popups is open (it takes every press), and whether it has the
+  // keyboard. A press is the panel's if the pointer is inside at the time of the press; the
+  // whole drag then stays the panel's, and a press outside stays the camera's.
+  PanelRect panel;
+  uint64_t activity = 0;  // counts window-system input and redraw requests, to wake an idle loop
+  bool panel_popup = false;
+  bool panel_has_keyboard = false;
 
   Window() = default;
   Window(const Window&) = delete;
@@ -45,9 +55,15 @@ VkSurfaceKHR create_window_surface(VkInstance instance, Window& window);
 /// The framebuffer's size in pixels: 0 x 0 while minimised.
 void framebuffer_size(const Window& window, uint32_t& width, uint32_t& height);
 
-/// Handles pending window-system events (waiting for one if `wait`) and moves the input
-/// received into the returned list.
-std::vector<InputEvent> poll_window(Window& window, bool wait);
+/// Handles pending window-system events (waiting up to `wait_seconds` for one if > 0) and
+/// moves the input received into the returned list.
+std::vector<InputEvent> poll_window(Window& window, double wait_seconds);
+
+/// Wakes a poll_window that is waiting (from any thread).
+void wake_window();
+
+/// True if window position `at` is on the panel as last drawn, or a panel popup is open.
+bool on_panel(const Window& window, glm::vec2 at);
 
 bool window_should_close(const Window& window);
 bool window_iconified(const Window& window);

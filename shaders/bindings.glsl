@@ -31,7 +31,13 @@ layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint co
 layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint clip_list[]; };
 // DFG tables (shaders/dfg.comp): classic then filament, each TS_DFG_SIZE^2, row = roughness.
 layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec4 dfg[]; };
-layout(set = 0, binding = TS_BINDING_HDR_IMAGE, rgba16f) uniform image2D hdr_image;
+// RGBA16F or RGBA32F (FrameSettings::hdr_format), declared without a format so that one SPIR-V
+// module writes either (shaderStorageImageWriteWithoutFormat, which the context requires; the
+// stores clamp to GpuFrame.hdr_max first). Reading without a format is optional in Vulkan and
+// lavapipe lacks it, so the resolve pass reads the same image through hdr_texture (texelFetch:
+// exact texels, no filtering).
+layout(set = 0, binding = TS_BINDING_HDR_IMAGE) writeonly uniform image2D hdr_image;
+layout(set = 0, binding = TS_BINDING_HDR_TEXTURE) uniform sampler2D hdr_texture;
 layout(set = 0, binding = TS_BINDING_LDR_IMAGE, rgba8) uniform image2D ldr_image;
 // Texture maps: mip chains packed as fp16 RGBA (two halves per uint), filtered by hand
 // (texture.glsl).

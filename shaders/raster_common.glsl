@@ -5,6 +5,9 @@
 #include "samples.glsl"
 
 layout(constant_id = TS_SPEC_DEBUG_COVERAGE) const bool DEBUG_COVERAGE = false;
+// Tile side in pixels (RendererOptions::tile_size). A specialization constant rather than a
+// #define so that one SPIR-V module serves every size: the driver folds it like a literal.
+layout(constant_id = TS_SPEC_TILE_SIZE) const int TILE_SIZE = TS_TILE_SIZE;
 
 struct RasterTri {
   ivec2 v0, v1, v2;     // fixed point, oriented so that the doubled area is positive
@@ -112,8 +115,8 @@ uint64_t visibility_key(float depth, uint id) {
 // is maximised over the corners of the rectangle holding the tile's samples; below the edge's
 // threshold there, no sample of the tile is inside. Used identically by counting and filling.
 bool tile_may_overlap(RasterTri t, ivec2 tile) {
-  ivec2 lo = tile * TS_TILE_SIZE * TS_SUBPIXEL_ONE + sample_offset_min();
-  ivec2 hi = (tile * TS_TILE_SIZE + (TS_TILE_SIZE - 1)) * TS_SUBPIXEL_ONE + sample_offset_max();
+  ivec2 lo = tile * TILE_SIZE * TS_SUBPIXEL_ONE + sample_offset_min();
+  ivec2 hi = (tile * TILE_SIZE + (TILE_SIZE - 1)) * TS_SUBPIXEL_ONE + sample_offset_max();
   Thresholds h = thresholds_of(t);
   ivec2 a[3] = ivec2[3](t.v1, t.v2, t.v0);
   ivec2 b[3] = ivec2[3](t.v2, t.v0, t.v1);
@@ -130,6 +133,6 @@ bool tile_may_overlap(RasterTri t, ivec2 tile) {
 
 // Tile range (inclusive) overlapped by the triangle's pixel box.
 void tile_range(RasterTri t, out ivec2 first, out ivec2 last) {
-  first = t.box_min / TS_TILE_SIZE;
-  last = t.box_max / TS_TILE_SIZE;
+  first = t.box_min / TILE_SIZE;
+  last = t.box_max / TILE_SIZE;
 }

@@ -22,12 +22,20 @@ void main() {
   step_y.e1 = int64_t(t.v0.x - t.v2.x) * TS_SUBPIXEL_ONE;
   step_y.e2 = int64_t(t.v1.x - t.v0.x) * TS_SUBPIXEL_ONE;
 
+  // Each sample's edge values differ from its pixel centre's by the same amounts in every pixel:
+  // taken once here rather than per pixel and sample (six int64 products each).
+  Edges to_sample[SAMPLES];
+  Edges zero = Edges(0l, 0l, 0l);
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    to_sample[s] = edges_moved(t, zero, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+  }
+
   Edges row = edges_at(t, pixel_centre(t.box_min));
   for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
     Edges e = row;
     for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
       for (uint s = 0u; s < SAMPLES; ++s) {
-        Edges es = edges_moved(t, e, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+        Edges es = Edges(e.e0 + to_sample[s].e0, e.e1 + to_sample[s].e1, e.e2 + to_sample[s].e2);
         if (!is_covered(es, h)) continue;
         uint p = pixel_index(ivec2(x, y));
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);

@@ -6,7 +6,8 @@
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
-layout(local_size_x = TS_TILE_SIZE, local_size_y = TS_TILE_SIZE) in;
+// One thread per pixel of a TILE_SIZE x TILE_SIZE tile (the same specialization constant).
+layout(local_size_x_id = TS_SPEC_TILE_SIZE, local_size_y_id = TS_SPEC_TILE_SIZE) in;
 
 void main() {
   ivec2 tile = ivec2(gl_WorkGroupID.xy);
@@ -16,7 +17,7 @@ void main() {
   uint first = tile_offsets[tile_index];
   uint end = min(first + count, frame.tile_entry_capacity);  // past capacity the frame is redone anyway
 
-  ivec2 pixel = tile * TS_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  ivec2 pixel = tile * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   ivec2 p = pixel_centre(pixel);
   uint64_t best[SAMPLES];
   for (uint s = 0u; s < SAMPLES; ++s) best[s] = TS_VIS_EMPTY;

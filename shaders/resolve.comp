@@ -33,7 +33,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
   // The shading pass already applied the exposure (pre-exposure, bindings.glsl).
-  vec3 hdr = max(imageLoad(hdr_image, pixel).rgb, vec3(0.0));
+  vec3 hdr = max(texelFetch(hdr_texture, pixel, 0).rgb, vec3(0.0));
   // Debug views hold values in [0, 1] meant to be seen as they are: no curve.
   bool shaded = frame.view == TS_VIEW_SHADED;
   uint op = shaded ? frame.tonemap : TS_TONEMAP_CLAMP;

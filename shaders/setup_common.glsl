@@ -107,7 +107,7 @@ void store_raster_tri(uint index, RasterTri t) {
 
 // Bin entries of a binned triangle: its tile range split into blocks of at most
 // TS_BIN_CHUNK x TS_BIN_CHUNK tiles, each packed as x | y << 10 | (w - 1) << 20 | (h - 1) << 24
-// (tiles_x and tiles_y are at most 16384 / 16 = 1024).
+// (tiles_x and tiles_y are at most TS_MAX_TILES_PER_SIDE = 1024, which the renderer checks).
 uint bin_entry_count(RasterTri t) {
   ivec2 first, last;
   tile_range(t, first, last);

@@ -135,53 +135,100 @@ vec3 background(vec2 point) {
   return frame.background;
 }
 
-// The colour a group of samples stores: pre-exposed and clamped to what fp16 holds.
+// The colour a group of samples stores: pre-exposed and clamped to what the HDR image's format
+// holds (65504 for fp16), so that overflow saturates instead of becoming Inf.
 vec3 stored(vec3 color) {
-  return min(color * pre_exposure(), vec3(TS_MAX_HALF));
+  return min(color * pre_exposure(), vec3(frame.hdr_max));
 }
 
-// Anti-aliased pixel (SAMPLES > 1): each distinct triangle among the pixel's samples, and the
-// background if a sample is empty, is shaded once, at the pixel centre if it holds every sample
-// and else at the mean of its samples (inside the triangle, which is convex), weighted by the
-// fraction of samples it holds. Groups are visited in increasing id, the empty id (all ones)
-// last, so the sum is the same whatever order the samples were written in.
-vec3 resolve_samples(ivec2 pixel) {
-  uint base = sample_index(pixel_index(pixel), 0u);
-  uint ids[SAMPLES];
-  for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
-  vec3 sum = vec3(0.0);
-  uint next = 0u;  // every id below this has been shaded
-  for (uint group = 0u; group < SAMPLES; ++group) {
-    uint id = 0xFFFFFFFFu;
-    for (uint s = 0u; s < SAMPLES; ++s) {
-      if (ids[s] >= next) id = min(id, ids[s]);
-    }
-    uint count = 0u;
-    ivec2 offsets = ivec2(0);
-    for (uint s = 0u; s < SAMPLES; ++s) {
-      if (ids[s] == id) {
-        count++;
-        offsets += sample_offset(s);
+// Anti-aliased pixels (SAMPLES > 1): each distinct triangle among a pixel's samples, and the
+// background if a sample is empty, is shaded once, at the pixel centre if it holds every
+// sample and else at the mean of its samples (inside the triangle, which is convex), weighted by
+// the fraction of samples it holds. The pixels of the workgroup first list these shading
+// requests in shared memory, then all threads shade the list together, a request per thread
+// in turn, so that a pixel with four triangles does not keep the others of its SIMD group
+// waiting for four shading evaluations while most have one; each pixel then sums its own
+// requests' colours in increasing id, the empty id (all ones) last, so the sum is the same
+// whatever order the samples were written or the requests listed in.
+const uint GROUP_PIXELS = 64u;  // local_size_x * local_size_y
+const uint MAX_REQUESTS = GROUP_PIXELS * SAMPLES;
+// A request: (id, point.x, point.y) as written by its pixel, then its stored colour (as bits)
+// written over it by the thread that shades it. Three arrays of words rather than one of uvec3,
+// which an implementation may pad to 16 bytes: 12 KiB at 16 samples.
+shared uint request_words[3][MAX_REQUESTS];
+
+void put_request(uint slot, uvec3 words) {
+  for (uint k = 0u; k < 3u; ++k) request_words[k][slot] = words[k];
+}
+uvec3 get_request(uint slot) {
+  return uvec3(request_words[0][slot], request_words[1][slot], request_words[2][slot]);
+}
+shared uint request_count;
+
+void resolve_samples(ivec2 pixel, bool inside) {
+  uint thread = gl_LocalInvocationIndex;
+  if (thread == 0u) request_count = 0u;
+  barrier();
+
+  uint slots[SAMPLES];
+  float weights[SAMPLES];
+  uint groups = 0u;
+  if (inside) {
+    uint base = sample_index(pixel_index(pixel), 0u);
+    uint ids[SAMPLES];
+    for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
+    uint next = 0u;  // every id below this has been listed
+    for (uint group = 0u; group < SAMPLES; ++group) {
+      uint id = 0xFFFFFFFFu;
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        if (ids[s] >= next) id = min(id, ids[s]);
       }
+      uint count = 0u;
+      ivec2 offsets = ivec2(0);
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        if (ids[s] == id) {
+          count++;
+          offsets += sample_offset(s);
+        }
+      }
+      if (count == 0u) break;
+      vec2 point = count == SAMPLES ? vec2(pixel) + 0.5
+                                    : vec2(pixel) + vec2(offsets) / float(TS_SUBPIXEL_ONE * count);
+      uint slot = atomicAdd(request_count, 1u);
+      put_request(slot, uvec3(id, floatBitsToUint(point)));
+      slots[groups] = slot;
+      weights[groups] = float(count) / float(SAMPLES);
+      groups++;
+      if (id == 0xFFFFFFFFu) break;
+      next = id + 1u;
     }
-    if (count == 0u) break;
-    vec2 point = count == SAMPLES ? vec2(pixel) + 0.5
-                                  : vec2(pixel) + vec2(offsets) / float(TS_SUBPIXEL_ONE * count);
-    vec3 color = id == 0xFFFFFFFFu ? background(point) : shade_triangle(id, point);
-    sum += stored(color) * (float(count) / float(SAMPLES));
-    if (id == 0xFFFFFFFFu) break;
-    next = id + 1u;
   }
-  return sum;
+  barrier();
+
+  uint total = request_count;
+  for (uint r = thread; r < total; r += GROUP_PIXELS) {
+    uvec3 q = get_request(r);
+    vec2 point = uintBitsToFloat(q.yz);
+    vec3 color = q.x == 0xFFFFFFFFu ? background(point) : shade_triangle(q.x, point);
+    put_request(r, floatBitsToUint(stored(color)));
+  }
+  barrier();
+
+  if (!inside) return;
+  vec3 sum = vec3(0.0);
+  for (uint g = 0u; g < groups; ++g) sum += uintBitsToFloat(get_request(slots[g])) * weights[g];
+  imageStore(hdr_image, pixel, vec4(sum, 1.0));
 }
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
+  bool inside = all(lessThan(pixel, ivec2(frame.image_size)));
   if (SAMPLES > 1u) {
-    imageStore(hdr_image, pixel, vec4(resolve_samples(pixel), 1.0));
+    // Every thread of the workgroup takes part: the requests are shaded together.
+    resolve_samples(pixel, inside);
     return;
   }
+  if (!inside) return;
   uint64_t key = visibility[pixel_index(pixel)];
   vec2 centre = vec2(pixel) + 0.5;
   vec3 color = key == TS_VIS_EMPTY ? background(centre) : shade_triangle(uint(key & 0xFFFFFFFFul), centre);

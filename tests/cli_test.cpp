@@ -229,6 +229,8 @@ struct ToolCase {
 
 // One error style for both kinds: usage errors (2) and failures while running (1).
 TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
+  const std::string bad_script = test::output_path("bad_script.txt");
+  std::ofstream(bad_script) << "1 key A\n2 jump\n";
   const ToolCase cases[] = {
       {"render --size 0x10", 2, "tessera: error: --size: width"},
       {"render --brdf phong", 2, "tessera: error: --brdf: expects classic"},
@@ -244,7 +246,12 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
        "'/nonexistent-dir' does not exist"},
       {"devices", 0, "(CPU) - usable (--device "},
       {"render --device 99", 1, "out of range"},
-      {"render --device warp-drive", 1, "tessera: error: unknown device 'warp-drive'"},
+      {"render --device warp-drive", 2, "tessera: error: --device: unknown device 'warp-drive'"},
+      {"view --device foo", 2, "tessera: error: --device: unknown device 'foo'"},
+      {"view --script /nonexistent/s.txt", 2,
+       "tessera: error: --script: script file '/nonexistent/s.txt' not found"},
+      // A bad script line is a bad command line too; it is read before any window opens.
+      {"view --script " + bad_script, 2, bad_script + ":2: unknown event 'jump'"},
       {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 1,
        "tessera: error: cannot read environment '/nonexistent/sky.hdr'"},
   };

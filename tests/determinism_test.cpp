@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -76,6 +77,55 @@ TEST_F(Determinism, ShuffledObjectOrderGivesIdenticalBits) {
     Frame shuffled = render(scene, 200, 150);
     EXPECT_TRUE(same_bits(reference.hdr, shuffled.hdr)) << "round " << round;
     EXPECT_EQ(reference.ldr.pixels, shuffled.ldr.pixels) << "round " << round;
+  }
+}
+
+// The tile size (RendererOptions::tile_size) changes how large triangles are binned and which
+// workgroup rasterizes a pixel, never the nearest sample's key: the same bits at every size,
+// with every triangle binned (small-triangle area 0, so that the tiles see all of them), at 1
+// and 4 samples per pixel.
+TEST_F(Determinism, TileSizesGiveIdenticalBits) {
+  Scene scene = crowded_scene();
+  scene.camera.position = {0.0f, 0.0f, 9.0f};  // closer: triangles over many tiles
+  for (const uint32_t samples : {1u, 4u}) {
+    RendererOptions options;
+    options.small_triangle_max_area = 0;
+    const Frame base = render(scene, 160, 120, options, samples);
+    options.tile_size = 8;
+    const Frame other = render(scene, 160, 120, options, samples);
+    const std::string what = "tile 8, samples " + std::to_string(samples);
+    EXPECT_EQ(base.visibility, other.visibility) << what;
+    EXPECT_TRUE(same_bits(base.hdr, other.hdr)) << what;
+    EXPECT_EQ(base.ldr.pixels, other.ldr.pixels) << what;
+  }
+}
+
+// Sizes other than 8 and 16, and images wider than a bin entry's 1024 tiles, are refused.
+TEST_F(Determinism, TileSizesOutOfRangeAreRefused) {
+  for (const uint32_t bad : {0u, 4u, 12u, 32u}) {
+    RendererOptions options;
+    options.tile_size = bad;
+    try {
+      Renderer renderer(context(), options);
+      ADD_FAILURE() << "accepted tile size " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("tile size " + std::to_string(bad) + " is not 8 or 16"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  RendererOptions eight;
+  eight.tile_size = 8;
+  Renderer renderer(context(), eight);
+  renderer.set_scene(crowded_scene());
+  // 8193 px need 1025 tiles of 8 px.
+  try {
+    renderer.render({.width = 8193, .height = 1});
+    ADD_FAILURE() << "accepted 8193 px at tile size 8";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("largest side of 8192 px that tiles of 8 px hold"),
+              std::string::npos)
+        << e.what();
   }
 }
 

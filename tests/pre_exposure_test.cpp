@@ -1,6 +1,7 @@
 // Pre-exposure: the exposure is applied before radiance meets the fp16 HDR image, so physical
-// units fit (issue 15, fault 3), while the HDR outputs still carry the true radiance. Expected
-// values from the formulas: the head-on BRDF, 2^EV, the ACES fit and the sRGB curve.
+// units fit (issue 15, fault 3), while the HDR outputs still carry the true radiance; and the
+// fp32 HDR image (FrameSettings::hdr_format), which keeps what fp16 clamps. Expected values from
+// the formulas: the head-on BRDF, 2^EV, the ACES fit and the sRGB curve, fp16's rounding.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "compute/baselines/hardware_baseline.h"
+#include "core/builtin_scenes.h"
 #include "core/environment.h"
 #include "core/mesh.h"
 #include "core/reference_renderer.h"
@@ -163,6 +165,70 @@ TEST_F(PreExposure, EnvironmentBackgroundKeepsItsRadiance) {
               displayed(std::min(6e4 * std::exp2(double(ev)), 65504.0)))
         << ev;
   }
+}
+
+// fp32 storage keeps radiance above 65504 * 2^-EV, where fp16 saturates (docs/tradeoffs.md,
+// "Where the methods fail"). E = 4e6 W/m^2 gives L = 0.97 / pi * 4e6 = 3.88e6 / pi
+// = 1,235,042.4 W/(m^2 sr); at -2 EV the fp16 image holds at most 65504 * 2^2 = 262,016.
+TEST_F(PreExposure, Fp32StorageKeepsWhatFp16Clamps) {
+  const double radiance = head_on_radiance(4e6);
+  ASSERT_NEAR(radiance, 1235042.4, 0.1);
+  const double fp16_limit = 65504.0 * 4.0;
+  const Scene scene = sunlit_plane(4e6f);
+  for (const HdrFormat format : {HdrFormat::fp16, HdrFormat::fp32}) {
+    const bool fp32 = format == HdrFormat::fp32;
+    const double expected = fp32 ? radiance : fp16_limit;
+    FrameSettings frame{.width = kSize, .height = kSize, .exposure_ev = -2.0f};
+    frame.hdr_format = format;
+    Renderer renderer(context());
+    renderer.set_scene(scene);
+    renderer.render(frame);
+    const glm::vec4 gpu = renderer.read_hdr().pixels[kCentre];
+    // fp32 shading: a few ulps of the float arithmetic.
+    EXPECT_NEAR(gpu.r, expected, expected * 1e-5) << (fp32 ? "fp32" : "fp16");
+    EXPECT_TRUE(std::isfinite(gpu.g) && std::isfinite(gpu.b));
+    EXPECT_EQ(renderer.read_ldr().pixels[kCentre].r, 255);
+    ReferenceSettings rs;
+    rs.frame = frame;
+    const ReferenceFrame ref = render_reference(scene, rs);
+    EXPECT_NEAR(ref.hdr.pixels[kCentre].r, expected, expected * 1e-6) << (fp32 ? "fp32" : "fp16");
+  }
+}
+
+// The default scene at both formats: fp16 keeps 11 significant bits of each channel, and Vulkan
+// lets the store round to nearest or toward zero (lavapipe truncates), so a value moves by less
+// than one fp16 ulp: at most 2^-10 relative (about 0.1 %; 2^-24 absolute below fp16's normal
+// range).
+// Through the tone curve and sRGB that moves a display value by well under one 8-bit step, so
+// a pixel changes by at most 1, and only where the fp32 value lies that close to a rounding
+// boundary: a few percent of the pixels at most (0.8 % measured at 200 x 150). The fp16 images
+// themselves stay those of the golden tests.
+TEST_F(PreExposure, OrdinaryScenesAgreeUpToFp16Rounding) {
+  const Scene scene = make_builtin_scene("spheres");
+  ImageF hdr[2];
+  Image8 ldr[2];
+  for (int i = 0; i < 2; ++i) {
+    FrameSettings frame{.width = 160, .height = 120};
+    frame.hdr_format = i == 0 ? HdrFormat::fp16 : HdrFormat::fp32;
+    Renderer renderer(context());
+    renderer.set_scene(scene);
+    renderer.render(frame);
+    hdr[i] = renderer.read_hdr();
+    ldr[i] = renderer.read_ldr();
+  }
+  size_t differing = 0;
+  for (size_t p = 0; p < hdr[0].pixels.size(); ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const float half = hdr[0].pixels[p][c], full = hdr[1].pixels[p][c];
+      ASSERT_LE(std::abs(half - full), std::abs(full) * 0x1p-10f + 0x1p-24f)
+          << "pixel " << p << " channel " << c;
+      ASSERT_LE(std::abs(int(ldr[0].pixels[p][c]) - int(ldr[1].pixels[p][c])), 1)
+          << "pixel " << p << " channel " << c;
+    }
+    differing += ldr[0].pixels[p] != ldr[1].pixels[p];
+  }
+  EXPECT_GT(differing, 0u) << "fp32 should not round like fp16";
+  EXPECT_LT(double(differing), 0.05 * double(hdr[0].pixels.size()));
 }
 
 }  // namespace

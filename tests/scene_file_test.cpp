@@ -70,7 +70,7 @@ TEST(SceneFile, ValuesReadByHand) {
     "lights": [{"type": "spot", "position": [0, 5, 0], "direction": [0, -2, 0],
                 "inner_angle_degrees": 30, "outer_angle_degrees": 60, "intensity": 40}],
     "render": {"width": 640, "height": 480, "exposure_ev": -1, "tonemap": "reinhard",
-               "brdf": "filament"}
+               "brdf": "filament", "energy_compensation": true, "view": "normal"}
   })");
   EXPECT_FLOAT_EQ(f.scene.camera.vertical_fov, 1.5707963f);  // pi / 2
   EXPECT_EQ(f.scene.camera.near_plane, 0.5f);
@@ -106,6 +106,8 @@ TEST(SceneFile, ValuesReadByHand) {
   EXPECT_EQ(*f.render.exposure_ev, -1.0f);
   EXPECT_EQ(*f.render.tonemap, ToneMap::reinhard);
   EXPECT_EQ(*f.render.brdf, Brdf::filament);
+  EXPECT_EQ(f.render.energy_compensation, true);
+  EXPECT_EQ(f.render.view, View::normal);
 }
 
 // A second uv set: "uvs1" on a triangles mesh, "MAP_uv_set": 1 on a material's map.

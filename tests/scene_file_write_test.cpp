@@ -69,6 +69,25 @@ TEST(SceneFileWrite, ShippedSceneFilesRoundTrip) {
   EXPECT_GE(files, 6);
 }
 
+// The viewer's render options and the file's description come back as given.
+TEST(SceneFileWrite, RenderBlockAndDescriptionRoundTrip) {
+  const std::string path = scratch_folder() + "/render_block.json";
+  RenderDefaults render;
+  render.exposure_ev = 1.5f;
+  render.tonemap = ToneMap::clamp;
+  render.brdf = Brdf::blinn_phong;
+  render.energy_compensation = false;
+  render.view = View::triangle;
+  save_scene_file(make_sphere_grid_scene(), path, &render, "a grid, edited");
+  const SceneFile back = load_scene_file(path, SceneFileOptions{.strict = true});
+  EXPECT_EQ(back.description, "a grid, edited");
+  EXPECT_EQ(back.render.exposure_ev, 1.5f);
+  EXPECT_EQ(back.render.tonemap, ToneMap::clamp);
+  EXPECT_EQ(back.render.brdf, Brdf::blinn_phong);
+  EXPECT_EQ(back.render.energy_compensation, false);
+  EXPECT_EQ(back.render.view, View::triangle);
+}
+
 TEST(SceneFileWrite, BuiltinScenesRoundTripAndKeepTheirShapesAndSky) {
   const std::string folder = scratch_folder();
   for (const BuiltinSceneInfo& info : builtin_scenes()) {

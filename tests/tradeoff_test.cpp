@@ -33,7 +33,7 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   RendererOptions options;
   for (const KnobInfo& k : knobs()) {
     const std::vector<KnobSetting> settings = knob_settings(k.name, frame, options);
-    EXPECT_GE(settings.size(), 3u) << k.name;
+    EXPECT_GE(settings.size(), 2u) << k.name;
     EXPECT_EQ(std::count_if(settings.begin(), settings.end(),
                             [](const KnobSetting& s) { return s.is_default; }),
               1)
@@ -43,6 +43,25 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   EXPECT_EQ(brdf[3].label, "filament");
   EXPECT_TRUE(brdf[3].is_default);
   EXPECT_TRUE(brdf[4].frame.energy_compensation);
+  // Level of detail: off, then auto at bounds from a quarter pixel to 4 px.
+  const std::vector<KnobSetting> lod = knob_settings("lod", frame, options);
+  ASSERT_EQ(lod.size(), 6u);
+  EXPECT_EQ(lod[0].frame.lod, Lod::off);
+  EXPECT_TRUE(lod[0].is_default);
+  EXPECT_EQ(lod[2].label, "auto 0.5 px");
+  EXPECT_EQ(lod[2].frame.lod, Lod::automatic);
+  EXPECT_EQ(lod[2].frame.lod_error_px, 0.5f);
+  EXPECT_EQ(lod[5].frame.lod_error_px, 4.0f);
+  const std::vector<KnobSetting> hdr = knob_settings("hdr", frame, options);
+  ASSERT_EQ(hdr.size(), 2u);
+  EXPECT_EQ(hdr[1].frame.hdr_format, HdrFormat::fp32);
+  EXPECT_TRUE(hdr[0].is_default);
+  // The tile size trades speed only, like the small-triangle threshold.
+  const std::vector<KnobSetting> tiles = knob_settings("tile-size", frame, options);
+  ASSERT_EQ(tiles.size(), 2u);
+  for (const KnobSetting& t : tiles) EXPECT_TRUE(t.speed_only) << t.label;
+  EXPECT_EQ(tiles[0].renderer.tile_size, 8u);
+  EXPECT_TRUE(tiles[1].is_default);
   try {
     knob_settings("msaa", frame, options);
     FAIL() << "an unknown knob must throw";
@@ -64,6 +83,7 @@ TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
   EXPECT_EQ(line.tradeoff.frame.width, 64u);
   EXPECT_EQ(line.tradeoff.rounds, 2u);
   EXPECT_EQ(line.tradeoff.truth_samples, 4u);
+  EXPECT_EQ(line.tradeoff.warmup_ms, 200.0) << "by time by default, as bench";
   auto message = [](const std::vector<std::string>& args) {
     try {
       parse_command_line(args);
@@ -88,8 +108,8 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   std::string out;
   const std::string command = std::string(TESSERA_BINARY) +
                               " tradeoff --device lavapipe --validate --scene spheres --knob "
-                              "brdf,small-triangle --size 48x48 --repeat 1 --rounds 1 "
-                              "--truth-samples 4 --json " +
+                              "brdf,small-triangle,tile-size --size 48x48 --repeat 1 --rounds 1 "
+                              "--truth-samples 4 --warmup 1 --warmup-ms 1 --json " +
                               base + ".json --chart " + base + ".svg";
   ASSERT_EQ(test::run_command(command, out), 0) << out;
   std::ifstream f(base + ".json");
@@ -97,7 +117,7 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const nlohmann::json j = nlohmann::json::parse(f);
   EXPECT_EQ(j["width"], 48);
   const auto& points = j["points"];
-  ASSERT_EQ(points.size(), 10u);
+  ASSERT_EQ(points.size(), 12u);
   // The truth shades with filament and energy compensation: that setting's interior error
   // (shading alone, edges apart) must be the lowest of the BRDF knob's, and well below
   // Blinn-Phong's, which is a different model altogether.
@@ -114,12 +134,17 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   }
   EXPECT_LT(filament_ec, lowest_other) << out;
   EXPECT_LT(filament_ec, 0.5 * blinn) << out;
-  // The small-triangle threshold trades speed only: every image equals the default's.
+  // The small-triangle threshold and the tile size trade speed only: every image equals the
+  // default's.
   for (const auto& p : points) {
-    if (p["knob"] != "small-triangle") continue;
+    // Every setting warmed up once (one round) for at least --warmup frames.
+    ASSERT_EQ(p["warmups"].size(), 1u) << p.dump();
+    EXPECT_GE(p["warmups"][0]["frames"].get<int>(), 1) << p.dump();
+    if (p["knob"] != "small-triangle" && p["knob"] != "tile-size") continue;
     EXPECT_TRUE(p["identical_to_default"].get<bool>()) << p.dump();
     EXPECT_GT(p["gpu_ms"]["median"].get<double>(), 0.0);
   }
+  EXPECT_EQ(j["warmup"]["min_ms"], 1.0);
   int on_front = 0;
   for (const auto& p : points) on_front += p["pareto_front"].get<bool>();
   EXPECT_GE(on_front, 2);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -146,10 +147,14 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
       {"1 exit\n0 exit\n", "s.txt:2: frame 0 comes before the previous line's frame 1"},
       {"x exit\n", "s.txt:1: expects a frame number first, got 'x'"},
       {"1 jump\n", "s.txt:1: unknown event 'jump'"},
-      {"\n1 key\n", "s.txt:2: missing key name"},
+      {"\n1 key\n", "s.txt:2: key: missing key name (key NAME [ctrl] [shift])"},
       {"1 key Tab\n", "s.txt:1: unknown key 'Tab'"},
-      {"1 drag left 1 2 3\n", "s.txt:1: missing y"},
+      {"1 drag left 1 2 3\n", "s.txt:1: drag: missing y (drag left|middle X0 Y0 X1 Y1 [shift])"},
       {"1 drag up 1 2 3 4\n", "s.txt:1: unknown button 'up'"},
+      // A right drag does nothing in the window.
+      {"1 drag right 1 2 3 4\n", "s.txt:1: unknown button 'right' (left orbits, middle pans)"},
+      {"1 tonemap filmic\n", "s.txt:1: unknown tone map 'filmic' (aces, reinhard, clamp)"},
+      {"1 exposure\n", "s.txt:1: exposure: missing exposure (exposure EV)"},
       {"1 click 1 2 3\n", "s.txt:1: unexpected '3'"},
       {"1 resize 0 5\n", "s.txt:1: width expects a number from 1 to 16384, got '0'"},
       {"1 resize 2.5 5\n", "s.txt:1: width expects a whole number"},
@@ -167,7 +172,12 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
           << "'" << e.what() << "' lacks '" << message << "'";
     }
   }
-  EXPECT_THROW(load_view_script("no/such/script.txt"), Error);
+  try {
+    load_view_script("no/such/script.txt");
+    ADD_FAILURE() << "no error for a missing script";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "script file 'no/such/script.txt' not found");
+  }
 }
 
 TEST_F(View, PresentedImageEqualsTheHeadlessRender) {
@@ -267,7 +277,7 @@ TEST_F(View, ScriptedOrbitMovesTheCameraAsComputedByHand) {
       "2 drag left 110 50 110 10\n"
       "4 screenshot " +
           png + "\n4 exit\n",
-      "--scene spheres --size 128x96");
+      "--scene spheres --size 128x96 --overlay off");  // the panel would take the drags
   ASSERT_EQ(run.status, 0) << run.output;
   Camera camera;
   ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
@@ -308,7 +318,7 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
     expected.push_back(i);
   }
   script += "9 click 0 0\n10 exit\n";  // the background
-  const ViewRun run = run_view(script, "--scene spheres --size 160x120");
+  const ViewRun run = run_view(script, "--scene spheres --size 160x120 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
   std::vector<uint64_t> selected = numbers_after(run.output, "selected object");
   ASSERT_EQ(selected.size(), expected.size()) << run.output;
@@ -326,7 +336,7 @@ TEST_F(View, MaterialEditGivesTheEditedScenesImage) {
       "1 click 80 60\n2 material preset gold\n3 material roughness 0.2\n"
       "4 screenshot " +
           png + "\n4 exit\n",
-      "--scene spheres --size 160x120");
+      "--scene spheres --size 160x120 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
   ASSERT_NE(run.output.find("selected object 24"), std::string::npos) << run.output;
   FrameSettings frame;
@@ -347,7 +357,7 @@ TEST_F(View, DeleteUndoAndSaveGiveTheHeadlessImages) {
                                    "1 click 80 60\n2 key Delete\n3 screenshot " +
                                    deleted + "\n4 key Z ctrl\n5 screenshot " + undone +
                                    "\n6 key Y ctrl\n7 save " + saved + "\n7 exit\n",
-                               "--scene spheres --size 160x120");
+                               "--scene spheres --size 160x120 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
   ASSERT_NE(run.output.find("selected object 24"), std::string::npos) << run.output;
   FrameSettings frame;
@@ -402,13 +412,8 @@ TEST_F(View, FlyKeysMoveTheCameraByTheHandComputedDistance) {
   expect_same_image(png, headless(scene, frame));
 }
 
-// F frames the whole scene. Two unit-sphere balls, one at the origin and one of scale 0.5 at
-// (3, 0, 0): their bounding spheres' box spans x in [-1, 3.5], so the centre is (1.25, 0, 0)
-// and the radius max(1.25 + 1, 1.75 + 0.5) = 2.25. In a 128x96 window the vertical field
-// (45 degrees) is the narrower, so the distance is 2.25 / sin(22.5 degrees); yaw and pitch stay
-// 0, so the eye is that far along +z from the centre.
-TEST_F(View, FKeyFramesTheWholeScene) {
-  SKIP_WITHOUT_X_SERVER();
+// A unit ball at the origin and one of scale 0.5 at (3, 0, 0), seen from (0, 0, 4).
+std::string write_two_balls_scene() {
   const std::string scene_path = output_path("two_balls.json");
   std::ofstream(scene_path) << R"({"version": 1,
     "camera": {"position": [0, 0, 4], "target": [0, 0, 0]},
@@ -417,6 +422,17 @@ TEST_F(View, FKeyFramesTheWholeScene) {
     "objects": [{"mesh": "ball", "material": "red"},
                 {"mesh": "ball", "material": "red", "translation": [3, 0, 0], "scale": 0.5}],
     "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 60}]})";
+  return scene_path;
+}
+
+// F frames the whole scene. Two unit-sphere balls, one at the origin and one of scale 0.5 at
+// (3, 0, 0): their bounding spheres' box spans x in [-1, 3.5], so the centre is (1.25, 0, 0)
+// and the radius max(1.25 + 1, 1.75 + 0.5) = 2.25. In a 128x96 window the vertical field
+// (45 degrees) is the narrower, so the distance is 2.25 / sin(22.5 degrees); yaw and pitch stay
+// 0, so the eye is that far along +z from the centre.
+TEST_F(View, FKeyFramesTheWholeScene) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_two_balls_scene();
   const ViewRun run = run_view("1 key F\n2 exit\n", "--scene " + scene_path + " --size 128x96");
   ASSERT_EQ(run.status, 0) << run.output;
   Camera camera;
@@ -428,6 +444,87 @@ TEST_F(View, FKeyFramesTheWholeScene) {
   EXPECT_NEAR(camera.position.x, 1.25f, 1e-5f);
   EXPECT_NEAR(camera.position.y, 0.0f, 1e-5f);
   EXPECT_NEAR(camera.position.z, distance, 1e-4f);
+}
+
+// Shift+F frames the selected object alone and Home goes back to the scene's camera. In the
+// two balls' scene framed by F (target (1.25, 0, 0), distance 2.25 / sin(22.5 degrees) =
+// 5.8796, looking down -z), the small ball's centre (3, 0, 0) is 1.75 m right of the target, so
+// at x = (1.75 / 5.8796 / (tan(22.5 degrees) 128 / 96) + 1) 64 = 98.3 px, y = 48. Its sphere is
+// the unit sphere's (the mesh's vertices all lie on it) at scale 0.5, so Shift+F puts the
+// target at (3, 0, 0) and the eye 0.5 / sin(22.5 degrees) = 1.30656 m along +z: the sphere just
+// fits the vertical field, the narrower one.
+TEST_F(View, ShiftFFramesTheSelectionAndHomeGoesBack) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_two_balls_scene();
+  const ViewRun run = run_view("1 key F\n2 click 98 48\n3 key F shift\n4 exit\n",
+                               "--scene " + scene_path + " --size 128x96 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_NE(run.output.find("selected object 1"), std::string::npos) << run.output;
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  const float distance = 0.5f / std::sin(glm::radians(22.5f));
+  const glm::vec3 target{3.0f, 0.0f, 0.0f}, position{3.0f, 0.0f, distance};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(camera.target[i], target[i], 1e-5f) << i;
+    EXPECT_NEAR(camera.position[i], position[i], 1e-5f) << i;
+  }
+  const ViewRun home = run_view("1 key F\n2 key Home\n3 exit\n",
+                                "--scene " + scene_path + " --size 128x96 --overlay off");
+  ASSERT_EQ(home.status, 0) << home.output;
+  ASSERT_TRUE(last_camera(home.output, camera)) << home.output;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(camera.target[i], 0.0f, 1e-5f) << i;
+    EXPECT_NEAR(camera.position[i], i == 2 ? 4.0f : 0.0f, 1e-5f) << i;
+  }
+}
+
+// The panel's render options are edits like the others: a scripted tone map and exposure show
+// in the image, are saved in the render block, and undo restores the options (and so the
+// saved block); setting an option to what it is adds no step, and Ctrl+S without edits leaves
+// the file alone. With the panel shown, a click where it was drawn is the panel's (nothing
+// picked), one beside it picks the ball.
+TEST_F(View, RenderOptionsAreUndoableEditsSavedInTheRenderBlock) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_ball_scene();
+  const std::string png = output_path("reinhard.png"), edited = output_path("options.json"),
+                    undone = output_path("options_undone.json");
+  std::string before;
+  {
+    std::ifstream in(scene_path);
+    before.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // A 640 x 240 window: the panel is 40% of the width, 256 px from x = 8; the ball is at the
+  // centre.
+  const ViewRun run = run_view(
+      "0 key S ctrl\n1 tonemap reinhard\n1 tonemap reinhard\n"
+      "2 exposure 1.5\n3 screenshot " +
+          png + "\n3 save " + edited + "\n4 key Z ctrl\n5 key Z ctrl\n6 save " + undone +
+          "\n6 click 20 20\n6 click 320 120\n7 exit\n",
+      "--scene " + scene_path + " --size 640x240");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("nothing to save"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("tone map reinhard: already so"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("click at 20 20: on the panel"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("selected object 0"), std::string::npos) << run.output;
+  // Two undo steps took both options back: the session ends without unsaved edits.
+  EXPECT_EQ(run.output.find("unsaved edits written"), std::string::npos) << run.output;
+  std::string after;
+  {
+    std::ifstream in(scene_path);
+    after.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  EXPECT_EQ(after, before);
+  const SceneFile saved = load_scene_file(edited);
+  EXPECT_EQ(saved.render.tonemap, ToneMap::reinhard);
+  EXPECT_EQ(saved.render.exposure_ev, 1.5f);
+  const SceneFile back = load_scene_file(undone);
+  EXPECT_FALSE(back.render.tonemap.has_value());
+  EXPECT_FALSE(back.render.exposure_ev.has_value());
+  FrameSettings frame;
+  const Scene scene = scene_named(scene_path, frame, 640, 240);
+  frame.tonemap = ToneMap::reinhard;
+  frame.exposure_ev = 1.5f;
+  expect_same_image(png, headless(scene, frame));
 }
 
 // The panel's light controls, replayed by the script through the same changes the panel makes:
@@ -471,8 +568,8 @@ TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   const std::string scene = write_ball_scene();
   const std::string autosave = output_path("ball.autosave.json");
   std::filesystem::remove(autosave);
-  const ViewRun run =
-      run_view("1 click 32 24\n2 key Delete\n3 exit\n", "--scene " + scene + " --size 64x48");
+  const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 exit\n",
+                               "--scene " + scene + " --size 64x48 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("unsaved edits written to " + autosave), std::string::npos)
       << run.output;

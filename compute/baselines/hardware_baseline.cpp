@@ -145,6 +145,12 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
                 " (--samples applies to the compute path and "
                 "the reference)");
   }
+  // Its colour attachment is copied into the renderer's HDR image, so the formats must match.
+  if (settings.hdr_format != HdrFormat::fp16) {
+    throw Error(
+        "the hardware baseline renders into an fp16 HDR image (--hdr-format fp32 applies to "
+        "the compute path and the reference)");
+  }
   if (settings.lod == Lod::automatic && !ctx.multi_draw_indirect) {
     throw Error(
         "the hardware baseline's level of detail needs multiDrawIndirect and "

@@ -14,19 +14,25 @@
 #define TS_SUBPIXEL_ONE 256
 // Anti-aliasing (FrameSettings::samples): 1, 4, 8 or 16 samples per pixel at fixed positions,
 // the standard multisample patterns of Vulkan (the "standard sample locations" of
-// VkPhysicalDeviceLimits::standardSampleLocations) and Direct3D, given on their grid of 1/16
-// pixel, (0, 0) the pixel's top-left corner, y down. One sample is the pixel centre (8, 8).
+// VkPhysicalDeviceLimits::standardSampleLocations) and Direct3D, given here on a grid of 1/32
+// pixel (their 1/16 positions doubled), (0, 0) the pixel's top-left corner, y down. One sample
+// is the pixel centre (16, 16). The 16-sample pattern is the standard one moved by 1/32 px right
+// and down (2p + 1): the standard 16 positions use each row and column of the 1/16 grid once,
+// so they average (7.5, 7.5) / 16, 1/32 px up and left of the centre, which shifted every edge
+// and shading point by that much and made 16 samples less accurate than 8 (docs/tradeoffs.md,
+// "Anti-aliasing"); moved, they average the centre, as the 4 and 8 patterns do.
 // Multiplied by TS_SUBPIXEL_ONE / TS_SAMPLE_GRID they are exact fixed-point offsets. Each list
 // is a macro taking the constructor of a 2-vector, so GLSL (ivec2) and C++ (glm::ivec2) expand
 // the one definition: e.g. ivec2[4](TS_SAMPLES_4(ivec2)).
-#define TS_SAMPLE_GRID 16
+#define TS_SAMPLE_GRID 32
 #define TS_MAX_SAMPLES 16
-#define TS_SAMPLES_1(P) P(8, 8)
-#define TS_SAMPLES_4(P) P(6, 2), P(14, 6), P(2, 10), P(10, 14)
-#define TS_SAMPLES_8(P) P(9, 5), P(7, 11), P(13, 9), P(5, 3), P(3, 13), P(1, 7), P(11, 15), P(15, 1)
-#define TS_SAMPLES_16(P)                                                                   \
-  P(9, 9), P(7, 5), P(5, 10), P(12, 7), P(3, 6), P(10, 13), P(13, 11), P(11, 3), P(6, 14), \
-      P(8, 1), P(4, 2), P(2, 12), P(0, 8), P(15, 4), P(14, 15), P(1, 0)
+#define TS_SAMPLES_1(P) P(16, 16)
+#define TS_SAMPLES_4(P) P(12, 4), P(28, 12), P(4, 20), P(20, 28)
+#define TS_SAMPLES_8(P) \
+  P(18, 10), P(14, 22), P(26, 18), P(10, 6), P(6, 26), P(2, 14), P(22, 30), P(30, 2)
+#define TS_SAMPLES_16(P)                                                                           \
+  P(19, 19), P(15, 11), P(11, 21), P(25, 15), P(7, 13), P(21, 27), P(27, 23), P(23, 7), P(13, 29), \
+      P(17, 3), P(9, 5), P(5, 25), P(1, 17), P(31, 9), P(29, 31), P(3, 1)
 // Snapped coordinates stay inside +-TS_GUARD_BAND_PX so that edge products fit easily in int64
 // and the coordinates themselves in int32 (2^15 px * 2^8 = 2^23).
 #define TS_GUARD_BAND_PX 32768.0

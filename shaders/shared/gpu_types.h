@@ -27,8 +27,13 @@ using glm::vec3;
 using glm::vec4;
 #endif
 
-// Screen tiles used by binning and the per-tile rasterizer, in pixels per side.
+// Screen tiles used by binning and the per-tile rasterizer, in pixels per side: the default of
+// RendererOptions::tile_size, which specializes the passes that bin and rasterize by tiles
+// (TS_SPEC_TILE_SIZE; the renderer accepts 8 and 16).
 #define TS_TILE_SIZE 16
+// A bin entry packs tile coordinates in 10 bits (setup_common.glsl): at most 1024 tiles per
+// side, so a tile size s holds images up to 1024 s pixels per side.
+#define TS_MAX_TILES_PER_SIDE 1024
 // Threads per workgroup of the one-thread-per-item passes.
 #define TS_GROUP_SIZE 64
 // Workgroup size of the setup pass: its cull counters are summed per workgroup, so larger
@@ -79,12 +84,13 @@ using glm::vec4;
 #define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
 #define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
 #define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
-#define TS_BINDING_UV1 26         // the second uv set (vec2 per vertex), when a material reads it
-#define TS_BINDING_LOD_LEVELS 27  // GpuLodLevel of every mesh's level-of-detail chain
-#define TS_BINDING_LOD_MESHES 28  // GpuLodMesh per Scene::meshes entry
-#define TS_BINDING_LOD_SUMS 29    // triangles per TS_LOD_GROUP_SIZE objects, then their scan
-#define TS_BINDING_LOD_DRAWS 30   // VkDrawIndexedIndirectCommand per object (hardware baseline)
-#define TS_BINDING_COUNT 31
+#define TS_BINDING_UV1 26          // the second uv set (vec2 per vertex), when a material reads it
+#define TS_BINDING_LOD_LEVELS 27   // GpuLodLevel of every mesh's level-of-detail chain
+#define TS_BINDING_LOD_MESHES 28   // GpuLodMesh per Scene::meshes entry
+#define TS_BINDING_LOD_SUMS 29     // triangles per TS_LOD_GROUP_SIZE objects, then their scan
+#define TS_BINDING_LOD_DRAWS 30    // VkDrawIndexedIndirectCommand per object (hardware baseline)
+#define TS_BINDING_HDR_TEXTURE 31  // the HDR image again, sampled: what the resolve pass reads
+#define TS_BINDING_COUNT 32
 
 // GpuBatch.flags
 #define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
@@ -101,9 +107,10 @@ using glm::vec4;
 #define TS_SPEC_SAMPLES 7       // samples per pixel: 1, 4, 8 or 16 (shaders/samples.glsl)
 #define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
 #define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
+#define TS_SPEC_TILE_SIZE 10    // tile side in px (RendererOptions::tile_size): binning, raster_tiles
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 10
+#define TS_SPEC_LIGHT_COUNT_BASE 11
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -245,6 +252,12 @@ struct GpuFrame {
   float lod_scale;       // lod_pixels_per_unit / lod_error_px
   uint batch_count;      // batches of this frame (the lod_scan pass sizes each one's setup)
   uint batch_triangles;  // triangle instances per batch (the last may hold fewer)
+  // Largest value the HDR image stores (FrameSettings::hdr_format): the largest finite fp16
+  // (TS_MAX_HALF) or fp32 value, so that overflow saturates instead of becoming Inf.
+  float hdr_max;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
@@ -342,7 +355,7 @@ static_assert(offsetof(GpuLight, inv_range4) == 44);
 static_assert(offsetof(GpuLight, attenuation) == 48);
 static_assert(offsetof(GpuLight, cone_scale) == 60);
 static_assert(offsetof(GpuLight, cone_offset) == 64);
-static_assert(sizeof(GpuFrame) == 256);
+static_assert(sizeof(GpuFrame) == 272);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
 static_assert(offsetof(GpuFrame, near_plane) == 140);
@@ -362,6 +375,7 @@ static_assert(offsetof(GpuFrame, env_levels) == 236);
 static_assert(offsetof(GpuFrame, anisotropy) == 240);
 static_assert(offsetof(GpuFrame, lod_scale) == 244);
 static_assert(offsetof(GpuFrame, batch_triangles) == 252);
+static_assert(offsetof(GpuFrame, hdr_max) == 256);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);

@@ -1,0 +1,47 @@
+#pragma once
+// `--quality draft|balanced|reference`: one setting of each speed-against-accuracy knob, picked
+// from the Pareto fronts that `tessera tradeoff` measured (docs/tradeoffs.md, "Presets", gives
+// the rule and the figures behind every entry). Explicit options win over the preset; the
+// preset wins over a scene file's "render" block.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "compute/environment_gpu.h"
+#include "core/frame_settings.h"
+
+namespace tessera {
+
+enum class Quality { none, draft, balanced, reference };
+
+/// What a preset sets. Each command applies the members it has options for.
+struct QualityPreset {
+  Brdf brdf;
+  bool energy_compensation;
+  uint32_t samples;  // FrameSettings::samples
+  Lod lod;
+  float lod_error_px;
+  uint32_t max_anisotropy;
+  uint32_t env_specular_size;     // EnvironmentOptions::specular_size
+  uint32_t env_specular_samples;  // EnvironmentOptions::specular_samples
+  HdrFormat hdr_format;
+  uint32_t small_triangle_area;  // RendererOptions::small_triangle_max_area
+  uint32_t tile_size;            // RendererOptions::tile_size
+};
+
+/// The settings of preset `quality` (not Quality::none).
+const QualityPreset& quality_preset(Quality quality);
+
+/// Sets what `quality` picks into `frame` and `env` (either may be null), the tile size and
+/// small-triangle area into `tile_size` and `small_triangle_area` (either may be null), except
+/// what the command line gave: `given(name)` is true for an option given by name ("--brdf",
+/// "--energy-compensation", "--samples", "--lod", "--lod-error", "--anisotropy", "--env-size",
+/// "--env-samples", "--hdr-format", "--small-triangle-area", "--tile-size"). A given --brdf
+/// also keeps the preset's energy compensation off, since the tradeoff measures the two as one
+/// knob. Nothing for Quality::none.
+void apply_quality(Quality quality, const std::function<bool(const std::string&)>& given,
+                   FrameSettings* frame, EnvironmentOptions* env, uint32_t* tile_size,
+                   uint32_t* small_triangle_area);
+
+}  // namespace tessera

@@ -1,0 +1,80 @@
+// The glTF importer's fast JSON scan (scan_document): it vouches only for syntactically valid
+// JSON whose checked properties have the types check_document requires, and gives up on every
+// other text, so that the full parse names the error. Expected results come from the JSON
+// grammar (RFC 8259) and the glTF 2.0 schema, not from the scan.
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/gltf_detail.h"
+
+namespace tessera::gltf {
+namespace {
+
+using nlohmann::json;
+
+TEST(GltfScan, ValidDocumentKeepsOnlyTheMembersReadAfterTinyGltf) {
+  const std::string text = R"({"asset": {"version": "2.0"},
+    "accessors": [{"bufferView": 0, "count": 3, "componentType": 5126, "type": "VEC3",
+                   "min": [-1.5, 0, 2e3], "max": [1, 1E-2, 3]}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "nodes": [{"mesh": 0, "name": "a \"quoted\" name", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}],
+    "animations": [{"channels": [], "extras": {"deep": [null, true, false, {"x": -0.5}]}}],
+    "scene": 0, "scenes": [{"nodes": [0]}]})";
+  const std::optional<json> doc = scan_document(text);
+  ASSERT_TRUE(doc.has_value());
+  json expected = json::parse(text);
+  for (const char* dropped : {"accessors", "bufferViews", "meshes", "animations"}) {
+    expected.erase(dropped);
+  }
+  EXPECT_EQ(*doc, expected);
+}
+
+TEST(GltfScan, GivesUpOnTypeErrorsOfCheckedProperties) {
+  for (const char* text : {
+           R"({"accessors": [{"count": -1}]})",      // integer >= 0
+           R"({"accessors": [{"count": 1.0}]})",     // a fraction is not an integer
+           R"({"accessors": [{"count": 1e2}]})",     // nor is an exponent
+           R"({"accessors": [{"count": "1"}]})",     // a string is not a number
+           R"({"accessors": [{"normalized": 1}]})",  // boolean
+           R"({"meshes": [{"primitives": {}}]})",    // array of objects
+           R"({"meshes": [{"primitives": [3]}]})",   // ... each an object
+           R"({"nodes": [{"matrix": [1, 2, 3]}]})",  // 16 numbers
+           R"({"nodes": [{"children": [0, -2]}]})",  // integers >= 0
+           R"({"extensionsUsed": ["a", 1]})",        // strings
+           R"({"meshes": [{"primitives": [{"attributes": {"POSITION": 0.5}}]}]})",
+           R"({"asset": {"version": 2}})",
+       }) {
+    EXPECT_FALSE(scan_document(text).has_value()) << text;
+  }
+}
+
+TEST(GltfScan, GivesUpOnInvalidOrUnusualJson) {
+  const std::string deep = "{\"extras\": " + std::string(300, '[') + std::string(300, ']') + "}";
+  for (const std::string& text : {
+           std::string(R"([{"asset": {}}])"),                          // not an object
+           std::string(R"({"asset": {"version": "2.0"},})"),           // trailing comma
+           std::string(R"({"asset": {"version": "2.0"}} x)"),          // text after the document
+           std::string(R"({"asset": {"version": "2.0"})"),             // unterminated
+           std::string(R"({"asset": {"version": '2.0'}})"),            // single quotes
+           std::string(R"({"scene": 01})"),                            // leading zero
+           std::string(R"({"scene": +1})"),                            // plus sign
+           std::string(R"({"extras": [1.]})"),                         // fraction without digits
+           std::string(R"({"extras": [tru]})"),                        // literal
+           std::string("{\"extras\": \"a\x01\"}"),                     // control character
+           std::string(R"({"extras": "\q"})"),                         // unknown escape
+           std::string(R"({"asset": {"version": "2.\u0030"}})"),       // \u: left to nlohmann
+           std::string("{\"nodes\": [{\"name\": \"caf\xc3\xa9\"}]}"),  // non-ASCII: left to it
+           std::string(R"({"scene": 12345678901234567890})"),          // beyond 18 digits
+           std::string(R"({"extras": 1e1000})"),                       // 4-digit exponent
+           std::string(R"({"ext\"ras": 1})"),                          // key with an escape
+           deep,                                                       // nested beyond 256
+       }) {
+    EXPECT_FALSE(scan_document(text).has_value()) << text;
+  }
+}
+
+}  // namespace
+}  // namespace tessera::gltf
