@@ -185,7 +185,7 @@ bool read_stored_type(const Context& ctx, const tinygltf::Model& model, const ti
   if (a.count == 0) return true;
   const size_t n = size_t(a.count) * r.components;
   if (is_float && stride == sizeof(float) * r.components) {
-    r.packed = start;  // read in place: a copy was a tenth of a large mesh's import
+    r.packed = start;  // read in place, not copied into fresh memory
   } else if (is_float) {
     r.floats.resize(n);
     copy_typed<float>(start, a.count, r.components, stride, r.floats.data());

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <type_traits>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/texture.h"
