@@ -115,6 +115,24 @@ void apply_lod(const Scene& scene, const FrameSettings& frame, const std::vector
   numbering.triangle_count = next;
 }
 
+// The scene's instances as a frame with `frame`'s level-of-detail settings draws them.
+struct FrameInstances {
+  ObjectNumbering numbering;
+  std::vector<Instance> instances;
+  std::vector<LodChain> lod_chains;  // owns the level meshes `instances` point to
+  std::map<const Mesh*, const Mesh*> base_of;
+};
+FrameInstances frame_instances(const Scene& scene, const FrameSettings& frame) {
+  FrameInstances f;
+  f.numbering = number_objects(scene);
+  f.instances = make_instances(scene, f.numbering);
+  if (frame.lod == Lod::automatic) {
+    f.lod_chains = build_lod_chains(scene);
+    apply_lod(scene, frame, f.lod_chains, f.numbering, f.instances, f.base_of);
+  }
+  return f;
+}
+
 const Instance& instance_of(const std::vector<Instance>& instances, uint64_t id) {
   auto it = std::upper_bound(instances.begin(), instances.end(), id,
                              [](uint64_t v, const Instance& i) { return v < i.first_triangle; });
@@ -1022,14 +1040,8 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const uint32_t w = settings.frame.width, h = settings.frame.height;
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
-  ObjectNumbering numbering = number_objects(scene);
-  std::vector<Instance> instances = make_instances(scene, numbering);
-  std::vector<LodChain> lod_chains;
-  std::map<const Mesh*, const Mesh*> base_of;
-  if (settings.frame.lod == Lod::automatic) {
-    lod_chains = build_lod_chains(scene);
-    apply_lod(scene, settings.frame, lod_chains, numbering, instances, base_of);
-  }
+  FrameInstances prepared = frame_instances(scene, settings.frame);
+  auto& [numbering, instances, lod_chains, base_of] = prepared;
   std::vector<MipChain> chains;
   for (const Texture& t : scene.textures) chains.push_back(build_mip_chain(t));
   std::map<const Mesh*, std::vector<glm::vec4>> generated;  // by the mesh whose vertices they are
@@ -1131,14 +1143,8 @@ ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& sett
                                uint32_t triangle_id, uint32_t x, uint32_t y) {
   check_size(settings);
   const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
-  ObjectNumbering numbering = number_objects(scene);
-  std::vector<Instance> instances = make_instances(scene, numbering);
-  std::vector<LodChain> lod_chains;
-  std::map<const Mesh*, const Mesh*> base_of;
-  if (settings.frame.lod == Lod::automatic) {
-    lod_chains = build_lod_chains(scene);
-    apply_lod(scene, settings.frame, lod_chains, numbering, instances, base_of);
-  }
+  FrameInstances prepared = frame_instances(scene, settings.frame);
+  auto& [numbering, instances, lod_chains, base_of] = prepared;
   TESSERA_CHECK(triangle_id < numbering.triangle_count);
   const Instance& inst = instance_of(instances, triangle_id);
 

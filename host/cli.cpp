@@ -35,6 +35,14 @@ CLI::Validator bench_scene() {
   });
 }
 
+// A count of at most 9 digits (so it fits uint32_t), for options whose own validation then
+// checks the value; anything else is an Error saying what `expected`.
+uint32_t parse_count(const std::string& text, const std::string& expected) {
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw Error("expects " + expected + ", got '" + text + "'");
+  return uint32_t(std::stoul(text));
+}
+
 // --device: what create_context's choose_device accepts (and, for render, the CPU
 // reference), checked here so that a misspelt device is a bad command line (exit status 2).
 CLI::Validator device_choice(bool reference) {
@@ -80,10 +88,7 @@ void add_tile_size(CLI::App& app, uint32_t& tile_size) {
                  "is the same with either")
       ->type_name("N")
       ->check(checked_by([](const std::string& text) {
-        const size_t digits = text.find_first_not_of("0123456789");
-        if (text.empty() || digits != std::string::npos || text.size() > 9)
-          throw Error("expects a tile size of 8 or 16 px, got '" + text + "'");
-        validate_tile_size(uint32_t(std::stoul(text)));
+        validate_tile_size(parse_count(text, "a tile size of 8 or 16 px"));
       }));
 }
 
@@ -109,10 +114,7 @@ CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& he
   return app.add_option("--samples", samples, help)
       ->type_name("N")
       ->check(checked_by([](const std::string& text) {
-        const size_t digits = text.find_first_not_of("0123456789");
-        if (text.empty() || digits != std::string::npos || text.size() > 9)
-          throw Error("expects 1, 4, 8 or 16 samples per pixel, got '" + text + "'");
-        validate_samples(uint32_t(std::stoul(text)));
+        validate_samples(parse_count(text, "1, 4, 8 or 16 samples per pixel"));
       }));
 }
 
