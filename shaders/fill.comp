@@ -24,7 +24,15 @@ void main() {
       uint tile = uint(ty) * frame.tiles.x + uint(tx);
       uint slot = atomicAdd(tile_cursors[tile], 1u);
       if (slot < frame.tile_entry_capacity) tile_entries[slot] = entry.x;
-      if (REJECTION && tile_inside(t, ivec2(tx, ty))) {
+      // The box test first: most triangles cover no tile whole, and it is cheaper than the
+      // three edge functions. The box holds every pixel of the image with a covered sample
+      // (raster_tiles relies on it), so it holds the tile's pixels in the image if the
+      // triangle covers the tile.
+      ivec2 tile_min = ivec2(tx, ty) * TILE_SIZE;
+      ivec2 tile_max = min(tile_min + (TILE_SIZE - 1), ivec2(frame.image_size) - 1);
+      bool box_holds_tile =
+          all(lessThanEqual(t.box_min, tile_min)) && all(greaterThanEqual(t.box_max, tile_max));
+      if (REJECTION && box_holds_tile && tile_inside(t, ivec2(tx, ty))) {
         uint far_high = farthest_key_high(t.depth);
         // A plain read first skips most atomics: a stale value is never below the true one.
         if (tile_far[tile] > far_high) atomicMin(tile_far[tile], far_high);

@@ -7,7 +7,7 @@
 // a single atomicMin per sample.
 //
 // Hierarchical depth rejection (REJECTION, raster_common.glsl): the list is taken in
-// chunks of one entry per thread. Before each chunk the workgroup reduces the farthest high
+// chunks of up to one entry per thread. Before each chunk the workgroup reduces the farthest high
 // word of its samples' keys so far, an upper bound on their final keys since keys only fall;
 // each thread then tests one entry of the chunk against it, and only the entries that may
 // still win a sample are rasterized, from shared memory. The bound starts from tile_far (the
@@ -23,33 +23,19 @@ layout(local_size_x_id = TS_SPEC_TILE_SIZE, local_size_y_id = TS_SPEC_TILE_SIZE)
 
 // Sized for the largest tile (16 x 16, validate_tile_size); smaller tiles use the front.
 shared uint chunk[TS_TILE_SIZE * TS_TILE_SIZE];  // the current chunk's entries not rejected
-shared uint chunk_count;
-shared uint group_far_high;  // the reduction's result
+// Double-buffered by round parity, so that one barrier after the appends and one after the
+// rasterization suffice per chunk (barriers are what the chunks cost): round r appends to
+// chunk_count[r & 1] and reduces into far_high_max[(r + 1) & 1], which round r + 1 reads, and
+// clears the other slots, which no thread touches during round r.
+shared uint chunk_count[2];
+shared uint far_high_max[2];
+// Entries of the first chunk; each next one doubles up to one per thread. The first chunks
+// run before the bound knows much, so small ones bring the first reductions earlier.
+const uint FIRST_CHUNK = 32u;
 
 uint64_t best[SAMPLES];  // this thread's pixel: the minimum key of each sample so far
 uint changed = 0u;       // bit s: best[s] was lowered here, so it is written back
-
-// Tests every sample of `pixel` (fixed-point centre `p`) against raster triangle `index`.
-// `far_high` bounds the high words of best[] (all ones: no bound).
-void rasterize(uint index, ivec2 pixel, ivec2 p, uint far_high) {
-  RasterTri t = load_raster_tri(index);
-  // The box is clamped to the image, so this also keeps pixels past the image's edge out.
-  if (any(lessThan(pixel, t.box_min)) || any(greaterThan(pixel, t.box_max))) return;
-  // The same rejection per pixel: whole subgroups of hidden pixels skip the edge functions.
-  if (REJECTION && nearest_key_high(t.depth) > far_high) return;
-  Edges centre = edges_at(t, p);
-  Thresholds h = thresholds_of(t);
-  for (uint s = 0u; s < SAMPLES; ++s) {
-    Edges e = edges_moved(t, centre, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
-    if (!is_covered(e, h)) continue;
-    if (DEBUG_COVERAGE) atomicAdd(coverage[pixel_index(pixel)], 1u);
-    uint64_t key = visibility_key(depth_at(t, e), t.id);
-    if (key < best[s]) {
-      best[s] = key;
-      changed |= 1u << s;
-    }
-  }
-}
+uint pixel_far = ~0u;    // the largest high word of best[] (0 past the image): a bound per pixel
 
 // The largest high word of this thread's keys; 0 (no constraint) for a pixel past the image.
 uint pixel_far_high(bool in_image) {
@@ -58,14 +44,35 @@ uint pixel_far_high(bool in_image) {
   return in_image ? far_high : 0u;
 }
 
-// The largest pixel_far_high of the workgroup. Called by every thread (uniform control flow).
-uint workgroup_far_high(uint mine) {
-  if (gl_LocalInvocationIndex == 0u) group_far_high = 0u;
-  barrier();
-  uint subgroup_far = subgroupMax(mine);
-  if (subgroupElect()) atomicMax(group_far_high, subgroup_far);
-  barrier();
-  return group_far_high;
+// Tests every sample of `pixel` (fixed-point centre `p`) against raster triangle `index`.
+void rasterize(uint index, ivec2 pixel, ivec2 p) {
+  RasterTri t = load_raster_tri(index);
+  // The box is clamped to the image, so this also keeps pixels past the image's edge out.
+  if (any(lessThan(pixel, t.box_min)) || any(greaterThan(pixel, t.box_max))) return;
+  // The same rejection per pixel: a subgroup whose pixels all hide the triangle skips the edge
+  // functions (the SIMD width is the block size of this finest level).
+  if (REJECTION && nearest_key_high(t.depth) > pixel_far) return;
+  Edges centre = edges_at(t, p);
+  Thresholds h = thresholds_of(t);
+  bool lowered = false;
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    Edges e = edges_moved(t, centre, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+    if (!is_covered(e, h)) continue;
+    if (DEBUG_COVERAGE) atomicAdd(coverage[pixel_index(pixel)], 1u);
+    uint64_t key = visibility_key(depth_at(t, e), t.id);
+    if (key < best[s]) {
+      best[s] = key;
+      changed |= 1u << s;
+      lowered = true;
+    }
+  }
+  if (REJECTION && lowered) pixel_far = pixel_far_high(true);
+}
+
+// Adds this subgroup's largest pixel_far to far_high_max[slot], once per subgroup.
+void reduce_far_high(uint slot) {
+  uint subgroup_far = subgroupMax(pixel_far);
+  if (subgroupElect()) atomicMax(far_high_max[slot], subgroup_far);
 }
 
 void main() {
@@ -85,32 +92,45 @@ void main() {
   }
 
   if (!REJECTION) {
-    for (uint k = first; k < end; ++k) rasterize(tile_entries[k], pixel, p, ~0u);
+    for (uint k = first; k < end; ++k) rasterize(tile_entries[k], pixel, p);
   } else {
+    pixel_far = pixel_far_high(in_image);
     uint group = TILE_SIZE * TILE_SIZE;
+    uint local = gl_LocalInvocationIndex;
     uint bound = tile_far[tile_index];
     uint rejected = 0u;
-    for (uint base = first; base < end; base += group) {
-      uint mine = pixel_far_high(in_image);
-      bound = min(bound, workgroup_far_high(mine));
-      if (gl_LocalInvocationIndex == 0u) chunk_count = 0u;
-      barrier();
-      uint k = base + gl_LocalInvocationIndex;
-      if (k < end) {
+    if (local == 0u) {
+      chunk_count[0] = 0u;
+      far_high_max[0] = 0u;
+    }
+    barrier();
+    reduce_far_high(0u);
+    barrier();
+    uint size = min(group, FIRST_CHUNK);
+    uint round = 0u;
+    for (uint base = first; base < end; base += size, size = min(group, 2u * size), ++round) {
+      uint now = round & 1u, next = now ^ 1u;
+      bound = min(bound, far_high_max[now]);
+      if (local == 0u) {
+        chunk_count[next] = 0u;
+        far_high_max[next] = 0u;
+      }
+      uint k = base + local;
+      if (local < size && k < end) {
         uint entry = tile_entries[k];
         vec3 depth = uintBitsToFloat(raster_tris[entry].depth_id.xyz);
-        if (nearest_key_high(depth) <= bound) chunk[atomicAdd(chunk_count, 1u)] = entry;
+        if (nearest_key_high(depth) <= bound) chunk[atomicAdd(chunk_count[now], 1u)] = entry;
       }
       barrier();
-      uint kept = chunk_count;
-      rejected += min(end - base, group) - kept;
-      for (uint j = 0u; j < kept; ++j) rasterize(chunk[j], pixel, p, mine);
-      barrier();  // chunk and chunk_count are rewritten by the next round
+      uint kept = chunk_count[now];
+      rejected += min(end - base, size) - kept;
+      for (uint j = 0u; j < kept; ++j) rasterize(chunk[j], pixel, p);
+      reduce_far_high(next);
+      barrier();
     }
-    // The tile's bound for raster_small and later batches.
-    uint far_high = workgroup_far_high(pixel_far_high(in_image));
-    if (gl_LocalInvocationIndex == 0u) {
-      atomicMin(tile_far[tile_index], far_high);
+    // The tile's bound for raster_small and later batches (the last round's reduction).
+    if (local == 0u) {
+      atomicMin(tile_far[tile_index], far_high_max[round & 1u]);
       if (rejected > 0u) atomicAdd(counters[batch.index].rejected_entries, rejected);
     }
   }
