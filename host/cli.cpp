@@ -412,7 +412,7 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
                  "env-samples, samples, hdr, small-triangle,\n"
-                 "tile-size (docs/tradeoffs.md)")
+                 "tile-size, depth-rejection (docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
       ->allow_extra_args(false)

@@ -33,15 +33,8 @@ class DepthRejection : public test::VulkanTest {
     options.tile_size = tile_size;
     options.max_batch_triangles = max_batch_triangles;
     Renderer renderer(context(), options);
-    renderer.set_scene(scene);
-    FrameSettings settings;
-    settings.width = size;
-    settings.height = size;
-    settings.samples = samples;
-    Result r;
-    r.stats = renderer.render(settings);
-    r.visibility = renderer.read_visibility();
-    r.hdr = renderer.read_hdr();
+    const Frame f = render(renderer, scene, size, size, samples);
+    Result r{f.stats, f.visibility, f.hdr, {}};
     for (uint64_t key : r.visibility) {
       if (key != TS_VIS_EMPTY) r.objects.insert(renderer.object_of_triangle(uint32_t(key)));
     }
