@@ -18,21 +18,34 @@ work=$(mktemp -d)
 export TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
 nproc | tee "$work/nproc.txt"
-run() {  # run TAG FILTER [ARGS...]: one process
-  local tag=$1 filter=$2
-  shift 2
-  "$bin/tessera_import_bench" --benchmark_filter="$filter" --benchmark_out="$work/$tag.json" \
-    --benchmark_out_format=json "$@" 2>&1 | tee "$work/$tag.txt" | grep -v '^\*\*\*' || true
+# An earlier build's bench in .device-before/ (if staged there) runs in the same rounds, so that
+# before and after are measured on the same machine state.
+versions=(after)
+[[ -x $PWD/.device-before/tessera_import_bench ]] && versions=(before after)
+run() {  # run VERSION TAG FILTER [ARGS...]: one process
+  local b=$bin version=$1 tag=$2 filter=$3
+  shift 3
+  [[ $version == before ]] && b=$PWD/.device-before
+  LD_LIBRARY_PATH=$b "$b/tessera_import_bench" --benchmark_filter="$filter" \
+    --benchmark_out="$work/${version}_$tag.json" --benchmark_out_format=json "$@" 2>&1 |
+    tee "$work/${version}_$tag.txt" | grep -v '^\*\*\*' || true
 }
 for round in 1 2 3; do
-  run "gltf_$round" 'BM_(TinyGltfAlone|ImportGltf)/' --benchmark_repetitions=10 \
-    --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
-done
-for round in 1 2 3; do
-  for f in $("$bin/tessera_import_bench" --benchmark_list_tests | grep -E '^BM_(TinyObj|ImportObj)' | sed 's,/.*,,' | sort -u); do
-    run "obj_${f}_$round" "^$f/" --benchmark_repetitions=1
+  for v in "${versions[@]}"; do
+    run "$v" "gltf_$round" 'BM_(TinyGltfAlone|ImportGltf)/' --benchmark_repetitions=10 \
+      --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
   done
 done
-run textures 'Textures|Mip' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+for round in 1 2 3; do
+  for v in "${versions[@]}"; do
+    b=$bin
+    [[ $v == before ]] && b=$PWD/.device-before
+    for f in $(LD_LIBRARY_PATH=$b "$b/tessera_import_bench" --benchmark_list_tests |
+               grep -E '^BM_(TinyObj|ImportObj)' | sed 's,/.*,,' | sort -u); do
+      run "$v" "obj_${f}_$round" "^$f/" --benchmark_repetitions=1
+    done
+  done
+done
+run after textures 'Textures|Mip' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 rm -rf "$TMPDIR"
 tar -C "$work" -czf "$out/import.tar.gz" .
