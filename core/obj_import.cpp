@@ -1,7 +1,10 @@
-// Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses; this file checks what
-// it does not (it drops bad faces and clamps nothing, reporting out-of-range indices once per
-// file without the line) by scanning each line just before tinyobjloader reads it (MTL files:
-// each file first), so every error names its line and column.
+// Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses, through its streaming
+// API (LoadObjWithCallback), whose callbacks build Tessera's meshes as faces are read, so no
+// parser arrays exist beside them; this file checks what tinyobjloader does not (it drops bad
+// faces and clamps nothing, reporting out-of-range indices once per file without the line) by
+// scanning each line just before tinyobjloader reads it (MTL files: each file first), so every
+// error names its line and column. The scan also gives the callbacks what they do not report:
+// smoothing groups (`s`) and the lines of polygons, for warnings.
 //
 // Conventions chosen here, each because the format leaves it open:
 // - Polygons are split by this file, not by tinyobjloader: convex ones as a fan from their first
@@ -940,9 +943,7 @@ class VertexIndex {
  public:
   // The vertex of `key`, and whether it was just added with value `next`.
   std::pair<uint32_t, bool> emplace(const VertexKey& key, uint32_t next) {
-    // Positions arrive while faces are converted: the heads grow with them.
-    if (size_t(key.v) >= head_.size())
-      head_.resize(std::max(size_t(key.v) + 1, 2 * head_.size()), kNone);
+    TESSERA_CHECK(size_t(key.v) < head_.size());  // cover()
     uint32_t& head = head_[size_t(key.v)];
     if (head == kCrowded) return crowded_.emplace(key, next);
     if (head == kNone) touched_.push_back(uint32_t(key.v));
@@ -967,11 +968,22 @@ class VertexIndex {
     return {next, true};
   }
 
-  // Forgets every vertex, before the next shape.
+  // Room for position indices below `positions` (which arrive while faces are converted).
+  void cover(size_t positions) {
+    if (head_.size() < positions) head_.resize(positions, kNone);
+  }
+
+  // The nodes (one per vertex), for ObjBuilder::make_room's growth.
+  size_t size() const { return nodes_.size(); }
+  bool full() const { return nodes_.size() == nodes_.capacity(); }
+  void reserve(size_t nodes) { nodes_.reserve(nodes); }
+
+  // Forgets every vertex, before the next shape, and frees the memory that grows with them
+  // (before the shape's meshes are trimmed, which copies them).
   void clear() {
     for (const uint32_t v : touched_) head_[v] = kNone;
-    touched_.clear();
-    nodes_.clear();
+    touched_ = {};
+    nodes_ = {};
     crowded_ = {};
   }
 
@@ -987,6 +999,83 @@ class VertexIndex {
   std::vector<uint32_t> touched_;  // the position indices whose head is not kNone
   std::vector<Node> nodes_;
   VertexTable crowded_;
+};
+
+// The OBJ text as tinyobjloader reads it, scanned line by line (scan_obj_line) just before
+// tinyobjloader gets each line: one pass over a file, read in chunks and never held whole, and
+// the scan has seen a `mtllib` line when tinyobjloader asks for the library. The scan's first
+// error ends the text (tinyobjloader sees the end of the file) and is kept in `error`, never
+// thrown through tinyobjloader.
+class ScanningBuffer : public std::streambuf {
+ public:
+  // Text held by the caller for the buffer's lifetime.
+  ScanningBuffer(const std::string& path, std::string_view text, ObjScan& scan)
+      : path_(path), scan_(scan), text_(text), size_(text.size()) {}
+  // A file of `size` bytes read from its start (owned by the caller).
+  ScanningBuffer(const std::string& path, FILE* file, uint64_t size, ObjScan& scan)
+      : path_(path), scan_(scan), file_(file), chunk_(size_t(1) << 20), size_(size) {}
+
+  std::optional<std::string> error;
+
+  /// The text's size in bytes, and how much of it tinyobjloader has read.
+  uint64_t size() const { return size_; }
+  uint64_t position() const { return offset_ + uint64_t(gptr() - eback()); }
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    if (error || done_) return traits_type::eof();
+    try {
+      if (!file_) {
+        // All at once: the text is in memory already.
+        const size_t used =
+            split_lines(text_, /*last=*/true, line_, [&](size_t n, auto s) { scan_line(n, s); });
+        char* begin = const_cast<char*>(text_.data());  // only read: a get area is non-const
+        setg(begin, begin, begin + used);
+        done_ = true;
+      } else {
+        // The part of the chunk after the last complete line moves to the front, and reading
+        // continues until at least one line is complete (a line longer than the chunk grows it).
+        size_t used = 0;
+        while (used == 0 && !done_) {
+          held_ -= scanned_;
+          offset_ += scanned_;
+          std::memmove(chunk_.data(), chunk_.data() + scanned_, held_);
+          scanned_ = 0;
+          if (held_ == chunk_.size()) chunk_.resize(2 * chunk_.size());
+          held_ += std::fread(chunk_.data() + held_, 1, chunk_.size() - held_, file_);
+          if (std::ferror(file_)) throw Error("cannot read " + quoted(path_));
+          done_ = std::feof(file_) != 0;
+          used = split_lines(std::string_view(chunk_.data(), held_), done_, line_,
+                             [&](size_t n, auto s) { scan_line(n, s); });
+        }
+        scanned_ = used;
+        setg(chunk_.data(), chunk_.data(), chunk_.data() + used);
+      }
+    } catch (const Error& e) {
+      error = e.what();
+      setg(nullptr, nullptr, nullptr);
+      return traits_type::eof();
+    }
+    return gptr() < egptr() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
+  }
+
+ private:
+  void scan_line(size_t line, std::string_view s) {
+    if (!scan_obj_line_fast(line, s, scan_)) scan_obj_line(path_, line, s, scan_);
+  }
+
+  const std::string& path_;
+  ObjScan& scan_;
+  std::string_view text_;
+  FILE* file_ = nullptr;
+  std::vector<char> chunk_;
+  size_t held_ = 0;     // bytes of chunk_ read from the file
+  size_t scanned_ = 0;  // of those, the complete lines handed to tinyobjloader
+  size_t line_ = 0;     // lines scanned so far
+  uint64_t size_ = 0;
+  uint64_t offset_ = 0;  // of chunk_'s first byte in the file
+  bool done_ = false;    // the whole text is scanned
 };
 
 struct MeshBuilder {
@@ -1010,8 +1099,9 @@ struct ObjFace {
 // after it, until the file is read.
 class ObjBuilder {
  public:
-  ObjBuilder(const std::string& path, ObjScan& scan, Scene& scene, const MtlReader& reader)
-      : path_(path), scan_(scan), scene_(scene), reader_(reader) {}
+  ObjBuilder(const std::string& path, ObjScan& scan, Scene& scene, const MtlReader& reader,
+             const ScanningBuffer& text)
+      : path_(path), scan_(scan), scene_(scene), reader_(reader), text_(text) {}
 
   std::vector<glm::vec3> positions, normals;
   std::vector<glm::vec2> texcoords;
@@ -1023,13 +1113,19 @@ class ObjBuilder {
   static tinyobj::callback_t callbacks() {
     tinyobj::callback_t cb;
     cb.vertex_cb = [](void* self, float x, float y, float z, float) {
-      static_cast<ObjBuilder*>(self)->positions.emplace_back(x, y, z);
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.positions, 0);
+      b.positions.emplace_back(x, y, z);
     };
     cb.normal_cb = [](void* self, float x, float y, float z) {
-      static_cast<ObjBuilder*>(self)->normals.emplace_back(x, y, z);
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.normals, 0);
+      b.normals.emplace_back(x, y, z);
     };
     cb.texcoord_cb = [](void* self, float u, float v, float) {
-      static_cast<ObjBuilder*>(self)->texcoords.emplace_back(u, v);
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.texcoords, 0);
+      b.texcoords.emplace_back(u, v);
     };
     cb.index_cb = [](void* self, tinyobj::index_t* indices, int n) {
       static_cast<ObjBuilder*>(self)->add_face(indices, n);
@@ -1068,6 +1164,30 @@ class ObjBuilder {
   }
 
  private:
+  /// Room for one more element at the end of `v`, which grows with the text from byte `since`
+  /// on. Once that part is 1 MiB or more, a full `v` is given the capacity that the rest of the
+  /// text would fill at the rate so far, plus 5 %, instead of twice its size: growing a large
+  /// array copies it into fresh pages, and doubling does that about twice over its final size
+  /// (a tenth of the import's time at 10^7 triangles) and holds both copies at its last step.
+  /// Capacity beyond the size is never written, so an overestimate costs address space, not
+  /// memory; it is bounded by two elements per byte left.
+  template <typename T>
+  void make_room(std::vector<T>& v, uint64_t since) {
+    if (v.size() < v.capacity()) return;
+    v.reserve(room_for(v.size(), since));
+  }
+  size_t room_for(size_t size, uint64_t since) const {
+    const uint64_t at = text_.position(), total = text_.size();
+    size_t want = std::max<size_t>(16, 2 * size);
+    if (at >= since + (uint64_t(1) << 20) && total > at) {
+      const double rate = double(size) / double(at - since);
+      const size_t estimate =
+          std::min(size_t(1.05 * rate * double(total - since)) + 16, size + 2 * size_t(total - at));
+      want = std::max(estimate, size + size / 4 + 16);
+    }
+    return want;
+  }
+
   // tinyobjloader names the material by the rest of the line; LoadObj (which import_obj used
   // before, and tests pin) by its first word, looked up when the line is read.
   void use_material(std::string_view rest) {
@@ -1135,6 +1255,7 @@ class ObjBuilder {
       end_shape();
       current_shape_ = face.shape;
     }
+    if (builders_.empty()) shape_start_ = text_.position();
     // One mesh per material, in order of first use in the shape.
     auto b = std::find_if(builders_.begin(), builders_.end(),
                           [&](const MeshBuilder& x) { return x.material == face.material; });
@@ -1148,6 +1269,7 @@ class ObjBuilder {
     corners_xyz_.resize(n);
     for (size_t c = 0; c < n; ++c) corners_xyz_[c] = positions[size_t(indices[c].vertex_index)];
     const glm::vec3 face_normal = newell_normal(corners_xyz_);
+    vertices_.cover(positions.capacity());  // as large as the positions will be, if estimated
     // Smoothing groups: area-weighted normal sums per (group, position), over every shape, in
     // file order; the vertices get them in finish().
     const auto smooth_key = [&](const tinyobj::index_t& index) {
@@ -1164,8 +1286,12 @@ class ObjBuilder {
       const std::optional<glm::vec3> given = file_normal(index);
       VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index, builder};
       if (!given) key.normal = face.group > 0 ? -1 - int64_t(face.group) : kFlat - face_serial_;
+      if (vertices_.full()) vertices_.reserve(room_for(vertices_.size(), shape_start_));
       const auto [vertex, inserted] = vertices_.emplace(key, uint32_t(mesh.positions.size()));
       if (inserted) {
+        make_room(mesh.positions, shape_start_);
+        make_room(mesh.normals, shape_start_);
+        make_room(mesh.uvs, shape_start_);
         if (mesh.positions.size() == UINT32_MAX) {
           throw Error(quoted(path_) + ": a mesh has more than 2^32 - 1 vertices");
         }
@@ -1195,7 +1321,10 @@ class ObjBuilder {
       polygon_warnings.push_back(place(path_, face.line) +
                                  ": the polygon intersects itself; its triangulation is arbitrary");
     }
-    for (uint32_t t : triangles_) mesh.indices.push_back(corner_vertex_[t]);
+    for (uint32_t t : triangles_) {
+      make_room(mesh.indices, shape_start_);
+      mesh.indices.push_back(corner_vertex_[t]);
+    }
     ++face_serial_;
   }
 
@@ -1220,8 +1349,10 @@ class ObjBuilder {
   ObjScan& scan_;
   Scene& scene_;
   const MtlReader& reader_;
+  const ScanningBuffer& text_;
   const size_t first_mesh_ = scene_.meshes.size();
   uint64_t shape_ = 0, current_shape_ = 0;
+  uint64_t shape_start_ = 0;  // where tinyobjloader was in the text at the shape's first face
   int material_ = -1;
   uint32_t group_ = 0;
   uint64_t faces_ = 0;                 // faces reported so far
@@ -1235,76 +1366,6 @@ class ObjBuilder {
   std::vector<tinyobj::index_t> corners_;
   std::vector<glm::vec3> corners_xyz_;
   std::vector<uint32_t> corner_vertex_, triangles_;
-};
-
-// The OBJ text as tinyobjloader reads it, scanned line by line (scan_obj_line) just before
-// tinyobjloader gets each line: one pass over a file, read in chunks and never held whole, and
-// the scan has seen a `mtllib` line when tinyobjloader asks for the library. The scan's first
-// error ends the text (tinyobjloader sees the end of the file) and is kept in `error`, never
-// thrown through tinyobjloader.
-class ScanningBuffer : public std::streambuf {
- public:
-  // Text held by the caller for the buffer's lifetime.
-  ScanningBuffer(const std::string& path, std::string_view text, ObjScan& scan)
-      : path_(path), scan_(scan), text_(text) {}
-  // A file read from its start (owned by the caller).
-  ScanningBuffer(const std::string& path, FILE* file, ObjScan& scan)
-      : path_(path), scan_(scan), file_(file), chunk_(size_t(1) << 20) {}
-
-  std::optional<std::string> error;
-
- protected:
-  int_type underflow() override {
-    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-    if (error || done_) return traits_type::eof();
-    try {
-      if (!file_) {
-        // All at once: the text is in memory already.
-        const size_t used =
-            split_lines(text_, /*last=*/true, line_, [&](size_t n, auto s) { scan_line(n, s); });
-        char* begin = const_cast<char*>(text_.data());  // only read: a get area is non-const
-        setg(begin, begin, begin + used);
-        done_ = true;
-      } else {
-        // The part of the chunk after the last complete line moves to the front, and reading
-        // continues until at least one line is complete (a line longer than the chunk grows it).
-        size_t used = 0;
-        while (used == 0 && !done_) {
-          held_ -= scanned_;
-          std::memmove(chunk_.data(), chunk_.data() + scanned_, held_);
-          scanned_ = 0;
-          if (held_ == chunk_.size()) chunk_.resize(2 * chunk_.size());
-          held_ += std::fread(chunk_.data() + held_, 1, chunk_.size() - held_, file_);
-          if (std::ferror(file_)) throw Error("cannot read " + quoted(path_));
-          done_ = std::feof(file_) != 0;
-          used = split_lines(std::string_view(chunk_.data(), held_), done_, line_,
-                             [&](size_t n, auto s) { scan_line(n, s); });
-        }
-        scanned_ = used;
-        setg(chunk_.data(), chunk_.data(), chunk_.data() + used);
-      }
-    } catch (const Error& e) {
-      error = e.what();
-      setg(nullptr, nullptr, nullptr);
-      return traits_type::eof();
-    }
-    return gptr() < egptr() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
-  }
-
- private:
-  void scan_line(size_t line, std::string_view s) {
-    if (!scan_obj_line_fast(line, s, scan_)) scan_obj_line(path_, line, s, scan_);
-  }
-
-  const std::string& path_;
-  ObjScan& scan_;
-  std::string_view text_;
-  FILE* file_ = nullptr;
-  std::vector<char> chunk_;
-  size_t held_ = 0;     // bytes of chunk_ read from the file
-  size_t scanned_ = 0;  // of those, the complete lines handed to tinyobjloader
-  size_t line_ = 0;     // lines scanned so far
-  bool done_ = false;   // the whole text is scanned
 };
 
 ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const std::string& path,
@@ -1321,7 +1382,7 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw Error("cannot read " + quoted(path));
   ObjScan scan;
-  ScanningBuffer buffer(path, file.get(), scan);
+  ScanningBuffer buffer(path, file.get(), size, scan);
   return import_obj_scanned(buffer, scan, path, fs::path(path).parent_path().string(), options);
 }
 
@@ -1341,7 +1402,7 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
   Scene& scene = im.model.scene;
   std::string tiny_warn, tiny_err;
   MtlReader reader(path, base_dir, scan, options.max_file_bytes);
-  ObjBuilder builder(path, scan, scene, reader);
+  ObjBuilder builder(path, scan, scene, reader, buffer);
   std::istream in(&buffer);
   const bool ok = tinyobj::LoadObjWithCallback(in, ObjBuilder::callbacks(), &builder, &reader,
                                                &tiny_warn, &tiny_err);
