@@ -968,9 +968,14 @@ class VertexIndex {
     return {next, true};
   }
 
-  // Room for position indices below `positions` (which arrive while faces are converted).
-  void cover(size_t positions) {
-    if (head_.size() < positions) head_.resize(positions, kNone);
+  // Room for position indices below `size`, growing by doubling up to `capacity`, the size
+  // that ObjBuilder expects the positions to reach (positions arrive while faces are converted).
+  // Not to `capacity` at once: the heads are written, and an estimate made while only `v` lines
+  // had been read is several times the positions' count.
+  void cover(size_t size, size_t capacity) {
+    if (head_.size() < size) {
+      head_.resize(std::min(std::max(2 * head_.size(), size), std::max(size, capacity)), kNone);
+    }
   }
 
   // The nodes (one per vertex), for ObjBuilder::make_room's growth.
@@ -1269,7 +1274,7 @@ class ObjBuilder {
     corners_xyz_.resize(n);
     for (size_t c = 0; c < n; ++c) corners_xyz_[c] = positions[size_t(indices[c].vertex_index)];
     const glm::vec3 face_normal = newell_normal(corners_xyz_);
-    vertices_.cover(positions.capacity());  // as large as the positions will be, if estimated
+    vertices_.cover(positions.size(), positions.capacity());
     // Smoothing groups: area-weighted normal sums per (group, position), over every shape, in
     // file order; the vertices get them in finish().
     const auto smooth_key = [&](const tinyobj::index_t& index) {
