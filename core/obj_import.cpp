@@ -983,8 +983,7 @@ class VertexIndex {
   bool full() const { return nodes_.size() == nodes_.capacity(); }
   void reserve(size_t nodes) { nodes_.reserve(nodes); }
 
-  // Forgets every vertex, before the next shape, and frees the memory that grows with them
-  // (before the shape's meshes are trimmed, which copies them).
+  // Forgets every vertex, before the next shape, and frees the memory that grows with them.
   void clear() {
     for (const uint32_t v : touched_) head_[v] = kNone;
     touched_ = {};
@@ -1336,14 +1335,10 @@ class ObjBuilder {
   void end_shape() {
     vertices_.clear();
     for (MeshBuilder& b : builders_) {
-      // Grown by doubling: up to half of each array would be unused.
+      // Not trimmed to size: capacity beyond the size (make_room's estimate, or doubling) was
+      // never written, so it is address space, not memory, and a trim would copy each array
+      // into fresh pages (at 10^6 triangles, a sixth more peak memory).
       Mesh& m = b.mesh;
-      if (m.positions.capacity() > m.positions.size() + m.positions.size() / 8) {
-        m.positions.shrink_to_fit();
-        m.normals.shrink_to_fit();
-        m.uvs.shrink_to_fit();
-      }
-      if (m.indices.capacity() > m.indices.size() + m.indices.size() / 8) m.indices.shrink_to_fit();
       scene_.meshes.push_back(std::move(m));
       mesh_material.push_back(b.material);
     }
