@@ -1172,7 +1172,8 @@ class ObjBuilder {
   /// on. Once that part is 1 MiB or more, a full `v` is given the capacity that the rest of the
   /// text would fill at the rate so far, plus 5 %, instead of twice its size: growing a large
   /// array copies it into fresh pages, and doubling does that about twice over its final size
-  /// (a tenth of the import's time at 10^7 triangles) and holds both copies at its last step.
+  /// and holds both copies at its last step (at 10^7 triangles, on the loaded 2-core machine:
+  /// 7.6 s of CPU time with doubling, 6.8 s with this, medians of 3 and 4 runs).
   /// Capacity beyond the size is never written, so an overestimate costs address space, not
   /// memory; it is bounded by two elements per byte left.
   template <typename T>
