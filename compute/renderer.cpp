@@ -834,7 +834,9 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                                            double(settings.lod_error_px)),
                         .batch_count = s.frame_batches,
                         .batch_triangles = s.batch_triangles,
-                        .hdr_max = float(hdr_max(settings.hdr_format))};
+                        .hdr_max = float(hdr_max(settings.hdr_format)),
+                        .hdr_half = settings.hdr_format == HdrFormat::fp16 ? 1u : 0u,
+                        .resolve_in_shading = s.options.resolve ? 1u : 0u};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -894,7 +896,7 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
       break;
     case Dispatch::per_tile:
-      vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
+      vkCmdDispatch(cmd, div_up(uint64_t(s.tiles_x) * s.tiles_y, pass.group_size), 1, 1);
       break;
     case Dispatch::indirect:
       vkCmdDispatchIndirect(
@@ -904,16 +906,22 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
   }
 }
 
-// The last pass's writes (the display image, the counters) are read by transfers: the copies
-// after the frame and read-backs. Every other pass feeds the next compute pass.
-static_assert(std::size(kPasses) > 0 && std::data(kPasses)[kPassCount - 1].stage == Stage::frame);
+// Shading is the last pass render() records: its writes (the images, the counters) are read by
+// the copies after the frame and read-backs, and, under RendererOptions::resolve off, by the
+// resolve pass the caller records after it. Every other pass feeds the next compute pass.
+// The two rasterizers only atomicMin into the visibility buffer (and count into the coverage
+// one): neither reads what the other writes, so they run without a barrier between them and
+// the per-triangle one's time is from the per-tile one's end to both ends.
+static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
 void barrier_after(VkCommandBuffer cmd, const PassInfo& pass) {
-  if (size_t(pass.pass) + 1 < kPassCount) {
+  if (pass.pass == Pass::raster_tiles) return;
+  if (pass.stage != Stage::frame) {
     compute_to_compute(cmd);
-  } else {
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    return;
   }
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 }  // namespace
@@ -991,8 +999,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
-        if (pass.pass == Pass::resolve && !s.options.resolve) {
-          ++i;  // the caller records it (RendererOptions::resolve)
+        if (pass.pass == Pass::resolve) {
+          // The shading pass resolved its own pixels (GpuFrame.resolve_in_shading), or the
+          // caller records it (RendererOptions::resolve off).
+          ++i;
           break;
         }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
@@ -1003,11 +1013,6 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     }
   }
 
-  // Without the resolve pass, shading was the last pass and fed only compute passes.
-  if (!s.options.resolve) {
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   VkBufferCopy region{0, 0, counters.size};
   vkCmdCopyBuffer(cmd, counters.buffer, s.counters_readback.buffer, 1, &region);
