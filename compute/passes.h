@@ -189,6 +189,7 @@ enum class Pipeline {
   env_irradiance,  // the environment's irradiance coefficients
   env_prefilter,   // one level of the prefiltered specular cube
   resolve_bgra,    // the resolve pass storing B, G, R, A bytes, for B8G8R8A8 swapchain images
+  hdr_rounding,    // how the device rounds stores to the RGBA16F image (probe_hdr_rounding)
   count
 };
 
@@ -213,6 +214,7 @@ constexpr PipelineInfo kPipelines[] = {
     {Pipeline::env_irradiance, "env_irradiance", {}},
     {Pipeline::env_prefilter, "env_prefilter", {}},
     {Pipeline::resolve_bgra, "resolve", {.output_bgra = VK_TRUE}},
+    {Pipeline::hdr_rounding, "hdr_rounding", {}},
 };
 
 constexpr bool pipeline_table_is_complete() {

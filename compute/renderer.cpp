@@ -1,6 +1,7 @@
 #include "compute/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -616,6 +617,37 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
 
 }  // namespace
 
+bool resolves_in_shading(const Renderer::State& s) {
+  return s.options.resolve &&
+         (s.hdr_format == HdrFormat::fp32 || s.hdr_half_rounding != TS_HDR_ROUNDING_AS_IS);
+}
+
+namespace {
+
+// Finds how the device rounds shader stores to the RGBA16F HDR image (hdr_rounding.comp has
+// the values and what each way stores), through texel (0, 0) of the current one, which the
+// frame then overwrites. Precondition: the descriptors bind that image.
+void probe_hdr_rounding(Renderer::State& s) {
+  TESSERA_CHECK(s.hdr_format == HdrFormat::fp16);
+  submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
+    full_barrier(cmd);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
+                            0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[Pipeline::hdr_rounding]);
+    vkCmdDispatch(cmd, 1, 1, 1);
+  });
+  const std::vector<uint16_t> texels = download_image<uint16_t>(s.ctx, s.hdr, 4);
+  constexpr std::array<uint16_t, 4> kNearestEven{0x3C01, 0xBC01, 0x3C02, 0x0011};
+  constexpr std::array<uint16_t, 4> kTowardZero{0x3C00, 0xBC00, 0x3C01, 0x0010};
+  const std::array<uint16_t, 4> stored{texels[0], texels[1], texels[2], texels[3]};
+  s.hdr_half_rounding = stored == kNearestEven  ? TS_HDR_ROUNDING_HALF_NEAREST_EVEN
+                        : stored == kTowardZero ? TS_HDR_ROUNDING_HALF_TOWARD_ZERO
+                                                : TS_HDR_ROUNDING_AS_IS;
+  s.hdr_rounding_probed = true;
+}
+
+}  // namespace
+
 FrameStats Renderer::render(const FrameSettings& settings) {
   State& s = *s_;
   Context& ctx = s.ctx;
@@ -659,6 +691,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       update_descriptors();
       s.descriptors_dirty = false;
     }
+    if (s.options.resolve && s.hdr_format == HdrFormat::fp16 && !s.hdr_rounding_probed)
+      probe_hdr_rounding(s);
     write_frame_constants(settings);
 
     std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
@@ -805,6 +839,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   const float aspect = float(s.width) / float(s.height);
   const glm::dmat4 view_proj =
       glm::dmat4(projection_matrix(camera, aspect)) * glm::dmat4(view_matrix(camera));
+  const uint32_t hdr_rounding =
+      settings.hdr_format == HdrFormat::fp16 ? s.hdr_half_rounding : TS_HDR_ROUNDING_AS_IS;
   const gpu::GpuFrame f{.view_proj = glm::mat4(view_proj),
                         .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
                         .camera_position = camera.position,
@@ -836,8 +872,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .batch_count = s.frame_batches,
                         .batch_triangles = s.batch_triangles,
                         .hdr_max = float(hdr_max(settings.hdr_format)),
-                        .hdr_half = settings.hdr_format == HdrFormat::fp16 ? 1u : 0u,
-                        .resolve_in_shading = s.options.resolve ? 1u : 0u};
+                        .hdr_rounding = hdr_rounding,
+                        .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -1000,7 +1036,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
-        if (pass.pass == Pass::resolve) {
+        if (pass.pass == Pass::resolve && (!s.options.resolve || resolves_in_shading(s))) {
           // The shading pass resolved its own pixels (GpuFrame.resolve_in_shading), or the
           // caller records it (RendererOptions::resolve off).
           ++i;

@@ -33,17 +33,17 @@ vec3 display_colour(vec3 stored) {
   return srgb_encode(mapped);
 }
 
-// `x` rounded to the nearest IEEE 754 binary16 value, ties to even: what an RGBA16F image stores
-// for it (the round-to-nearest-even conversion of the Vulkan spec's "Floating Point
-// Computation"), so that the shading pass resolves the value the resolve pass would read back.
-// Integer arithmetic, so that no float mode (flush, fast math) changes it. Precondition: |x| is
-// at most TS_MAX_HALF, or Inf or NaN (returned as they are), as GpuFrame.hdr_max makes it.
-float round_to_half(float x) {
+// `x` rounded to an IEEE 754 binary16 value, to nearest even or toward zero: what an RGBA16F
+// image stores for it (Vulkan allows either; GpuFrame.hdr_rounding says which this device does),
+// so that the shading pass resolves the value the resolve pass would read back. Integer
+// arithmetic, so that no float mode (flush, fast math) changes it. Precondition: |x| is at most
+// TS_MAX_HALF, or Inf or NaN (returned as they are), as GpuFrame.hdr_max makes it.
+float round_to_half(float x, bool nearest_even) {
   uint a = floatBitsToUint(x) & 0x7FFFFFFFu;
   if (a >= 0x7F800000u) return x;
-  int e = int(a >> 23) - 127;  // x = sig * 2^(e - 23)
-  // Below half the smallest subnormal half (2^-25; exactly that ties to the even 0): zero. This
-  // also takes 32-bit subnormals.
+  int e = int(a >> 23) - 127;  // |x| = sig * 2^(e - 23)
+  // Below half the smallest subnormal half (2^-25; exactly that ties to the even 0), and below
+  // the smallest toward zero: zero. This also takes 32-bit subnormals.
   if (e < -25) return x < 0.0 ? -0.0 : 0.0;
   uint sig = (a & 0x7FFFFFu) | 0x800000u;
   // Bits of `sig` below the half's last: 13 for a normal half, more below 2^-14 (subnormal).
@@ -51,14 +51,15 @@ float round_to_half(float x) {
   uint unit = 1u << drop;
   uint rest = sig & (unit - 1u);
   uint kept = sig - rest;
-  if (rest > unit / 2u || (rest == unit / 2u && (kept & unit) != 0u)) kept += unit;
+  if (nearest_even && (rest > unit / 2u || (rest == unit / 2u && (kept & unit) != 0u))) kept += unit;
   // kept has at most 12 significant bits: float() and ldexp are exact.
   float r = ldexp(float(kept), e - 23);
   return x < 0.0 ? -r : r;
 }
 
-// `c` as the HDR image holds it: rounded to fp16 for RGBA16F, as it is for RGBA32F.
+// `c` as the HDR image holds it (GpuFrame.hdr_rounding).
 vec3 as_stored(vec3 c) {
-  if (frame.hdr_half == 0u) return c;
-  return vec3(round_to_half(c.r), round_to_half(c.g), round_to_half(c.b));
+  if (frame.hdr_rounding == TS_HDR_ROUNDING_AS_IS) return c;
+  bool nearest = frame.hdr_rounding == TS_HDR_ROUNDING_HALF_NEAREST_EVEN;
+  return vec3(round_to_half(c.r, nearest), round_to_half(c.g, nearest), round_to_half(c.b, nearest));
 }

@@ -55,6 +55,13 @@ using glm::vec4;
 // triangle's tiles are visited by TS_BIN_CHUNK threads in parallel: entries per workgroup.
 #define TS_BIN_ENTRIES_PER_GROUP (TS_GROUP_SIZE / TS_BIN_CHUNK)
 
+// How a shader's store to the HDR image changes a value (GpuFrame.hdr_rounding): not at all
+// (RGBA32F), or to fp16 rounded to nearest even or toward zero (RGBA16F: Vulkan allows either;
+// Renderer probes which). lavapipe rounds toward zero.
+#define TS_HDR_ROUNDING_AS_IS 0u
+#define TS_HDR_ROUNDING_HALF_NEAREST_EVEN 1u
+#define TS_HDR_ROUNDING_HALF_TOWARD_ZERO 2u
+
 // Facing culled by setup (GpuFrame.cull).
 #define TS_CULL_BACK 0u
 #define TS_CULL_FRONT 1u
@@ -258,7 +265,7 @@ struct GpuFrame {
   // Largest value the HDR image stores (FrameSettings::hdr_format): the largest finite fp16
   // (TS_MAX_HALF) or fp32 value, so that overflow saturates instead of becoming Inf.
   float hdr_max;
-  uint hdr_half;  // 1 if the HDR image is RGBA16F, 0 if RGBA32F
+  uint hdr_rounding;  // TS_HDR_ROUNDING_*: how a store to the HDR image changes a value
   // 1: the shading pass also writes the display image, from the HDR values as the HDR image
   // holds them (RendererOptions::resolve; shaders/display.glsl)
   uint resolve_in_shading;
