@@ -73,7 +73,8 @@ enum class Dispatch {
   per_batch_triangle,  // one thread per triangle of the batch, `group_size` per workgroup
   per_object,          // one thread per object, `group_size` per workgroup
   per_pixel,           // `group_size` x `group_size` pixels per workgroup
-  per_tile,            // one workgroup per screen tile (RendererOptions::tile_size)
+  per_tile,            // one thread per screen tile (RendererOptions::tile_size), `group_size`
+                       // per workgroup
   indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
 };
 
@@ -92,8 +93,8 @@ struct PassInfo {
   const char* shader;  // embedded name (shaders/<shader>.comp); null for Dispatch::none
   Stage stage;
   Dispatch dispatch;
-  uint32_t groups = 0;          // Dispatch::fixed
-  uint32_t group_size = 0;      // Dispatch::per_batch_triangle, ::per_pixel
+  uint32_t groups = 0;      // Dispatch::fixed
+  uint32_t group_size = 0;  // Dispatch::per_batch_triangle, ::per_object, ::per_pixel, ::per_tile
   uint32_t counter_offset = 0;  // Dispatch::indirect and Variants::lod: byte offset in GpuCounters
   Variants variants = Variants::plain;
   Specialization spec{};
@@ -110,7 +111,7 @@ constexpr PassInfo kPasses[] = {
      TS_SETUP_GROUP_SIZE, offsetof(gpu::GpuCounters, setup_dispatch), Variants::lod},
     {Pass::clip, "clip", "clip", Stage::batch, Dispatch::fixed, TS_CLIP_GROUPS},
     {Pass::bin_count, "count", "count", Stage::batch, Dispatch::fixed, TS_COUNT_GROUPS},
-    {Pass::scan, "scan", "scan", Stage::batch, Dispatch::fixed, 1},
+    {Pass::scan, "scan", "scan", Stage::batch, Dispatch::per_tile, 0, TS_SCAN_GROUP_SIZE},
     {Pass::fill, "fill", "fill", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, big_dispatch)},
     {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
@@ -137,12 +138,12 @@ constexpr bool pass_row_is_filled(const PassInfo& p) {
     case Dispatch::per_batch_triangle:
     case Dispatch::per_object:
     case Dispatch::per_pixel:
+    case Dispatch::per_tile:
       return p.group_size > 0;
     case Dispatch::indirect:  // a whole VkDispatchIndirectCommand inside GpuCounters
       return p.counter_offset % 4 == 0 &&
              p.counter_offset + 3 * sizeof(uint32_t) <= sizeof(gpu::GpuCounters);
     case Dispatch::none:
-    case Dispatch::per_tile:
       return true;
   }
   return false;
@@ -189,6 +190,7 @@ enum class Pipeline {
   env_irradiance,  // the environment's irradiance coefficients
   env_prefilter,   // one level of the prefiltered specular cube
   resolve_bgra,    // the resolve pass storing B, G, R, A bytes, for B8G8R8A8 swapchain images
+  hdr_rounding,    // how the device rounds stores to the RGBA16F image (probe_hdr_rounding)
   count
 };
 
@@ -213,6 +215,7 @@ constexpr PipelineInfo kPipelines[] = {
     {Pipeline::env_irradiance, "env_irradiance", {}},
     {Pipeline::env_prefilter, "env_prefilter", {}},
     {Pipeline::resolve_bgra, "resolve", {.output_bgra = VK_TRUE}},
+    {Pipeline::hdr_rounding, "hdr_rounding", {}},
 };
 
 constexpr bool pipeline_table_is_complete() {

@@ -1,6 +1,7 @@
 #include "compute/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -616,6 +617,37 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
 
 }  // namespace
 
+bool resolves_in_shading(const Renderer::State& s) {
+  return s.options.resolve &&
+         (s.hdr_format == HdrFormat::fp32 || s.hdr_half_rounding != TS_HDR_ROUNDING_AS_IS);
+}
+
+namespace {
+
+// Finds how the device rounds shader stores to the RGBA16F HDR image (hdr_rounding.comp has
+// the values and what each way stores), through texel (0, 0) of the current one, which the
+// frame then overwrites. Precondition: the descriptors bind that image.
+void probe_hdr_rounding(Renderer::State& s) {
+  TESSERA_CHECK(s.hdr_format == HdrFormat::fp16);
+  submit_and_wait(s.ctx, [&](VkCommandBuffer cmd) {
+    full_barrier(cmd);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines.layout, 0, 1, &s.set,
+                            0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[Pipeline::hdr_rounding]);
+    vkCmdDispatch(cmd, 1, 1, 1);
+  });
+  const std::vector<uint16_t> texels = download_image<uint16_t>(s.ctx, s.hdr, 4);
+  constexpr std::array<uint16_t, 4> kNearestEven{0x3C01, 0xBC01, 0x3C02, 0x0011};
+  constexpr std::array<uint16_t, 4> kTowardZero{0x3C00, 0xBC00, 0x3C01, 0x0010};
+  const std::array<uint16_t, 4> stored{texels[0], texels[1], texels[2], texels[3]};
+  s.hdr_half_rounding = stored == kNearestEven  ? TS_HDR_ROUNDING_HALF_NEAREST_EVEN
+                        : stored == kTowardZero ? TS_HDR_ROUNDING_HALF_TOWARD_ZERO
+                                                : TS_HDR_ROUNDING_AS_IS;
+  s.hdr_rounding_probed = true;
+}
+
+}  // namespace
+
 FrameStats Renderer::render(const FrameSettings& settings) {
   State& s = *s_;
   Context& ctx = s.ctx;
@@ -659,6 +691,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       update_descriptors();
       s.descriptors_dirty = false;
     }
+    if (s.options.resolve && s.hdr_format == HdrFormat::fp16 && !s.hdr_rounding_probed)
+      probe_hdr_rounding(s);
     write_frame_constants(settings);
 
     std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
@@ -807,6 +841,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   const float aspect = float(s.width) / float(s.height);
   const glm::dmat4 view_proj =
       glm::dmat4(projection_matrix(camera, aspect)) * glm::dmat4(view_matrix(camera));
+  const uint32_t hdr_rounding =
+      settings.hdr_format == HdrFormat::fp16 ? s.hdr_half_rounding : TS_HDR_ROUNDING_AS_IS;
   const gpu::GpuFrame f{.view_proj = glm::mat4(view_proj),
                         .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
                         .camera_position = camera.position,
@@ -837,7 +873,9 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                                            double(settings.lod_error_px)),
                         .batch_count = s.frame_batches,
                         .batch_triangles = s.batch_triangles,
-                        .hdr_max = float(hdr_max(settings.hdr_format))};
+                        .hdr_max = float(hdr_max(settings.hdr_format)),
+                        .hdr_rounding = hdr_rounding,
+                        .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -900,7 +938,7 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
       break;
     case Dispatch::per_tile:
-      vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
+      vkCmdDispatch(cmd, div_up(uint64_t(s.tiles_x) * s.tiles_y, pass.group_size), 1, 1);
       break;
     case Dispatch::indirect:
       vkCmdDispatchIndirect(
@@ -910,16 +948,24 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
   }
 }
 
-// The last pass's writes (the display image, the counters) are read by transfers: the copies
-// after the frame and read-backs. Every other pass feeds the next compute pass.
-static_assert(std::size(kPasses) > 0 && std::data(kPasses)[kPassCount - 1].stage == Stage::frame);
-void barrier_after(VkCommandBuffer cmd, const PassInfo& pass) {
-  if (size_t(pass.pass) + 1 < kPassCount) {
+// Shading is the last pass render() records: its writes (the images, the counters) are read by
+// the copies after the frame and read-backs, and, under RendererOptions::resolve off, by the
+// resolve pass the caller records after it. Every other pass feeds the next compute pass.
+// Without depth rejection the two rasterizers only atomicMin into the visibility buffer (and
+// count into the coverage one): neither reads what the other writes, so they run without a
+// barrier between them and the per-triangle one's time is from the per-tile one's end to both
+// ends. With it, raster_small reads the tile bounds raster_tiles lowers at its end (a stale
+// bound would still be exact, only reject less), so the barrier stays.
+static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
+void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejection = false) {
+  if (pass.pass == Pass::raster_tiles && !depth_rejection) return;
+  if (pass.stage != Stage::frame) {
     compute_to_compute(cmd);
-  } else {
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    return;
   }
+  memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 }  // namespace
@@ -989,7 +1035,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
           }
           for (size_t j = i; j < end; ++j) {
             record_dispatch(s, cmd, kPasses[j], batch, settings);
-            barrier_after(cmd, kPasses[j]);
+            barrier_after(cmd, kPasses[j], s.options.depth_rejection);
             mark(kPasses[j].pass);
           }
         }
@@ -997,8 +1043,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
-        if (pass.pass == Pass::resolve && !s.options.resolve) {
-          ++i;  // the caller records it (RendererOptions::resolve)
+        if (pass.pass == Pass::resolve && (!s.options.resolve || resolves_in_shading(s))) {
+          // The shading pass resolved its own pixels (GpuFrame.resolve_in_shading), or the
+          // caller records it (RendererOptions::resolve off).
+          ++i;
           break;
         }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
@@ -1009,11 +1057,6 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
     }
   }
 
-  // Without the resolve pass, shading was the last pass and fed only compute passes.
-  if (!s.options.resolve) {
-    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   VkBufferCopy region{0, 0, counters.size};
   vkCmdCopyBuffer(cmd, counters.buffer, s.counters_readback.buffer, 1, &region);

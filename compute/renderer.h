@@ -2,8 +2,8 @@
 // The compute rasterizer: created once per device, renders many frames of many scenes.
 //
 // Per frame: the passes of compute/passes.h (setup -> clip -> count -> scan -> fill ->
-// raster_tiles -> raster_small per batch of triangle instances, then shade -> resolve; see
-// docs/architecture.md). The output
+// raster_tiles -> raster_small per batch of triangle instances, then shade, which also resolves
+// unless RendererOptions::resolve is off; see docs/architecture.md). The output
 // stays on the GPU in two storage images (linear HDR, RGBA16F or RGBA32F as
 // FrameSettings::hdr_format says, and display RGBA8) until read back.
 
@@ -56,7 +56,8 @@ struct RendererOptions {
   /// Counts every covered sample per pixel (read_coverage), to check that each pixel is
   /// covered exactly once. Slower; for tests.
   bool debug_coverage = false;
-  /// Records the resolve pass (tone mapping, sRGB encoding into the display image) in render().
+  /// Resolves in render() (tone mapping, sRGB encoding into the display image, done by the
+  /// shading pass: GpuFrame.resolve_in_shading).
   /// Off, render() stops after shading and the caller records the resolve into an image of its
   /// own (RendererInternal::record_resolve_into), as the window does into swapchain images;
   /// read_ldr and output_image then hold what the caller resolved there.

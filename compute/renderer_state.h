@@ -73,6 +73,11 @@ struct Renderer::State {
   // of detail).
   std::map<std::tuple<size_t, uint32_t, bool, bool>, VkPipeline> sampled_pipelines;
   bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
+  // How the device rounds shader stores to the RGBA16F HDR image, probed by the first frame
+  // that uses one: TS_HDR_ROUNDING_HALF_*, or TS_HDR_ROUNDING_AS_IS if the probe found neither
+  // way (then the resolve pass runs on its own, reading the image).
+  bool hdr_rounding_probed = false;
+  uint32_t hdr_half_rounding = TS_HDR_ROUNDING_AS_IS;
   VkQueryPool queries = VK_NULL_HANDLE;
   uint32_t query_capacity = 0;
 
@@ -104,6 +109,11 @@ struct Renderer::State {
 /// Allocates the image-sized buffers and images for `settings` if the size changed. Returns true
 /// if it did.
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings);
+
+/// Whether render() resolves in the shading pass (GpuFrame.resolve_in_shading): under
+/// RendererOptions::resolve, with an RGBA32F HDR image or an RGBA16F one whose stores' rounding
+/// the probe identified. Otherwise render() records the resolve pass, or the caller does.
+bool resolves_in_shading(const Renderer::State& s);
 
 /// Sets the scratch capacities and batch size from the scene and options, if not yet set.
 void init_capacities(Renderer::State& s);

@@ -174,6 +174,14 @@ uint farthest_key_high(vec3 depth) {
   return ~(bits > DEPTH_BOUND_ULPS ? bits - DEPTH_BOUND_ULPS : 0u);
 }
 
+// Row `row` (0 to TS_BIN_CHUNK - 1) of the block of tiles of a bin entry (setup_common.glsl's
+// bin_entry): its first tile and width; false if the block has fewer rows.
+bool bin_entry_row(uint packed, uint row, out ivec2 first, out int width) {
+  first = ivec2(packed & 0x3FFu, ((packed >> 10) & 0x3FFu) + row);
+  width = int((packed >> 20) & 0xFu) + 1;
+  return row <= ((packed >> 24) & 0xFu);
+}
+
 // Tile range (inclusive) overlapped by the triangle's pixel box.
 void tile_range(RasterTri t, out ivec2 first, out ivec2 last) {
   first = t.box_min / TILE_SIZE;

@@ -1,55 +1,44 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Exclusive prefix sum of the per-tile triangle counts, in one workgroup: each thread sums a
-// contiguous chunk, the chunk sums are scanned in shared memory, then each chunk is written.
-// Also writes the indirect dispatch sizes of the two passes that follow.
+// Tile-list allocation: one thread per screen tile takes a contiguous range of the tile-entry
+// array for its tile's count. The ranges come from one atomicAdd per workgroup on the batch's
+// entry total, so their order varies from run to run, as the order inside a list already does
+// (fill.comp): the rasterizer's atomicMin makes the image independent of both, and the total,
+// the only value read back, is a sum and so the same in every order. Unlike a prefix sum in one
+// workgroup, this spreads over the whole GPU in one pass. Also writes the indirect dispatch
+// sizes of the passes that follow.
 #include "bindings.glsl"
 
 layout(local_size_x = TS_SCAN_GROUP_SIZE) in;
 
-shared uint partial[TS_SCAN_GROUP_SIZE];
+shared uint group_total;
+shared uint group_base;
 
 void write_dispatch_sizes(uint b, bool tiles_used) {
   uint small_count = min(counters[b].small_tris, frame.raster_capacity);
   uint big_count = min(counters[b].big_tris, frame.raster_capacity);
   counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
-  counters[b].big_dispatch = uvec4((big_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
+  counters[b].big_dispatch = uvec4((big_count + TS_BIN_ENTRIES_PER_GROUP - 1) / TS_BIN_ENTRIES_PER_GROUP, 1, 1, 0);
   counters[b].tiles_dispatch = tiles_used ? uvec4(frame.tiles.x, frame.tiles.y, 1, 0) : uvec4(0, 1, 1, 0);
 }
 
 void main() {
-  uint n = frame.tiles.x * frame.tiles.y;
-  uint t = gl_LocalInvocationID.x;
-  // Nothing binned (the common case for small triangles): every count is 0, so the offsets
-  // are never read; skip the scan and the tile passes.
-  if (counters[batch.index].big_tris == 0u) {
-    if (t == 0u) {
-      counters[batch.index].tile_entries = 0u;
-      write_dispatch_sizes(batch.index, false);
-    }
-    return;
-  }
-  uint chunk = (n + TS_SCAN_GROUP_SIZE - 1) / TS_SCAN_GROUP_SIZE;
-  uint begin = min(t * chunk, n);
-  uint end = min(begin + chunk, n);
-  uint sum = 0u;
-  for (uint i = begin; i < end; ++i) sum += tile_counts[i];
-  partial[t] = sum;
+  uint tile = gl_GlobalInvocationID.x;
+  bool binned = counters[batch.index].big_tris != 0u;
+  if (gl_GlobalInvocationID.x == 0u) write_dispatch_sizes(batch.index, binned);
+  // Nothing binned (the common case for small triangles): every count is 0, the offsets are
+  // never read and the tile passes are skipped.
+  if (!binned) return;
+  if (gl_LocalInvocationIndex == 0u) group_total = 0u;
   barrier();
-  for (uint offset = 1u; offset < TS_SCAN_GROUP_SIZE; offset <<= 1) {
-    uint v = t >= offset ? partial[t - offset] : 0u;
-    barrier();
-    partial[t] += v;
-    barrier();
+  uint count = tile < frame.tiles.x * frame.tiles.y ? tile_counts[tile] : 0u;
+  uint local = count != 0u ? atomicAdd(group_total, count) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    group_base = group_total != 0u ? atomicAdd(counters[batch.index].tile_entries, group_total) : 0u;
   }
-  uint running = partial[t] - sum;
-  for (uint i = begin; i < end; ++i) {
-    tile_offsets[i] = running;
-    tile_cursors[i] = running;
-    running += tile_counts[i];
-  }
-  if (t == TS_SCAN_GROUP_SIZE - 1) {
-    counters[batch.index].tile_entries = partial[t];
-    write_dispatch_sizes(batch.index, true);
-  }
+  barrier();
+  if (count == 0u) return;  // the rasterizer and fill read no range of an empty tile
+  tile_offsets[tile] = group_base + local;
+  tile_cursors[tile] = group_base + local;
 }

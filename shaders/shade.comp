@@ -10,6 +10,7 @@
 #include "material.glsl"
 #include "lighting.glsl"
 #include "samples.glsl"
+#include "display.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -141,6 +142,15 @@ vec3 stored(vec3 color) {
   return min(color * pre_exposure(), vec3(frame.hdr_max));
 }
 
+// Writes a pixel's stored colour into the HDR image and, when the shading pass resolves
+// (GpuFrame.resolve_in_shading), its display colour into the display image: from the value as
+// the HDR image holds it, so the bytes are those the resolve pass would compute from that image,
+// without its dispatch, its barrier and its reading of the image.
+void write_pixel(ivec2 pixel, vec3 value) {
+  imageStore(hdr_image, pixel, vec4(value, 1.0));
+  if (frame.resolve_in_shading != 0u) imageStore(ldr_image, pixel, vec4(display_colour(as_stored(value)), 1.0));
+}
+
 // Anti-aliased pixels (SAMPLES > 1): each distinct triangle among a pixel's samples, and the
 // background if a sample is empty, is shaded once, at the pixel centre if it holds every
 // sample and else at the mean of its samples (inside the triangle, which is convex), weighted by
@@ -217,7 +227,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
   if (!inside) return;
   vec3 sum = vec3(0.0);
   for (uint g = 0u; g < groups; ++g) sum += uintBitsToFloat(get_request(slots[g])) * weights[g];
-  imageStore(hdr_image, pixel, vec4(sum, 1.0));
+  write_pixel(pixel, sum);
 }
 
 void main() {
@@ -232,5 +242,5 @@ void main() {
   uint64_t key = visibility[pixel_index(pixel)];
   vec2 centre = vec2(pixel) + 0.5;
   vec3 color = key == TS_VIS_EMPTY ? background(centre) : shade_triangle(uint(key & 0xFFFFFFFFul), centre);
-  imageStore(hdr_image, pixel, vec4(stored(color), 1.0));
+  write_pixel(pixel, stored(color));
 }

@@ -39,7 +39,7 @@ using glm::vec4;
 // Workgroup size of the setup pass: its cull counters are summed per workgroup, so larger
 // groups mean fewer atomics on the same few addresses.
 #define TS_SETUP_GROUP_SIZE 256
-// Workgroup size of the prefix-sum pass.
+// Workgroup size of the tile-list allocation pass (scan.comp), one thread per tile.
 #define TS_SCAN_GROUP_SIZE 256
 // Objects per workgroup of the level-of-detail passes (lod.comp, lod_offsets.comp): each
 // workgroup's triangle count is one entry of the TS_BINDING_LOD_SUMS buffer.
@@ -51,6 +51,16 @@ using glm::vec4;
 // A binned triangle is split into bin entries of at most this many tiles per side, so that no
 // thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
 #define TS_BIN_CHUNK 8
+// Counting and filling give each row of an entry's block its own thread, so that a large
+// triangle's tiles are visited by TS_BIN_CHUNK threads in parallel: entries per workgroup.
+#define TS_BIN_ENTRIES_PER_GROUP (TS_GROUP_SIZE / TS_BIN_CHUNK)
+
+// How a shader's store to the HDR image changes a value (GpuFrame.hdr_rounding): not at all
+// (RGBA32F), or to fp16 rounded to nearest even or toward zero (RGBA16F: Vulkan allows either;
+// Renderer probes which). lavapipe rounds toward zero.
+#define TS_HDR_ROUNDING_AS_IS 0u
+#define TS_HDR_ROUNDING_HALF_NEAREST_EVEN 1u
+#define TS_HDR_ROUNDING_HALF_TOWARD_ZERO 2u
 
 // Facing culled by setup (GpuFrame.cull).
 #define TS_CULL_BACK 0u
@@ -259,9 +269,11 @@ struct GpuFrame {
   // Largest value the HDR image stores (FrameSettings::hdr_format): the largest finite fp16
   // (TS_MAX_HALF) or fp32 value, so that overflow saturates instead of becoming Inf.
   float hdr_max;
+  uint hdr_rounding;  // TS_HDR_ROUNDING_*: how a store to the HDR image changes a value
+  // 1: the shading pass also writes the display image, from the HDR values as the HDR image
+  // holds them (RendererOptions::resolve; shaders/display.glsl)
+  uint resolve_in_shading;
   uint pad0;
-  uint pad1;
-  uint pad2;
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
@@ -386,6 +398,7 @@ static_assert(offsetof(GpuFrame, anisotropy) == 240);
 static_assert(offsetof(GpuFrame, lod_scale) == 244);
 static_assert(offsetof(GpuFrame, batch_triangles) == 252);
 static_assert(offsetof(GpuFrame, hdr_max) == 256);
+static_assert(offsetof(GpuFrame, resolve_in_shading) == 264);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
