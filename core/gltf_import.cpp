@@ -95,8 +95,9 @@ uint32_t load_u32(const unsigned char* p) {
   return v;  // glTF is little-endian, as is every host Tessera runs on
 }
 
-// The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths.
-std::string glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
+// The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths: a
+// view into `bytes`, not a copy.
+std::string_view glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
   if (bytes.size() < 20) ctx.fail("", "is truncated: a .glb needs a 20-byte header");
   if (load_u32(&bytes[4]) != 2) {
     ctx.fail("", "is a binary glTF of version " + std::to_string(load_u32(&bytes[4])) + ", not 2");
@@ -111,7 +112,7 @@ std::string glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
     ctx.fail("", "is truncated: its JSON chunk of " + std::to_string(length) +
                      " bytes runs past the end of the file");
   }
-  return std::string(bytes.begin() + 20, bytes.begin() + 20 + length);
+  return std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, length);
 }
 
 // Keeps an image's encoded bytes (a file's or a data uri's); material_index decodes them, after
@@ -375,7 +376,9 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
                                std::span<const unsigned char> bytes) {
   using namespace gltf;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  const std::string text = binary ? glb_json(ctx, bytes) : std::string(bytes.begin(), bytes.end());
+  const std::string_view text =
+      binary ? glb_json(ctx, bytes)
+             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   // The scan's partial document on the common path (building the whole one was a seventh of
   // the import's time), the whole one when the scan finds something for check_document to name.
   std::optional<json> scanned = scan_document(text);
@@ -384,7 +387,7 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     doc = std::move(*scanned);
   } else {
     try {
-      doc = json::parse(text);
+      doc = json::parse(text.begin(), text.end());
     } catch (const json::exception& e) {
       ctx.fail("", std::string("is not valid JSON: ") + e.what());
     }
