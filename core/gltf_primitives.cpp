@@ -233,16 +233,22 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // pass; the loop has no exit and writes through a pointer, so the compiler vectorizes it.
     visit(normals, [&](auto values) {
       float* out = &mesh.normals.data()->x;
-      for (size_t i = 0; i < n; ++i) {
+      const size_t count = n;  // locals, so that the compiler sees what the stores cannot change
+      bool renormalized_ = false, finite_ = true;
+      size_t zero_ = count;
+      for (size_t i = 0; i < count; ++i) {
         const double x = values[3 * i], y = values[3 * i + 1], z = values[3 * i + 2];
         const double length = std::sqrt(x * x + y * y + z * z);
-        finite_normals &= std::isfinite(x) & std::isfinite(y) & std::isfinite(z);
-        zero = !(length > 0.0) ? std::min(zero, i) : zero;
-        renormalized |= std::abs(length - 1.0) > 1e-3;
+        finite_ &= std::isfinite(x) & std::isfinite(y) & std::isfinite(z);
+        zero_ = !(length > 0.0) ? std::min(zero_, i) : zero_;
+        renormalized_ |= std::abs(length - 1.0) > 1e-3;
         out[3 * i] = float(x / length);
         out[3 * i + 1] = float(y / length);
         out[3 * i + 2] = float(z / length);
       }
+      renormalized = renormalized_;
+      finite_normals = finite_;
+      zero = zero_;
     });
     if (!finite_normals) require_finite(ctx, normals, attributes + "NORMAL");
     if (zero != n) {
