@@ -332,6 +332,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
     // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
     s.batch_triangles = 0;
     s.raster_capacity = 0;
+    s.lod_triangles = 0;  // another scene's levels would size this one's batches
   }
   s.uploaded = std::move(next);
   s.meshes = scene.meshes;

@@ -222,6 +222,15 @@ std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs)
     }
     m.total_ms = median(m.run_ms);
     m.cpu_record_ms = median(cpu);
+    // Counts come from the first run; a run that split the frame differently is named, since
+    // each batch is a whole sequence of passes (one sphere once ran in 17 batches after 10^6).
+    bool batches_differ = false;
+    std::string batches;
+    for (const std::vector<BenchRow>& run : runs) {
+      batches += (batches.empty() ? "" : ", ") + std::to_string(run[i].batches);
+      batches_differ = batches_differ || run[i].batches != m.batches;
+    }
+    if (batches_differ) m.note += (m.note.empty() ? "" : "; ") + ("batches per run: " + batches);
     for (size_t p = 0; p < kPassCount; ++p) {
       std::vector<double> v;
       for (const std::vector<BenchRow>& run : runs) v.push_back(run[i].pass_ms[p]);
