@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <type_traits>
+#include <vector>
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
@@ -44,6 +46,33 @@ void require_finite(const Context& ctx, const AccessorValues& v, const std::stri
     }
   });
 }
+
+// Element i of `values` read as three floats: an iterator over the vec3s of an accessor's flat
+// values (any of visit's kinds), so that a vector is built from them in one pass that the
+// compiler vectorizes (a zero-fill by resize and a scalar copy were a twentieth of the import).
+template <typename Values>
+struct Vec3Reader {
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = glm::vec3;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = glm::vec3;
+  Values values;
+  size_t i;
+  glm::vec3 operator*() const {
+    return glm::vec3(float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2]));
+  }
+  Vec3Reader& operator++() {
+    ++i;
+    return *this;
+  }
+  Vec3Reader operator++(int) {
+    Vec3Reader before = *this;
+    ++i;
+    return before;
+  }
+  bool operator==(const Vec3Reader& o) const { return i == o.i; }
+};
 
 // Triangle list of a strip or fan, as the glTF 2.0 specification (3.7.2.1) orders them, so that
 // every triangle keeps the strip's (or fan's) winding.
@@ -116,18 +145,16 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
                                                  attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
   const size_t n = positions.count;
   Mesh mesh;
-  // Copied and checked for finiteness in one pass without early exits, which the compiler
-  // vectorizes (emplace_back per vertex and a separate check were a sixth of the conversion).
-  mesh.positions.resize(n);
-  const bool finite = visit(positions, [&](auto values) {
-    float* out = &mesh.positions.data()->x;
-    bool all = true;
-    for (size_t i = 0; i < 3 * n; ++i) {
-      out[i] = float(values[i]);
-      all &= std::isfinite(values[i]);
-    }
-    return all;
+  visit(positions, [&](auto values) {
+    using Reader = Vec3Reader<decltype(values)>;
+    mesh.positions = std::vector<glm::vec3>(Reader{values, 0}, Reader{values, n});
   });
+  // Checked after the copy, in a loop without early exits that the compiler vectorizes; a
+  // float is non-finite only where the value it was converted from is (accessor values fit in
+  // a float), and require_finite names that element.
+  bool finite = true;
+  const float* stored = reinterpret_cast<const float*>(mesh.positions.data());
+  for (size_t i = 0; i < 3 * n; ++i) finite &= std::isfinite(stored[i]);
   if (!finite) require_finite(ctx, positions, attributes + "POSITION");
   if (positions.count > UINT32_MAX) {
     ctx.fail(attributes + "POSITION", "has more than 2^32 - 1 vertices");
@@ -155,7 +182,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
       // The product below with the identity: each coordinate plus +0, which turns -0 into +0
       // as the matrix's zero terms do, in float (the same bits; a loop the compiler vectorizes).
       visit(uvs, [&](auto values) {
-        float* uv = &out.data()->x;
+        float* uv = reinterpret_cast<float*>(out.data());
         for (size_t i = 0; i < 2 * n; ++i) uv[i] = float(values[i]) + 0.0f;
       });
       return out;
@@ -232,7 +259,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // Renormalized in double (which decides the stored bits), checked for finiteness in the same
     // pass; the loop has no exit and writes through a pointer, so the compiler vectorizes it.
     visit(normals, [&](auto values) {
-      float* out = &mesh.normals.data()->x;
+      float* out = reinterpret_cast<float*>(mesh.normals.data());
       const size_t count = n;  // locals, so that the compiler sees what the stores cannot change
       bool renormalized_ = false, finite_ = true;
       size_t zero_ = count;
