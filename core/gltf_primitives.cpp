@@ -1,6 +1,7 @@
 // Mesh primitives into Tessera meshes: topology, attributes, generated normals and tangents.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <iterator>
 #include <type_traits>
@@ -149,12 +150,17 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     using Reader = Vec3Reader<decltype(values)>;
     mesh.positions = std::vector<glm::vec3>(Reader{values, 0}, Reader{values, n});
   });
-  // Checked after the copy, in a loop without early exits that the compiler vectorizes; a
-  // float is non-finite only where the value it was converted from is (accessor values fit in
-  // a float), and require_finite names that element.
-  bool finite = true;
+  // Checked after the copy: a float is non-finite where its exponent bits are all ones, and only
+  // where the value it was converted from is (accessor values fit in a float); require_finite
+  // then names the element. The largest exponent field is a reduction the compiler vectorizes
+  // (a bool one, with std::isfinite, it does not).
+  constexpr int32_t kExponent = 0x7f800000;
+  int32_t largest_exponent = 0;
   const float* stored = reinterpret_cast<const float*>(mesh.positions.data());
-  for (size_t i = 0; i < 3 * n; ++i) finite &= std::isfinite(stored[i]);
+  for (size_t i = 0; i < 3 * n; ++i) {
+    largest_exponent = std::max(largest_exponent, std::bit_cast<int32_t>(stored[i]) & kExponent);
+  }
+  const bool finite = largest_exponent != kExponent;
   if (!finite) require_finite(ctx, positions, attributes + "POSITION");
   if (positions.count > UINT32_MAX) {
     ctx.fail(attributes + "POSITION", "has more than 2^32 - 1 vertices");
