@@ -74,6 +74,8 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& 
   row.small_triangles = last.small_triangles;
   row.bin_entries = last.big_triangles;
   row.tile_entries = last.tile_entries;
+  row.rejected_entries = last.rejected_entries;
+  row.rejected_small = last.rejected_small;
   row.batches = last.batches;
   row.frames = a.repeat;
   if (!last.has_timestamps) row.note = "no timestamps";
@@ -255,6 +257,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     RendererOptions options;
     options.small_triangle_max_area = a.small_triangle_area;
     options.tile_size = a.tile_size;
+    options.depth_rejection = a.depth_rejection;
     options.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options);
     results.device = ctx->properties.deviceName;
