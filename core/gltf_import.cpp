@@ -95,8 +95,9 @@ uint32_t load_u32(const unsigned char* p) {
   return v;  // glTF is little-endian, as is every host Tessera runs on
 }
 
-// The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths.
-std::string glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
+// The JSON chunk of a binary glTF (specification 4.4), after checking the header's lengths: a
+// view into `bytes`, not a copy.
+std::string_view glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
   if (bytes.size() < 20) ctx.fail("", "is truncated: a .glb needs a 20-byte header");
   if (load_u32(&bytes[4]) != 2) {
     ctx.fail("", "is a binary glTF of version " + std::to_string(load_u32(&bytes[4])) + ", not 2");
@@ -111,7 +112,7 @@ std::string glb_json(const Context& ctx, std::span<const unsigned char> bytes) {
     ctx.fail("", "is truncated: its JSON chunk of " + std::to_string(length) +
                      " bytes runs past the end of the file");
   }
-  return std::string(bytes.begin() + 20, bytes.begin() + 20 + length);
+  return std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, length);
 }
 
 // Keeps an image's encoded bytes (a file's or a data uri's); material_index decodes them, after
@@ -132,19 +133,67 @@ bool finite(const glm::dmat4& m) {
   return true;
 }
 
+// What the importer reads of a node; an empty vector or std::nullopt where the node lacks the
+// property.
+struct NodeInfo {
+  std::vector<double> matrix, translation, rotation, scale;
+  std::vector<int> children;
+  std::optional<int> mesh, camera;
+  bool skin = false;
+  bool light_extension = false;  // has extensions.KHR_lights_punctual
+  std::optional<int> light;      // ... and its light
+};
+
+// nodes[index] of a document that check_document has checked.
+NodeInfo node_info(const json& node) {
+  NodeInfo n;
+  for (auto [key, out] : {std::pair{"matrix", &n.matrix},
+                          {"translation", &n.translation},
+                          {"rotation", &n.rotation},
+                          {"scale", &n.scale}}) {
+    if (node.contains(key)) *out = node[key].get<std::vector<double>>();
+  }
+  if (node.contains("children")) n.children = node["children"].get<std::vector<int>>();
+  if (node.contains("mesh")) n.mesh = node["mesh"].get<int>();
+  if (node.contains("camera")) n.camera = node["camera"].get<int>();
+  n.skin = node.contains("skin");
+  if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
+    n.light_extension = true;
+    const json& ext = node["extensions"]["KHR_lights_punctual"];
+    if (ext.contains("light")) n.light = ext["light"].get<int>();
+  }
+  return n;
+}
+
+// The same from TinyGLTF's reading of a node, which holds all of it when scan_document vouched
+// for the document (no index over 2^31 - 1, skin an index, no matrix beside TRS properties).
+NodeInfo node_info(const tinygltf::Node& node) {
+  NodeInfo n{node.matrix, node.translation, node.rotation, node.scale, node.children};
+  if (node.mesh >= 0) n.mesh = node.mesh;
+  if (node.camera >= 0) n.camera = node.camera;
+  n.skin = node.skin >= 0;
+  if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end()) {
+    n.light_extension = true;
+    if (it->second.Has("light")) n.light = it->second.Get("light").GetNumberAsInt();
+  }
+  return n;
+}
+
 // A node's local transform: its matrix, or translation * rotation * scale.
-glm::dmat4 local_transform(const Context& ctx, const json& node, const std::string& where) {
+glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::string& where) {
   glm::dmat4 m(1.0);
-  if (node.contains("matrix")) {
-    const std::vector<double> v = node["matrix"].get<std::vector<double>>();
-    m = glm::make_mat4(v.data());  // column-major, as glTF stores it
-    if (node.contains("translation") || node.contains("rotation") || node.contains("scale")) {
+  if (!node.matrix.empty()) {
+    m = glm::make_mat4(node.matrix.data());  // column-major, as glTF stores it
+    if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty()) {
       ctx.warn(where, "has both a matrix and TRS properties; the matrix is used");
     }
   } else {
-    const auto t = node.value("translation", std::vector<double>{0, 0, 0});
-    const auto r = node.value("rotation", std::vector<double>{0, 0, 0, 1});
-    const auto s = node.value("scale", std::vector<double>{1, 1, 1});
+    auto or_default = [](const std::vector<double>& v, std::vector<double> fallback) {
+      return v.empty() ? fallback : v;
+    };
+    const auto t = or_default(node.translation, {0, 0, 0});
+    const auto r = or_default(node.rotation, {0, 0, 0, 1});
+    const auto s = or_default(node.scale, {1, 1, 1});
     glm::dquat q(r[3], r[0], r[1], r[2]);
     const double length = glm::length(q);
     if (!(length > 0.0) || !std::isfinite(length)) {
@@ -268,14 +317,16 @@ std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
 }
 
 // The scene's node trees, depth first with an explicit stack (no recursion limit on deep
-// hierarchies), placing mesh instances, lights and cameras by their world transforms.
+// hierarchies), placing mesh instances, lights and cameras by their world transforms. Nodes are
+// read from `doc` when it has them, else (scan_document's partial document) from `model`.
 void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Model& model,
                        ImportedModel& out) {
   const json& scenes = member(doc, "scenes");
   if (scenes.empty()) ctx.fail("scenes", "the file has no scene to render");
   const int scene_index = doc.value("scene", 0);
   check_index(ctx, "scene", scene_index, scenes.size(), "scenes");
-  const json& nodes = member(doc, "nodes");
+  const json* json_nodes = doc.contains("nodes") ? &doc["nodes"] : nullptr;
+  const size_t node_count = json_nodes ? json_nodes->size() : model.nodes.size();
   const json& lights =
       member(member_object(member_object(doc, "extensions"), "KHR_lights_punctual"), "lights");
 
@@ -283,7 +334,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
   decode_images(ctx, model, table);
   std::map<std::pair<int, int>, uint32_t> meshes;  // (mesh, primitive)
   std::map<int, glm::dmat4> camera_placements;
-  std::vector<bool> on_path(nodes.size(), false);
+  std::vector<bool> on_path(node_count, false);
   struct Visit {
     int node;
     glm::dmat4 parent;
@@ -303,25 +354,25 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
       on_path[v.node] = false;
       continue;
     }
-    check_index(ctx, v.from, v.node, nodes.size(), "nodes");
+    check_index(ctx, v.from, v.node, node_count, "nodes");
     const std::string where = at("nodes", v.node);
     if (on_path[v.node]) {
       ctx.fail(v.from, "refers to node " + std::to_string(v.node) +
                            ", its own ancestor: the node graph has a cycle");
     }
     on_path[v.node] = true;
-    const json& node = nodes[v.node];
+    const NodeInfo node =
+        json_nodes ? node_info((*json_nodes)[v.node]) : node_info(model.nodes[v.node]);
     const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
     if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
     stack.push_back({v.node, {}, true, {}});
-    const json& children = member(node, "children");
-    for (size_t c = children.size(); c-- > 0;) {
+    for (size_t c = node.children.size(); c-- > 0;) {
       stack.push_back(
-          {children[c].get<int>(), world, false, where + ".children[" + std::to_string(c) + "]"});
+          {node.children[c], world, false, where + ".children[" + std::to_string(c) + "]"});
     }
 
-    if (node.contains("mesh")) {
-      const int mesh = node["mesh"].get<int>();
+    if (node.mesh) {
+      const int mesh = *node.mesh;
       check_index(ctx, where + ".mesh", mesh, model.meshes.size(), "meshes");
       // A mirroring transform turns counter-clockwise triangles clockwise (specification
       // 3.7.4); the renderers handle it per object (is_mirroring), so the mesh is shared.
@@ -345,21 +396,19 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
         out.scene.objects.push_back(object);
       }
     }
-    if (node.contains("camera")) {
-      const int camera = node["camera"].get<int>();
+    if (node.camera) {
+      const int camera = *node.camera;
       check_index(ctx, where + ".camera", camera, member(doc, "cameras").size(), "cameras");
       camera_placements.try_emplace(camera, world);
     }
-    if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
-      const json& ext = node["extensions"]["KHR_lights_punctual"];
-      if (!ext.contains("light"))
-        ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
-      const int light = ext["light"].get<int>();
+    if (node.light_extension) {
+      if (!node.light) ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
+      const int light = *node.light;
       check_index(ctx, where + ".extensions.KHR_lights_punctual.light", light, lights.size(),
                   "KHR_lights_punctual lights");
       out.scene.lights.push_back(make_light(ctx, lights, light, world));
     }
-    if (node.contains("skin")) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
+    if (node.skin) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
   }
   out.cameras = make_cameras(ctx, doc, camera_placements);
 }
@@ -375,7 +424,9 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
                                std::span<const unsigned char> bytes) {
   using namespace gltf;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  const std::string text = binary ? glb_json(ctx, bytes) : std::string(bytes.begin(), bytes.end());
+  const std::string_view text =
+      binary ? glb_json(ctx, bytes)
+             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   // The scan's partial document on the common path (building the whole one was a seventh of
   // the import's time), the whole one when the scan finds something for check_document to name.
   std::optional<json> scanned = scan_document(text);
@@ -384,7 +435,7 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     doc = std::move(*scanned);
   } else {
     try {
-      doc = json::parse(text);
+      doc = json::parse(text.begin(), text.end());
     } catch (const json::exception& e) {
       ctx.fail("", std::string("is not valid JSON: ") + e.what());
     }

@@ -1,8 +1,11 @@
 // Mesh primitives into Tessera meshes: topology, attributes, generated normals and tangents.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <iterator>
 #include <type_traits>
+#include <vector>
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
@@ -45,11 +48,39 @@ void require_finite(const Context& ctx, const AccessorValues& v, const std::stri
   });
 }
 
+// Element i of `values` read as three floats: an iterator over the vec3s of an accessor's flat
+// values (any of visit's kinds), so that a vector is built from them in one pass that the
+// compiler vectorizes (a zero-fill by resize and a scalar copy were a twentieth of the import).
+template <typename Values>
+struct Vec3Reader {
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = glm::vec3;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = glm::vec3;
+  Values values;
+  size_t i;
+  glm::vec3 operator*() const {
+    return glm::vec3(float(values[3 * i]), float(values[3 * i + 1]), float(values[3 * i + 2]));
+  }
+  Vec3Reader& operator++() {
+    ++i;
+    return *this;
+  }
+  Vec3Reader operator++(int) {
+    Vec3Reader before = *this;
+    ++i;
+    return before;
+  }
+  bool operator==(const Vec3Reader& o) const { return i == o.i; }
+};
+
 // Triangle list of a strip or fan, as the glTF 2.0 specification (3.7.2.1) orders them, so that
 // every triangle keeps the strip's (or fan's) winding.
 std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
   if (mode == TINYGLTF_MODE_TRIANGLES) return v;
   std::vector<uint32_t> out;
+  out.reserve(v.size() > 2 ? 3 * (v.size() - 2) : 0);
   for (size_t i = 0; i + 2 < v.size(); ++i) {
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
       const size_t odd = i % 2;
@@ -65,6 +96,12 @@ std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
 // own three vertices carrying its face normal.
 void make_flat(Mesh& mesh) {
   Mesh flat;
+  const size_t corners = mesh.indices.size();
+  flat.indices.reserve(corners);
+  flat.positions.reserve(corners);
+  flat.normals.reserve(corners);
+  flat.uvs.reserve(corners);
+  if (!mesh.uvs1.empty()) flat.uvs1.reserve(corners);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
     const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]),
@@ -107,16 +144,33 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   if (attribute("POSITION") < 0) ctx.fail(attributes + "POSITION", "is missing");
   const AccessorValues positions = read_accessor(ctx, model, attribute("POSITION"),
                                                  attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
-  require_finite(ctx, positions, attributes + "POSITION");
+  const size_t n = positions.count;
+  Mesh mesh;
+  visit(positions, [&](auto values) {
+    using Reader = Vec3Reader<decltype(values)>;
+    mesh.positions = std::vector<glm::vec3>(Reader{values, 0}, Reader{values, n});
+  });
+  // Checked after the copy: a float is non-finite where its exponent bits are all ones, and only
+  // where the value it was converted from is (accessor values fit in a float); require_finite
+  // then names the element. The largest exponent field is a reduction the compiler vectorizes
+  // (a bool one, with std::isfinite, it does not).
+  constexpr int32_t kExponent = 0x7f800000;
+  int32_t largest_exponent = 0;
+  const float* stored = reinterpret_cast<const float*>(mesh.positions.data());
+  for (size_t i = 0; i < 3 * n; ++i) {
+    largest_exponent = std::max(largest_exponent, std::bit_cast<int32_t>(stored[i]) & kExponent);
+  }
+  const bool finite = largest_exponent != kExponent;
+  if (!finite) require_finite(ctx, positions, attributes + "POSITION");
   if (positions.count > UINT32_MAX) {
     ctx.fail(attributes + "POSITION", "has more than 2^32 - 1 vertices");
   }
-  const size_t n = positions.count;
-  // Every other attribute must match POSITION's count.
-  auto read = [&](const std::string& name, int type) {
+  // Every other attribute must match POSITION's count. `checked` false: the caller checks
+  // finiteness in its own pass and calls require_finite only when that fails.
+  auto read = [&](const std::string& name, int type, bool checked = true) {
     const std::string path = attributes + name;
     AccessorValues v = read_accessor(ctx, model, attribute(name.c_str()), path, {type});
-    require_finite(ctx, v, path);
+    if (checked || v.count != n) require_finite(ctx, v, path);  // a NaN is named first
     if (v.count != n) {
       ctx.fail(path,
                "has " + std::to_string(v.count) + " elements, POSITION has " + std::to_string(n));
@@ -124,20 +178,21 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     return v;
   };
 
-  Mesh mesh;
-  mesh.positions.reserve(n);
-  visit(positions, [&](auto values) {
-    for (size_t i = 0; i < n; ++i) {
-      mesh.positions.emplace_back(float(values[3 * i]), float(values[3 * i + 1]),
-                                  float(values[3 * i + 2]));
-    }
-  });
   // TEXCOORD_n (zero where absent) through set n's texture transform.
   auto read_uvs = [&](int set) {
     std::vector<glm::vec2> out(n, glm::vec2(0.0f));
     const std::string name = "TEXCOORD_" + std::to_string(set);
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
+    if (options.uv_transform[set] == glm::mat3(1.0f)) {
+      // The product below with the identity: each coordinate plus +0, which turns -0 into +0
+      // as the matrix's zero terms do, in float (the same bits; a loop the compiler vectorizes).
+      visit(uvs, [&](auto values) {
+        float* uv = reinterpret_cast<float*>(out.data());
+        for (size_t i = 0; i < 2 * n; ++i) uv[i] = float(values[i]) + 0.0f;
+      });
+      return out;
+    }
     const glm::dmat3 transform(options.uv_transform[set]);
     visit(uvs, [&](auto values) {
       for (size_t i = 0; i < n; ++i) {
@@ -203,19 +258,32 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     make_flat(mesh);
     // The specification says to ignore given tangents when normals are generated.
   } else {
-    const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3);
-    mesh.normals.reserve(n);
-    bool renormalized = false;
-    size_t zero = n;  // the first zero normal; the loop has no exit, which makes it faster
+    const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3, false);
+    mesh.normals.resize(n);
+    bool renormalized = false, finite_normals = true;
+    size_t zero = n;  // the first zero normal
+    // Renormalized in double (which decides the stored bits), checked for finiteness in the same
+    // pass; the loop has no exit and writes through a pointer, so the compiler vectorizes it.
     visit(normals, [&](auto values) {
-      for (size_t i = 0; i < n; ++i) {
-        const glm::dvec3 v(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
-        const double length = glm::length(v);
-        if (!(length > 0.0) && zero == n) zero = i;
-        renormalized |= std::abs(length - 1.0) > 1e-3;
-        mesh.normals.push_back(glm::vec3(v / length));
+      float* out = reinterpret_cast<float*>(mesh.normals.data());
+      const size_t count = n;  // locals, so that the compiler sees what the stores cannot change
+      bool renormalized_ = false, finite_ = true;
+      size_t zero_ = count;
+      for (size_t i = 0; i < count; ++i) {
+        const double x = values[3 * i], y = values[3 * i + 1], z = values[3 * i + 2];
+        const double length = std::sqrt(x * x + y * y + z * z);
+        finite_ &= std::isfinite(x) & std::isfinite(y) & std::isfinite(z);
+        zero_ = !(length > 0.0) ? std::min(zero_, i) : zero_;
+        renormalized_ |= std::abs(length - 1.0) > 1e-3;
+        out[3 * i] = float(x / length);
+        out[3 * i + 1] = float(y / length);
+        out[3 * i + 2] = float(z / length);
       }
+      renormalized = renormalized_;
+      finite_normals = finite_;
+      zero = zero_;
     });
+    if (!finite_normals) require_finite(ctx, normals, attributes + "NORMAL");
     if (zero != n) {
       ctx.fail(attributes + "NORMAL", "element " + std::to_string(zero) + " is the zero vector");
     }

@@ -27,6 +27,10 @@ enum class Kind {
   indices,    // array of integers >= 0
   strings,    // array of strings
   index_map,  // object whose every value is an integer >= 0 (primitive attributes)
+  // Not checked by check_value (Tessera only warns that it is present), but the scan vouches for
+  // it only as an index: the importer then reads it from TinyGLTF's model, which drops other
+  // values (node.skin).
+  scan_index,
 };
 
 struct Field {
@@ -74,6 +78,8 @@ void check_value(const Context& ctx, const json& v, const std::string& where, co
     case Kind::index:
     case Kind::uint:
       if (!is_count(v)) wrong("an integer >= 0");
+      break;
+    case Kind::scan_index:
       break;
     case Kind::number:
       if (!v.is_number()) wrong("a number");
@@ -165,6 +171,7 @@ const std::vector<Field>& document_schema() {
         {"children", Kind::indices},
         {"mesh", Kind::index},
         {"camera", Kind::index},
+        {"skin", Kind::scan_index},
         {"matrix", Kind::numbers, {}, 16},
         {"translation", Kind::numbers, {}, 3},
         {"rotation", Kind::numbers, {}, 4},
@@ -337,12 +344,12 @@ void check_files(const Context& ctx, const json& doc, const char* array, bool is
   }
 }
 
-// The members of the document that the importer reads from the JSON after TinyGLTF (the rest,
-// the large accessors, bufferViews and meshes among them, it reads from TinyGLTF's model).
+// The members of the document that the importer reads from the JSON after TinyGLTF on a
+// document the scan vouches for (the rest, the large nodes, accessors, bufferViews and meshes
+// among them, it reads from TinyGLTF's model).
 const std::set<std::string, std::less<>> kDocumentMembers = {
-    "asset",  "extensionsUsed", "extensionsRequired", "scene",    "scenes",
-    "nodes",  "cameras",        "materials",          "textures", "samplers",
-    "images", "buffers",        "extensions"};
+    "asset",     "extensionsUsed", "extensionsRequired", "scene",  "scenes",  "cameras",
+    "materials", "textures",       "samplers",           "images", "buffers", "extensions"};
 
 // A strict JSON reader that checks the property types of document_schema without building a
 // document: it only says whether the text is valid JSON whose checked properties all have their
@@ -351,7 +358,11 @@ const std::set<std::string, std::less<>> kDocumentMembers = {
 // integers of 19 digits or more, exponents of 4 digits or more, a byte-order mark, keys with
 // escapes, deep nesting), it gives up, as it does at the first error, and the caller parses the
 // whole document instead, whose checks name the error. It accepts only what nlohmann::json
-// parses to the same values and check_value accepts.
+// parses to the same values and check_value accepts. So that nodes can be read from TinyGLTF's
+// model, which keeps them in a narrower form, it also gives up on indices over 2^31 - 1 (which
+// TinyGLTF's int would wrap), on a skin that is not an index (TinyGLTF drops it) and on an object
+// with both a matrix and translation, rotation or scale (TinyGLTF drops the latter, whose presence
+// Tessera warns about).
 class Scan {
  public:
   explicit Scan(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {}
@@ -523,14 +534,27 @@ class Scan {
     }
   }
   bool fields(const std::vector<Field>& fields) {
+    bool matrix = false, trs = false;
     return object([&](std::string_view key) {
-      const Field* f = find(fields, key);
-      return f ? checked(*f) : any();
-    });
+             const Field* f = find(fields, key);
+             if (f) {
+               matrix |= key == "matrix";
+               trs |= key == "translation" || key == "rotation" || key == "scale";
+             }
+             return f ? checked(*f) : any();
+           }) &&
+           !(matrix && trs);
   }
   bool count() {
     Number kind;
     return number(kind) && kind == Number::count;
+  }
+  // A count that fits in TinyGLTF's int.
+  bool index() {
+    const char* begin = p_;
+    if (!count()) return false;
+    const std::string_view digits(begin, size_t(p_ - begin));
+    return digits.size() < 10 || (digits.size() == 10 && digits <= "2147483647");
   }
   bool checked(const Field& f) { return nested(&Scan::checked_value, &f); }
   // check_value's test of `f`, on the text.
@@ -541,6 +565,8 @@ class Scan {
     Number kind;
     switch (f.kind) {
       case Kind::index:
+      case Kind::scan_index:
+        return index();
       case Kind::uint:
         return count();
       case Kind::number:
@@ -556,7 +582,7 @@ class Scan {
       case Kind::numbers:
         return array([&] { return number(kind); }, n) && (f.length == 0 || n == f.length);
       case Kind::indices:
-        return array([&] { return count(); }, n);
+        return array([&] { return index(); }, n);
       case Kind::strings:
         return array([&] { return string(plain); }, n);
       case Kind::index_map:

@@ -14,7 +14,7 @@ namespace {
 
 using nlohmann::json;
 
-TEST(GltfScan, ValidDocumentKeepsOnlyTheMembersReadAfterTinyGltf) {
+TEST(GltfScan, ValidDocumentKeepsOnlyTheMembersReadFromTheJsonAfterTinyGltf) {
   const std::string text = R"({"asset": {"version": "2.0"},
     "accessors": [{"bufferView": 0, "count": 3, "componentType": 5126, "type": "VEC3",
                    "min": [-1.5, 0, 2e3], "max": [1, 1E-2, 3]}],
@@ -26,7 +26,7 @@ TEST(GltfScan, ValidDocumentKeepsOnlyTheMembersReadAfterTinyGltf) {
   const std::optional<json> doc = scan_document(text);
   ASSERT_TRUE(doc.has_value());
   json expected = json::parse(text);
-  for (const char* dropped : {"accessors", "bufferViews", "meshes", "animations"}) {
+  for (const char* dropped : {"accessors", "bufferViews", "meshes", "nodes", "animations"}) {
     expected.erase(dropped);
   }
   EXPECT_EQ(*doc, expected);
@@ -49,6 +49,28 @@ TEST(GltfScan, GivesUpOnTypeErrorsOfCheckedProperties) {
        }) {
     EXPECT_FALSE(scan_document(text).has_value()) << text;
   }
+}
+
+// Nodes are read from TinyGLTF's model, so the scan also gives up where that would differ from
+// the JSON: TinyGLTF keeps indices in an int, drops a skin that is not an integer, and reads no
+// translation, rotation or scale beside a matrix.
+TEST(GltfScan, GivesUpWhereTinyGltfReadsNodesDifferently) {
+  for (
+      const char* text : {
+          R"({"nodes": [{"mesh": 2147483648}]})",  // 2^31: wraps in an int
+          R"({"nodes": [{"children": [0, 4294967296]}]})",
+          R"({"nodes": [{"extensions": {"KHR_lights_punctual": {"light": 9999999999}}}]})",
+          R"({"nodes": [{"skin": -1}]})",  // Tessera warns of any skin
+          R"({"nodes": [{"skin": "a"}]})",
+          R"({"nodes": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "scale": [1, 1, 1]}]})",
+          R"({"nodes": [{"rotation": [0, 0, 0, 1], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]})",
+      }) {
+    EXPECT_FALSE(scan_document(text).has_value()) << text;
+  }
+}
+
+TEST(GltfScan, VouchesForTheLargestIntIndex) {
+  EXPECT_TRUE(scan_document(R"({"nodes": [{"mesh": 2147483647, "skin": 0}]})").has_value());
 }
 
 TEST(GltfScan, GivesUpOnInvalidOrUnusualJson) {
