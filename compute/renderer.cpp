@@ -834,7 +834,10 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                                            double(settings.lod_error_px)),
                         .batch_count = s.frame_batches,
                         .batch_triangles = s.batch_triangles,
-                        .hdr_max = float(hdr_max(settings.hdr_format))};
+                        .hdr_max = float(hdr_max(settings.hdr_format)),
+                        .aa_coverage = settings.aa_coverage == AaCoverage::analytic
+                                           ? TS_AA_COVERAGE_ANALYTIC
+                                           : TS_AA_COVERAGE_COUNT};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));

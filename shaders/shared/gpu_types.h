@@ -255,7 +255,7 @@ struct GpuFrame {
   // Largest value the HDR image stores (FrameSettings::hdr_format): the largest finite fp16
   // (TS_MAX_HALF) or fp32 value, so that overflow saturates instead of becoming Inf.
   float hdr_max;
-  uint pad0;
+  uint aa_coverage;  // TS_AA_COVERAGE_*: how anti-aliasing weighs a pixel's triangles
   uint pad1;
   uint pad2;
 };
@@ -376,6 +376,7 @@ static_assert(offsetof(GpuFrame, anisotropy) == 240);
 static_assert(offsetof(GpuFrame, lod_scale) == 244);
 static_assert(offsetof(GpuFrame, batch_triangles) == 252);
 static_assert(offsetof(GpuFrame, hdr_max) == 256);
+static_assert(offsetof(GpuFrame, aa_coverage) == 260);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
