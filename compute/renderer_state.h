@@ -70,8 +70,8 @@ struct Renderer::State {
   std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
   // The passes (by Pass) and generic shading pipelines (by Pipeline, after the passes) for more
   // than one sample per pixel, built on first use: key (index, samples, debug coverage, level
-  // of detail).
-  std::map<std::tuple<size_t, uint32_t, bool, bool>, VkPipeline> sampled_pipelines;
+  // of detail, TS_AA_COVERAGE_*).
+  std::map<std::tuple<size_t, uint32_t, bool, bool, uint32_t>, VkPipeline> sampled_pipelines;
   bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
   VkQueryPool queries = VK_NULL_HANDLE;
   uint32_t query_capacity = 0;

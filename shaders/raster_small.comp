@@ -26,25 +26,15 @@ void main() {
   // taken once here rather than per pixel and sample (six int64 products each).
   Edges to_sample[SAMPLES];
   Edges zero = Edges(0l, 0l, 0l);
-  // The most each edge value gains from the pixel centre to one of its samples: a pixel whose
-  // centre is further than that outside an edge has no sample inside, and is skipped with
-  // three tests instead of three per sample (much of a small triangle's box, which reaches as
-  // far as its samples do, holds no covered sample).
-  Edges reach = Edges(0l, 0l, 0l);
   for (uint s = 0u; s < SAMPLES; ++s) {
     to_sample[s] = edges_moved(t, zero, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
-    reach.e0 = max(reach.e0, to_sample[s].e0);
-    reach.e1 = max(reach.e1, to_sample[s].e1);
-    reach.e2 = max(reach.e2, to_sample[s].e2);
   }
-  Thresholds pixel_h = Thresholds(h.t0 - reach.e0, h.t1 - reach.e1, h.t2 - reach.e2);
 
   Edges row = edges_at(t, pixel_centre(t.box_min));
   for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
     Edges e = row;
     for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-      bool may_cover = SAMPLES == 1u || is_covered(e, pixel_h);
-      for (uint s = 0u; s < SAMPLES && may_cover; ++s) {
+      for (uint s = 0u; s < SAMPLES; ++s) {
         Edges es = Edges(e.e0 + to_sample[s].e0, e.e1 + to_sample[s].e1, e.e2 + to_sample[s].e2);
         if (!is_covered(es, h)) continue;
         uint p = pixel_index(ivec2(x, y));

@@ -14,6 +14,10 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// How anti-aliasing weighs a pixel's triangles (TS_AA_COVERAGE_*): a specialization constant,
+// so that the count's pipelines carry none of the analytic code.
+layout(constant_id = TS_SPEC_AA_COVERAGE) const uint AA_COVERAGE = TS_AA_COVERAGE_COUNT;
+
 // Unit ray through the point `pixel_point` of the image, in pixels.
 vec3 camera_ray_at(vec2 pixel_point) {
   vec2 ndc = pixel_point / vec2(frame.image_size) * 2.0 - 1.0;
@@ -213,8 +217,8 @@ void resolve_samples(ivec2 pixel, bool inside) {
       next = id + 1u;
     }
     // One triangle and the background (listed last): the triangle's outline coverage is wanted.
-    bool analytic = frame.aa_coverage == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u;
-    for (uint g = 0u; g < groups; ++g) {
+    bool analytic = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u;
+    for (uint g = 0u; g < groups && AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC; ++g) {
       request_coverage[slots[g]] = analytic && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
     }
   }
@@ -227,8 +231,9 @@ void resolve_samples(ivec2 pixel, bool inside) {
     bool empty = q.x == 0xFFFFFFFFu;
     vec3 color = empty ? background(point) : shade_triangle(q.x, point);
     put_request(r, floatBitsToUint(stored(color)));
-    uint wanted = request_coverage[r];
-    // The request's point lies inside its pixel (the mean of some of its samples).
+    // The request's point lies inside its pixel (the mean of some of its samples). Tested on
+    // the constant first, so that the count's pipelines fold the clipping code away.
+    uint wanted = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC ? request_coverage[r] : 0u;
     if (wanted != 0u && !empty) {
       float covered = outline_coverage(q.x, ivec2(floor(point)), wanted & ~NEEDS_COVERAGE);
       request_coverage[r] = floatBitsToUint(covered);
@@ -237,7 +242,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
   barrier();
 
   if (!inside) return;
-  if (frame.aa_coverage == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u) {
+  if (AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u) {
     // Without an outline edge (-1) or area (0), the counts stay.
     float covered = uintBitsToFloat(request_coverage[slots[0]]);
     if (covered > 0.0) {

@@ -108,9 +108,10 @@ using glm::vec4;
 #define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
 #define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
 #define TS_SPEC_TILE_SIZE 10    // tile side in px (RendererOptions::tile_size): binning, raster_tiles
+#define TS_SPEC_AA_COVERAGE 11  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 11
+#define TS_SPEC_LIGHT_COUNT_BASE 12
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -255,7 +256,7 @@ struct GpuFrame {
   // Largest value the HDR image stores (FrameSettings::hdr_format): the largest finite fp16
   // (TS_MAX_HALF) or fp32 value, so that overflow saturates instead of becoming Inf.
   float hdr_max;
-  uint aa_coverage;  // TS_AA_COVERAGE_*: how anti-aliasing weighs a pixel's triangles
+  uint pad0;
   uint pad1;
   uint pad2;
 };
@@ -376,7 +377,6 @@ static_assert(offsetof(GpuFrame, anisotropy) == 240);
 static_assert(offsetof(GpuFrame, lod_scale) == 244);
 static_assert(offsetof(GpuFrame, batch_triangles) == 252);
 static_assert(offsetof(GpuFrame, hdr_max) == 256);
-static_assert(offsetof(GpuFrame, aa_coverage) == 260);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
