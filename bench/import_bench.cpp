@@ -1,5 +1,6 @@
-// Loading throughput of OBJ import: tinyobjloader alone (parse and triangulate) against
-// import_obj (scan, parse, triangulate, build de-duplicated meshes). The file is
+// Loading throughput of OBJ import: tinyobjloader alone (LoadObj: parse and triangulate; and
+// LoadObjWithCallback, the streaming parser import_obj is built on, with callbacks that only
+// count) against import_obj (scan, parse, triangulate, build de-duplicated meshes). The file is
 // bench/large_obj.h's grid with TESSERA_OBJ_BENCH_TRIANGLES triangles (default 10^6), written
 // once to $TMPDIR (and reused by later runs). Counters: MB/s of OBJ text and triangles/s.
 // glTF: tinygltf alone (LoadBinaryFromFile, images decoded by its stb_image loader) against
@@ -132,8 +133,8 @@ void BM_TinyObjLoaderAlone(benchmark::State& state) {
 }
 BENCHMARK(BM_TinyObjLoaderAlone)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
-// tinyobjloader as import_obj calls it (without its triangulation, through a stream): the
-// parser's share of import_obj's time and memory.
+// tinyobjloader's LoadObj as import_obj called it before it was built on LoadObjWithCallback
+// (without its triangulation, through a stream).
 void BM_TinyObjLoaderAsImported(benchmark::State& state) {
   const BenchFile& f = bench_file();
   const PeakScope peak;
@@ -154,6 +155,37 @@ void BM_TinyObjLoaderAsImported(benchmark::State& state) {
   set_counters(state, f, peak);
 }
 BENCHMARK(BM_TinyObjLoaderAsImported)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
+
+// tinyobjloader's streaming parser, as import_obj calls it (LoadObjWithCallback through a
+// stream), with callbacks that only count: the parser import_obj is built on, without any
+// arrays of its own.
+void BM_TinyObjLoaderCallback(benchmark::State& state) {
+  const BenchFile& f = bench_file();
+  const PeakScope peak;
+  struct Counts {
+    uint64_t attributes = 0, corners = 0;
+  };
+  tinyobj::callback_t cb;
+  cb.vertex_cb = [](void* c, float, float, float, float) { ++static_cast<Counts*>(c)->attributes; };
+  cb.normal_cb = [](void* c, float, float, float) { ++static_cast<Counts*>(c)->attributes; };
+  cb.texcoord_cb = [](void* c, float, float, float) { ++static_cast<Counts*>(c)->attributes; };
+  cb.index_cb = [](void* c, tinyobj::index_t*, int n) {
+    static_cast<Counts*>(c)->corners += uint64_t(n);
+  };
+  for (auto _ : state) {
+    Counts counts;
+    std::string warn, err;
+    std::ifstream in(f.path, std::ios::binary);
+    tinyobj::MaterialFileReader reader(std::filesystem::path(f.path).parent_path().string());
+    if (!tinyobj::LoadObjWithCallback(in, cb, &counts, &reader, &warn, &err)) {
+      state.SkipWithError(err.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(counts);
+  }
+  set_counters(state, f, peak);
+}
+BENCHMARK(BM_TinyObjLoaderCallback)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 
 void BM_ImportObj(benchmark::State& state) {
   const BenchFile& f = bench_file();

@@ -52,6 +52,7 @@ struct Specialization {
   VkBool32 output_bgra = VK_FALSE;
   VkBool32 lod = VK_FALSE;
   uint32_t tile_size = TS_TILE_SIZE;                         // RendererOptions::tile_size
+  VkBool32 depth_rejection = VK_TRUE;                        // RendererOptions::depth_rejection
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
@@ -308,6 +309,9 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_LOD_DRAWS, kStorageBuffer, Source::sized, Scale::objects_if_lod_draws,
      sizeof(VkDrawIndexedIndirectCommand), 0, Clear::never, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
     {TS_BINDING_HDR_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::output_image},
+    // Only lowered within a frame (every bound stays valid for the later batches).
+    {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame,
+     0xFFFFFFFFu},
 };
 
 constexpr bool binding_table_is_complete() {

@@ -39,6 +39,7 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_OUTPUT_BGRA, offsetof(Specialization, output_bgra), sizeof(VkBool32)},
       {TS_SPEC_LOD, offsetof(Specialization, lod), sizeof(VkBool32)},
       {TS_SPEC_TILE_SIZE, offsetof(Specialization, tile_size), sizeof(uint32_t)},
+      {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)},
       {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
@@ -94,7 +95,7 @@ VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
   return create_compute_pipeline(ctx, pipelines.layout, "shade", shade_specialization(v));
 }
 
-Pipelines create_pipelines(const Context& ctx, uint32_t tile_size) {
+Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection) {
   Pipelines p;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (uint32_t b = 0; b < TS_BINDING_COUNT; ++b) {
@@ -115,9 +116,11 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size) {
 
   for (const PassInfo& row : kPasses) {
     if (row.shader == nullptr || row.variants == Variants::shading) continue;
-    // Every pass gets the tile size; only those that bin or rasterize by tiles read it.
+    // Every pass gets the tile size and the rejection switch; only those that bin or
+    // rasterize by tiles read them.
     PassInfo pass = row;
     pass.spec.tile_size = tile_size;
+    pass.spec.depth_rejection = depth_rejection ? VK_TRUE : VK_FALSE;
     p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, pass.spec);
     if (pass.variants == Variants::debug_coverage) {
       Specialization coverage = pass.spec;

@@ -72,10 +72,11 @@ VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
                                  const ShadeVariant& variant);
 
 /// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V,
-/// the passes specialized to tiles of `tile_size` pixels per side (validate_tile_size), except
-/// the generic shading pipelines of kPipelines (shader "shade"), left null for the renderer to
+/// the passes specialized to tiles of `tile_size` pixels per side (validate_tile_size) and to
+/// hierarchical depth rejection on or off (`depth_rejection`, RendererOptions), except the
+/// generic shading pipelines of kPipelines (shader "shade"), left null for the renderer to
 /// build on first use.
-Pipelines create_pipelines(const Context& ctx, uint32_t tile_size);
+Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection);
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
 
 }  // namespace tessera

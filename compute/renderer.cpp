@@ -110,7 +110,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
   check_tile_size(ctx, options.tile_size);
-  s_->pipelines = create_pipelines(ctx, options.tile_size);
+  s_->pipelines = create_pipelines(ctx, options.tile_size, options.depth_rejection);
 
   constexpr VkDescriptorType kTypes[] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
@@ -332,6 +332,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
     // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
     s.batch_triangles = 0;
     s.raster_capacity = 0;
+    s.lod_triangles = 0;  // another scene's levels would size this one's batches
   }
   s.uploaded = std::move(next);
   s.meshes = scene.meshes;
@@ -741,6 +742,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       stats.culled_empty += c.culled_empty;
       stats.culled_nonfinite += c.culled_nonfinite;
       stats.clipped += c.clipped;
+      stats.rejected_entries += c.rejected_entries;
+      stats.rejected_small += c.rejected_small;
     }
     if (timestamps) {
       std::vector<uint64_t> ticks(query_passes.size() + 1);
@@ -855,7 +858,10 @@ namespace {
 // The pipeline `pass` binds this frame.
 VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
   if (settings.samples > 1 && pass.variants != Variants::shading) {
+    // As create_pipelines specializes the single-sample ones (the table's row has the defaults).
     Specialization spec = pass.spec;
+    spec.tile_size = s.options.tile_size;
+    spec.depth_rejection = s.options.depth_rejection ? VK_TRUE : VK_FALSE;
     if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
       spec.debug_coverage = VK_TRUE;
     if (pass.variants == Variants::lod && settings.lod == Lod::automatic) spec.lod = VK_TRUE;

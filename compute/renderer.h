@@ -32,6 +32,11 @@ struct RendererOptions {
   /// 8192 px a side (TS_MAX_TILES_PER_SIDE); the renderer throws Error for a size the device's
   /// workgroup limits cannot hold.
   uint32_t tile_size = TS_TILE_SIZE;
+  /// Hierarchical depth rejection: the per-tile rasterizer skips tile-list entries, and the
+  /// per-triangle one small triangles, whose nearest depth lies strictly behind a bound on
+  /// everything already drawn in their tile(s) (FrameStats::rejected_*). Either setting gives
+  /// the same image; off, every entry and small triangle is rasterized (for comparisons).
+  bool depth_rejection = true;
   /// Most triangle instances set up per batch (0: as many as the scratch buffers allow).
   uint32_t max_batch_triangles = 0;
   /// Starting capacities of the scratch buffers (0: sized from the scene). They grow, and the
@@ -80,6 +85,8 @@ struct FrameStats {
   uint64_t culled_empty = 0;
   uint64_t culled_nonfinite = 0;
   uint64_t clipped = 0;
+  uint64_t rejected_entries = 0;  // tile-list entries skipped by depth rejection, unrasterized
+  uint64_t rejected_small = 0;    // small triangles skipped likewise
   uint32_t batches = 0;
   uint32_t attempts = 0;  // 1, plus one per re-render after growing a buffer or splitting
 };

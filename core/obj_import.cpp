@@ -1,7 +1,10 @@
-// Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses; this file checks what
-// it does not (it drops bad faces and clamps nothing, reporting out-of-range indices once per
-// file without the line) by scanning each line just before tinyobjloader reads it (MTL files:
-// each file first), so every error names its line and column.
+// Wavefront OBJ/MTL import (core/model_import.h). tinyobjloader parses, through its streaming
+// API (LoadObjWithCallback), whose callbacks build Tessera's meshes as faces are read, so no
+// parser arrays exist beside them; this file checks what tinyobjloader does not (it drops bad
+// faces and clamps nothing, reporting out-of-range indices once per file without the line) by
+// scanning each line just before tinyobjloader reads it (MTL files: each file first), so every
+// error names its line and column. The scan also gives the callbacks what they do not report:
+// smoothing groups (`s`) and the lines of polygons, for warnings.
 //
 // Conventions chosen here, each because the format leaves it open:
 // - Polygons are split by this file, not by tinyobjloader: convex ones as a fan from their first
@@ -18,9 +21,11 @@
 //   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -190,7 +195,13 @@ struct ObjScan {
   // counts, since OBJ readers accept references to vertices defined further down.
   int64_t largest[3] = {0, 0, 0};
   size_t largest_line[3] = {0, 0, 0}, largest_column[3] = {0, 0, 0};
-  std::vector<size_t> polygon_lines;  // line of each face with more than 3 corners, in order
+  // What the conversion (ObjBuilder) needs from lines tinyobjloader's callbacks do not report,
+  // queued in file order: the scan runs at most a chunk ahead of tinyobjloader, and each entry
+  // is taken off by the face it belongs to, so the queues stay short.
+  std::deque<size_t> polygon_lines;  // line of each face with more than 3 corners
+  // `s` statements: (faces before it, smoothing group it sets), read as tinyobjloader's LoadObj
+  // reads them.
+  std::deque<std::pair<uint64_t, uint32_t>> smoothing;
   std::vector<std::pair<size_t, std::string>> usemtl;  // line, material name
   std::map<std::string, size_t> mtllib_line;           // library name -> line naming it
   uint64_t faces = 0;
@@ -297,7 +308,18 @@ void scan_obj_line(const std::string& file, size_t line, std::string_view s, Obj
     while (const std::optional<Token> t = tokens.next()) {
       scan.mtllib_line.emplace(std::string(t->text), line);
     }
-  } else if (k != "g" && k != "o" && k != "s") {
+  } else if (k == "s") {
+    // As LoadObj: "off" or a negative value is group 0, otherwise atoi's; no value, no change.
+    const size_t start = key->column + 1;
+    const std::string value(start < s.size() ? s.substr(start) : std::string_view());
+    const size_t first = value.find_first_not_of(" \t");
+    if (first != std::string::npos) {
+      const int group = value.compare(first, 3, "off") == 0
+                            ? 0
+                            : int(std::strtol(value.c_str() + first, nullptr, 10));
+      scan.smoothing.emplace_back(scan.faces, uint32_t(std::max(group, 0)));
+    }
+  } else if (k != "g" && k != "o") {
     scan.ignored.emplace(std::string(k), line);
   }
 }
@@ -483,8 +505,8 @@ class MtlReader : public tinyobj::MaterialReader {
       : obj_path_(obj_path), base_dir_(base_dir), scan_(scan), max_bytes_(max_bytes) {}
 
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                  std::map<std::string, int>* material_map, std::string* warn,
-                  std::string* err) override {
+                  std::map<std::string, int>* map, std::string* warn, std::string* err) override {
+    material_map = map;
     std::string relative = name;
     std::replace(relative.begin(), relative.end(), '\\', '/');
     const std::string path = (fs::path(base_dir_) / fs::path(relative)).lexically_normal().string();
@@ -500,7 +522,7 @@ class MtlReader : public tinyobj::MaterialReader {
       scan_mtl(path, *text, info);
       std::istringstream in(*text);
       const size_t first = materials->size();
-      tinyobj::LoadMtl(material_map, materials, &in, warn, err);
+      tinyobj::LoadMtl(map, materials, &in, warn, err);
       // tinyobjloader also keeps statements before any newmtl, as a material named "".
       for (size_t m = first; m < materials->size(); ++m) {
         info.try_emplace((*materials)[m].name, MtlInfo{path, {}});
@@ -513,6 +535,8 @@ class MtlReader : public tinyobj::MaterialReader {
   }
 
   std::map<std::string, MtlInfo> info;  // by material name
+  // tinyobjloader's name -> material id, while it reads the OBJ file (after its first mtllib).
+  const std::map<std::string, int>* material_map = nullptr;
   std::vector<std::string> warnings;
   std::optional<std::string> error;
 
@@ -917,12 +941,12 @@ class VertexTable {
 // of a flat-shaded fan) moves to a hash table, so that no walk is long.
 class VertexIndex {
  public:
-  explicit VertexIndex(size_t positions) : head_(positions, kNone) {}
-
   // The vertex of `key`, and whether it was just added with value `next`.
   std::pair<uint32_t, bool> emplace(const VertexKey& key, uint32_t next) {
+    TESSERA_CHECK(size_t(key.v) < head_.size());  // cover()
     uint32_t& head = head_[size_t(key.v)];
     if (head == kCrowded) return crowded_.emplace(key, next);
+    if (head == kNone) touched_.push_back(uint32_t(key.v));
     uint32_t length = 0;
     for (uint32_t n = head; n != kNone; n = nodes_[n].next, ++length) {
       const Node& node = nodes_[n];
@@ -944,10 +968,26 @@ class VertexIndex {
     return {next, true};
   }
 
-  // Forgets the vertices of `mesh`'s corners, before the next shape.
-  void clear(const tinyobj::mesh_t& mesh) {
-    for (const tinyobj::index_t& index : mesh.indices) head_[size_t(index.vertex_index)] = kNone;
-    nodes_.clear();
+  // Room for position indices below `size`, growing by doubling up to `capacity`, the size
+  // that ObjBuilder expects the positions to reach (positions arrive while faces are converted).
+  // Not to `capacity` at once: the heads are written, and an estimate made while only `v` lines
+  // had been read is several times the positions' count.
+  void cover(size_t size, size_t capacity) {
+    if (head_.size() < size) {
+      head_.resize(std::min(std::max(2 * head_.size(), size), std::max(size, capacity)), kNone);
+    }
+  }
+
+  // The nodes (one per vertex), for ObjBuilder::make_room's growth.
+  size_t size() const { return nodes_.size(); }
+  bool full() const { return nodes_.size() == nodes_.capacity(); }
+  void reserve(size_t nodes) { nodes_.reserve(nodes); }
+
+  // Forgets every vertex, before the next shape, and frees the memory that grows with them.
+  void clear() {
+    for (const uint32_t v : touched_) head_[v] = kNone;
+    touched_ = {};
+    nodes_ = {};
     crowded_ = {};
   }
 
@@ -959,15 +999,10 @@ class VertexIndex {
     int64_t normal;
     uint32_t vertex, next;
   };
-  std::vector<uint32_t> head_;  // per position index: its newest node, kNone or kCrowded
+  std::vector<uint32_t> head_;     // per position index: its newest node, kNone or kCrowded
+  std::vector<uint32_t> touched_;  // the position indices whose head is not kNone
   std::vector<Node> nodes_;
   VertexTable crowded_;
-};
-
-struct MeshBuilder {
-  int material = -1;
-  Mesh mesh;
-  size_t corners = 0, triangles = 0;  // of its faces, for reserving
 };
 
 // The OBJ text as tinyobjloader reads it, scanned line by line (scan_obj_line) just before
@@ -979,12 +1014,16 @@ class ScanningBuffer : public std::streambuf {
  public:
   // Text held by the caller for the buffer's lifetime.
   ScanningBuffer(const std::string& path, std::string_view text, ObjScan& scan)
-      : path_(path), scan_(scan), text_(text) {}
-  // A file read from its start (owned by the caller).
-  ScanningBuffer(const std::string& path, FILE* file, ObjScan& scan)
-      : path_(path), scan_(scan), file_(file), chunk_(size_t(1) << 20) {}
+      : path_(path), scan_(scan), text_(text), size_(text.size()) {}
+  // A file of `size` bytes read from its start (owned by the caller).
+  ScanningBuffer(const std::string& path, FILE* file, uint64_t size, ObjScan& scan)
+      : path_(path), scan_(scan), file_(file), chunk_(size_t(1) << 20), size_(size) {}
 
   std::optional<std::string> error;
+
+  /// The text's size in bytes, and how much of it tinyobjloader has read.
+  uint64_t size() const { return size_; }
+  uint64_t position() const { return offset_ + uint64_t(gptr() - eback()); }
 
  protected:
   int_type underflow() override {
@@ -1004,6 +1043,7 @@ class ScanningBuffer : public std::streambuf {
         size_t used = 0;
         while (used == 0 && !done_) {
           held_ -= scanned_;
+          offset_ += scanned_;
           std::memmove(chunk_.data(), chunk_.data() + scanned_, held_);
           scanned_ = 0;
           if (held_ == chunk_.size()) chunk_.resize(2 * chunk_.size());
@@ -1037,7 +1077,296 @@ class ScanningBuffer : public std::streambuf {
   size_t held_ = 0;     // bytes of chunk_ read from the file
   size_t scanned_ = 0;  // of those, the complete lines handed to tinyobjloader
   size_t line_ = 0;     // lines scanned so far
-  bool done_ = false;   // the whole text is scanned
+  uint64_t size_ = 0;
+  uint64_t offset_ = 0;  // of chunk_'s first byte in the file
+  bool done_ = false;    // the whole text is scanned
+};
+
+struct MeshBuilder {
+  int material = -1;
+  Mesh mesh;
+};
+
+/// A face as tinyobjloader's index_cb reports it, with what the scan adds. Indices are 0-based
+/// (-1: none), negative ones already resolved.
+struct ObjFace {
+  uint64_t shape = 0;  // `g` and `o` statements before it: faces of one shape share vertices
+  int material = -1;   // tinyobjloader's material id, -1: none
+  uint32_t group = 0;  // smoothing group, 0: flat
+  uint32_t corners = 0;
+  size_t line = 0;  // for a polygon (corners > 3)
+};
+
+// Turns the faces tinyobjloader's callbacks report into Tessera's meshes as they come: the
+// attributes are kept once, as floats, and no face list exists beside the meshes. A face that
+// refers to an attribute further down the file (OBJ readers accept that) waits, with every face
+// after it, until the file is read.
+class ObjBuilder {
+ public:
+  ObjBuilder(const std::string& path, ObjScan& scan, Scene& scene, const MtlReader& reader,
+             const ScanningBuffer& text)
+      : path_(path), scan_(scan), scene_(scene), reader_(reader), text_(text) {}
+
+  std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec2> texcoords;
+  std::vector<tinyobj::material_t> materials;  // the libraries', in order
+  std::vector<int> mesh_material;              // per mesh made: tinyobjloader's material id
+  std::vector<std::string> polygon_warnings;   // self-intersecting polygons, in order
+  std::optional<std::string> error;            // the first, kept (not thrown through tinyobj)
+
+  static tinyobj::callback_t callbacks() {
+    tinyobj::callback_t cb;
+    cb.vertex_cb = [](void* self, float x, float y, float z, float) {
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.positions, 0);
+      b.positions.emplace_back(x, y, z);
+    };
+    cb.normal_cb = [](void* self, float x, float y, float z) {
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.normals, 0);
+      b.normals.emplace_back(x, y, z);
+    };
+    cb.texcoord_cb = [](void* self, float u, float v, float) {
+      ObjBuilder& b = *static_cast<ObjBuilder*>(self);
+      b.make_room(b.texcoords, 0);
+      b.texcoords.emplace_back(u, v);
+    };
+    cb.index_cb = [](void* self, tinyobj::index_t* indices, int n) {
+      static_cast<ObjBuilder*>(self)->add_face(indices, n);
+    };
+    cb.usemtl_cb = [](void* self, const char* name, int) {
+      static_cast<ObjBuilder*>(self)->use_material(name);
+    };
+    cb.mtllib_cb = [](void* self, const tinyobj::material_t* m, int n) {
+      static_cast<ObjBuilder*>(self)->materials.assign(m, m + n);
+    };
+    cb.group_cb = [](void* self, const char**, int) { ++static_cast<ObjBuilder*>(self)->shape_; };
+    cb.object_cb = [](void* self, const char*) { ++static_cast<ObjBuilder*>(self)->shape_; };
+    return cb;
+  }
+
+  /// Converts the faces that waited, after the file is read and its indices checked, and ends
+  /// the last shape; then fills in the normals of smoothing groups, which need every face.
+  void finish() {
+    for (size_t f = 0, offset = 0; f < waiting_.size() && !error; ++f) {
+      convert(waiting_[f], &waiting_indices_[offset]);
+      offset += waiting_[f].corners;
+    }
+    waiting_ = {};
+    waiting_indices_ = {};
+    end_shape();
+    vertices_ = {};
+    if (smooth_.empty()) return;
+    for (size_t m = first_mesh_; m < scene_.meshes.size(); ++m) {
+      for (glm::vec3& n : scene_.meshes[m].normals) {
+        if (!std::isnan(n.z)) continue;
+        const uint64_t key =
+            uint64_t(std::bit_cast<uint32_t>(n.y)) << 32 | std::bit_cast<uint32_t>(n.x);
+        n = unit_or_z(smooth_.at(key));
+      }
+    }
+  }
+
+ private:
+  /// Room for one more element at the end of `v`, which grows with the text from byte `since`
+  /// on. Once that part is 1 MiB or more, a full `v` is given the capacity that the rest of the
+  /// text would fill at the rate so far, plus 5 %, instead of twice its size: growing a large
+  /// array copies it into fresh pages, and doubling does that about twice over its final size
+  /// and holds both copies at its last step (at 10^7 triangles, on the loaded 2-core machine:
+  /// 7.6 s of CPU time with doubling, 6.8 s with this, medians of 3 and 4 runs).
+  /// Capacity beyond the size is never written, so an overestimate costs address space, not
+  /// memory; it is bounded by two elements per byte left.
+  template <typename T>
+  void make_room(std::vector<T>& v, uint64_t since) {
+    if (v.size() < v.capacity()) return;
+    v.reserve(room_for(v.size(), since));
+  }
+  size_t room_for(size_t size, uint64_t since) const {
+    const uint64_t at = text_.position(), total = text_.size();
+    size_t want = std::max<size_t>(16, 2 * size);
+    if (at >= since + (uint64_t(1) << 20) && total > at) {
+      const double rate = double(size) / double(at - since);
+      const size_t estimate =
+          std::min(size_t(1.05 * rate * double(total - since)) + 16, size + 2 * size_t(total - at));
+      want = std::max(estimate, size + size / 4 + 16);
+    }
+    return want;
+  }
+
+  // tinyobjloader names the material by the rest of the line; LoadObj (which import_obj used
+  // before, and tests pin) by its first word, looked up when the line is read.
+  void use_material(std::string_view rest) {
+    const size_t start = std::min(rest.find_first_not_of(" \t"), rest.size());
+    const std::string name(rest.substr(start, rest.find_first_of(" \t\r", start) - start));
+    const std::map<std::string, int>* map = reader_.material_map;
+    const auto it = map ? map->find(name) : std::map<std::string, int>::const_iterator();
+    material_ = map && it != map->end() ? it->second : -1;
+  }
+
+  void add_face(const tinyobj::index_t* raw, int n) {
+    ObjFace face{shape_, material_, group_, uint32_t(n), 0};
+    while (!scan_.smoothing.empty() && scan_.smoothing.front().first <= faces_) {
+      face.group = group_ = scan_.smoothing.front().second;
+      scan_.smoothing.pop_front();
+    }
+    ++faces_;
+    if (n > 3) {
+      TESSERA_CHECK(!scan_.polygon_lines.empty());
+      face.line = scan_.polygon_lines.front();
+      scan_.polygon_lines.pop_front();
+    }
+    // 1-based, or negative: back from the last one read (the scan has checked both).
+    const auto resolve = [](int index, size_t count) {
+      return index > 0 ? index - 1 : index < 0 ? int(count) + index : -1;
+    };
+    corners_.resize(size_t(n));
+    bool ready = waiting_.empty();
+    for (int c = 0; c < n; ++c) {
+      tinyobj::index_t& i = corners_[size_t(c)];
+      i.vertex_index = resolve(raw[c].vertex_index, positions.size());
+      i.texcoord_index = resolve(raw[c].texcoord_index, texcoords.size());
+      i.normal_index = resolve(raw[c].normal_index, normals.size());
+      ready &= size_t(i.vertex_index) < positions.size() &&
+               i.texcoord_index < int64_t(texcoords.size()) &&
+               i.normal_index < int64_t(normals.size());
+    }
+    if (ready) {
+      convert(face, corners_.data());
+    } else {
+      waiting_.push_back(face);
+      waiting_indices_.insert(waiting_indices_.end(), corners_.begin(), corners_.end());
+    }
+  }
+
+  // A corner's file normal, unless it has none or a zero one (see scan_obj).
+  std::optional<glm::vec3> file_normal(const tinyobj::index_t& index) const {
+    if (index.normal_index < 0) return std::nullopt;
+    const glm::vec3 n = normals[size_t(index.normal_index)];
+    if (n == glm::vec3(0.0f)) return std::nullopt;
+    return n;
+  }
+
+  void convert(const ObjFace& face, const tinyobj::index_t* indices) {
+    if (error) return;
+    try {
+      convert_face(face, indices);
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  }
+
+  void convert_face(const ObjFace& face, const tinyobj::index_t* indices) {
+    if (face.shape != current_shape_) {
+      end_shape();
+      current_shape_ = face.shape;
+    }
+    if (builders_.empty()) shape_start_ = text_.position();
+    // One mesh per material, in order of first use in the shape.
+    auto b = std::find_if(builders_.begin(), builders_.end(),
+                          [&](const MeshBuilder& x) { return x.material == face.material; });
+    if (b == builders_.end()) {
+      builders_.emplace_back().material = face.material;
+      b = builders_.end() - 1;
+    }
+    const uint32_t builder = uint32_t(b - builders_.begin());
+    Mesh& mesh = b->mesh;
+    const size_t n = face.corners;
+    corners_xyz_.resize(n);
+    for (size_t c = 0; c < n; ++c) corners_xyz_[c] = positions[size_t(indices[c].vertex_index)];
+    const glm::vec3 face_normal = newell_normal(corners_xyz_);
+    vertices_.cover(positions.size(), positions.capacity());
+    // Smoothing groups: area-weighted normal sums per (group, position), over every shape, in
+    // file order; the vertices get them in finish().
+    const auto smooth_key = [&](const tinyobj::index_t& index) {
+      return uint64_t(face.group) << 32 | uint32_t(index.vertex_index);
+    };
+    if (face.group > 0) {
+      for (size_t c = 0; c < n; ++c) {
+        if (!file_normal(indices[c])) smooth_[smooth_key(indices[c])] += face_normal;
+      }
+    }
+    corner_vertex_.resize(n);
+    for (size_t c = 0; c < n; ++c) {
+      const tinyobj::index_t& index = indices[c];
+      const std::optional<glm::vec3> given = file_normal(index);
+      VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index, builder};
+      if (!given) key.normal = face.group > 0 ? -1 - int64_t(face.group) : kFlat - face_serial_;
+      if (vertices_.full()) vertices_.reserve(room_for(vertices_.size(), shape_start_));
+      const auto [vertex, inserted] = vertices_.emplace(key, uint32_t(mesh.positions.size()));
+      if (inserted) {
+        make_room(mesh.positions, shape_start_);
+        make_room(mesh.normals, shape_start_);
+        make_room(mesh.uvs, shape_start_);
+        if (mesh.positions.size() == UINT32_MAX) {
+          throw Error(quoted(path_) + ": a mesh has more than 2^32 - 1 vertices");
+        }
+        mesh.positions.push_back(corners_xyz_[c]);
+        if (given) {
+          mesh.normals.push_back(unit_or_z(*given));
+        } else if (face.group > 0) {
+          // Filled in by finish(): the key in x and y, and z NaN, which no normal read or made
+          // here is (the scan refuses numbers that are not finite).
+          mesh.normals.emplace_back(std::bit_cast<float>(uint32_t(smooth_key(index))),
+                                    std::bit_cast<float>(face.group),
+                                    std::numeric_limits<float>::quiet_NaN());
+        } else {
+          mesh.normals.push_back(unit_or_z(face_normal));
+        }
+        glm::vec2 uv(0.0f);
+        if (index.texcoord_index >= 0) {
+          const glm::vec2 vt = texcoords[size_t(index.texcoord_index)];
+          uv = glm::vec2(vt.x, 1.0f - vt.y);
+        }
+        mesh.uvs.push_back(uv);
+      }
+      corner_vertex_[c] = vertex;
+    }
+    triangles_.clear();
+    if (!triangulate(corners_xyz_, face_normal, triangles_)) {
+      polygon_warnings.push_back(place(path_, face.line) +
+                                 ": the polygon intersects itself; its triangulation is arbitrary");
+    }
+    for (uint32_t t : triangles_) {
+      make_room(mesh.indices, shape_start_);
+      mesh.indices.push_back(corner_vertex_[t]);
+    }
+    ++face_serial_;
+  }
+
+  void end_shape() {
+    vertices_.clear();
+    for (MeshBuilder& b : builders_) {
+      // Not trimmed to size: capacity beyond the size (make_room's estimate, or doubling) was
+      // never written, so it is address space, not memory, and a trim would copy each array
+      // into fresh pages (at 10^6 triangles, a sixth more peak memory).
+      Mesh& m = b.mesh;
+      scene_.meshes.push_back(std::move(m));
+      mesh_material.push_back(b.material);
+    }
+    builders_.clear();
+  }
+
+  const std::string& path_;
+  ObjScan& scan_;
+  Scene& scene_;
+  const MtlReader& reader_;
+  const ScanningBuffer& text_;
+  const size_t first_mesh_ = scene_.meshes.size();
+  uint64_t shape_ = 0, current_shape_ = 0;
+  uint64_t shape_start_ = 0;  // where tinyobjloader was in the text at the shape's first face
+  int material_ = -1;
+  uint32_t group_ = 0;
+  uint64_t faces_ = 0;                 // faces reported so far
+  int64_t face_serial_ = 0;            // faces converted so far
+  std::vector<MeshBuilder> builders_;  // the current shape's
+  VertexIndex vertices_;
+  std::unordered_map<uint64_t, glm::vec3> smooth_;
+  std::vector<ObjFace> waiting_;
+  std::vector<tinyobj::index_t> waiting_indices_;
+  // Per face, kept to reuse their memory.
+  std::vector<tinyobj::index_t> corners_;
+  std::vector<glm::vec3> corners_xyz_;
+  std::vector<uint32_t> corner_vertex_, triangles_;
 };
 
 ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const std::string& path,
@@ -1054,7 +1383,7 @@ ImportedModel import_obj(const std::string& path, const ImportOptions& options) 
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw Error("cannot read " + quoted(path));
   ObjScan scan;
-  ScanningBuffer buffer(path, file.get(), scan);
+  ScanningBuffer buffer(path, file.get(), size, scan);
   return import_obj_scanned(buffer, scan, path, fs::path(path).parent_path().string(), options);
 }
 
@@ -1071,15 +1400,13 @@ namespace {
 ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const std::string& path,
                                  const std::string& base_dir, const ImportOptions& options) {
   Importer im{path, options, {}, {}};
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
-  std::vector<tinyobj::material_t> materials;
+  Scene& scene = im.model.scene;
   std::string tiny_warn, tiny_err;
   MtlReader reader(path, base_dir, scan, options.max_file_bytes);
+  ObjBuilder builder(path, scan, scene, reader, buffer);
   std::istream in(&buffer);
-  const bool ok =
-      tinyobj::LoadObj(&attrib, &shapes, &materials, &tiny_warn, &tiny_err, &in, &reader,
-                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  const bool ok = tinyobj::LoadObjWithCallback(in, ObjBuilder::callbacks(), &builder, &reader,
+                                               &tiny_warn, &tiny_err);
   // The scan's errors come first, as if it had read the whole file before tinyobjloader.
   if (buffer.error) throw Error(*buffer.error);
   std::vector<std::string> scan_warnings;
@@ -1104,12 +1431,14 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
       if (!repeat) im.warn(quoted(path) + ": tinyobjloader: " + line);
     }
   }
-  TESSERA_CHECK(attrib.vertices.size() == size_t(scan.count[kPosition]) * 3);
-  TESSERA_CHECK(attrib.normals.size() == size_t(scan.count[kNormal]) * 3);
-  TESSERA_CHECK(attrib.texcoords.size() == size_t(scan.count[kTexcoord]) * 2);
+  TESSERA_CHECK(builder.positions.size() == size_t(scan.count[kPosition]));
+  TESSERA_CHECK(builder.normals.size() == size_t(scan.count[kNormal]));
+  TESSERA_CHECK(builder.texcoords.size() == size_t(scan.count[kTexcoord]));
+  builder.finish();
+  if (builder.error) throw Error(*builder.error);
 
   // Materials, in the libraries' order; one default material for faces without one.
-  Scene& scene = im.model.scene;
+  const std::vector<tinyobj::material_t>& materials = builder.materials;
   im.decode_maps(materials, reader.info);
   for (const tinyobj::material_t& m : materials) {
     const auto it = reader.info.find(m.name);
@@ -1127,143 +1456,20 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
   }
   uint32_t default_material = kNoTexture;
   const auto material_index = [&](int id) {
-    if (id >= 0 && size_t(id) < scene.materials.size()) return uint32_t(id);
+    if (id >= 0 && size_t(id) < materials.size()) return uint32_t(id);
     if (default_material == kNoTexture) {
       default_material = uint32_t(scene.materials.size());
       scene.materials.push_back(Material{});
     }
     return default_material;
   };
-
-  // A corner's file normal, unless it has none or a zero one (see scan_obj).
-  const auto file_normal = [&](const tinyobj::index_t& index) -> std::optional<glm::vec3> {
-    if (index.normal_index < 0) return std::nullopt;
-    const float* vn = &attrib.normals[3 * size_t(index.normal_index)];
-    if (vn[0] == 0.0f && vn[1] == 0.0f && vn[2] == 0.0f) return std::nullopt;
-    return glm::vec3(vn[0], vn[1], vn[2]);
-  };
-  const auto position = [&](int i) {
-    return glm::vec3(attrib.vertices[3 * size_t(i)], attrib.vertices[3 * size_t(i) + 1],
-                     attrib.vertices[3 * size_t(i) + 2]);
-  };
-  std::vector<glm::vec3> corners;
-  const auto gather = [&](const tinyobj::mesh_t& mesh, size_t offset, size_t n) {
-    corners.resize(n);
-    for (size_t c = 0; c < n; ++c) corners[c] = position(mesh.indices[offset + c].vertex_index);
-  };
-
-  // Smoothing groups: area-weighted normal sums per (group, position), over every shape.
-  std::unordered_map<uint64_t, glm::vec3> smooth;
-  for (const tinyobj::shape_t& shape : shapes) {
-    size_t offset = 0;
-    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      const size_t n = shape.mesh.num_face_vertices[f];
-      const uint32_t group = shape.mesh.smoothing_group_ids[f];
-      if (group > 0) {
-        gather(shape.mesh, offset, n);
-        const glm::vec3 normal = newell_normal(corners);
-        for (size_t c = 0; c < n; ++c) {
-          const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-          if (!file_normal(index)) {
-            smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)] += normal;
-          }
-        }
-      }
-      offset += n;
-    }
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    Object object;
+    object.mesh = uint32_t(m);
+    object.material = material_index(builder.mesh_material[m]);
+    scene.objects.push_back(object);
   }
-
-  size_t polygon = 0;  // faces with more than 3 corners so far (scan.polygon_lines)
-  int64_t face_serial = 0;
-  std::vector<uint32_t> triangles, corner_vertex;
-  VertexIndex vertices(attrib.vertices.size() / 3);
-  const size_t position_count = attrib.vertices.size() / 3;
-  for (tinyobj::shape_t& shape : shapes) {
-    // One mesh per material, in order of first use; sizes counted first to reserve them.
-    std::vector<MeshBuilder> builders;
-    std::vector<uint32_t> face_builder(shape.mesh.num_face_vertices.size());
-    for (size_t f = 0; f < face_builder.size(); ++f) {
-      const int material = shape.mesh.material_ids[f];
-      auto b = std::find_if(builders.begin(), builders.end(),
-                            [&](const MeshBuilder& x) { return x.material == material; });
-      if (b == builders.end()) {
-        builders.emplace_back().material = material;
-        b = builders.end() - 1;
-      }
-      face_builder[f] = uint32_t(b - builders.begin());
-      b->corners += shape.mesh.num_face_vertices[f];
-      b->triangles += shape.mesh.num_face_vertices[f] - 2u;
-    }
-    for (MeshBuilder& b : builders) {
-      const size_t estimate = std::min(b.corners, position_count);
-      b.mesh.positions.reserve(estimate);
-      b.mesh.normals.reserve(estimate);
-      b.mesh.uvs.reserve(estimate);
-      b.mesh.indices.reserve(3 * b.triangles);
-    }
-    size_t offset = 0;
-    for (size_t f = 0; f < face_builder.size(); ++f, ++face_serial) {
-      const size_t n = shape.mesh.num_face_vertices[f];
-      MeshBuilder* const b = &builders[face_builder[f]];
-      gather(shape.mesh, offset, n);
-      const glm::vec3 face_normal = newell_normal(corners);
-      const uint32_t group = shape.mesh.smoothing_group_ids[f];
-      corner_vertex.resize(n);
-      for (size_t c = 0; c < n; ++c) {
-        const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-        const std::optional<glm::vec3> given = file_normal(index);
-        VertexKey key{index.vertex_index, index.texcoord_index, index.normal_index,
-                      face_builder[f]};
-        if (!given) key.normal = group > 0 ? -1 - int64_t(group) : kFlat - face_serial;
-        const auto [vertex, inserted] = vertices.emplace(key, uint32_t(b->mesh.positions.size()));
-        if (inserted) {
-          if (b->mesh.positions.size() == UINT32_MAX) {
-            throw Error(quoted(path) + ": a mesh has more than 2^32 - 1 vertices");
-          }
-          b->mesh.positions.push_back(corners[c]);
-          glm::vec3 normal;
-          if (given) {
-            normal = *given;
-          } else if (group > 0) {
-            normal = smooth[uint64_t(group) << 32 | uint32_t(index.vertex_index)];
-          } else {
-            normal = face_normal;
-          }
-          b->mesh.normals.push_back(unit_or_z(normal));
-          glm::vec2 uv(0.0f);
-          if (index.texcoord_index >= 0) {
-            const float* vt = &attrib.texcoords[2 * size_t(index.texcoord_index)];
-            uv = glm::vec2(vt[0], 1.0f - vt[1]);
-          }
-          b->mesh.uvs.push_back(uv);
-        }
-        corner_vertex[c] = vertex;
-      }
-      triangles.clear();
-      if (!triangulate(corners, face_normal, triangles)) {
-        im.warn(place(path, scan.polygon_lines[polygon]) +
-                ": the polygon intersects itself; its triangulation is arbitrary");
-      }
-      if (n > 3) ++polygon;
-      for (uint32_t t : triangles) b->mesh.indices.push_back(corner_vertex[t]);
-      offset += n;
-    }
-    vertices.clear(shape.mesh);
-    shape.mesh = {};  // converted: its memory goes before the next shape's meshes are made
-    for (MeshBuilder& b : builders) {
-      // The estimate overshoots when positions are shared between materials.
-      if (b.mesh.positions.capacity() > b.mesh.positions.size() + b.mesh.positions.size() / 8) {
-        b.mesh.positions.shrink_to_fit();
-        b.mesh.normals.shrink_to_fit();
-        b.mesh.uvs.shrink_to_fit();
-      }
-      Object object;
-      object.mesh = uint32_t(scene.meshes.size());
-      object.material = material_index(b.material);
-      scene.meshes.push_back(std::move(b.mesh));
-      scene.objects.push_back(object);
-    }
-  }
+  for (const std::string& w : builder.polygon_warnings) im.warn(w);
   return std::move(im.model);
 }
 

@@ -74,6 +74,8 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& 
   row.small_triangles = last.small_triangles;
   row.bin_entries = last.big_triangles;
   row.tile_entries = last.tile_entries;
+  row.rejected_entries = last.rejected_entries;
+  row.rejected_small = last.rejected_small;
   row.batches = last.batches;
   row.frames = a.repeat;
   if (!last.has_timestamps) row.note = "no timestamps";
@@ -223,6 +225,15 @@ std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs)
     }
     m.total_ms = median(m.run_ms);
     m.cpu_record_ms = median(cpu);
+    // Counts come from the first run; a run that split the frame differently is named, since
+    // each batch is a whole sequence of passes (one sphere once ran in 17 batches after 10^6).
+    bool batches_differ = false;
+    std::string batches;
+    for (const std::vector<BenchRow>& run : runs) {
+      batches += (batches.empty() ? "" : ", ") + std::to_string(run[i].batches);
+      batches_differ = batches_differ || run[i].batches != m.batches;
+    }
+    if (batches_differ) m.note += (m.note.empty() ? "" : "; ") + ("batches per run: " + batches);
     for (size_t p = 0; p < kPassCount; ++p) {
       std::vector<double> v;
       for (const std::vector<BenchRow>& run : runs) v.push_back(run[i].pass_ms[p]);
@@ -247,6 +258,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     RendererOptions options;
     options.small_triangle_max_area = a.small_triangle_area;
     options.tile_size = a.tile_size;
+    options.depth_rejection = a.depth_rejection;
     options.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options);
     results.device = ctx->properties.deviceName;

@@ -23,10 +23,12 @@ struct BenchRow {
   uint64_t triangles_submitted = 0;
   uint64_t triangles_rasterized = 0;  // after culling and clipping (0: not known)
   uint64_t pixels_shaded = 0;
-  uint64_t small_triangles = 0;  // compute: rasterized one thread per triangle
-  uint64_t bin_entries = 0;      // compute: blocks of tiles of binned triangles
-  uint64_t tile_entries = 0;     // compute: (tile, triangle) pairs the per-tile rasterizer tests
-  double total_ms = 0.0;         // GPU time (compute, hardware) or wall time (reference)
+  uint64_t small_triangles = 0;   // compute: rasterized one thread per triangle
+  uint64_t bin_entries = 0;       // compute: blocks of tiles of binned triangles
+  uint64_t tile_entries = 0;      // compute: (tile, triangle) pairs the per-tile rasterizer tests
+  uint64_t rejected_entries = 0;  // compute: of those, skipped by depth rejection
+  uint64_t rejected_small = 0;    // compute: small triangles skipped by depth rejection
+  double total_ms = 0.0;          // GPU time (compute, hardware) or wall time (reference)
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
   double min_ms = 0.0;  // the fastest and slowest timed frame (of every run)

@@ -132,6 +132,7 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"lod_error_px\": " << a.lod_error_px << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area
     << ",\n  \"tile_size\": " << a.tile_size
+    << ",\n  \"depth_rejection\": " << (a.depth_rejection ? "true" : "false")
     << ",\n  \"hdr_format\": " << json_string(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16")
     << ",\n  \"frames\": " << a.repeat << ",\n  \"runs\": " << a.runs
     << ",\n  \"warmup\": {\"min_frames\": " << a.warmup << ", \"min_ms\": " << a.warmup_ms
@@ -144,7 +145,9 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
       << ", \"triangles_submitted\": " << r.triangles_submitted
       << ", \"triangles_rasterized\": " << r.triangles_rasterized
       << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
-      << ", \"tile_entries\": " << r.tile_entries << ", \"pixels_shaded\": " << r.pixels_shaded
+      << ", \"tile_entries\": " << r.tile_entries
+      << ", \"rejected_entries\": " << r.rejected_entries
+      << ", \"rejected_small\": " << r.rejected_small << ", \"pixels_shaded\": " << r.pixels_shaded
       << ", \"total_ms\": " << r.total_ms << ", \"min_ms\": " << r.min_ms
       << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
     for (size_t i = 0; i < r.run_ms.size(); ++i) f << (i ? ", " : "") << r.run_ms[i];

@@ -92,6 +92,14 @@ void add_tile_size(CLI::App& app, uint32_t& tile_size) {
       }));
 }
 
+// --depth-rejection, for render and bench.
+void add_depth_rejection(CLI::App& app, bool& on) {
+  add_choice(app, "--depth-rejection", on, {{"on", true}, {"off", false}},
+             "hierarchical depth rejection: on (default)\n"
+             "skips triangles behind what each tile already\n"
+             "drew; off rasterizes all. The image is the same");
+}
+
 void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
   add_choice(app, "--quality", quality,
              {{"draft", Quality::draft},
@@ -237,6 +245,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
+  add_depth_rejection(app, a.depth_rejection);
   add_quality(app, a.quality,
               "--brdf, --energy-compensation, --samples,\n"
               "--lod, --lod-error, --anisotropy, --env-size,\n"
@@ -336,6 +345,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_lod_options(app, a.lod, a.lod_error_px);
   add_hdr_format(app, a.hdr_format);
   add_tile_size(app, a.tile_size);
+  add_depth_rejection(app, a.depth_rejection);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
               "--small-triangle-area, --tile-size");
@@ -415,7 +425,8 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
                  "env-samples, samples, aa-coverage, hdr,\n"
-                 "small-triangle, tile-size (docs/tradeoffs.md)")
+                 "small-triangle, tile-size, depth-rejection\n"
+                 "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
       ->allow_extra_args(false)

@@ -26,6 +26,7 @@ struct RenderArgs {
   EnvironmentOptions env_options;
   uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
   uint32_t tile_size = TS_TILE_SIZE;      // RendererOptions::tile_size
+  bool depth_rejection = true;            // RendererOptions::depth_rejection
   Quality quality = Quality::none;        // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
   // first-use costs) are reported apart; the figures are medians over these.
@@ -61,6 +62,7 @@ struct BenchArgs {
   float lod_error_px = 0.5f;                     // FrameSettings::lod_error_px
   HdrFormat hdr_format = HdrFormat::fp16;        // FrameSettings::hdr_format (not hardware)
   uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
+  bool depth_rejection = true;                   // RendererOptions::depth_rejection
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
   std::string csv, json, chart;
   bool quiet = false;

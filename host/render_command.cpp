@@ -84,6 +84,9 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
       (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
       (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
       (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+  std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
+              (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
+              (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
   if (!last.has_timestamps) {
     std::printf("GPU timings unavailable: the queue has no timestamp support\n");
     return;
@@ -124,6 +127,7 @@ int run_render(const RenderArgs& given) {
   RendererOptions renderer_options;
   renderer_options.environment = args.env_options;
   renderer_options.tile_size = args.tile_size;
+  renderer_options.depth_rejection = args.depth_rejection;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 

@@ -21,6 +21,7 @@ const std::vector<KnobInfo>& knobs() {
       {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
+      {"depth-rejection", "hierarchical depth rejection: off, on (speed only)"},
   };
   return list;
 }
@@ -135,7 +136,7 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       KnobSetting s = base(knob, std::to_string(n) + " samples, " + name, frame, options);
       s.frame.samples = n;
       s.frame.aa_coverage = c;
-      s.is_default = n == frame.samples && c == frame.aa_coverage;
+      s.is_default = c == frame.aa_coverage;  // the command line's mode, at its samples or 4
       out.push_back(s);
     }
   } else if (knob == "small-triangle") {
@@ -151,6 +152,14 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       KnobSetting s = base(knob, std::to_string(side) + " px", frame, options);
       s.renderer.tile_size = side;
       s.is_default = side == options.tile_size;
+      s.speed_only = true;
+      out.push_back(s);
+    }
+  } else if (knob == "depth-rejection") {
+    for (bool on : {false, true}) {
+      KnobSetting s = base(knob, on ? "on" : "off", frame, options);
+      s.renderer.depth_rejection = on;
+      s.is_default = on == options.depth_rejection;
       s.speed_only = true;
       out.push_back(s);
     }

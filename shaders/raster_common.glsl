@@ -111,10 +111,10 @@ uint64_t visibility_key(float depth, uint id) {
   return (uint64_t(~floatBitsToUint(depth)) << 32) | uint64_t(id);
 }
 
-// Conservative test: can any sample of `tile` be covered by the triangle? Each edge function
-// is maximised over the corners of the rectangle holding the tile's samples; below the edge's
-// threshold there, no sample of the tile is inside. Used identically by counting and filling.
-bool tile_may_overlap(RasterTri t, ivec2 tile) {
+// Whether every edge function, taken at its maximum over the rectangle holding the tile's
+// samples (`at_minimum` false) or at its minimum (true), reaches the edge's threshold. E is
+// affine, so its extremes over the rectangle lie at corners.
+bool tile_edges_reach(RasterTri t, ivec2 tile, bool at_minimum) {
   ivec2 lo = tile * TILE_SIZE * TS_SUBPIXEL_ONE + sample_offset_min();
   ivec2 hi = (tile * TILE_SIZE + (TILE_SIZE - 1)) * TS_SUBPIXEL_ONE + sample_offset_max();
   Thresholds h = thresholds_of(t);
@@ -125,10 +125,53 @@ bool tile_may_overlap(RasterTri t, ivec2 tile) {
     // E(p) = dx * (p.y - a.y) - dy * (p.x - a.x): grows with p.y when dx > 0, with p.x when dy < 0.
     int dx = b[i].x - a[i].x;
     int dy = b[i].y - a[i].y;
-    ivec2 p = ivec2(dy < 0 ? hi.x : lo.x, dx > 0 ? hi.y : lo.y);
+    ivec2 p = ivec2((dy < 0) != at_minimum ? hi.x : lo.x, (dx > 0) != at_minimum ? hi.y : lo.y);
     if (edge_function(a[i], b[i], p) < th[i]) return false;
   }
   return true;
+}
+
+// Conservative test: can any sample of `tile` be covered by the triangle? Below an edge's
+// threshold at the edge function's maximum over the tile, no sample of the tile is inside.
+// Used identically by counting and filling.
+bool tile_may_overlap(RasterTri t, ivec2 tile) {
+  return tile_edges_reach(t, tile, false);
+}
+
+// Does the triangle cover every sample of `tile` (the triangle is convex, so covering the
+// rectangle's corners covers every sample between them)?
+bool tile_inside(RasterTri t, ivec2 tile) {
+  return tile_edges_reach(t, tile, true);
+}
+
+// Hierarchical depth rejection (RendererOptions::depth_rejection) compares the high words of
+// visibility keys, ~floatBitsToUint(depth): larger is farther. A triangle whose every key has a
+// high word strictly above a bound on the final keys of a tile's samples cannot win any of
+// them, whatever the ids (equal high words are never rejected: there the id decides).
+layout(constant_id = TS_SPEC_DEPTH_REJECTION) const bool DEPTH_REJECTION = true;
+// Debug coverage counts every covered sample, hidden or not, so it rasterizes everything.
+const bool REJECTION = DEPTH_REJECTION && !DEBUG_COVERAGE;
+
+// depth_at is a convex combination of the vertex depths computed in float: 3 conversions,
+// 3 products, 2 sums, a conversion of the area and a division (2.5 ulp in Vulkan) put it
+// within about 10 ulps of the exact value, so it lies within that of [min, max] of the vertex
+// depths. The bounds below widen that range by 256 ulps (~3e-5 relative), far more than
+// needed, which costs nothing measurable in what is rejected.
+const uint DEPTH_BOUND_ULPS = 256u;
+
+// A lower bound on the high word of every key the triangle can produce: that of its nearest
+// vertex depth, moved nearer by the margin (saturating below infinity's bits: depth_at is
+// finite).
+uint nearest_key_high(vec3 depth) {
+  uint bits = floatBitsToUint(max(depth.x, max(depth.y, depth.z)));
+  return ~min(bits + DEPTH_BOUND_ULPS, 0x7F800000u);
+}
+
+// An upper bound on the high word of every key the triangle produces: that of its farthest
+// vertex depth, moved farther by the margin (saturating at zero depth).
+uint farthest_key_high(vec3 depth) {
+  uint bits = floatBitsToUint(min(depth.x, min(depth.y, depth.z)));
+  return ~(bits > DEPTH_BOUND_ULPS ? bits - DEPTH_BOUND_ULPS : 0u);
 }
 
 // Tile range (inclusive) overlapped by the triangle's pixel box.

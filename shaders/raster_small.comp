@@ -3,6 +3,12 @@
 // Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
 // integer edge functions from pixel centre to pixel centre, and atomicMin's each covered sample
 // (SAMPLES per pixel) into the visibility buffer.
+// With hierarchical depth rejection (REJECTION, raster_common.glsl) it first compares the
+// triangle's nearest depth with the bounds of the tiles its box touches (tile_far, lowered by
+// fill and raster_tiles, which ran before) and skips a triangle behind all of them; per
+// sample, a key that cannot win is not computed.
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
@@ -12,6 +18,22 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= min(counters[batch.index].small_tris, frame.raster_capacity)) return;
   RasterTri t = load_raster_tri(small_list[i]);
+  uint near_high = nearest_key_high(t.depth);
+  if (REJECTION) {
+    ivec2 first, last;
+    tile_range(t, first, last);
+    uint far_high = 0u;
+    for (int ty = first.y; ty <= last.y; ++ty) {
+      for (int tx = first.x; tx <= last.x; ++tx) {
+        far_high = max(far_high, tile_far[uint(ty) * frame.tiles.x + uint(tx)]);
+      }
+    }
+    bool hidden = near_high > far_high;
+    // One atomic per subgroup: per-thread atomics on one address would serialize.
+    uint n = subgroupBallotBitCount(subgroupBallot(hidden));
+    if (n > 0u && subgroupElect()) atomicAdd(counters[batch.index].rejected_small, n);
+    if (hidden) return;
+  }
   Thresholds h = thresholds_of(t);
   // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
   Edges step_x, step_y;
@@ -39,10 +61,12 @@ void main() {
         if (!is_covered(es, h)) continue;
         uint p = pixel_index(ivec2(x, y));
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint64_t key = visibility_key(depth_at(t, es), t.id);
         uint v = sample_index(p, s);
         // A plain read first skips most atomics; a stale value is never below the true one.
-        if (visibility[v] > key) atomicMin(visibility[v], key);
+        uint64_t current = visibility[v];
+        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
+        uint64_t key = visibility_key(depth_at(t, es), t.id);
+        if (current > key) atomicMin(visibility[v], key);
       }
       e.e0 += step_x.e0;
       e.e1 += step_x.e1;

@@ -260,6 +260,49 @@ TEST(ObjImportGeometry, FileNormalsAreNormalized) {
   EXPECT_EQ(m.normals, (std::vector<glm::vec3>{{0, 0, 1}, {0.6f, 0, 0.8f}, {0, -1, 0}}));
 }
 
+// The scan runs up to a chunk ahead of tinyobjloader; what it tells the conversion (smoothing
+// groups, the lines of polygons) must reach the faces it belongs to. A grid of n x n quads in
+// the plane z = 0, several chunks long: its first n/2 rows smooth (one vertex per position),
+// the rest flat (four vertices per quad), then a self-intersecting polygon with no ear.
+TEST(ObjImportChunks, SmoothingGroupsAndPolygonLinesFollowTheirFaces) {
+  const int n = 300;
+  std::string text;
+  size_t lines = 0;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i, ++lines) {
+      text += "v " + std::to_string(i) + ".5 " + std::to_string(j) + ".25 0\n";
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    if (j == 0 || j == n / 2) {
+      text += j == 0 ? "s 1\n" : "s off\n";
+      ++lines;
+    }
+    for (int i = 0; i < n; ++i, ++lines) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, c = b + n + 1, d = a + n + 1;
+      text += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " +
+              std::to_string(d) + "\n";
+    }
+  }
+  // A pentagon whose path crosses itself twice: (3,2) (0,1) (3,3) (1,0) (2,1).
+  text += "v 3 2 1\nv 0 1 1\nv 3 3 1\nv 1 0 1\nv 2 1 1\n";
+  lines += 5;
+  text += "f -5 -4 -3 -2 -1\n";
+  ++lines;
+  ASSERT_GT(text.size(), size_t(3) << 20);
+  const ImportedModel model = import_text("chunks_smooth.obj", text);
+  ASSERT_EQ(model.scene.meshes.size(), 1u);
+  const Mesh& mesh = model.scene.meshes[0];
+  const size_t grid_vertices = size_t(n / 2 + 1) * (n + 1) + size_t(4) * (n / 2) * n;
+  EXPECT_EQ(mesh.positions.size(), grid_vertices + 5);
+  EXPECT_EQ(mesh.triangle_count(), size_t(2) * n * n + 3);
+  for (size_t v = 0; v < grid_vertices; ++v) ASSERT_EQ(mesh.normals[v], glm::vec3(0, 0, 1)) << v;
+  ASSERT_EQ(model.warnings.size(), 1u);
+  EXPECT_EQ(model.warnings[0],
+            "'" + test::output_path("chunks_smooth.obj") + "' line " + std::to_string(lines) +
+                ": the polygon intersects itself; its triangulation is arbitrary");
+}
+
 // Two triangles of area 1/2 on the edge (0,0,0)-(0,1,0), one facing +z, one facing +x.
 const char* const kTent =
     "v 0 0 0\nv 0 1 0\nv -1 0 0\nv 0 0 -1\n"
@@ -279,6 +322,38 @@ TEST(ObjImportGeometry, SmoothingGroupsShareNormals) {
   ASSERT_EQ(flat.positions.size(), 6u);
   EXPECT_EQ(flat.normals, (std::vector<glm::vec3>{
                               {0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}));
+}
+
+// Smoothing groups reach across shapes: the tent's two faces in two groups (`g`) still share
+// the normal (h, 0, h) at the ridge, the sum of +z and +x, though the second face comes after
+// the first shape's mesh was made.
+TEST(ObjImportGeometry, SmoothingGroupsSpanShapes) {
+  const ImportedModel model =
+      import_text("smooth_shapes.obj",
+                  "s 1\nv 0 0 0\nv 0 1 0\nv -1 0 0\nv 0 0 -1\ng a\nf 3 1 2\ng b\nf 1 4 2\n");
+  ASSERT_EQ(model.scene.meshes.size(), 2u);
+  const float h = float(std::sqrt(0.5));
+  const Mesh& a = model.scene.meshes[0];
+  const Mesh& b = model.scene.meshes[1];
+  ASSERT_EQ(a.positions, (std::vector<glm::vec3>{{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}}));
+  ASSERT_EQ(b.positions, (std::vector<glm::vec3>{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}}));
+  const std::vector<glm::vec3> expected_a{{0, 0, 1}, {h, 0, h}, {h, 0, h}};
+  const std::vector<glm::vec3> expected_b{{h, 0, h}, {1, 0, 0}, {h, 0, h}};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(glm::distance(a.normals[i], expected_a[i]), 0.0f, 1e-6f) << i;
+    EXPECT_NEAR(glm::distance(b.normals[i], expected_b[i]), 0.0f, 1e-6f) << i;
+  }
+}
+
+// Faces may refer to vertices and normals defined further down; a face after them, by negative
+// indices, refers to the same corners, so it shares their vertices, in first-use order.
+TEST(ObjImportGeometry, FacesBeforeTheirVertices) {
+  const Mesh m = only_mesh("forward.obj",
+                           "f 1//1 2//1 3//1\nf 2//1 4//1 3//1\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                           "v 1 1 0\nvn 0 0 2\nf -4//-1 -3//-1 -2//-1\n");
+  EXPECT_EQ(m.positions, (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}));
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 0, 1, 2}));
+  EXPECT_EQ(m.normals, std::vector<glm::vec3>(4, glm::vec3(0, 0, 1)));
 }
 
 // Ns -> roughness = (2 / (Ns + 2))^(1/4): Ns = 30 gives 16^(-1/4) = 0.5, Ns = 510 gives

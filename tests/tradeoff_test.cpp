@@ -62,6 +62,13 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   for (const KnobSetting& t : tiles) EXPECT_TRUE(t.speed_only) << t.label;
   EXPECT_EQ(tiles[0].renderer.tile_size, 8u);
   EXPECT_TRUE(tiles[1].is_default);
+  // So does depth rejection: off, then on (the default).
+  const std::vector<KnobSetting> rejection = knob_settings("depth-rejection", frame, options);
+  ASSERT_EQ(rejection.size(), 2u);
+  for (const KnobSetting& r : rejection) EXPECT_TRUE(r.speed_only) << r.label;
+  EXPECT_FALSE(rejection[0].renderer.depth_rejection);
+  EXPECT_TRUE(rejection[1].renderer.depth_rejection);
+  EXPECT_TRUE(rejection[1].is_default);
   try {
     knob_settings("msaa", frame, options);
     FAIL() << "an unknown knob must throw";
@@ -106,18 +113,19 @@ TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
 TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const std::string base = test::output_path("tradeoff");
   std::string out;
-  const std::string command = std::string(TESSERA_BINARY) +
-                              " tradeoff --device lavapipe --validate --scene spheres --knob "
-                              "brdf,small-triangle,tile-size --size 48x48 --repeat 1 --rounds 1 "
-                              "--truth-samples 4 --warmup 1 --warmup-ms 1 --json " +
-                              base + ".json --chart " + base + ".svg";
+  const std::string command =
+      std::string(TESSERA_BINARY) +
+      " tradeoff --device lavapipe --validate --scene spheres --knob "
+      "brdf,small-triangle,tile-size,depth-rejection --size 48x48 --repeat 1 --rounds 1 "
+      "--truth-samples 4 --warmup 1 --warmup-ms 1 --json " +
+      base + ".json --chart " + base + ".svg";
   ASSERT_EQ(test::run_command(command, out), 0) << out;
   std::ifstream f(base + ".json");
   ASSERT_TRUE(f) << base << ".json";
   const nlohmann::json j = nlohmann::json::parse(f);
   EXPECT_EQ(j["width"], 48);
   const auto& points = j["points"];
-  ASSERT_EQ(points.size(), 12u);
+  ASSERT_EQ(points.size(), 14u);
   // The truth shades with filament and energy compensation: that setting's interior error
   // (shading alone, edges apart) must be the lowest of the BRDF knob's, and well below
   // Blinn-Phong's, which is a different model altogether.
@@ -134,13 +142,14 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   }
   EXPECT_LT(filament_ec, lowest_other) << out;
   EXPECT_LT(filament_ec, 0.5 * blinn) << out;
-  // The small-triangle threshold and the tile size trade speed only: every image equals the
-  // default's.
+  // The small-triangle threshold, the tile size and depth rejection trade speed only: every
+  // image equals the default's.
   for (const auto& p : points) {
     // Every setting warmed up once (one round) for at least --warmup frames.
     ASSERT_EQ(p["warmups"].size(), 1u) << p.dump();
     EXPECT_GE(p["warmups"][0]["frames"].get<int>(), 1) << p.dump();
-    if (p["knob"] != "small-triangle" && p["knob"] != "tile-size") continue;
+    if (p["knob"] != "small-triangle" && p["knob"] != "tile-size" && p["knob"] != "depth-rejection")
+      continue;
     EXPECT_TRUE(p["identical_to_default"].get<bool>()) << p.dump();
     EXPECT_GT(p["gpu_ms"]["median"].get<double>(), 0.0);
   }

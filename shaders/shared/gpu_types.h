@@ -90,7 +90,10 @@ using glm::vec4;
 #define TS_BINDING_LOD_SUMS 29     // triangles per TS_LOD_GROUP_SIZE objects, then their scan
 #define TS_BINDING_LOD_DRAWS 30    // VkDrawIndexedIndirectCommand per object (hardware baseline)
 #define TS_BINDING_HDR_TEXTURE 31  // the HDR image again, sampled: what the resolve pass reads
-#define TS_BINDING_COUNT 32
+// Per screen tile: an upper bound on the high word of every visibility key of the tile's
+// samples (hierarchical depth rejection, raster_common.glsl), all ones when nothing is known.
+#define TS_BINDING_TILE_FAR 32
+#define TS_BINDING_COUNT 33
 
 // GpuBatch.flags
 #define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
@@ -108,10 +111,11 @@ using glm::vec4;
 #define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
 #define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
 #define TS_SPEC_TILE_SIZE 10    // tile side in px (RendererOptions::tile_size): binning, raster_tiles
-#define TS_SPEC_AA_COVERAGE 11  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
+#define TS_SPEC_DEPTH_REJECTION 11  // RendererOptions::depth_rejection: fill, raster_tiles, raster_small
+#define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 12
+#define TS_SPEC_LIGHT_COUNT_BASE 13
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -315,6 +319,12 @@ struct GpuCounters {
   uint lod_triangles;     // level of detail: triangle instances of this batch
   uint lod_total;         // level of detail, batch 0's slot: triangle instances of the frame
   uvec4 setup_dispatch;   // level of detail: VkDispatchIndirectCommand for setup (xyz)
+  // Hierarchical depth rejection: tile-list entries raster_tiles skipped without testing a
+  // pixel, and small triangles raster_small skipped without walking their box, each because
+  // its nearest depth lies behind everything already drawn in its tile(s).
+  uint rejected_entries;
+  uint rejected_small;
+  uvec2 pad_rejected;  // std430 rounds the array stride to 16 bytes
 };
 
 #ifdef __cplusplus
@@ -383,7 +393,8 @@ static_assert(offsetof(GpuBrdfSample, base_color) == 48);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
-static_assert(sizeof(GpuCounters) == 112);
+static_assert(sizeof(GpuCounters) == 128);
+static_assert(offsetof(GpuCounters, rejected_entries) == 112);
 static_assert(offsetof(GpuCounters, lod_triangles) == 88);
 static_assert(offsetof(GpuCounters, setup_dispatch) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
