@@ -53,6 +53,7 @@ struct Specialization {
   VkBool32 lod = VK_FALSE;
   uint32_t tile_size = TS_TILE_SIZE;                         // RendererOptions::tile_size
   VkBool32 depth_rejection = VK_TRUE;                        // RendererOptions::depth_rejection
+  uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 

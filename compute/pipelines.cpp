@@ -39,7 +39,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_OUTPUT_BGRA, offsetof(Specialization, output_bgra), sizeof(VkBool32)},
       {TS_SPEC_LOD, offsetof(Specialization, lod), sizeof(VkBool32)},
       {TS_SPEC_TILE_SIZE, offsetof(Specialization, tile_size), sizeof(uint32_t)},
-      {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)}};
+      {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)},
+      {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -64,6 +65,7 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
           .uv1_maps = v.uv1_maps,
           .samples = v.samples,
+          .aa_coverage = v.aa_coverage,
           .light_counts = v.light_counts};
 }
 

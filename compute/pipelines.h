@@ -50,6 +50,7 @@ struct ShadeVariant {
   bool ibl;
   uint32_t uv1_maps;
   uint32_t samples = 1;  // per pixel
+  uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage, with samples > 1
   auto operator<=>(const ShadeVariant&) const = default;
 };
 

@@ -518,12 +518,19 @@ bool compensates(const FrameSettings& settings) {
   return settings.energy_compensation && settings.brdf != Brdf::blinn_phong;
 }
 
+// TS_AA_COVERAGE_* of `settings`: a specialization constant, so that the count's pipelines
+// carry no analytic code (a uniform branch around it made lavapipe's 4-sample shading 4x slower).
+uint32_t aa_coverage_id(const FrameSettings& settings) {
+  return settings.aa_coverage == AaCoverage::analytic ? TS_AA_COVERAGE_ANALYTIC
+                                                      : TS_AA_COVERAGE_COUNT;
+}
+
 // The shading variant of the current scene for `settings` (with RendererOptions::
 // specialize_lights).
 ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settings) {
   return {uint32_t(settings.brdf), compensates(settings),   s.uploaded.light_counts,
           s.uploaded.texture_maps, s.env.source != nullptr, s.uploaded.uv1_maps,
-          settings.samples};
+          settings.samples,        aa_coverage_id(settings)};
 }
 
 }  // namespace
@@ -555,14 +562,17 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
       pipeline = create_compute_pipeline(s.ctx, s.pipelines.layout, info.shader, info.spec);
     return pipeline;
   }
-  return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader,
-                          kPipelines[size_t(generic)].spec, settings.samples);
+  Specialization spec = kPipelines[size_t(generic)].spec;
+  spec.aa_coverage = aa_coverage_id(settings);
+  return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader, spec,
+                          settings.samples);
 }
 
 VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader,
                             Specialization spec, uint32_t samples) {
   auto [it, inserted] = s.sampled_pipelines.try_emplace(
-      std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE, spec.lod == VK_TRUE),
+      std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE, spec.lod == VK_TRUE,
+                      spec.aa_coverage),
       VK_NULL_HANDLE);
   if (inserted) {
     spec.samples = samples;

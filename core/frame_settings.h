@@ -31,6 +31,13 @@ inline double hdr_max(HdrFormat format) {
   return format == HdrFormat::fp16 ? TS_MAX_HALF : double(std::numeric_limits<float>::max());
 }
 
+/// How anti-aliasing weighs the triangles of a pixel whose samples disagree
+/// (docs/architecture.md, "Anti-aliasing").
+enum class AaCoverage {
+  count,     // by the fraction of the pixel's samples each holds
+  analytic,  // one triangle and the background: by its outline coverage (shaders/coverage.glsl)
+};
+
 struct FrameSettings {
   uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
   uint32_t height = 512;
@@ -56,8 +63,12 @@ struct FrameSettings {
   float lod_error_px = 0.5f;
   /// Anti-aliasing: visibility samples per pixel, 1, 4, 8 or 16, at the fixed positions of
   /// shaders/shared/constants.h (TS_SAMPLES_*); each distinct triangle of a pixel is shaded
-  /// once and weighted by the samples it covers (docs/architecture.md, "Anti-aliasing").
+  /// once and weighted by its coverage (aa_coverage; docs/architecture.md, "Anti-aliasing").
   uint32_t samples = 1;
+  /// With samples > 1: weigh a pixel's triangles by their share of its samples (the default),
+  /// or, where its samples see one triangle and the background, by the triangle's outline
+  /// coverage (analytic; docs/tradeoffs.md says why it is not the default).
+  AaCoverage aa_coverage = AaCoverage::count;
 };
 
 /// Throws Error naming `samples` unless it is 1, 4, 8 or 16.

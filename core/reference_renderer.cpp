@@ -12,6 +12,7 @@
 
 #include "core/check.h"
 #include "core/lod.h"
+#include "core/pixel_coverage.h"
 #include "core/reference_brdf.h"
 #include "core/texture.h"
 #include "shaders/shared/constants.h"
@@ -931,12 +932,29 @@ void set_owner(const SampleHit* hits, size_t n, std::vector<std::pair<uint32_t, 
   }
 }
 
+// Triangle instance `id` as the rasterizer saw it, relative to pixel (x, y), in pixels: clipped
+// to the near plane and guard band, its corners snapped to the 1/kSubpixelOne px grid (what
+// shaders/coverage.glsl rebuilds).
+std::vector<dvec2> pixel_polygon(const ShadeContext& c, uint32_t id, int64_t x, int64_t y) {
+  const Instance& inst = instance_of(c.instances, id);
+  std::vector<dvec2> corners;
+  const double one = double(kSubpixelOne);
+  for (const dvec4& corner : clipped_polygon(c.cam, clip_coords(c.cam, inst, id))) {
+    const dvec2 p = to_pixels(c.cam, corner);
+    corners.push_back(dvec2(std::floor(p.x * one + 0.5) - double(x * kSubpixelOne),
+                            std::floor(p.y * one + 0.5) - double(y * kSubpixelOne)) /
+                      one);
+  }
+  return corners;
+}
+
 // Renders rows [y0, y1) with the compute path's anti-aliasing (FrameSettings::samples > 1),
 // as docs/architecture.md ("Anti-aliasing") states it: each distinct id among a pixel's
 // samples, in increasing order with the empty one last, is shaded once, at the pixel centre if
 // it holds every sample and else at the mean of its samples' positions; its radiance, exposed
 // and clamped to the fp16 maximum as the compute path stores it, is weighted by its share of
-// the samples.
+// the samples, or, under analytic coverage where they see one triangle and the background, by
+// its outline coverage (outline_coverage).
 void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& tris, uint32_t y0,
                       uint32_t y1, ReferenceFrame& f) {
   const FrameSettings& frame = c.settings.frame;
@@ -946,6 +964,9 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
   std::vector<SampleHit> hits(size_t(w) * n);
   std::vector<std::pair<uint32_t, uint32_t>> ids;
   std::vector<uint32_t> order(n);
+  std::vector<uint32_t> ids_held, held;  // per group of the pixel's triangles
+  std::vector<dvec3> colours;
+  std::vector<dvec2> empty_points, covered_points;
   for (uint32_t y = y0; y < y1; ++y) {
     std::fill(hits.begin(), hits.end(), SampleHit{});
     rasterize_samples(tris, y, pattern, hits);
@@ -957,21 +978,50 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
       for (uint32_t s = 0; s < n; ++s) order[s] = s;
       std::stable_sort(order.begin(), order.end(),
                        [&](uint32_t a, uint32_t b) { return px[a].id < px[b].id; });
-      dvec3 sum(0.0);
+      ids_held.clear();
+      held.clear();
+      colours.clear();
+      empty_points.clear();
+      covered_points.clear();
+      uint32_t empty = 0;
+      dvec3 empty_colour(0.0);
       for (uint32_t k = 0; k < n;) {
         uint32_t end = k;
         dvec2 mean(0.0);
         while (end < n && px[order[end]].id == px[order[k]].id) {
           mean += pattern.point(x, y, order[end]);
+          (px[order[end]].id == kNoTriangle ? empty_points : covered_points)
+              .push_back(pattern.point(x, y, order[end]) - dvec2(x, y));
           ++end;
         }
         const uint32_t count = end - k;
         const dvec2 point = count == n ? dvec2(x + 0.5, y + 0.5) : mean / double(count);
         const dvec3 radiance = shade_sample(c, {}, px[order[k]], point.x, point.y, 1.0);
-        sum +=
-            glm::min(radiance * exposure, dvec3(hdr_max(frame.hdr_format))) * (double(count) / n);
+        const dvec3 stored = glm::min(radiance * exposure, dvec3(hdr_max(frame.hdr_format)));
+        const uint32_t id = px[order[k]].id;
+        if (id == kNoTriangle) {
+          empty = count;
+          empty_colour = stored;
+        } else {
+          ids_held.push_back(id);
+          held.push_back(count);
+          colours.push_back(stored);
+        }
         k = end;
       }
+      std::vector<double> weights(held.size() + 1);
+      for (size_t g = 0; g < held.size(); ++g) weights[g] = double(held[g]) / n;
+      weights.back() = double(empty) / n;
+      // Analytic coverage where the samples see one triangle and the background: the
+      // triangle's outline coverage if it has an outline edge and an area there.
+      if (frame.aa_coverage == AaCoverage::analytic && held.size() == 1 && empty > 0) {
+        const double covered =
+            outline_coverage(pixel_polygon(c, ids_held[0], x, y), empty_points, covered_points);
+        if (covered > 0.0) weights = {covered, 1.0 - covered};
+      }
+      dvec3 sum(0.0);
+      for (size_t g = 0; g < held.size(); ++g) sum += colours[g] * weights[g];
+      sum += empty_colour * weights.back();
       resolve_pixel(frame, sum / exposure, f.hdr.pixels[i], f.ldr.pixels[i]);
     }
   }

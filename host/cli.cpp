@@ -126,6 +126,17 @@ CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& he
       }));
 }
 
+// --aa-coverage: how anti-aliasing weighs a pixel's triangles (FrameSettings::aa_coverage).
+void add_aa_coverage(CLI::App& app, AaCoverage& coverage) {
+  add_choice(app, "--aa-coverage", coverage,
+             {{"count", AaCoverage::count}, {"analytic", AaCoverage::analytic}},
+             "with --samples above 1: count (default)\n"
+             "weighs each triangle of a pixel by its share\n"
+             "of the samples; analytic, where they see one\n"
+             "triangle and the background, by the pixel's\n"
+             "area inside its outline edges");
+}
+
 CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {
   auto set = [&width, &height](const std::string& text) {
     std::tie(width, height) = read_size(text);
@@ -230,6 +241,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
               "anti-aliasing: visibility samples per pixel,\n"
               "1 (default), 4, 8 or 16; each triangle in a\n"
               "pixel is shaded once, weighted by its samples");
+  add_aa_coverage(app, a.frame.aa_coverage);
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
@@ -281,6 +293,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
               "anti-aliasing samples per pixel, 1 (default),\n"
               "4, 8 or 16; compute and reference backends\n"
               "only (the default backends are then compute)");
+  add_aa_coverage(app, a.aa_coverage);
   app.add_option("--segments", a.segments,
                  "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
       ->type_name("S")
@@ -411,8 +424,9 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
-                 "env-samples, samples, hdr, small-triangle,\n"
-                 "tile-size, depth-rejection (docs/tradeoffs.md)")
+                 "env-samples, samples, aa-coverage, hdr,\n"
+                 "small-triangle, tile-size, depth-rejection\n"
+                 "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
       ->allow_extra_args(false)

@@ -1,4 +1,5 @@
 // The knobs of `tessera tradeoff` and their settings (docs/tradeoffs.md says why these).
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -16,6 +17,7 @@ const std::vector<KnobInfo>& knobs() {
       {"env-size", "side of the prefiltered specular cube, 16..256 texels"},
       {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
       {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
+      {"aa-coverage", "anti-aliasing weights (at 4 samples if 1): count, analytic"},
       {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
@@ -124,6 +126,17 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
           base(knob, n == 1 ? "1 sample" : std::to_string(n) + " samples", frame, options);
       s.frame.samples = n;
       s.is_default = n == frame.samples;
+      out.push_back(s);
+    }
+  } else if (knob == "aa-coverage") {
+    // At the command line's sample count, or 4 where that is 1 (one sample has no weights).
+    const uint32_t n = std::max(frame.samples, 4u);
+    for (const AaCoverage c : {AaCoverage::count, AaCoverage::analytic}) {
+      const char* name = c == AaCoverage::count ? "count" : "analytic";
+      KnobSetting s = base(knob, std::to_string(n) + " samples, " + name, frame, options);
+      s.frame.samples = n;
+      s.frame.aa_coverage = c;
+      s.is_default = c == frame.aa_coverage;  // the command line's mode, at its samples or 4
       out.push_back(s);
     }
   } else if (knob == "small-triangle") {

@@ -42,35 +42,7 @@ void main() {
     triangle_clip_coords(slot, id, c);
     atomicAdd(counters[batch.index].clipped, 1u);
     vec4 poly[9];
-    vec4 next_poly[9];
-    int n = 3;
-    poly[0] = c[0];
-    poly[1] = c[1];
-    poly[2] = c[2];
-    for (int plane = 0; plane < 5 && n > 0; ++plane) {
-      int m = 0;
-      for (int k = 0; k < n; ++k) {
-        vec4 a = poly[k];
-        vec4 b = poly[(k + 1) % n];
-        float da = plane_distance(a, plane);
-        float db = plane_distance(b, plane);
-        if (da >= 0.0) next_poly[m++] = a;
-        if ((da >= 0.0) != (db >= 0.0)) {
-          // An edge shared by two triangles is walked a->b by one and b->a by the other. The
-          // crossing is computed from its inside end towards its outside end, whichever way
-          // the edge is walked, so that both triangles get the same bits and no sample on the
-          // edge is covered twice or missed (docs/architecture.md, "Coverage rules").
-          bool a_in = da >= 0.0;
-          vec4 p_in = a_in ? a : b;
-          vec4 p_out = a_in ? b : a;
-          float d_in = a_in ? da : db;
-          float d_out = a_in ? db : da;
-          next_poly[m++] = mix(p_in, p_out, d_in / (d_in - d_out));
-        }
-      }
-      n = m;
-      for (int k = 0; k < n; ++k) poly[k] = next_poly[k];
-    }
+    int n = clip_to_view(c, poly);
     bool mirrored = objects[slot].mirrored != 0u;
     bool double_sided = objects[slot].double_sided != 0u;
     for (int k = 1; k + 1 < n; ++k) emit(poly[0], poly[k], poly[k + 1], id, mirrored, double_sided);

@@ -3,6 +3,8 @@
 // prepare_triangle only decides; the callers count and append, so that the setup pass can do
 // it once per subgroup instead of once per thread.
 
+#include "view_clip.glsl"
+
 // What setup decided for one triangle.
 const uint OUTCOME_NONE = 0u;          // no triangle (thread past the batch's end)
 const uint OUTCOME_NONFINITE = 1u;
@@ -13,27 +15,6 @@ const uint OUTCOME_CLIP = 5u;          // crosses the near plane or the guard ba
 const uint OUTCOME_SMALL = 6u;         // rasterize one thread per triangle
 const uint OUTCOME_BIG = 7u;           // bin into tiles
 
-// Clip-space position of the corners of triangle instance `id` of object slot `slot`.
-void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
-  GpuObject o = objects[slot];
-  uvec3 vi = triangle_vertices(o, id);
-  mat4 to_clip = frame.view_proj * o.model;
-  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
-}
-
-// Signed distance to clip plane `plane` (inside >= 0): the near plane, then the guard band.
-float plane_distance(vec4 c, int plane) {
-  float gx = frame.guard_band.x;
-  float gy = frame.guard_band.y;
-  switch (plane) {
-    case 0: return c.w - frame.near_plane;
-    case 1: return gx * c.w - c.x;
-    case 2: return gx * c.w + c.x;
-    case 3: return gy * c.w - c.y;
-    default: return gy * c.w + c.y;
-  }
-}
-
 // Snaps a triangle whose corners are in front of the near plane and inside the guard band,
 // culls it by facing and by what it covers, and fills `t`. `mirrored`: its object's transform
 // has a negative determinant (GpuObject.mirrored); `double_sided`: its material is never culled
@@ -41,14 +22,12 @@ float plane_distance(vec4 c, int plane) {
 // _BIG.
 uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided,
                       out RasterTri t) {
-  vec2 size = vec2(frame.image_size);
   float near_plane = frame.near_plane;
   vec4 c[3] = vec4[3](c0, c1, c2);
   ivec2 v[3];
   float d[3];
   for (int k = 0; k < 3; ++k) {
-    vec2 screen = (c[k].xy / c[k].w * 0.5 + 0.5) * size;
-    v[k] = ivec2(floor(screen * float(TS_SUBPIXEL_ONE) + 0.5));
+    v[k] = snap_to_subpixels(c[k]);
     d[k] = near_plane / c[k].w;
   }
   int64_t area = edge_function(v[0], v[1], v[2]);

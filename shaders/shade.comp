@@ -9,10 +9,15 @@
 #include "bindings.glsl"
 #include "material.glsl"
 #include "lighting.glsl"
-#include "samples.glsl"
+#include "raster_common.glsl"
+#include "coverage.glsl"
 #include "display.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// How anti-aliasing weighs a pixel's triangles (TS_AA_COVERAGE_*): a specialization constant,
+// so that the count's pipelines carry none of the analytic code.
+layout(constant_id = TS_SPEC_AA_COVERAGE) const uint AA_COVERAGE = TS_AA_COVERAGE_COUNT;
 
 // Unit ray through the point `pixel_point` of the image, in pixels.
 vec3 camera_ray_at(vec2 pixel_point) {
@@ -153,19 +158,26 @@ void write_pixel(ivec2 pixel, vec3 value) {
 
 // Anti-aliased pixels (SAMPLES > 1): each distinct triangle among a pixel's samples, and the
 // background if a sample is empty, is shaded once, at the pixel centre if it holds every
-// sample and else at the mean of its samples (inside the triangle, which is convex), weighted by
-// the fraction of samples it holds. The pixels of the workgroup first list these shading
-// requests in shared memory, then all threads shade the list together, a request per thread
-// in turn, so that a pixel with four triangles does not keep the others of its SIMD group
-// waiting for four shading evaluations while most have one; each pixel then sums its own
-// requests' colours in increasing id, the empty id (all ones) last, so the sum is the same
-// whatever order the samples were written or the requests listed in.
+// sample and else at the mean of its samples (inside the triangle, which is convex). Its weight
+// is the fraction of samples it holds, except under analytic coverage (TS_AA_COVERAGE_ANALYTIC)
+// in a pixel whose samples see one triangle and the background, where the triangle takes its
+// outline coverage (outline_coverage) if it has an outline edge, the background the rest. The pixels of the workgroup first list these shading requests in shared
+// memory, then all threads shade the list together, a request per thread in turn, so that a
+// pixel with four triangles does not keep the others of its SIMD group waiting for four
+// shading evaluations while most have one; each pixel then sums its own requests' colours in
+// increasing id, the empty id (all ones) last, so the sum is the same whatever order the
+// samples were written or the requests listed in.
 const uint GROUP_PIXELS = 64u;  // local_size_x * local_size_y
 const uint MAX_REQUESTS = GROUP_PIXELS * SAMPLES;
 // A request: (id, point.x, point.y) as written by its pixel, then its stored colour (as bits)
 // written over it by the thread that shades it. Three arrays of words rather than one of uvec3,
 // which an implementation may pad to 16 bytes: 12 KiB at 16 samples.
 shared uint request_words[3][MAX_REQUESTS];
+// Per request: NEEDS_COVERAGE | the pixel's empty samples (a bit each) where its pixel takes
+// the outline coverage of the request's triangle (analytic coverage), else 0; the thread that
+// shades it writes the coverage (float bits) over it.
+shared uint request_coverage[MAX_REQUESTS];
+const uint NEEDS_COVERAGE = 0x80000000u;  // above the sample bits (SAMPLES <= 16)
 
 void put_request(uint slot, uvec3 words) {
   for (uint k = 0u; k < 3u; ++k) request_words[k][slot] = words[k];
@@ -183,6 +195,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
   uint slots[SAMPLES];
   float weights[SAMPLES];
   uint groups = 0u;
+  uint empty_mask = 0u;
   if (inside) {
     uint base = sample_index(pixel_index(pixel), 0u);
     uint ids[SAMPLES];
@@ -199,6 +212,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
         if (ids[s] == id) {
           count++;
           offsets += sample_offset(s);
+          if (id == 0xFFFFFFFFu) empty_mask |= 1u << s;
         }
       }
       if (count == 0u) break;
@@ -212,6 +226,11 @@ void resolve_samples(ivec2 pixel, bool inside) {
       if (id == 0xFFFFFFFFu) break;
       next = id + 1u;
     }
+    // One triangle and the background (listed last): the triangle's outline coverage is wanted.
+    bool analytic = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u;
+    for (uint g = 0u; g < groups && AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC; ++g) {
+      request_coverage[slots[g]] = analytic && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
+    }
   }
   barrier();
 
@@ -219,12 +238,29 @@ void resolve_samples(ivec2 pixel, bool inside) {
   for (uint r = thread; r < total; r += GROUP_PIXELS) {
     uvec3 q = get_request(r);
     vec2 point = uintBitsToFloat(q.yz);
-    vec3 color = q.x == 0xFFFFFFFFu ? background(point) : shade_triangle(q.x, point);
+    bool empty = q.x == 0xFFFFFFFFu;
+    vec3 color = empty ? background(point) : shade_triangle(q.x, point);
     put_request(r, floatBitsToUint(stored(color)));
+    // The request's point lies inside its pixel (the mean of some of its samples). Tested on
+    // the constant first, so that the count's pipelines fold the clipping code away.
+    uint wanted = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC ? request_coverage[r] : 0u;
+    if (wanted != 0u && !empty) {
+      float covered = outline_coverage(q.x, ivec2(floor(point)), wanted & ~NEEDS_COVERAGE);
+      request_coverage[r] = floatBitsToUint(covered);
+    }
   }
   barrier();
 
   if (!inside) return;
+  if (AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u) {
+    // Without an outline edge (-1) or area (0), the counts stay.
+    float covered = uintBitsToFloat(request_coverage[slots[0]]);
+    if (covered > 0.0) {
+      weights[0] = covered;
+      weights[groups - 1u] = 1.0 - covered;  // the background's (index 1, written so that the
+                                             // 1-sample compile sees no constant index past 0)
+    }
+  }
   vec3 sum = vec3(0.0);
   for (uint g = 0u; g < groups; ++g) sum += uintBitsToFloat(get_request(slots[g])) * weights[g];
   write_pixel(pixel, sum);

@@ -34,11 +34,16 @@ VulkanTest::Frame VulkanTest::render(const Scene& scene, uint32_t width, uint32_
 
 VulkanTest::Frame VulkanTest::render(Renderer& renderer, const Scene& scene, uint32_t width,
                                      uint32_t height, uint32_t samples, bool coverage) {
-  renderer.set_scene(scene);
   FrameSettings settings;
   settings.width = width;
   settings.height = height;
   settings.samples = samples;
+  return render(renderer, scene, settings, coverage);
+}
+
+VulkanTest::Frame VulkanTest::render(Renderer& renderer, const Scene& scene,
+                                     const FrameSettings& settings, bool coverage) {
+  renderer.set_scene(scene);
   Frame f;
   f.stats = renderer.render(settings);
   f.hdr = renderer.read_hdr();

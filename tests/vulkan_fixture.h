@@ -40,6 +40,9 @@ class VulkanTest : public ::testing::Test {
   /// RendererOptions::debug_coverage, and Frame::coverage is read.
   static Frame render(Renderer& renderer, const Scene& scene, uint32_t width, uint32_t height,
                       uint32_t samples = 1, bool coverage = false);
+  /// The same with every frame setting given (anti-aliasing weights, for one).
+  static Frame render(Renderer& renderer, const Scene& scene, const FrameSettings& settings,
+                      bool coverage = false);
 
  private:
   std::unique_ptr<Context> ctx_;

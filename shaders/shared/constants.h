@@ -80,6 +80,13 @@
 #define TS_BRDF_FILAMENT 1u
 #define TS_BRDF_BLINN_PHONG 2u
 
+// How anti-aliasing (more than one sample per pixel) weighs the triangles of a pixel whose
+// samples disagree (tessera::AaCoverage, specialization constant TS_SPEC_AA_COVERAGE): by the fraction of samples each
+// holds, or, where they see one triangle and the background, by its outline coverage
+// (shaders/coverage.glsl).
+#define TS_AA_COVERAGE_COUNT 0u
+#define TS_AA_COVERAGE_ANALYTIC 1u
+
 // Tone-mapping operators (GpuFrame.tonemap).
 #define TS_TONEMAP_ACES 0u
 #define TS_TONEMAP_REINHARD 1u

@@ -122,9 +122,10 @@ using glm::vec4;
 #define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
 #define TS_SPEC_TILE_SIZE 10    // tile side in px (RendererOptions::tile_size): binning, raster_tiles
 #define TS_SPEC_DEPTH_REJECTION 11  // RendererOptions::depth_rejection: fill, raster_tiles, raster_small
+#define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 12
+#define TS_SPEC_LIGHT_COUNT_BASE 13
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u

@@ -1,0 +1,73 @@
+#include "core/pixel_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera {
+
+namespace {
+
+// Clips the convex polygon `poly` to the half-plane inside(p) >= 0, inside affine in p
+// (one step of Sutherland & Hodgman 1974).
+template <typename Inside>
+std::vector<glm::dvec2> clip_half_plane(const std::vector<glm::dvec2>& poly, Inside inside) {
+  std::vector<glm::dvec2> next;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+    const double da = inside(a), db = inside(b);
+    if (da >= 0) next.push_back(a);
+    if ((da >= 0) != (db >= 0)) next.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return next;
+}
+
+// Twice the signed area of the polygon (the shoelace formula).
+double twice_signed_area(const std::vector<glm::dvec2>& poly) {
+  double twice = 0.0;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const glm::dvec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+    twice += a.x * b.y - a.y * b.x;
+  }
+  return twice;
+}
+
+double cross(glm::dvec2 a, glm::dvec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+
+const std::vector<glm::dvec2> kPixel = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+
+}  // namespace
+
+double area_in_pixel(std::vector<glm::dvec2> corners) {
+  for (int axis = 0; axis < 2; ++axis) {
+    corners = clip_half_plane(corners, [axis](glm::dvec2 p) { return p[axis]; });
+    corners = clip_half_plane(corners, [axis](glm::dvec2 p) { return 1.0 - p[axis]; });
+  }
+  return std::clamp(0.5 * std::abs(twice_signed_area(corners)), 0.0, 1.0);
+}
+
+double outline_coverage(const std::vector<glm::dvec2>& corners,
+                        const std::vector<glm::dvec2>& empty_samples,
+                        const std::vector<glm::dvec2>& covered_samples) {
+  const double orientation = twice_signed_area(corners);
+  if (orientation == 0.0) return 0.0;
+  const double sign = orientation > 0 ? 1.0 : -1.0;
+  std::vector<glm::dvec2> region = kPixel;
+  bool cut = false;
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const glm::dvec2 a = corners[k], b = corners[(k + 1) % corners.size()];
+    const auto inside = [&](glm::dvec2 p) { return sign * cross(b - a, p - a); };
+    const bool faces_empty = std::any_of(empty_samples.begin(), empty_samples.end(),
+                                         [&](glm::dvec2 s) { return inside(s) <= 0.0; });
+    const bool cuts_covered = std::any_of(covered_samples.begin(), covered_samples.end(),
+                                          [&](glm::dvec2 s) { return inside(s) < 0.0; });
+    if (!faces_empty || cuts_covered) continue;
+    region = clip_half_plane(region, inside);
+    cut = true;
+  }
+  if (!cut) return -1.0;
+  return std::clamp(0.5 * std::abs(twice_signed_area(region)), 0.0, 1.0);
+}
+
+}  // namespace tessera

@@ -1,0 +1,67 @@
+// A triangle instance in clip space and its clipping to the near plane and the guard band,
+// shared by the clip pass (which rasterizes what is left) and analytic coverage (coverage.glsl,
+// which measures it). Needs bindings.glsl.
+
+// Clip-space position of the corners of triangle instance `id` of object slot `slot`.
+void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
+  GpuObject o = objects[slot];
+  uvec3 vi = triangle_vertices(o, id);
+  mat4 to_clip = frame.view_proj * o.model;
+  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
+}
+
+// Signed distance to clip plane `plane` (inside >= 0): the near plane, then the guard band.
+float plane_distance(vec4 c, int plane) {
+  float gx = frame.guard_band.x;
+  float gy = frame.guard_band.y;
+  switch (plane) {
+    case 0: return c.w - frame.near_plane;
+    case 1: return gx * c.w - c.x;
+    case 2: return gx * c.w + c.x;
+    case 3: return gy * c.w - c.y;
+    default: return gy * c.w + c.y;
+  }
+}
+
+// Fixed-point (1/TS_SUBPIXEL_ONE px) position of clip-space point `c` in the image: how setup
+// snaps a vertex. `c` is in front of the near plane and inside the guard band.
+ivec2 snap_to_subpixels(vec4 c) {
+  vec2 screen = (c.xy / c.w * 0.5 + 0.5) * vec2(frame.image_size);
+  return ivec2(floor(screen * float(TS_SUBPIXEL_ONE) + 0.5));
+}
+
+// Clips triangle `c` to the near plane and the four guard-band planes (Sutherland & Hodgman
+// 1974, "Reentrant polygon clipping"): the convex polygon left, at most 3 + 5 corners, in
+// `poly`; returns their number (0 if nothing is left).
+int clip_to_view(vec4 c[3], out vec4 poly[9]) {
+  vec4 next_poly[9];
+  int n = 3;
+  poly[0] = c[0];
+  poly[1] = c[1];
+  poly[2] = c[2];
+  for (int plane = 0; plane < 5 && n > 0; ++plane) {
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+      vec4 a = poly[k];
+      vec4 b = poly[(k + 1) % n];
+      float da = plane_distance(a, plane);
+      float db = plane_distance(b, plane);
+      if (da >= 0.0) next_poly[m++] = a;
+      if ((da >= 0.0) != (db >= 0.0)) {
+        // An edge shared by two triangles is walked a->b by one and b->a by the other. The
+        // crossing is computed from its inside end towards its outside end, whichever way
+        // the edge is walked, so that both triangles get the same bits and no sample on the
+        // edge is covered twice or missed (docs/architecture.md, "Coverage rules").
+        bool a_in = da >= 0.0;
+        vec4 p_in = a_in ? a : b;
+        vec4 p_out = a_in ? b : a;
+        float d_in = a_in ? da : db;
+        float d_out = a_in ? db : da;
+        next_poly[m++] = mix(p_in, p_out, d_in / (d_in - d_out));
+      }
+    }
+    n = m;
+    for (int k = 0; k < n; ++k) poly[k] = next_poly[k];
+  }
+  return n;
+}
