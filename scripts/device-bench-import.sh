@@ -15,6 +15,8 @@ bin=$PWD/.device-build
 export LD_LIBRARY_PATH=$bin TESSERA_GLB_BENCH_FILE=$bin/2CylinderEngine.glb
 export TESSERA_OBJ_BENCH_TRIANGLES=${OBJ_TRIANGLES:-10000000}
 work=$(mktemp -d)
+# Packed however the script ends (a time limit keeps what was measured).
+trap 'tar -C "$work" -czf "$out/import.tar.gz" --exclude=./tmp .' EXIT
 export TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
 nproc | tee "$work/nproc.txt"
@@ -48,4 +50,3 @@ for round in 1 2 3; do
 done
 run after textures 'Textures|Mip' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 rm -rf "$TMPDIR"
-tar -C "$work" -czf "$out/import.tar.gz" .

@@ -20,6 +20,8 @@ repeat=${REPEAT:-20}
 source scripts/device-env.sh
 before=$PWD/.device-before
 work=$(mktemp -d)
+# Packed however the script ends (a time limit keeps what was measured).
+trap 'tar -C "$work" -czf "$out/issue13.tar.gz" --exclude=./tmp .' EXIT
 "$bin/tessera" devices | tee "$work/devices.txt"
 # Clocks up before anything is timed.
 "$bin/tessera" bench --device gpu --scene grid --objects 100000 --size "$size" \
@@ -59,7 +61,6 @@ sweep huge 1,4,16,64,256
 "$bin/tessera_minimal_graphics" --device gpu --objects 1,10,49,100,1000,10000,100000 \
   --size "$size" --repeat "$repeat" --runs 3 --warmup-ms 500 --json "$work/minimal.json" \
   --csv "$work/minimal.csv" > "$work/minimal.txt"
-tar -C "$work" -czf "$out/issue13.tar.gz" .
 
 # Summaries: per-pass medians before/after, then each sweep's ratio lines.
 for f in "$work"/pass_after_*.json; do
