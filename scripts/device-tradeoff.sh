@@ -20,7 +20,7 @@ for chart in "$@"; do
                    --size 1920x1080) ;;
     grid) args=(--scene grid --objects 10000 --knob tessellation,lod,samples,small-triangle,tile-size
                 --size 1920x1080) ;;
-    textured) args=(--scene textured --knob anisotropy,brdf,lod,samples --size 480x270 --truth-samples 4) ;;
+    textured) args=(--scene textured --knob anisotropy,brdf,lod,samples --size 256x144 --truth-samples 4) ;;
     *) echo "unknown chart '$chart': spheres, grid or textured" >&2; exit 2 ;;
   esac
   name=tradeoff_h200_${chart}_all
