@@ -99,9 +99,13 @@ constexpr Rung kRungs[] = {
      "gl_InstanceIndex from storage buffers, model and normal matrices"},
     {"baseline_vertex", "baseline_shade_vert", "ladder_varyings_frag", true, true, Data::scene,
      "the baseline's vertex stage: + tangent (with mirroring), uv, uv1: 15 varyings"},
+    {"tessera_brdf", "baseline_shade_vert", "ladder_brdf_frag", true, true, Data::scene,
+     "Tessera's BRDF code (shaders/brdf.glsl: classic Cook-Torrance with its guards) in place "
+     "of the minimal program's, lights and ambient still the minimal program's"},
     {"baseline_shaders", "baseline_shade_vert", "baseline_shade_frag", true, true, Data::scene,
-     "the baseline's fragment stage: Tessera's material and lighting code (numeric guards, "
-     "range fade, occlusion and emissive terms, double-sided test, pre-exposure, fp16 clamp)"},
+     "the baseline's fragment stage: the rest of Tessera's material and lighting code (light "
+     "kinds and falloffs, range fade, light-on-surface and zero-normal guards, occlusion and "
+     "emissive terms, double-sided test, pre-exposure)"},
 };
 constexpr uint32_t kRungCount = uint32_t(std::size(kRungs));
 
@@ -672,13 +676,13 @@ void write_outputs(const Options& o, const Context& ctx, const std::vector<Point
   if (!o.csv.empty()) {
     std::ofstream f(o.csv);
     f << "scene,objects,backend,width,height,triangles_submitted,pixels_shaded,total_ms,min_ms,"
-         "max_ms,runs,run_spread_pct,warmup_frames,warmup_ms,warmup_stable,device,variant\n";
+         "max_ms,runs,run_spread_pct,warmup_frames,warmup_ms,warmup_stable,variant,device\n";
     for (const Point& p : points) {
       f << "yardstick," << p.objects << "," << kRungs[p.rung].name << "," << o.width << ","
         << o.height << "," << p.triangles << "," << p.pixels << "," << p.median_ms << ","
         << p.min_ms << "," << p.max_ms << "," << p.run_ms.size() << "," << p.spread_percent() << ","
-        << p.warmup.frames << "," << p.warmup.ms << "," << (p.warmup.stable ? 1 : 0) << ",\""
-        << ctx.properties.deviceName << "\"," << p.rung << "\n";
+        << p.warmup.frames << "," << p.warmup.ms << "," << (p.warmup.stable ? 1 : 0) << ","
+        << p.rung << ",\"" << ctx.properties.deviceName << "\"\n";
     }
     if (!f) throw Error("cannot write CSV '" + o.csv + "'");
   }
