@@ -14,7 +14,9 @@
 # On the GPU about 4.5 minutes on the H200 (each point warms up >= 1 s, then 50 frames): the
 # 3-second clock warm-up; minimal, compute and hardware at 7 counts x 3 runs and generic at 7
 # (about 2 minutes, most of it the 1-second warm-ups); the ladder's 8 rungs x 5 counts x 3 runs
-# (120 points, about 2.3 minutes). Scene uploads (10^5 spheres) add CPU time.
+# (120 points, about 2.3 minutes). Scene uploads (10^5 spheres) add CPU time. A warm-up whose
+# frame time does not settle stops at 4 x its time: were every ladder point to do so, the
+# ladder would take about 8 minutes (LADDER_WARMUP_MS=500 halves that).
 #
 #   device run: scripts/device-bench-yardstick.sh        (SIZE=WxH to change 1920x1080;
 #                                                        LADDER_OBJECTS=... the ladder's counts)
@@ -24,6 +26,7 @@ out=${OUT:?OUT must name the output folder (the device tool sets it)}
 size=${SIZE:-1920x1080}
 objects=${OBJECTS:-1,10,49,100,1000,10000,100000}
 ladder_objects=${LADDER_OBJECTS:-1,10,49,100,1000}
+ladder_warmup_ms=${LADDER_WARMUP_MS:-1000}
 tag=yardstick_${size}
 source scripts/device-env.sh
 [[ -x $bin/tessera_minimal_graphics ]] ||
@@ -48,8 +51,8 @@ source scripts/device-env.sh
   tee "$out/bench_${tag}_generic.txt"
 
 "$bin/tessera_minimal_graphics" --device gpu --variant all --objects "$ladder_objects" \
-  --size "$size" --repeat 50 --runs 3 --warmup-ms 1000 --json "$out/ladder_$tag.json" \
-  --csv "$out/ladder_$tag.csv" | tee "$out/ladder_$tag.txt"
+  --size "$size" --repeat 50 --runs 3 --warmup-ms "$ladder_warmup_ms" \
+  --json "$out/ladder_$tag.json" --csv "$out/ladder_$tag.csv" | tee "$out/ladder_$tag.txt"
 
 # The short tables: columns of the CSVs by name.
 echo
