@@ -69,7 +69,7 @@ const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double 
 /// a new value, and a table (193 quadratures) per value made a textured ground truth take hours;
 /// the nodes' tables are built once each. Mixing changes E by at most 1.3e-5 against the table
 /// of the exact roughness (filament at roughness 0.08, grazing; 7e-7 for classic), the means by
-/// 3e-7: below the quadrature's own error (docs/accuracy.md, "Energy compensation").
+/// 3e-7: below the quadrature's own error (docs/accuracy.md, "Ground truth").
 struct SpecularAlbedoLookup {
   static constexpr int kNodes = 1024;
   const SpecularAlbedoTable* lower;
