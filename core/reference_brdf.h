@@ -66,7 +66,7 @@ const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double 
 /// The specular albedo at any roughness, as energy compensation reads it: the tables of the two
 /// roughness nodes k / kNodes around it (the lowest node raised to 0.045), mixed linearly by
 /// roughness; at a node, its table alone. A roughness map makes nearly every sample's roughness
-/// a new value, and a table (193 quadratures) per value made a textured ground truth take hours;
+/// a new value, and a table (193 quadratures) per value made a textured ground truth take an hour;
 /// the nodes' tables are built once each. Mixing changes E by at most 1.3e-5 against the table
 /// of the exact roughness (filament at roughness 0.08, grazing; 7e-7 for classic), the means by
 /// 3e-7: below the quadrature's own error (docs/accuracy.md, "Ground truth").

@@ -601,8 +601,8 @@ double srgb_encode(double linear) {  // IEC 61966-2-1
 
 // Calls fn(y0, y1) over blocks of rows that together cover [0, height), on `threads` threads.
 // Blocks are handed out as threads free up: rows cost very unequal amounts (sky against
-// textured spheres), and one contiguous share per thread left most threads idle while the one
-// holding the spheres worked. About 8 blocks per thread keep the per-call setup (the plain
+// textured spheres), and with one contiguous share per thread the others idle while the one
+// holding the costly rows works. About 8 blocks per thread keep the per-call setup (the plain
 // path walks every triangle per call) small.
 template <typename Fn>
 void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
