@@ -108,7 +108,8 @@ void main() {
     uint base = 0u;
     if (n > 0u && subgroupElect()) {
       base = atomicAdd(counters[batch.index].clip_list, n);
-      atomicMax(counters[batch.index].clip_dispatch.x, dispatch_groups(base + n, TS_GROUP_SIZE));
+      if (reaches_new_grain(base, n))
+        atomicMax(counters[batch.index].clip_dispatch.x, grain_dispatch_groups(base + n, TS_GROUP_SIZE));
     }
     clip_slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
   }
@@ -129,8 +130,9 @@ void main() {
   uint base = 0u;
   if (total > 0u && subgroupElect()) {
     base = atomicAdd(counters[batch.index].big_tris, total);
-    atomicMax(counters[batch.index].big_dispatch.x,
-              dispatch_groups(base + total, TS_BIN_ENTRIES_PER_GROUP));
+    if (reaches_new_grain(base, total))
+      atomicMax(counters[batch.index].big_dispatch.x,
+                grain_dispatch_groups(base + total, TS_BIN_ENTRIES_PER_GROUP));
   }
   uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
   if (entries > 0u) store_bin_entries(index, t, first_entry, entries);

@@ -313,8 +313,8 @@ struct GpuRasterTri {
 struct GpuCounters {
   uvec4 small_dispatch;  // VkDispatchIndirectCommand for the per-triangle rasterizer (xyz)
   // VkDispatchIndirectCommand (xyz) for the tile-count and tile-fill passes, a thread per row
-  // of each bin entry: x is raised by setup and clip as they append entries (atomicMax of the
-  // groups the total so far needs), y and z set by setup's first thread.
+  // of each bin entry: x is raised by setup and clip as their appends reach into a new grain of
+  // entries (setup_common.glsl), y and z set by setup's first thread.
   uvec4 big_dispatch;
   uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
