@@ -67,17 +67,20 @@ uint classify(uint slot, uint id, out RasterTri t) {
     slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot); \
   }
 
-// find_object(tri) for a `tri` the same in every active lane, searched by all of them at once:
-// each step every lane loads one object and the ballot of their answers keeps one of
-// (lanes + 1) parts of the range, where a binary search keeps one of 2. With 32 lanes a million
-// objects take 4 steps of dependent loads instead of 20: setup ran at a quarter of its ALU rate
-// on the H200 whichever lane searched (docs/performance.md, "What limits each pass"), so the
-// chain's latency, not its loads, was the cost. The answer, the last object whose first
+// find_object(tri) for a `tri` the same in every lane, searched by all of them at once: each
+// step every lane loads one object and the ballot of their answers keeps one of
+// (gl_SubgroupSize + 1) parts of the range, where a binary search keeps one of 2. With 32 lanes a
+// million objects take 4 steps of dependent loads instead of 20: setup ran at a quarter of its
+// ALU rate on the H200 whichever lane searched (docs/performance.md, "What limits each pass"), so
+// the chain's latency, not its loads, was the cost. The answer, the last object whose first
 // triangle-instance id is <= tri (objects are sorted by it), is unique, so it is find_object's.
+// Every lane of the subgroup must be active (main calls it first, and a workgroup is a whole
+// number of subgroups): an inactive lane would vote "no" in the middle of the "yes" lanes.
+// gl_SubgroupSize rather than a count of the active lanes lets the compiler turn the division
+// into a shift (the subgroup size is a power of two, and a constant of the device).
 uint find_object_in_subgroup(uint tri) {
-  uvec4 present = subgroupBallot(true);
-  uint lanes = subgroupBallotBitCount(present);
-  uint lane = subgroupBallotExclusiveBitCount(present);
+  uint lanes = gl_SubgroupSize;
+  uint lane = gl_SubgroupInvocationID;
   // Invariant: the answer is in [lo, hi), and lo is it unless a later object starts <= tri.
   uint lo = 0u;
   uint hi = frame.object_count;
