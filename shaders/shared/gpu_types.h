@@ -99,7 +99,9 @@ using glm::vec4;
 // Per screen tile: an upper bound on the high word of every visibility key of the tile's
 // samples (hierarchical depth rejection, raster_common.glsl), all ones when nothing is known.
 #define TS_BINDING_TILE_FAR 32
-#define TS_BINDING_COUNT 33
+// Per object: its clip-space transform this frame, view_proj * model (object_clip.comp).
+#define TS_BINDING_OBJECT_CLIP 33
+#define TS_BINDING_COUNT 34
 
 // GpuBatch.flags
 #define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
