@@ -51,8 +51,8 @@ struct Specialization {
   uint32_t samples = 1;  // per pixel (FrameSettings::samples); others are built on first use
   VkBool32 output_bgra = VK_FALSE;
   VkBool32 lod = VK_FALSE;
-  uint32_t tile_size = TS_TILE_SIZE;                         // RendererOptions::tile_size
-  VkBool32 depth_rejection = VK_TRUE;                        // RendererOptions::depth_rejection
+  uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
+  VkBool32 depth_rejection = VK_TRUE;           // RendererOptions::depth_rejection
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
@@ -315,6 +315,7 @@ constexpr BindingInfo kBindings[] = {
     // Only lowered within a frame (every bound stays valid for the later batches).
     {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame,
      0xFFFFFFFFu},
+    {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
 };
 
 constexpr bool binding_table_is_complete() {

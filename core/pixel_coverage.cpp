@@ -70,4 +70,34 @@ double outline_coverage(const std::vector<glm::dvec2>& corners,
   return std::clamp(0.5 * std::abs(twice_signed_area(region)), 0.0, 1.0);
 }
 
+double silhouette_coverage(const std::vector<uint64_t>& seen,
+                           const std::function<std::vector<glm::dvec2>(uint64_t)>& polygon,
+                           const std::function<std::array<uint64_t, 3>(uint64_t)>& neighbours,
+                           size_t max_triangles) {
+  std::vector<uint64_t> listed = {*std::min_element(seen.begin(), seen.end())};
+  std::vector<uint64_t> reached;
+  double facing = 0.0, total = 0.0;
+  for (size_t head = 0; head < listed.size(); ++head) {
+    const std::vector<glm::dvec2> corners = polygon(listed[head]);
+    const double twice = twice_signed_area(corners);
+    if (head == 0) facing = twice > 0.0 ? 1.0 : -1.0;
+    if (twice * facing <= 0.0) continue;  // facing away, or edge-on: the walk ends here
+    const double area = area_in_pixel(corners);
+    if (area <= 0.0) continue;  // outside the pixel
+    total += area;
+    reached.push_back(listed[head]);
+    for (uint64_t across : neighbours(listed[head])) {
+      if (across == kNoNeighbourId ||
+          std::find(listed.begin(), listed.end(), across) != listed.end())
+        continue;
+      if (listed.size() == max_triangles) return -1.0;
+      listed.push_back(across);
+    }
+  }
+  for (uint64_t id : seen) {
+    if (std::find(reached.begin(), reached.end(), id) == reached.end()) return -1.0;
+  }
+  return std::clamp(total, 0.0, 1.0);
+}
+
 }  // namespace tessera

@@ -81,11 +81,16 @@
 #define TS_BRDF_BLINN_PHONG 2u
 
 // How anti-aliasing (more than one sample per pixel) weighs the triangles of a pixel whose
-// samples disagree (tessera::AaCoverage, specialization constant TS_SPEC_AA_COVERAGE): by the fraction of samples each
-// holds, or, where they see one triangle and the background, by its outline coverage
-// (shaders/coverage.glsl).
+// samples disagree (tessera::AaCoverage, specialization constant TS_SPEC_AA_COVERAGE): by the
+// fraction of samples each holds; or, where they see one triangle and the background, by its
+// outline coverage; or, where they see one surface and the background, by the area of the
+// pixel its front faces cover (silhouette coverage) (shaders/coverage.glsl).
 #define TS_AA_COVERAGE_COUNT 0u
 #define TS_AA_COVERAGE_ANALYTIC 1u
+#define TS_AA_COVERAGE_SILHOUETTE 2u
+// Triangles a silhouette coverage walk lists at most, the first included (the compute path's
+// and the reference's): a pixel that needs more keeps the counts.
+#define TS_SILHOUETTE_TRIANGLES 24
 
 // Tone-mapping operators (GpuFrame.tonemap).
 #define TS_TONEMAP_ACES 0u
