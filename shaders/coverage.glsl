@@ -111,58 +111,67 @@ float outline_coverage(uint id, ivec2 pixel, uint empty) {
   return clamp(polygon_area(region, m), 0.0, 1.0);
 }
 
+// Area (px^2) of pixel `pixel` inside triangle instance `t` of object slot `slot` (clipped and
+// snapped as the rasterizer saw it) if it winds as `facing` says (the sign of its doubled
+// area; 0: take the triangle's own, and set it), else 0: facing away, or edge-on after
+// snapping.
+float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
+  ivec2 corner[9];
+  int64_t twice_area;
+  int n = pixel_corners(slot, t, pixel, corner, twice_area);
+  if (facing == 0l) facing = twice_area > 0l ? 1l : -1l;
+  if (twice_area * facing <= 0l) return 0.0;
+  vec2 region[COVERAGE_CORNERS];
+  int m = unit_square(region);
+  for (int k = 0; k < n && m > 0; ++k) m = cut_by_edge(region, m, corner[k], corner[(k + 1) % n], facing);
+  return m > 0 ? polygon_area(region, m) : 0.0;
+}
+
 // Silhouette coverage of pixel `pixel`, whose samples see triangles of one surface and the
 // background, `seen` (SAMPLES ids, TS_VIS_EMPTY's low word for empty samples) what each
 // sample sees: the area (px^2, 0..1) of the pixel covered by the front faces of that surface,
 // up to its silhouette. From the first triangle seen, a breadth-first walk across the mesh's
-// edges (TS_BINDING_ADJACENCY) visits the neighbours that wind as it does on screen (facing
-// the same way: past a silhouette edge they turn away, or the mesh ends) and reach into the
-// pixel, each adding its area in the pixel (the square clipped by all its edges), the thin
-// slivers at the outline that no sample hits included. On a closed mesh the front faces do
-// not overlap on screen, so the sum is the area of the surface's outline in the pixel.
-// Returns -1 (the counts stay) if a triangle the samples see was not reached (two pieces of
-// surface in one pixel), or the walk was cut short at TS_SILHOUETTE_TRIANGLES.
+// edges (TS_BINDING_ADJACENCY) takes in each neighbour that winds as the first does on screen
+// (past a silhouette edge a neighbour faces away; or the mesh ends there) and reaches into
+// the pixel, adding its area in the pixel (the square clipped by all its edges): the thin
+// slivers at the outline that no sample hits included. Only those taken in are listed (and
+// walked from); a neighbour left out may be tested again from another. On a closed mesh the
+// front faces do not overlap on screen, so the sum is the area of the surface's outline in
+// the pixel. Returns -1 (the counts stay) if a triangle the samples see is not taken in (two
+// pieces of surface, or two objects, in one pixel), or more than TS_SILHOUETTE_TRIANGLES
+// would be.
 float silhouette_coverage(ivec2 pixel, uint seen[SAMPLES]) {
   uint first = 0xFFFFFFFFu;
   for (uint s = 0u; s < SAMPLES; ++s) first = min(first, seen[s]);
   uint slot = find_object(first);
   GpuObject o = objects[slot];
-  uint visited[TS_SILHOUETTE_TRIANGLES];
-  visited[0] = first;
-  int listed = 1;
   int64_t facing = 0l;
-  uint reached = 0u;  // samples whose triangle the walk has counted (a bit each)
-  float total = 0.0;
-  for (int head = 0; head < listed; ++head) {
-    uint t = visited[head];
-    ivec2 corner[9];
-    int64_t twice_area;
-    int n = pixel_corners(slot, t, pixel, corner, twice_area);
-    if (head == 0) facing = twice_area > 0l ? 1l : -1l;
-    // Facing away (beyond a silhouette edge), or edge-on after snapping: the walk ends here.
-    if (twice_area * facing <= 0l) continue;
-    vec2 region[COVERAGE_CORNERS];
-    int m = unit_square(region);
-    for (int k = 0; k < n && m > 0; ++k) m = cut_by_edge(region, m, corner[k], corner[(k + 1) % n], facing);
-    float area = m > 0 ? polygon_area(region, m) : 0.0;
-    // Outside the pixel (or touching it along a line): not part of its coverage.
-    if (area <= 0.0) continue;
-    total += area;
-    for (uint s = 0u; s < SAMPLES; ++s) reached |= seen[s] == t ? 1u << s : 0u;
-    uint local = t - o.first_triangle;
+  float total = front_face_area(slot, first, pixel, facing);
+  if (total <= 0.0) return -1.0;
+  uint taken[TS_SILHOUETTE_TRIANGLES];
+  taken[0] = first;
+  int count = 1;
+  for (int head = 0; head < count; ++head) {
+    uint local = taken[head] - o.first_triangle;
     for (uint e = 0u; e < 3u; ++e) {
       uint across = adjacency[o.first_index + 3u * local + e];
       if (across == TS_NO_NEIGHBOUR) continue;
       uint id = o.first_triangle + across;
       bool known = false;
-      for (int j = 0; j < listed; ++j) known = known || visited[j] == id;
+      for (int j = 0; j < count; ++j) known = known || taken[j] == id;
       if (known) continue;
-      if (listed == TS_SILHOUETTE_TRIANGLES) return -1.0;
-      visited[listed++] = id;
+      // Outside the pixel (or touching it along a line), or past the silhouette: left out.
+      float area = front_face_area(slot, id, pixel, facing);
+      if (area <= 0.0) continue;
+      if (count == TS_SILHOUETTE_TRIANGLES) return -1.0;
+      taken[count++] = id;
+      total += area;
     }
   }
   for (uint s = 0u; s < SAMPLES; ++s) {
-    if (seen[s] != 0xFFFFFFFFu && (reached & (1u << s)) == 0u) return -1.0;
+    bool found = seen[s] == 0xFFFFFFFFu;
+    for (int j = 0; j < count; ++j) found = found || taken[j] == seen[s];
+    if (!found) return -1.0;
   }
   // Front faces may overlap where snapping folds the outline: the area is a fraction.
   return clamp(total, 0.0, 1.0);
