@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -290,6 +291,48 @@ TEST_F(AntiAliasing, FourSamplesCutTheEdgeErrorAsTheirPatternAllows) {
   std::printf("AA edge error, 4 samples, silhouette coverage: %.4f (%.2fx less than 1 sample)\n",
               silhouette, count[1] / silhouette);
   EXPECT_GE(count[1] / silhouette, 3.0);
+}
+
+// The edge error of the test above at other sizes, for docs/tradeoffs.md's table (disabled:
+// its truths take minutes; run with --gtest_also_run_disabled_tests). AA_W x AA_H pixels
+// (default 128 x 128); with AA_FULLH, the central AA_W x AA_H of an image AA_FULLH pixels high
+// (the field of view narrowed to it, so sizes on screen and the pixel grid are that image's,
+// for even sizes).
+uint32_t size_from_environment(const char* name, uint32_t otherwise) {
+  const char* value = std::getenv(name);
+  return value ? uint32_t(std::strtoul(value, nullptr, 10)) : otherwise;
+}
+
+TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
+  const uint32_t w = size_from_environment("AA_W", 128), h = size_from_environment("AA_H", 128);
+  const uint32_t full_h = size_from_environment("AA_FULLH", h);
+  Scene scene = make_sphere_grid_scene();
+  scene.camera.vertical_fov = float(
+      2.0 * std::atan(std::tan(double(scene.camera.vertical_fov) / 2.0) * h / double(full_h)));
+  ReferenceSettings rs;
+  rs.frame.width = w;
+  rs.frame.height = h;
+  rs.ground_truth.supersampling = 16;
+  rs.threads = 2;
+  const ReferenceFrame truth = render_reference(scene, rs);
+  const std::vector<uint8_t> edges = outline_pixels(truth.ownership);
+  double one = 0.0;
+  Renderer renderer(context());
+  for (const auto& [samples, coverage] :
+       {std::pair{1u, AaCoverage::count}, std::pair{4u, AaCoverage::count},
+        std::pair{4u, AaCoverage::analytic}, std::pair{4u, AaCoverage::silhouette}}) {
+    FrameSettings fs;
+    fs.width = w;
+    fs.height = h;
+    fs.samples = samples;
+    fs.aa_coverage = coverage;
+    const double e =
+        radiance_error(render(renderer, scene, fs).hdr, truth.hdr, &edges).mean_relative;
+    if (samples == 1) one = e;
+    std::printf("AA edge error %ux%u of %u rows, %u sample(s), mode %d: %.4f (%.2fx) over %zu px\n",
+                w, h, full_h, samples, int(coverage), e, one / e,
+                size_t(std::count(edges.begin(), edges.end(), uint8_t(1))));
+  }
 }
 
 // Emissive shapes of radiance 1 on black, seen head-on: the camera looks down -z at the plane
