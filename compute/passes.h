@@ -327,6 +327,7 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame,
      0xFFFFFFFFu},
     {TS_BINDING_OBJECT_CLIP, kStorageBuffer, Source::sized, Scale::objects, sizeof(glm::mat4)},
+    {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
 };
 
 constexpr bool binding_table_is_complete() {

@@ -273,6 +273,8 @@ void prepare_lod(Renderer::State& s) {
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), a.vertices, vertices, copies, stats,
                     dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_INDICES), a.indices, indices, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_ADJACENCY), a.adjacency, indices, copies, stats,
+                    dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_UV1), a.uv1s, uv1s, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), a.lod_levels, 0, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_MESHES), a.lod_meshes, 0, copies, stats, dirty);
@@ -305,6 +307,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_INDICES), prev.indices, next.indices, copies, stats,
                      s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_ADJACENCY), prev.adjacency, next.adjacency, copies,
+                     stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_OBJECTS), prev.objects, next.objects, copies, stats,
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_MATERIALS), prev.materials, next.materials, copies,
@@ -519,8 +523,14 @@ bool compensates(const FrameSettings& settings) {
 // TS_AA_COVERAGE_* of `settings`: a specialization constant, so that the count's pipelines
 // carry no analytic code (a uniform branch around it made lavapipe's 4-sample shading 4x slower).
 uint32_t aa_coverage_id(const FrameSettings& settings) {
-  return settings.aa_coverage == AaCoverage::analytic ? TS_AA_COVERAGE_ANALYTIC
-                                                      : TS_AA_COVERAGE_COUNT;
+  switch (settings.aa_coverage) {
+    case AaCoverage::analytic:
+      return TS_AA_COVERAGE_ANALYTIC;
+    case AaCoverage::silhouette:
+      return TS_AA_COVERAGE_SILHOUETTE;
+    default:
+      return TS_AA_COVERAGE_COUNT;
+  }
 }
 
 // The shading variant of the current scene for `settings` (with RendererOptions::

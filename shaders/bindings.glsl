@@ -10,6 +10,7 @@ layout(set = 0, binding = TS_BINDING_VERTICES, std430) readonly buffer Vertices 
 // Uv set 1 of every vertex, indexed as `vertices`; holds data only when a material reads it.
 layout(set = 0, binding = TS_BINDING_UV1, std430) readonly buffer Uv1 { vec2 uv1s[]; };
 layout(set = 0, binding = TS_BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = 0, binding = TS_BINDING_ADJACENCY, std430) readonly buffer Adjacency { uint adjacency[]; };
 // The level-of-detail passes (which define TS_LOD_PASS) rewrite the objects' levels each frame.
 #ifdef TS_LOD_PASS
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) buffer Objects { GpuObject objects[]; };
