@@ -51,8 +51,8 @@ struct Specialization {
   uint32_t samples = 1;  // per pixel (FrameSettings::samples); others are built on first use
   VkBool32 output_bgra = VK_FALSE;
   VkBool32 lod = VK_FALSE;
-  uint32_t tile_size = TS_TILE_SIZE;                         // RendererOptions::tile_size
-  VkBool32 depth_rejection = VK_TRUE;                        // RendererOptions::depth_rejection
+  uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
+  VkBool32 depth_rejection = VK_TRUE;           // RendererOptions::depth_rejection
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
@@ -60,10 +60,11 @@ struct Specialization {
 /// When a pass is recorded.
 enum class Stage {
   precompute,  // record_precomputation: timed only on frames that computed something
-  clear,       // the buffers of kBindings with Clear::per_frame are filled
+  clear,       // the buffers of kBindings with Clear::per_frame are filled (and those with
+               // Clear::on_creation after they were created)
   lod,         // once per frame before the batches, only under FrameSettings::lod automatic
-  batch,       // once per batch of triangles (these rows are contiguous), after the buffers
-               // with Clear::per_batch are filled; the GpuBatch push constant is set
+  batch,       // once per batch of triangles (these rows are contiguous), with the GpuBatch
+               // push constant set
   frame,       // once per frame, after the batches
 };
 
@@ -110,8 +111,10 @@ constexpr PassInfo kPasses[] = {
      TS_LOD_GROUP_SIZE},
     {Pass::setup, "setup", "setup", Stage::batch, Dispatch::per_batch_triangle, 0,
      TS_SETUP_GROUP_SIZE, offsetof(gpu::GpuCounters, setup_dispatch), Variants::lod},
-    {Pass::clip, "clip", "clip", Stage::batch, Dispatch::fixed, TS_CLIP_GROUPS},
-    {Pass::bin_count, "count", "count", Stage::batch, Dispatch::fixed, TS_COUNT_GROUPS},
+    {Pass::clip, "clip", "clip", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, clip_dispatch)},
+    {Pass::bin_count, "count", "count", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, big_dispatch)},
     {Pass::scan, "scan", "scan", Stage::batch, Dispatch::per_tile, 0, TS_SCAN_GROUP_SIZE},
     {Pass::fill, "fill", "fill", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, big_dispatch)},
@@ -252,8 +255,9 @@ enum class Scale {
   batches,               // per batch of the frame (GpuCounters slots)
 };
 
-/// When a Source::sized buffer is filled with `clear_value`.
-enum class Clear { never, per_frame, per_batch };
+/// When a Source::sized buffer is filled with `clear_value`: never, at the start of every
+/// frame, or only when it is (re)created, for buffers the passes themselves leave cleared.
+enum class Clear { never, per_frame, on_creation };
 
 struct BindingInfo {
   uint32_t binding;  // TS_BINDING_*
@@ -281,7 +285,8 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_SMALL_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 4},
     // (raster triangle, tile block) bin entries
     {TS_BINDING_BIG_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 8},
-    {TS_BINDING_TILE_COUNTS, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_batch},
+    // Zeroed by raster_tiles as it reads each tile's count, ready for the next batch.
+    {TS_BINDING_TILE_COUNTS, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::on_creation},
     {TS_BINDING_TILE_OFFSETS, kStorageBuffer, Source::sized, Scale::tiles, 4, 1},
     {TS_BINDING_TILE_CURSORS, kStorageBuffer, Source::sized, Scale::tiles, 4},
     {TS_BINDING_TILE_ENTRIES, kStorageBuffer, Source::sized, Scale::tile_entry_capacity, 4},

@@ -430,13 +430,6 @@ void clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
   }
 }
 
-constexpr bool has_clear(Clear when) {
-  for (const BindingInfo& b : kBindings) {
-    if (b.clear == when) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
@@ -457,6 +450,7 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
     destroy_buffer(ctx, buffer);
     buffer =
         create_buffer(ctx, binding_size(s, b), kStorageUsage | b.extra_usage, MemoryKind::device);
+    if (b.clear == Clear::on_creation) s.creation_clears_pending = true;
   }
   destroy_image(ctx, s.hdr);
   destroy_image(ctx, s.ldr);
@@ -499,6 +493,7 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
     if (buffer.buffer && buffer.size >= bytes) continue;
     destroy_buffer(ctx, buffer);
     buffer = create_buffer(ctx, bytes, kStorageUsage | b.extra_usage, MemoryKind::device);
+    if (b.clear == Clear::on_creation) s.creation_clears_pending = true;
     s.descriptors_dirty = true;
   }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
@@ -1005,6 +1000,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       case Stage::clear:
         clear_buffers(s, cmd, Clear::per_frame);
+        if (s.creation_clears_pending) {
+          clear_buffers(s, cmd, Clear::on_creation);
+          s.creation_clears_pending = false;
+        }
         transfer_to_compute(cmd);
         mark(pass.pass);
         ++i;
@@ -1031,14 +1030,6 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
               uint32_t(first < total ? std::min<uint64_t>(s.batch_triangles, total - first) : 0), b,
               0};
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
-          if constexpr (has_clear(Clear::per_batch)) {
-            // The previous batch's passes read and wrote what is cleared.
-            memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
-                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-            clear_buffers(s, cmd, Clear::per_batch);
-            transfer_to_compute(cmd);
-          }
           for (size_t j = i; j < end; ++j) {
             record_dispatch(s, cmd, kPasses[j], batch, settings);
             barrier_after(cmd, kPasses[j], s.options.depth_rejection);

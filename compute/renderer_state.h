@@ -23,6 +23,8 @@ struct Renderer::State {
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
+  // A buffer with Clear::on_creation was (re)created: the next frame's clear fills it.
+  bool creation_clears_pending = true;
   uint64_t descriptors_generation = 0;  // counts the rewrites of `set` (copies follow it)
 
   // The scene as it is on the GPU.

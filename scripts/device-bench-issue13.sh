@@ -9,7 +9,8 @@
 #      over grid (1 ... 10^6), scatter (10 ... 10^6), huge and yardstick, and the minimal
 #      graphics program on the yardstick's layout.
 # Pass carry [".gl", ".device-build", ".device-before"]. Writes everything packed in
-# $OUT/issue13.tar.gz and prints the summary tables last. SKIP_BEFORE=1 leaves out part 1.
+# $OUT/issue13.tar.gz and prints the summary tables last. SKIP_BEFORE=1 leaves out part 1,
+# SKIP_SWEEPS=1 part 2.
 #
 #   device run: scripts/device-bench-issue13.sh
 set -euo pipefail
@@ -54,13 +55,15 @@ sweep() {  # sweep SCENE OBJECTS
     --json "$work/sweep_$1.json" --csv "$work/sweep_$1.csv" --chart "$work/sweep_$1.svg" |
     tee "$work/sweep_$1.txt"
 }
-sweep grid 1,10,49,100,1000,10000,100000,1000000
-sweep yardstick 1,10,49,100,1000,10000,100000
-sweep scatter 10,1000,100000,1000000
-sweep huge 1,4,16,64,256
-"$bin/tessera_minimal_graphics" --device gpu --objects 1,10,49,100,1000,10000,100000 \
-  --size "$size" --repeat "$repeat" --runs 3 --warmup-ms 500 --json "$work/minimal.json" \
-  --csv "$work/minimal.csv" > "$work/minimal.txt"
+if [[ -z ${SKIP_SWEEPS:-} ]]; then
+  sweep grid 1,10,49,100,1000,10000,100000,1000000
+  sweep yardstick 1,10,49,100,1000,10000,100000
+  sweep scatter 10,1000,100000,1000000
+  sweep huge 1,4,16,64,256
+  "$bin/tessera_minimal_graphics" --device gpu --objects 1,10,49,100,1000,10000,100000 \
+    --size "$size" --repeat "$repeat" --runs 3 --warmup-ms 500 --json "$work/minimal.json" \
+    --csv "$work/minimal.csv" > "$work/minimal.txt"
+fi
 
 # Summaries: per-pass medians before/after, then each sweep's ratio lines.
 for f in "$work"/pass_after_*.json; do
@@ -80,5 +83,5 @@ for n in after:
           + ", ".join(f"{k} {bp.get(k, 0):.3f}->{ap.get(k, 0):.3f}" for k in passes))
 EOF
 done
-cat "$work/minimal.txt"
-grep -h "faster\|slower" "$work"/sweep_*.txt
+[[ -f $work/minimal.txt ]] && cat "$work/minimal.txt"
+grep -h "faster\|slower" "$work"/sweep_*.txt || true

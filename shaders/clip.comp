@@ -3,7 +3,8 @@
 // Clipping: triangles that cross the near plane or the guard band, listed by setup. Each is
 // clipped (Sutherland-Hodgman) against the near plane and the four guard-band planes into a
 // convex polygon of at most 3 + 5 vertices, then emitted as a fan of raster triangles. The
-// list is short in practice, so a fixed grid of threads loops over it, with plain atomics.
+// list is short in practice: a thread per entry, dispatched indirectly (setup sizes it, so an
+// empty list launches nothing), with plain atomics.
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
@@ -29,13 +30,17 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) 
     small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
   } else {
     uint entries = bin_entry_count(t);
-    store_bin_entries(index, t, atomicAdd(counters[batch.index].big_tris, entries), entries);
+    uint first = atomicAdd(counters[batch.index].big_tris, entries);
+    if (reaches_new_grain(first, entries))
+      atomicMax(counters[batch.index].big_dispatch.x,
+                grain_dispatch_groups(first + entries, TS_BIN_ENTRIES_PER_GROUP));
+    store_bin_entries(index, t, first, entries);
   }
 }
 
 void main() {
-  uint count = min(counters[batch.index].clip_list, frame.raster_capacity);
-  for (uint i = gl_GlobalInvocationID.x; i < count; i += TS_CLIP_GROUPS * TS_GROUP_SIZE) {
+  uint i = gl_GlobalInvocationID.x;
+  if (i < min(counters[batch.index].clip_list, frame.raster_capacity)) {
     uint id = clip_list[i];
     vec4 c[3];
     uint slot = find_object(id);

@@ -79,6 +79,11 @@ void main() {
   ivec2 tile = ivec2(gl_WorkGroupID.xy);
   uint tile_index = uint(tile.y) * frame.tiles.x + uint(tile.x);
   uint count = tile_counts[tile_index];
+  // The next batch's (or frame's) count pass adds to zeroed counts: every tile's count is read
+  // here (a binned batch dispatches every tile) and nowhere after, so zeroing it here replaces
+  // a fill of the buffer and two barriers before each batch.
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && count != 0u) tile_counts[tile_index] = 0u;
   if (count == 0u) return;
   uint first = tile_offsets[tile_index];
   uint end = min(first + count, frame.tile_entry_capacity);  // past capacity the frame is redone anyway

@@ -16,9 +16,7 @@ shared uint group_base;
 
 void write_dispatch_sizes(uint b, bool tiles_used) {
   uint small_count = min(counters[b].small_tris, frame.raster_capacity);
-  uint big_count = min(counters[b].big_tris, frame.raster_capacity);
   counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
-  counters[b].big_dispatch = uvec4((big_count + TS_BIN_ENTRIES_PER_GROUP - 1) / TS_BIN_ENTRIES_PER_GROUP, 1, 1, 0);
   counters[b].tiles_dispatch = tiles_used ? uvec4(frame.tiles.x, frame.tiles.y, 1, 0) : uvec4(0, 1, 1, 0);
 }
 

@@ -95,8 +95,24 @@ void main() {
     if (group_culled[3] > 0u) atomicAdd(counters[batch.index].culled_empty, group_culled[3]);
   }
 
+  // The passes after setup are dispatched indirectly, sized by what setup and clip append, so
+  // that an idle one (nothing to clip, nothing binned) launches no workgroup.
+  if (gl_GlobalInvocationID.x == 0u) {
+    counters[batch.index].clip_dispatch.yz = uvec2(1u);
+    counters[batch.index].big_dispatch.yz = uvec2(1u);
+  }
   uint clip_slot;
-  APPEND_SLOT(counters[batch.index].clip_list, outcome == OUTCOME_CLIP, clip_slot);
+  {
+    uvec4 ballot = subgroupBallot(outcome == OUTCOME_CLIP);
+    uint n = subgroupBallotBitCount(ballot);
+    uint base = 0u;
+    if (n > 0u && subgroupElect()) {
+      base = atomicAdd(counters[batch.index].clip_list, n);
+      if (reaches_new_grain(base, n))
+        atomicMax(counters[batch.index].clip_dispatch.x, grain_dispatch_groups(base + n, TS_GROUP_SIZE));
+    }
+    clip_slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
+  }
   if (outcome == OUTCOME_CLIP && clip_slot < frame.raster_capacity) clip_list[clip_slot] = id;
 
   // Past capacity the write is skipped; the host sees the count, grows the buffers, redoes.
@@ -112,7 +128,12 @@ void main() {
   uint entries = stored && outcome == OUTCOME_BIG ? bin_entry_count(t) : 0u;
   uint total = subgroupAdd(entries);
   uint base = 0u;
-  if (total > 0u && subgroupElect()) base = atomicAdd(counters[batch.index].big_tris, total);
+  if (total > 0u && subgroupElect()) {
+    base = atomicAdd(counters[batch.index].big_tris, total);
+    if (reaches_new_grain(base, total))
+      atomicMax(counters[batch.index].big_dispatch.x,
+                grain_dispatch_groups(base + total, TS_BIN_ENTRIES_PER_GROUP));
+  }
   uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
   if (entries > 0u) store_bin_entries(index, t, first_entry, entries);
 }

@@ -84,6 +84,27 @@ void store_raster_tri(uint index, RasterTri t) {
   raster_tris[index].depth_id = uvec4(floatBitsToUint(t.depth), t.id);
 }
 
+// Workgroups an indirect dispatch needs for `total` list entries, `per_group` a workgroup. The
+// total is clamped to the lists' capacity (past it the host redoes the frame, and the passes
+// read no further), which also keeps the count within maxComputeWorkGroupCount.
+uint dispatch_groups(uint total, uint per_group) {
+  return (min(total, frame.raster_capacity) + per_group - 1u) / per_group;
+}
+
+// Appends raise an indirect dispatch only when they reach into a new grain of entries, and then
+// to the end of that grain: an atomicMax per appending subgroup, next to the atomicAdd of the
+// append on the same counters, made setup 13 % slower on scatter at 10^6 objects (H200).
+// The last grain is reached by some append, so the dispatch covers the total; the overshoot,
+// under a grain of entries, launches workgroups that return at once.
+const uint DISPATCH_GRAIN = 1024u;
+bool reaches_new_grain(uint base, uint count) {
+  return (base + DISPATCH_GRAIN - 1u) / DISPATCH_GRAIN <
+         (base + count + DISPATCH_GRAIN - 1u) / DISPATCH_GRAIN;
+}
+uint grain_dispatch_groups(uint end, uint per_group) {
+  return dispatch_groups((end + DISPATCH_GRAIN - 1u) / DISPATCH_GRAIN * DISPATCH_GRAIN, per_group);
+}
+
 // Bin entries of a binned triangle: its tile range split into blocks of at most
 // TS_BIN_CHUNK x TS_BIN_CHUNK tiles, each packed as x | y << 10 | (w - 1) << 20 | (h - 1) << 24
 // (tiles_x and tiles_y are at most TS_MAX_TILES_PER_SIDE = 1024, which the renderer checks).

@@ -166,7 +166,8 @@ void write_pixel(ivec2 pixel, vec3 value) {
 // pixel with four triangles does not keep the others of its SIMD group waiting for four
 // shading evaluations while most have one; each pixel then sums its own requests' colours in
 // increasing id, the empty id (all ones) last, so the sum is the same whatever order the
-// samples were written or the requests listed in.
+// samples were written or the requests listed in. A pixel whose samples all hold one id (most
+// of them) lists nothing: its own thread shades it, while the others' requests are shaded.
 const uint GROUP_PIXELS = 64u;  // local_size_x * local_size_y
 const uint MAX_REQUESTS = GROUP_PIXELS * SAMPLES;
 // A request: (id, point.x, point.y) as written by its pixel, then its stored colour (as bits)
@@ -196,12 +197,19 @@ void resolve_samples(ivec2 pixel, bool inside) {
   float weights[SAMPLES];
   uint groups = 0u;
   uint empty_mask = 0u;
+  // Every sample holds one id (most pixels): the pixel's own thread shades it at the centre,
+  // with weight 1, as its one request would be, without going through shared memory.
+  bool direct = false;
+  uint direct_id = 0u;
   if (inside) {
     uint base = sample_index(pixel_index(pixel), 0u);
     uint ids[SAMPLES];
     for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
+    direct = true;
+    for (uint s = 1u; s < SAMPLES; ++s) direct = direct && ids[s] == ids[0];
+    direct_id = ids[0];
     uint next = 0u;  // every id below this has been listed
-    for (uint group = 0u; group < SAMPLES; ++group) {
+    for (uint group = 0u; group < SAMPLES && !direct; ++group) {
       uint id = 0xFFFFFFFFu;
       for (uint s = 0u; s < SAMPLES; ++s) {
         if (ids[s] >= next) id = min(id, ids[s]);
@@ -249,9 +257,22 @@ void resolve_samples(ivec2 pixel, bool inside) {
       request_coverage[r] = floatBitsToUint(covered);
     }
   }
+  // The direct pixels' shading overlaps the requests'.
+  vec3 direct_colour = vec3(0.0);
+  if (direct) {
+    vec2 centre = vec2(pixel) + 0.5;
+    vec3 color = direct_id == 0xFFFFFFFFu ? background(centre) : shade_triangle(direct_id, centre);
+    direct_colour = uintBitsToFloat(floatBitsToUint(stored(color)));
+  }
   barrier();
 
   if (!inside) return;
+  if (direct) {
+    vec3 sum = vec3(0.0);
+    sum += direct_colour * 1.0;  // the sum of the one request's colour and weight, as below
+    write_pixel(pixel, sum);
+    return;
+  }
   if (AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u) {
     // Without an outline edge (-1) or area (0), the counts stay.
     float covered = uintBitsToFloat(request_coverage[slots[0]]);

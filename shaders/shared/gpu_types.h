@@ -44,10 +44,6 @@ using glm::vec4;
 // Objects per workgroup of the level-of-detail passes (lod.comp, lod_offsets.comp): each
 // workgroup's triangle count is one entry of the TS_BINDING_LOD_SUMS buffer.
 #define TS_LOD_GROUP_SIZE 256
-// Workgroups of the clipping pass; its threads loop over the (usually short) clip list.
-#define TS_CLIP_GROUPS 16
-// Workgroups of the tile-counting pass; its threads loop over the bin entries.
-#define TS_COUNT_GROUPS 512
 // A binned triangle is split into bin entries of at most this many tiles per side, so that no
 // thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
 #define TS_BIN_CHUNK 8
@@ -316,7 +312,10 @@ struct GpuRasterTri {
 // Counters of one batch, written by the GPU and read back by the host after the frame.
 struct GpuCounters {
   uvec4 small_dispatch;  // VkDispatchIndirectCommand for the per-triangle rasterizer (xyz)
-  uvec4 big_dispatch;    // VkDispatchIndirectCommand for the tile-fill pass (xyz)
+  // VkDispatchIndirectCommand (xyz) for the tile-count and tile-fill passes, a thread per row
+  // of each bin entry: x is raised by setup and clip as their appends reach into a new grain of
+  // entries (setup_common.glsl), y and z set by setup's first thread.
+  uvec4 big_dispatch;
   uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
   uint small_tris;
@@ -337,6 +336,7 @@ struct GpuCounters {
   uint rejected_entries;
   uint rejected_small;
   uvec2 pad_rejected;  // std430 rounds the array stride to 16 bytes
+  uvec4 clip_dispatch;  // VkDispatchIndirectCommand for the clip pass, raised as big_dispatch
 };
 
 #ifdef __cplusplus
@@ -406,7 +406,8 @@ static_assert(offsetof(GpuBrdfSample, base_color) == 48);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
-static_assert(sizeof(GpuCounters) == 128);
+static_assert(sizeof(GpuCounters) == 144);
+static_assert(offsetof(GpuCounters, clip_dispatch) == 128);
 static_assert(offsetof(GpuCounters, rejected_entries) == 112);
 static_assert(offsetof(GpuCounters, lod_triangles) == 88);
 static_assert(offsetof(GpuCounters, setup_dispatch) == 96);
