@@ -270,6 +270,8 @@ void prepare_lod(Renderer::State& s) {
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_VERTICES), a.vertices, vertices, copies, stats,
                     dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_INDICES), a.indices, indices, copies, stats, dirty);
+  queue_tail_upload(s.ctx, s.buffer(TS_BINDING_ADJACENCY), a.adjacency, indices, copies, stats,
+                    dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_UV1), a.uv1s, uv1s, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), a.lod_levels, 0, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_MESHES), a.lod_meshes, 0, copies, stats, dirty);
@@ -302,6 +304,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_INDICES), prev.indices, next.indices, copies, stats,
                      s.descriptors_dirty);
+  queue_array_upload(s.ctx, s.buffer(TS_BINDING_ADJACENCY), prev.adjacency, next.adjacency, copies,
+                     stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_OBJECTS), prev.objects, next.objects, copies, stats,
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_MATERIALS), prev.materials, next.materials, copies,
@@ -391,6 +395,9 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
       break;
     case Scale::raster_capacity:
       count = s.raster_capacity;
+      break;
+    case Scale::objects:
+      count = s.uploaded.objects.size();
       break;
     case Scale::lod_groups:
       count = div_up(s.uploaded.objects.size(), TS_LOD_GROUP_SIZE);
@@ -513,8 +520,14 @@ bool compensates(const FrameSettings& settings) {
 // TS_AA_COVERAGE_* of `settings`: a specialization constant, so that the count's pipelines
 // carry no analytic code (a uniform branch around it made lavapipe's 4-sample shading 4x slower).
 uint32_t aa_coverage_id(const FrameSettings& settings) {
-  return settings.aa_coverage == AaCoverage::analytic ? TS_AA_COVERAGE_ANALYTIC
-                                                      : TS_AA_COVERAGE_COUNT;
+  switch (settings.aa_coverage) {
+    case AaCoverage::analytic:
+      return TS_AA_COVERAGE_ANALYTIC;
+    case AaCoverage::silhouette:
+      return TS_AA_COVERAGE_SILHOUETTE;
+    default:
+      return TS_AA_COVERAGE_COUNT;
+  }
 }
 
 // The shading variant of the current scene for `settings` (with RendererOptions::
@@ -1008,9 +1021,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         mark(pass.pass);
         ++i;
         break;
+      case Stage::objects:
       case Stage::lod:
-        // Not recorded at all without level of detail, so such frames are as before it.
-        if (settings.lod == Lod::automatic && total > 0) {
+        // The lod passes are not recorded at all without level of detail, so such frames are
+        // as before it.
+        if (total > 0 && (pass.stage == Stage::objects || settings.lod == Lod::automatic)) {
           const gpu::GpuBatch none{};  // lod.comp reads flags
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(none), &none);
           record_dispatch(s, cmd, pass, none, settings);

@@ -9,6 +9,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
+#include "core/mesh_adjacency.h"
 #include "core/parallel.h"
 #include "core/texture.h"
 
@@ -131,6 +132,13 @@ void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, Gp
   if (cache) *cache = std::move(next);
 }
 
+// Appends `mesh`'s adjacency to out.adjacency, in step with its indices in out.indices.
+void append_adjacency(const Mesh& mesh, GpuSceneArrays& out) {
+  static_assert(kNoNeighbour == TS_NO_NEIGHBOUR);
+  const std::vector<uint32_t> adjacency = triangle_adjacency(mesh);
+  out.adjacency.insert(out.adjacency.end(), adjacency.begin(), adjacency.end());
+}
+
 // Appends the vertices of `mesh` with `tangents` (empty: zero) to out.vertices, and its uv set 1
 // (zero where it has none) to out.uv1s when `uv1`.
 void append_vertices(const Mesh& mesh, const std::vector<glm::vec4>& tangents, bool uv1,
@@ -207,6 +215,7 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
     const std::vector<glm::vec4>& tangents = mesh.tangents.empty() ? generated : mesh.tangents;
     append_vertices(mesh, tangents, uv1, out);
     out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
+    append_adjacency(mesh, out);
   }
 
   out.mesh_first_index = first_index;
@@ -294,6 +303,7 @@ void append_lod_chains(const std::vector<LodChain>& chains, GpuSceneArrays& out)
         }
         g.first_index = uint32_t(out.indices.size());
         out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());
+        append_adjacency(mesh, out);
         if (!level.shares_base_vertices) {
           g.base_vertex = uint32_t(out.vertices.size());
           append_vertices(mesh, mesh.tangents, uv1, out);

@@ -15,7 +15,10 @@ namespace tessera {
 struct GpuSceneArrays {
   std::vector<gpu::GpuVertex> vertices;  // all meshes, one after another
   std::vector<uint32_t> indices;         // all meshes, relative to each mesh's first vertex
-  std::vector<gpu::GpuObject> objects;   // canonical order (see flatten_scene)
+  /// Per entry of `indices`: the mesh's triangle across that corner's edge to the next
+  /// (triangle_adjacency, core/mesh_adjacency.h), for silhouette coverage.
+  std::vector<uint32_t> adjacency;
+  std::vector<gpu::GpuObject> objects;  // canonical order (see flatten_scene)
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuLight> lights;                         // sorted by kind (TS_LIGHT_* order)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // lights of each kind, by TS_LIGHT_*

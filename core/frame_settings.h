@@ -34,8 +34,10 @@ inline double hdr_max(HdrFormat format) {
 /// How anti-aliasing weighs the triangles of a pixel whose samples disagree
 /// (docs/architecture.md, "Anti-aliasing").
 enum class AaCoverage {
-  count,     // by the fraction of the pixel's samples each holds
-  analytic,  // one triangle and the background: by its outline coverage (shaders/coverage.glsl)
+  count,       // by the fraction of the pixel's samples each holds
+  analytic,    // one triangle and the background: by its outline coverage (shaders/coverage.glsl)
+  silhouette,  // one surface and the background: by the area of the pixel its front faces
+               // cover, up to its silhouette (shaders/coverage.glsl, silhouette_coverage)
 };
 
 struct FrameSettings {

@@ -70,4 +70,36 @@ double outline_coverage(const std::vector<glm::dvec2>& corners,
   return std::clamp(0.5 * std::abs(twice_signed_area(region)), 0.0, 1.0);
 }
 
+double silhouette_coverage(const std::vector<uint64_t>& seen,
+                           const std::function<std::vector<glm::dvec2>(uint64_t)>& polygon,
+                           const std::function<std::array<uint64_t, 3>(uint64_t)>& neighbours,
+                           size_t max_triangles) {
+  double facing = 0.0;
+  // The area of triangle `id` in the pixel if it winds as `facing` says (0: set it), else 0.
+  const auto front_face_area = [&](uint64_t id) {
+    const std::vector<glm::dvec2> corners = polygon(id);
+    const double twice = twice_signed_area(corners);
+    if (facing == 0.0) facing = twice > 0.0 ? 1.0 : -1.0;
+    return twice * facing > 0.0 ? area_in_pixel(corners) : 0.0;
+  };
+  std::vector<uint64_t> taken = {*std::min_element(seen.begin(), seen.end())};
+  double total = front_face_area(taken[0]);
+  if (total <= 0.0) return -1.0;
+  for (size_t head = 0; head < taken.size(); ++head) {
+    for (uint64_t across : neighbours(taken[head])) {
+      if (across == kNoNeighbourId || std::find(taken.begin(), taken.end(), across) != taken.end())
+        continue;
+      const double area = front_face_area(across);
+      if (area <= 0.0) continue;  // outside the pixel, or past the silhouette
+      if (taken.size() == max_triangles) return -1.0;
+      taken.push_back(across);
+      total += area;
+    }
+  }
+  for (uint64_t id : seen) {
+    if (std::find(taken.begin(), taken.end(), id) == taken.end()) return -1.0;
+  }
+  return std::clamp(total, 0.0, 1.0);
+}
+
 }  // namespace tessera

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -12,6 +13,7 @@
 
 #include "core/check.h"
 #include "core/lod.h"
+#include "core/mesh_adjacency.h"
 #include "core/pixel_coverage.h"
 #include "core/reference_brdf.h"
 #include "core/texture.h"
@@ -80,6 +82,8 @@ struct Instance {
   uint32_t slot;
   bool mirrored;  // is_mirroring(transform): front faces wind clockwise, tangent frames flip
   const std::vector<glm::vec4>* tangents = nullptr;  // the mesh's, or generated; null if unused
+  // triangle_adjacency of `mesh`, under silhouette coverage only (else null).
+  const std::vector<uint32_t>* adjacency = nullptr;
 };
 
 std::vector<Instance> make_instances(const Scene& scene, const ObjectNumbering& numbering) {
@@ -122,6 +126,7 @@ struct FrameInstances {
   std::vector<Instance> instances;
   std::vector<LodChain> lod_chains;  // owns the level meshes `instances` point to
   std::map<const Mesh*, const Mesh*> base_of;
+  std::map<const Mesh*, std::vector<uint32_t>> adjacency;  // what the instances point to
 };
 FrameInstances frame_instances(const Scene& scene, const FrameSettings& frame) {
   FrameInstances f;
@@ -130,6 +135,13 @@ FrameInstances frame_instances(const Scene& scene, const FrameSettings& frame) {
   if (frame.lod == Lod::automatic) {
     f.lod_chains = build_lod_chains(scene);
     apply_lod(scene, frame, f.lod_chains, f.numbering, f.instances, f.base_of);
+  }
+  if (frame.samples > 1 && frame.aa_coverage == AaCoverage::silhouette) {
+    for (Instance& inst : f.instances) {
+      auto [it, added] = f.adjacency.try_emplace(inst.mesh);
+      if (added) it->second = triangle_adjacency(*inst.mesh);
+      inst.adjacency = &it->second;
+    }
   }
   return f;
 }
@@ -598,15 +610,22 @@ double srgb_encode(double linear) {  // IEC 61966-2-1
   return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
+// Calls fn(y0, y1) over blocks of rows that together cover [0, height), on `threads` threads.
+// Blocks are handed out as threads free up: rows cost very unequal amounts (sky against
+// textured spheres), and with one contiguous share per thread the others idle while the one
+// holding the costly rows works. About 8 blocks per thread keep the per-call setup (the plain
+// path walks every triangle per call) small.
 template <typename Fn>
 void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
   threads = std::max(1u, std::min(threads, height));
+  const uint32_t block = std::max(1u, height / (threads * 8u));
+  std::atomic<uint32_t> next{0};
+  auto work = [&] {
+    for (uint32_t y0; (y0 = next.fetch_add(block)) < height;) fn(y0, std::min(height, y0 + block));
+  };
   std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) {
-    const uint32_t y0 = uint32_t(uint64_t(height) * t / threads);
-    const uint32_t y1 = uint32_t(uint64_t(height) * (t + 1) / threads);
-    pool.emplace_back([&fn, y0, y1] { fn(y0, y1); });
-  }
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
   for (std::thread& th : pool) th.join();
 }
 
@@ -948,6 +967,19 @@ std::vector<dvec2> pixel_polygon(const ShadeContext& c, uint32_t id, int64_t x, 
   return corners;
 }
 
+// The triangle instances across the three edges of instance `id` (kNoNeighbourId: none), from
+// its mesh's adjacency (silhouette coverage).
+std::array<uint64_t, 3> neighbours_of(const std::vector<Instance>& instances, uint64_t id) {
+  const Instance& inst = instance_of(instances, id);
+  TESSERA_CHECK(inst.adjacency != nullptr);
+  std::array<uint64_t, 3> out;
+  for (size_t e = 0; e < 3; ++e) {
+    const uint32_t across = (*inst.adjacency)[size_t(id - inst.first_triangle) * 3 + e];
+    out[e] = across == kNoNeighbour ? kNoNeighbourId : inst.first_triangle + across;
+  }
+  return out;
+}
+
 // Renders rows [y0, y1) with the compute path's anti-aliasing (FrameSettings::samples > 1),
 // as docs/architecture.md ("Anti-aliasing") states it: each distinct id among a pixel's
 // samples, in increasing order with the empty one last, is shaded once, at the pixel centre if
@@ -1018,6 +1050,19 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
         const double covered =
             outline_coverage(pixel_polygon(c, ids_held[0], x, y), empty_points, covered_points);
         if (covered > 0.0) weights = {covered, 1.0 - covered};
+      }
+      // Silhouette coverage where they see triangles of one surface and the background: the
+      // surface's share, divided among its triangles as their samples are.
+      if (frame.aa_coverage == AaCoverage::silhouette && !held.empty() && empty > 0) {
+        const double covered = silhouette_coverage(
+            std::vector<uint64_t>(ids_held.begin(), ids_held.end()),
+            [&](uint64_t id) { return pixel_polygon(c, uint32_t(id), x, y); },
+            [&](uint64_t id) { return neighbours_of(c.instances, id); }, TS_SILHOUETTE_TRIANGLES);
+        if (covered > 0.0) {
+          for (size_t g = 0; g < held.size(); ++g)
+            weights[g] = covered * (double(held[g]) / double(n - empty));
+          weights.back() = 1.0 - covered;
+        }
       }
       dvec3 sum(0.0);
       for (size_t g = 0; g < held.size(); ++g) sum += colours[g] * weights[g];
@@ -1091,7 +1136,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const size_t pixels = size_t(w) * h;
   const CameraModel cam = make_camera(scene.camera, w, h);
   FrameInstances prepared = frame_instances(scene, settings.frame);
-  auto& [numbering, instances, lod_chains, base_of] = prepared;
+  auto& [numbering, instances, lod_chains, base_of, adjacency] = prepared;
   std::vector<MipChain> chains;
   for (const Texture& t : scene.textures) chains.push_back(build_mip_chain(t));
   std::map<const Mesh*, std::vector<glm::vec4>> generated;  // by the mesh whose vertices they are
@@ -1194,7 +1239,7 @@ ReferenceProbe probe_reference(const Scene& scene, const ReferenceSettings& sett
   check_size(settings);
   const CameraModel cam = make_camera(scene.camera, settings.frame.width, settings.frame.height);
   FrameInstances prepared = frame_instances(scene, settings.frame);
-  auto& [numbering, instances, lod_chains, base_of] = prepared;
+  auto& [numbering, instances, lod_chains, base_of, adjacency] = prepared;
   TESSERA_CHECK(triangle_id < numbering.triangle_count);
   const Instance& inst = instance_of(instances, triangle_id);
 

@@ -129,12 +129,17 @@ CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& he
 // --aa-coverage: how anti-aliasing weighs a pixel's triangles (FrameSettings::aa_coverage).
 void add_aa_coverage(CLI::App& app, AaCoverage& coverage) {
   add_choice(app, "--aa-coverage", coverage,
-             {{"count", AaCoverage::count}, {"analytic", AaCoverage::analytic}},
+             {{"count", AaCoverage::count},
+              {"analytic", AaCoverage::analytic},
+              {"silhouette", AaCoverage::silhouette}},
              "with --samples above 1: count (default)\n"
              "weighs each triangle of a pixel by its share\n"
              "of the samples; analytic, where they see one\n"
              "triangle and the background, by the pixel's\n"
-             "area inside its outline edges");
+             "area inside its outline edges; silhouette,\n"
+             "where they see one surface and the\n"
+             "background, by the pixel's area its front\n"
+             "faces cover");
 }
 
 CLI::Option* add_size(CLI::App& app, uint32_t& width, uint32_t& height, const std::string& help) {

@@ -17,7 +17,7 @@ const std::vector<KnobInfo>& knobs() {
       {"env-size", "side of the prefiltered specular cube, 16..256 texels"},
       {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
       {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
-      {"aa-coverage", "anti-aliasing weights (at 4 samples if 1): count, analytic"},
+      {"aa-coverage", "anti-aliasing weights (at 4 samples if 1): count, analytic, silhouette"},
       {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
@@ -131,8 +131,10 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
   } else if (knob == "aa-coverage") {
     // At the command line's sample count, or 4 where that is 1 (one sample has no weights).
     const uint32_t n = std::max(frame.samples, 4u);
-    for (const AaCoverage c : {AaCoverage::count, AaCoverage::analytic}) {
-      const char* name = c == AaCoverage::count ? "count" : "analytic";
+    for (const AaCoverage c : {AaCoverage::count, AaCoverage::analytic, AaCoverage::silhouette}) {
+      const char* name = c == AaCoverage::count      ? "count"
+                         : c == AaCoverage::analytic ? "analytic"
+                                                     : "silhouette";
       KnobSetting s = base(knob, std::to_string(n) + " samples, " + name, frame, options);
       s.frame.samples = n;
       s.frame.aa_coverage = c;

@@ -10,11 +10,18 @@ layout(set = 0, binding = TS_BINDING_VERTICES, std430) readonly buffer Vertices 
 // Uv set 1 of every vertex, indexed as `vertices`; holds data only when a material reads it.
 layout(set = 0, binding = TS_BINDING_UV1, std430) readonly buffer Uv1 { vec2 uv1s[]; };
 layout(set = 0, binding = TS_BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = 0, binding = TS_BINDING_ADJACENCY, std430) readonly buffer Adjacency { uint adjacency[]; };
 // The level-of-detail passes (which define TS_LOD_PASS) rewrite the objects' levels each frame.
 #ifdef TS_LOD_PASS
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) buffer Objects { GpuObject objects[]; };
 #else
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
+#endif
+// Written by the object_clip pass (which defines TS_OBJECT_CLIP_PASS), read by setup and after.
+#ifdef TS_OBJECT_CLIP_PASS
+layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) writeonly buffer ObjectClip { mat4 object_clip[]; };
+#else
+layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) readonly buffer ObjectClip { mat4 object_clip[]; };
 #endif
 layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = 0, binding = TS_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };

@@ -19,26 +19,79 @@ const int COVERAGE_CORNERS = 12;
 // taken relative to the pixel in integers, so each sample is tested against each edge with
 // the rasterizer's exact integer edge function. The square is cut by Sutherland & Hodgman
 // (1974, "Reentrant polygon clipping") and measured by the shoelace formula.
-float outline_coverage(uint id, ivec2 pixel, uint empty) {
+// Triangle instance `id` of object slot `slot` as the rasterizer saw it, relative to pixel
+// `pixel`: clipped to the near plane and guard band as the clip pass does, its corners snapped
+// as setup snaps them, in 1/TS_SUBPIXEL_ONE px. Returns the number of corners (0..9);
+// `twice_area` is twice its signed area in those units (its sign the winding setup sees).
+int pixel_corners(uint slot, uint id, ivec2 pixel, out ivec2 corner[9], out int64_t twice_area) {
   vec4 c[3];
-  triangle_clip_coords(find_object(id), id, c);
+  triangle_clip_coords(slot, id, c);
   vec4 clipped[9];
   int n = clip_to_view(c, clipped);
-  ivec2 corner[9];
-  int64_t twice_area = 0l;
+  twice_area = 0l;
   for (int k = 0; k < n; ++k) corner[k] = snap_to_subpixels(clipped[k]) - pixel * TS_SUBPIXEL_ONE;
   for (int k = 0; k < n; ++k) twice_area += edge_function(ivec2(0), corner[k], corner[(k + 1) % n]);
-  if (twice_area == 0l) return 0.0;
-  int64_t sign = twice_area > 0l ? 1l : -1l;
+  return n;
+}
 
-  vec2 region[COVERAGE_CORNERS];
+// Cuts the convex polygon `region` (m corners, in pixels) by the line of the edge a -> b (in
+// 1/TS_SUBPIXEL_ONE px), keeping the side sign * cross(b - a, p - a) >= 0: one step of
+// Sutherland & Hodgman (1974, "Reentrant polygon clipping"). Returns the corners left.
+int cut_by_edge(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, int64_t sign) {
+  vec2 fa = vec2(a) / float(TS_SUBPIXEL_ONE);
+  vec2 ab = vec2(b - a) / float(TS_SUBPIXEL_ONE) * float(sign);
+  vec2 next[COVERAGE_CORNERS];
+  int count = 0;
+  for (int j = 0; j < m; ++j) {
+    vec2 p = region[j];
+    vec2 q = region[(j + 1) % m];
+    float dp = ab.x * (p.y - fa.y) - ab.y * (p.x - fa.x);
+    float dq = ab.x * (q.y - fa.y) - ab.y * (q.x - fa.x);
+    if (dp >= 0.0) next[count++] = p;
+    if ((dp >= 0.0) != (dq >= 0.0)) next[count++] = mix(p, q, dp / (dp - dq));
+  }
+  for (int j = 0; j < count; ++j) region[j] = next[j];
+  return count;
+}
+
+// The pixel square [0, 1]^2 as a polygon.
+int unit_square(out vec2 region[COVERAGE_CORNERS]) {
   region[0] = vec2(0.0, 0.0);
   region[1] = vec2(1.0, 0.0);
   region[2] = vec2(1.0, 1.0);
   region[3] = vec2(0.0, 1.0);
-  int m = 4;
+  return 4;
+}
+
+// Area of polygon `region` (m corners) by the shoelace formula, in px^2.
+float polygon_area(vec2 region[COVERAGE_CORNERS], int m) {
+  float twice = 0.0;
+  for (int j = 0; j < m; ++j) {
+    vec2 p = region[j];
+    vec2 q = region[(j + 1) % m];
+    twice += p.x * q.y - p.y * q.x;
+  }
+  return 0.5 * abs(twice);
+}
+
+// Outline coverage of pixel `pixel` by triangle instance `id`, the one triangle its samples
+// see, `empty` (one bit per sample) the others: the area (px^2, 0..1) of the pixel square
+// inside the lines of the triangle's outline edges, those with an empty sample on or beyond
+// them and no covered sample beyond (the edge separates what the pixel's samples see of the
+// surface from the background: taken as where the surface ends). Its other edges do not cut:
+// the surface continues across them. Returns -1 if no edge is an outline edge, 0 for a
+// triangle with no area. The triangle is rebuilt as the rasterizer saw it (pixel_corners), so
+// each sample is tested against each edge with the rasterizer's exact integer edge function.
+float outline_coverage(uint id, ivec2 pixel, uint empty) {
+  ivec2 corner[9];
+  int64_t twice_area;
+  int n = pixel_corners(find_object(id), id, pixel, corner, twice_area);
+  if (twice_area == 0l) return 0.0;
+  int64_t sign = twice_area > 0l ? 1l : -1l;
+
+  vec2 region[COVERAGE_CORNERS];
+  int m = unit_square(region);
   int cuts = 0;
-  vec2 next[COVERAGE_CORNERS];
   for (int k = 0; k < n && m > 0; ++k) {
     ivec2 a = corner[k];
     ivec2 b = corner[(k + 1) % n];
@@ -51,28 +104,75 @@ float outline_coverage(uint id, ivec2 pixel, uint empty) {
     }
     if (!beyond_empty || beyond_covered) continue;
     cuts++;
-    // Inside the edge's line: s * cross(b - a, p - a) >= 0, in pixels.
-    vec2 fa = vec2(a) / float(TS_SUBPIXEL_ONE);
-    vec2 ab = vec2(b - a) / float(TS_SUBPIXEL_ONE) * float(sign);
-    int count = 0;
-    for (int j = 0; j < m; ++j) {
-      vec2 p = region[j];
-      vec2 q = region[(j + 1) % m];
-      float dp = ab.x * (p.y - fa.y) - ab.y * (p.x - fa.x);
-      float dq = ab.x * (q.y - fa.y) - ab.y * (q.x - fa.x);
-      if (dp >= 0.0) next[count++] = p;
-      if ((dp >= 0.0) != (dq >= 0.0)) next[count++] = mix(p, q, dp / (dp - dq));
-    }
-    m = count;
-    for (int j = 0; j < m; ++j) region[j] = next[j];
+    m = cut_by_edge(region, m, a, b, sign);
   }
   if (cuts == 0) return -1.0;
-  float twice = 0.0;
-  for (int j = 0; j < m; ++j) {
-    vec2 p = region[j];
-    vec2 q = region[(j + 1) % m];
-    twice += p.x * q.y - p.y * q.x;
-  }
   // Rounding can leave a sliver's area a hair outside [0, 1].
-  return clamp(0.5 * abs(twice), 0.0, 1.0);
+  return clamp(polygon_area(region, m), 0.0, 1.0);
+}
+
+// Area (px^2) of pixel `pixel` inside triangle instance `t` of object slot `slot` (clipped and
+// snapped as the rasterizer saw it) if it winds as `facing` says (the sign of its doubled
+// area; 0: take the triangle's own, and set it), else 0: facing away, or edge-on after
+// snapping.
+float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
+  ivec2 corner[9];
+  int64_t twice_area;
+  int n = pixel_corners(slot, t, pixel, corner, twice_area);
+  if (facing == 0l) facing = twice_area > 0l ? 1l : -1l;
+  if (twice_area * facing <= 0l) return 0.0;
+  vec2 region[COVERAGE_CORNERS];
+  int m = unit_square(region);
+  for (int k = 0; k < n && m > 0; ++k) m = cut_by_edge(region, m, corner[k], corner[(k + 1) % n], facing);
+  return m > 0 ? polygon_area(region, m) : 0.0;
+}
+
+// Silhouette coverage of pixel `pixel`, whose samples see triangles of one surface and the
+// background, `seen` (SAMPLES ids, TS_VIS_EMPTY's low word for empty samples) what each
+// sample sees: the area (px^2, 0..1) of the pixel covered by the front faces of that surface,
+// up to its silhouette. From the first triangle seen, a breadth-first walk across the mesh's
+// edges (TS_BINDING_ADJACENCY) takes in each neighbour that winds as the first does on screen
+// (past a silhouette edge a neighbour faces away; or the mesh ends there) and reaches into
+// the pixel, adding its area in the pixel (the square clipped by all its edges): the thin
+// slivers at the outline that no sample hits included. Only those taken in are listed (and
+// walked from); a neighbour left out may be tested again from another. On a closed mesh the
+// front faces do not overlap on screen, so the sum is the area of the surface's outline in
+// the pixel. Returns -1 (the counts stay) if a triangle the samples see is not taken in (two
+// pieces of surface, or two objects, in one pixel), or more than TS_SILHOUETTE_TRIANGLES
+// would be.
+float silhouette_coverage(ivec2 pixel, uint seen[SAMPLES]) {
+  uint first = 0xFFFFFFFFu;
+  for (uint s = 0u; s < SAMPLES; ++s) first = min(first, seen[s]);
+  uint slot = find_object(first);
+  GpuObject o = objects[slot];
+  int64_t facing = 0l;
+  float total = front_face_area(slot, first, pixel, facing);
+  if (total <= 0.0) return -1.0;
+  uint taken[TS_SILHOUETTE_TRIANGLES];
+  taken[0] = first;
+  int count = 1;
+  for (int head = 0; head < count; ++head) {
+    uint local = taken[head] - o.first_triangle;
+    for (uint e = 0u; e < 3u; ++e) {
+      uint across = adjacency[o.first_index + 3u * local + e];
+      if (across == TS_NO_NEIGHBOUR) continue;
+      uint id = o.first_triangle + across;
+      bool known = false;
+      for (int j = 0; j < count; ++j) known = known || taken[j] == id;
+      if (known) continue;
+      // Outside the pixel (or touching it along a line), or past the silhouette: left out.
+      float area = front_face_area(slot, id, pixel, facing);
+      if (area <= 0.0) continue;
+      if (count == TS_SILHOUETTE_TRIANGLES) return -1.0;
+      taken[count++] = id;
+      total += area;
+    }
+  }
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    bool found = seen[s] == 0xFFFFFFFFu;
+    for (int j = 0; j < count; ++j) found = found || taken[j] == seen[s];
+    if (!found) return -1.0;
+  }
+  // Front faces may overlap where snapping folds the outline: the area is a fraction.
+  return clamp(total, 0.0, 1.0);
 }

@@ -234,10 +234,12 @@ void resolve_samples(ivec2 pixel, bool inside) {
       if (id == 0xFFFFFFFFu) break;
       next = id + 1u;
     }
-    // One triangle and the background (listed last): the triangle's outline coverage is wanted.
+    // One triangle and the background (listed last): the triangle's outline coverage is wanted;
+    // silhouette coverage: any triangles and the background, computed with the first's request.
     bool analytic = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u;
-    for (uint g = 0u; g < groups && AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC; ++g) {
-      request_coverage[slots[g]] = analytic && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
+    bool silhouette = AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && empty_mask != 0u && groups >= 2u;
+    for (uint g = 0u; g < groups && AA_COVERAGE != TS_AA_COVERAGE_COUNT; ++g) {
+      request_coverage[slots[g]] = (analytic || silhouette) && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
     }
   }
   barrier();
@@ -251,10 +253,17 @@ void resolve_samples(ivec2 pixel, bool inside) {
     put_request(r, floatBitsToUint(stored(color)));
     // The request's point lies inside its pixel (the mean of some of its samples). Tested on
     // the constant first, so that the count's pipelines fold the clipping code away.
-    uint wanted = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC ? request_coverage[r] : 0u;
-    if (wanted != 0u && !empty) {
+    uint wanted = AA_COVERAGE != TS_AA_COVERAGE_COUNT ? request_coverage[r] : 0u;
+    if (AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && wanted != 0u && !empty) {
       float covered = outline_coverage(q.x, ivec2(floor(point)), wanted & ~NEEDS_COVERAGE);
       request_coverage[r] = floatBitsToUint(covered);
+    }
+    if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && wanted != 0u && !empty) {
+      ivec2 at = ivec2(floor(point));
+      uint base = sample_index(pixel_index(at), 0u);
+      uint seen[SAMPLES];
+      for (uint s = 0u; s < SAMPLES; ++s) seen[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
+      request_coverage[r] = floatBitsToUint(silhouette_coverage(at, seen));
     }
   }
   // The direct pixels' shading overlaps the requests'.
@@ -280,6 +289,16 @@ void resolve_samples(ivec2 pixel, bool inside) {
       weights[0] = covered;
       weights[groups - 1u] = 1.0 - covered;  // the background's (index 1, written so that the
                                              // 1-sample compile sees no constant index past 0)
+    }
+  }
+  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && empty_mask != 0u && groups >= 2u) {
+    // The surface's coverage shared among its triangles as their samples are; the background
+    // (listed last) takes the rest. Without it (-1), the counts stay.
+    float covered = uintBitsToFloat(request_coverage[slots[0]]);
+    if (covered > 0.0) {
+      float seen = float(SAMPLES - uint(bitCount(empty_mask)));
+      for (uint g = 0u; g + 1u < groups; ++g) weights[g] = covered * (weights[g] * float(SAMPLES) / seen);
+      weights[groups - 1u] = 1.0 - covered;
     }
   }
   vec3 sum = vec3(0.0);

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/mesh.h"
+#include "core/mesh_adjacency.h"
 
 namespace tessera {
 namespace {
@@ -83,6 +84,48 @@ TEST(Mesh, BadParametersAreUserErrors) {
   EXPECT_THROW(make_uv_sphere(8, 1), Error);
   EXPECT_THROW(make_icosphere(9), Error);
   EXPECT_THROW(make_plane(0, 4), Error);
+}
+
+TEST(MeshAdjacency, AQuadWithSplitCornersJoinsAcrossItsDiagonal) {
+  // Two triangles of the square (0,0)-(1,1) with their own copies of the diagonal's corners
+  // (as a seam makes them): 0 = (0,0,0), 1 = (1,0,0), 2 = (1,1,0); 3 = (0,0,0), 4 = (1,1,0),
+  // 5 = (0,1,0). Triangle 0's edge 2 -> 0 (its corner 2's edge) is triangle 1's edge 3 -> 4
+  // (corner 0's); every other edge is open.
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.indices = {0, 1, 2, 3, 4, 5};
+  const std::vector<uint32_t> expected = {kNoNeighbour, kNoNeighbour, 1, 0,
+                                          kNoNeighbour, kNoNeighbour};
+  EXPECT_EQ(triangle_adjacency(m), expected);
+  // Wound the same way twice (no consistent winding): no neighbour, not a wrong one.
+  m.indices = {0, 1, 2, 4, 3, 5};
+  EXPECT_EQ(triangle_adjacency(m), std::vector<uint32_t>(6, kNoNeighbour));
+}
+
+TEST(MeshAdjacency, ClosedMeshesHaveANeighbourAcrossEveryEdgeThatPointsBack) {
+  // The cube (24 corners for 8 positions) and a uv sphere (a seam of duplicated corners, and
+  // the poles: one position for a ring of corners): closed and consistently wound (as
+  // expect_closed checks), so every edge has a neighbour, whose own edge with the same two
+  // positions points back.
+  for (const Mesh& m : {make_cube(), make_uv_sphere(16, 8)}) {
+    const std::vector<uint32_t> adj = triangle_adjacency(m);
+    ASSERT_EQ(adj.size(), m.indices.size());
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      for (size_t e = 0; e < 3; ++e) {
+        const uint32_t n = adj[3 * t + e];
+        ASSERT_NE(n, kNoNeighbour) << "triangle " << t << " edge " << e;
+        const glm::vec3 a = m.positions[m.indices[3 * t + e]];
+        const glm::vec3 b = m.positions[m.indices[3 * t + (e + 1) % 3]];
+        bool back = false;
+        for (size_t f = 0; f < 3; ++f) {
+          const glm::vec3 c = m.positions[m.indices[3 * n + f]];
+          const glm::vec3 d = m.positions[m.indices[3 * n + (f + 1) % 3]];
+          if (c == b && d == a) back = adj[3 * n + f] == t;
+        }
+        EXPECT_TRUE(back) << "triangle " << t << " edge " << e << " -> " << n;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 // core/pixel_coverage.h: polygon areas inside a pixel and the analytic anti-aliasing weights,
 // against values worked out by hand.
+#include <array>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "core/pixel_coverage.h"
@@ -49,6 +52,49 @@ TEST(PixelCoverage, OutlineCoverageCutsOnlyAlongEdgesBetweenCoveredAndEmptySampl
   EXPECT_EQ(outline_coverage(small, {{0.5, 0.875}}, {{0.1, 0.9}}), -1.0);
   // No area, no coverage.
   EXPECT_EQ(outline_coverage({{0, 0}, {1, 1}, {2, 2}}, {{0.5, 0.875}}, {}), 0.0);
+}
+
+// Triangles by id for silhouette_coverage, in pixels relative to the pixel, and their
+// neighbours across edges 0-1, 1-2, 2-0.
+struct TriangleSet {
+  std::vector<std::vector<dvec2>> corners;
+  std::vector<std::array<uint64_t, 3>> across;
+  double coverage(const std::vector<uint64_t>& seen, size_t max_triangles = 24) const {
+    return silhouette_coverage(
+        seen, [&](uint64_t id) { return corners[id]; }, [&](uint64_t id) { return across[id]; },
+        max_triangles);
+  }
+};
+
+TEST(PixelCoverage, SilhouetteCoverageAddsTheSliversNoSampleSees) {
+  const uint64_t none = kNoNeighbourId;
+  // A surface ending at x = 0.75, counter-clockwise on screen: triangle 0 (seen by the
+  // samples) covers x <= 0.5 of the rows, triangles 1 and 2 the strip 0.5 <= x <= 0.75
+  // between them (a sliver the samples at x = 0.125, 0.375, 0.625, 0.875 might miss), and
+  // triangle 3, across 2's outer edge, winds the other way (facing away: beyond the
+  // silhouette). The area up to x = 0.75: 0.75, where triangle 0 alone cuts at 0.5.
+  TriangleSet s;
+  s.corners = {{{-2, -2}, {0.5, -2}, {0.5, 3}, {-2, 3}},  // a quad stands for a triangle pair
+               {{0.5, -2}, {0.75, -2}, {0.5, 3}},
+               {{0.75, -2}, {0.75, 3}, {0.5, 3}},
+               {{0.75, -2}, {0.75, 3}, {2, 3}}};  // clockwise
+  s.across = {{none, 1, none}, {none, 2, 0}, {3, none, 1}, {2, none, none}};
+  EXPECT_NEAR(s.coverage({0}), 0.75, 1e-12);
+  // Seen from a sliver: the same.
+  EXPECT_NEAR(s.coverage({1, 0}), 0.75, 1e-12);
+  // Without the adjacency the walk stops at triangle 0: its own area.
+  TriangleSet alone = s;
+  alone.across = {{none, none, none}, {none, none, none}, {none, none, none}, {none, none, none}};
+  EXPECT_NEAR(alone.coverage({0}), 0.5, 1e-12);
+  // A seen triangle the walk cannot reach (another piece of surface): no coverage, -1.
+  EXPECT_EQ(alone.coverage({0, 1}), -1.0);
+  // A walk that would list more than the limit: -1.
+  EXPECT_EQ(s.coverage({0}, 2), -1.0);
+  // Triangles outside the pixel add nothing and are not walked across: triangle 1 moved to
+  // x >= 1 keeps 2 (inside) from being reached.
+  TriangleSet outside = s;
+  outside.corners[1] = {{1.0, -2}, {1.25, -2}, {1.0, 3}};
+  EXPECT_NEAR(outside.coverage({0}), 0.5, 1e-12);
 }
 
 }  // namespace

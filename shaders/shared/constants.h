@@ -81,11 +81,18 @@
 #define TS_BRDF_BLINN_PHONG 2u
 
 // How anti-aliasing (more than one sample per pixel) weighs the triangles of a pixel whose
-// samples disagree (tessera::AaCoverage, specialization constant TS_SPEC_AA_COVERAGE): by the fraction of samples each
-// holds, or, where they see one triangle and the background, by its outline coverage
-// (shaders/coverage.glsl).
+// samples disagree (tessera::AaCoverage, specialization constant TS_SPEC_AA_COVERAGE): by the
+// fraction of samples each holds; or, where they see one triangle and the background, by its
+// outline coverage; or, where they see one surface and the background, by the area of the
+// pixel its front faces cover (silhouette coverage) (shaders/coverage.glsl).
 #define TS_AA_COVERAGE_COUNT 0u
 #define TS_AA_COVERAGE_ANALYTIC 1u
+#define TS_AA_COVERAGE_SILHOUETTE 2u
+// Triangles a silhouette coverage walk takes in at most, the first included (the compute
+// path's and the reference's): a pixel that needs more keeps the counts. On the default scene
+// at 128 x 128 and 4 samples (spheres 14 px across, whose poles gather 64 slivers in a pixel)
+// 24 gave an edge error 3.61x below 1 sample's, 32 4.39x, 48 5.17x (docs/tradeoffs.md).
+#define TS_SILHOUETTE_TRIANGLES 32
 
 // Tone-mapping operators (GpuFrame.tonemap).
 #define TS_TONEMAP_ACES 0u

@@ -99,7 +99,13 @@ using glm::vec4;
 // Per screen tile: an upper bound on the high word of every visibility key of the tile's
 // samples (hierarchical depth rejection, raster_common.glsl), all ones when nothing is known.
 #define TS_BINDING_TILE_FAR 32
-#define TS_BINDING_COUNT 33
+// Per object: its clip-space transform this frame, view_proj * model (object_clip.comp).
+#define TS_BINDING_OBJECT_CLIP 33
+// Per index of TS_BINDING_INDICES (3 per triangle): the mesh's triangle across that corner's
+// edge to the next, or TS_NO_NEIGHBOUR (core/mesh_adjacency.h), for silhouette coverage.
+#define TS_BINDING_ADJACENCY 34
+#define TS_BINDING_COUNT 35
+#define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 
 // GpuBatch.flags
 #define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
@@ -116,8 +122,9 @@ using glm::vec4;
 #define TS_SPEC_SAMPLES 7       // samples per pixel: 1, 4, 8 or 16 (shaders/samples.glsl)
 #define TS_SPEC_OUTPUT_BGRA 8   // the resolve pass stores B, G, R, A (a B8G8R8A8 swapchain's order)
 #define TS_SPEC_LOD 9           // setup: the batch's triangle count is the level-of-detail pass's
-#define TS_SPEC_TILE_SIZE 10    // tile side in px (RendererOptions::tile_size): binning, raster_tiles
-#define TS_SPEC_DEPTH_REJECTION 11  // RendererOptions::depth_rejection: fill, raster_tiles, raster_small
+#define TS_SPEC_TILE_SIZE 10  // tile side in px (RendererOptions::tile_size): binning, raster_tiles
+#define TS_SPEC_DEPTH_REJECTION \
+  11  // RendererOptions::depth_rejection: fill, raster_tiles, raster_small
 #define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
