@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "compute/pipelines.h"
 #include "compute/vk_check.h"
 #include "compute/vulkan_loader.h"
 #include "core/check.h"
@@ -350,12 +351,14 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = ctx->queue_family;
   VK_CHECK(vkCreateCommandPool(ctx->device, &pool_info, nullptr, &ctx->command_pool));
+  ctx->pipeline_cache = std::make_unique<PipelineCache>();
   return ctx;
 }
 
 Context::~Context() {
   if (device) {
     vkDeviceWaitIdle(device);
+    if (pipeline_cache) destroy_pipeline_cache(*this);
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
     vkDestroyDevice(device, nullptr);
   }

@@ -11,6 +11,8 @@
 
 namespace tessera {
 
+struct PipelineCache;  // compute/pipelines.h
+
 struct ContextOptions {
   /// "auto" (a discrete GPU if there is one, else lavapipe), "lavapipe", "gpu" (discrete, else
   /// integrated or virtual), or a device index as listed by list_devices().
@@ -60,6 +62,9 @@ struct Context {
   bool multi_draw_indirect = false;
   std::string driver;                         // driver name and version, e.g. "NVIDIA 580.159.04"
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
+  // The compute pipelines built on this device, with the layouts they share: every renderer of
+  // the context reuses them (compute/pipelines.h). Destroyed with the context.
+  std::unique_ptr<PipelineCache> pipeline_cache;
 
   Context() = default;
   Context(const Context&) = delete;

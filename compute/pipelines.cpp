@@ -1,6 +1,7 @@
 #include "compute/pipelines.h"
 
 #include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -69,8 +70,32 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .light_counts = v.light_counts};
 }
 
-VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
-                                   std::string_view shader, Specialization values) {
+namespace {
+
+// The context's layouts, created on first use. The cache's mutex must be held.
+VkPipelineLayout cached_layout(const Context& ctx, PipelineCache& cache) {
+  if (cache.layout) return cache.layout;
+  std::vector<VkDescriptorSetLayoutBinding> bindings;
+  for (uint32_t b = 0; b < TS_BINDING_COUNT; ++b) {
+    bindings.push_back({b, binding_type(b), 1, kShaderStages, nullptr});
+  }
+  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  set_info.bindingCount = uint32_t(bindings.size());
+  set_info.pBindings = bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &cache.set_layout));
+
+  VkPushConstantRange push{kShaderStages, 0, sizeof(gpu::GpuBatch)};
+  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &cache.set_layout;
+  layout_info.pushConstantRangeCount = 1;
+  layout_info.pPushConstantRanges = &push;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &cache.layout));
+  return cache.layout;
+}
+
+VkPipeline build_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
+                                  std::string_view shader, Specialization values) {
   VkShaderModule module = create_shader_module(ctx, shader);
   const std::vector<VkSpecializationMapEntry> entries = specialization_entries();
   VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), sizeof(values), &values};
@@ -90,29 +115,48 @@ VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   return pipeline;
 }
 
-VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
-                                 const ShadeVariant& v) {
-  return create_compute_pipeline(ctx, pipelines.layout, "shade", shade_specialization(v));
+}  // namespace
+
+VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
+                                   Specialization values) {
+  TESSERA_CHECK(ctx.pipeline_cache);
+  PipelineCache& cache = *ctx.pipeline_cache;
+  // Specialization is 4-byte members only (specialization_entries checks it): no padding, so
+  // its bytes name the constants.
+  std::string key(shader);
+  key.push_back('\0');
+  key.append(reinterpret_cast<const char*>(&values), sizeof(values));
+  std::lock_guard lock(cache.mutex);
+  VkPipeline& pipeline = cache.compute[key];
+  if (!pipeline) pipeline = build_compute_pipeline(ctx, cached_layout(ctx, cache), shader, values);
+  return pipeline;
+}
+
+VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& v) {
+  return create_compute_pipeline(ctx, "shade", shade_specialization(v));
+}
+
+void destroy_pipeline_cache(Context& ctx) {
+  PipelineCache& cache = *ctx.pipeline_cache;
+  std::lock_guard lock(cache.mutex);
+  for (const auto& [key, pipeline] : cache.compute) {
+    if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  }
+  cache.compute.clear();
+  if (cache.layout) vkDestroyPipelineLayout(ctx.device, cache.layout, nullptr);
+  if (cache.set_layout) vkDestroyDescriptorSetLayout(ctx.device, cache.set_layout, nullptr);
+  cache.layout = VK_NULL_HANDLE;
+  cache.set_layout = VK_NULL_HANDLE;
 }
 
 Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection) {
+  TESSERA_CHECK(ctx.pipeline_cache);
   Pipelines p;
-  std::vector<VkDescriptorSetLayoutBinding> bindings;
-  for (uint32_t b = 0; b < TS_BINDING_COUNT; ++b) {
-    bindings.push_back({b, binding_type(b), 1, kShaderStages, nullptr});
+  {
+    std::lock_guard lock(ctx.pipeline_cache->mutex);
+    p.layout = cached_layout(ctx, *ctx.pipeline_cache);
+    p.set_layout = ctx.pipeline_cache->set_layout;
   }
-  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  set_info.bindingCount = uint32_t(bindings.size());
-  set_info.pBindings = bindings.data();
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &p.set_layout));
-
-  VkPushConstantRange push{kShaderStages, 0, sizeof(gpu::GpuBatch)};
-  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layout_info.setLayoutCount = 1;
-  layout_info.pSetLayouts = &p.set_layout;
-  layout_info.pushConstantRangeCount = 1;
-  layout_info.pPushConstantRanges = &push;
-  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &p.layout));
 
   for (const PassInfo& row : kPasses) {
     if (row.shader == nullptr || row.variants == Variants::shading) continue;
@@ -121,16 +165,16 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
     PassInfo pass = row;
     pass.spec.tile_size = tile_size;
     pass.spec.depth_rejection = depth_rejection ? VK_TRUE : VK_FALSE;
-    p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, pass.spec);
+    p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, pass.spec);
     if (pass.variants == Variants::debug_coverage) {
       Specialization coverage = pass.spec;
       coverage.debug_coverage = VK_TRUE;
-      p.coverage[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, coverage);
+      p.coverage[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, coverage);
     }
     if (pass.variants == Variants::lod) {
       Specialization lod = pass.spec;
       lod.lod = VK_TRUE;
-      p.lod[size_t(pass.pass)] = create_compute_pipeline(ctx, p.layout, pass.shader, lod);
+      p.lod[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, lod);
     }
   }
   for (const PipelineInfo& info : kPipelines) {
@@ -138,21 +182,12 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
     // as all the others together) and serve only RendererOptions::specialize_lights off:
     // shade_pipeline builds them on first use.
     if (std::string_view(info.shader) == "shade") continue;
-    p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, p.layout, info.shader, info.spec);
+    p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, info.shader, info.spec);
   }
   return p;
 }
 
-void destroy_pipelines(const Context& ctx, Pipelines& p) {
-  for (std::span<VkPipeline> list :
-       {std::span<VkPipeline>(p.passes), std::span<VkPipeline>(p.coverage),
-        std::span<VkPipeline>(p.lod), std::span<VkPipeline>(p.pipelines)}) {
-    for (VkPipeline pipeline : list) {
-      if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
-    }
-  }
-  if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
-  if (p.set_layout) vkDestroyDescriptorSetLayout(ctx.device, p.set_layout, nullptr);
+void destroy_pipelines(const Context&, Pipelines& p) {
   p = Pipelines{};
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // The descriptor set layout shared by every pass, and the compute pipelines of the pass and
-// pipeline tables (compute/passes.h), created once.
+// pipeline tables (compute/passes.h), created once per context.
 
 #include <array>
+#include <map>
+#include <mutex>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -20,6 +23,24 @@ namespace tessera {
 constexpr VkShaderStageFlags kShaderStages =
     VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
+/// The compute pipelines a context has built, by shader and specialization, and the layouts all
+/// of them use. Building a pipeline costs lavapipe 10 ms to 1 s of CPU time (the shading pass
+/// the most), often more than rendering a small frame, so every renderer of a context (a tool
+/// or test rendering with several sets of options, one renderer after another) builds each
+/// one once. Owned by Context::pipeline_cache and destroyed with the context; thread-safe.
+struct PipelineCache {
+  std::mutex mutex;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;  // built on first use, as `layout`
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::map<std::string, VkPipeline> compute;  // by shader name, '\0', Specialization's bytes
+};
+
+/// Destroys the pipelines and layouts of ctx.pipeline_cache. No renderer of `ctx` may be left,
+/// and the device must be idle (Context's destructor).
+void destroy_pipeline_cache(Context& ctx);
+
+/// A renderer's view of its context's pipelines (PipelineCache): every handle belongs to the
+/// cache.
 struct Pipelines {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -49,7 +70,7 @@ struct ShadeVariant {
   uint32_t texture_maps;
   bool ibl;
   uint32_t uv1_maps;
-  uint32_t samples = 1;  // per pixel
+  uint32_t samples = 1;                         // per pixel
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage, with samples > 1
   auto operator<=>(const ShadeVariant&) const = default;
 };
@@ -62,21 +83,22 @@ Specialization shade_specialization(const ShadeVariant& variant);
 /// VkSpecializationInfo with a Specialization as data.
 std::vector<VkSpecializationMapEntry> specialization_entries();
 
-/// A compute pipeline of the embedded shader `shader` with the layout `layout`, specialized to
-/// `values`. Throws Error (through vk_check) if the driver cannot build it.
-VkPipeline create_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
-                                   std::string_view shader, Specialization values);
+/// The compute pipeline of the embedded shader `shader` with the context's layout
+/// (PipelineCache), specialized to `values`: built on first use and kept by the context, which
+/// destroys it (callers must not). Throws Error (through vk_check) if the driver cannot build it.
+VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
+                                   Specialization values);
 
-/// Builds the shading pipeline for `variant` with the layout of `pipelines`.
-VkPipeline create_shade_pipeline(const Context& ctx, const Pipelines& pipelines,
-                                 const ShadeVariant& variant);
+/// The shading pipeline for `variant` (create_compute_pipeline).
+VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& variant);
 
-/// Creates the layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V,
-/// the passes specialized to tiles of `tile_size` pixels per side (validate_tile_size) and to
-/// hierarchical depth rejection on or off (`depth_rejection`, RendererOptions), except the
-/// generic shading pipelines of kPipelines (shader "shade"), left null for the renderer to
-/// build on first use.
+/// The layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V, built
+/// unless the context has them (create_compute_pipeline), the passes specialized to tiles of
+/// `tile_size` pixels per side (validate_tile_size) and to hierarchical depth rejection on or
+/// off (`depth_rejection`, RendererOptions), except the generic shading pipelines of kPipelines
+/// (shader "shade"), left null for the renderer to get on first use.
 Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection);
+/// Forgets `pipelines`; their handles stay with the context.
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
 
 }  // namespace tessera

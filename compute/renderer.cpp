@@ -154,10 +154,7 @@ Renderer::~Renderer() {
   destroy_buffer(ctx, s_->counters_readback);
   destroy_buffer(ctx, s_->frame_constants);
   destroy_environment_gpu(ctx, s_->env);
-  for (auto& [variant, pipeline] : s_->shade_variants)
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
-  for (auto& [key, pipeline] : s_->sampled_pipelines)
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  // shade_variants, sampled_pipelines and `pipelines` belong to the context (PipelineCache).
   destroy_image(ctx, s_->hdr);
   destroy_image(ctx, s_->ldr);
   if (s_->queries) vkDestroyQueryPool(ctx.device, s_->queries, nullptr);
@@ -548,7 +545,7 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   if (s.options.specialize_lights) {
     const ShadeVariant v = shade_variant(s, settings);
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
-    if (inserted) it->second = create_shade_pipeline(s.ctx, s.pipelines, v);
+    if (inserted) it->second = create_shade_pipeline(s.ctx, v);
     return it->second;
   }
   Pipeline generic = Pipeline::shade_classic;
@@ -566,8 +563,7 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
   if (settings.samples == 1) {
     VkPipeline& pipeline = s.pipelines.pipelines[size_t(generic)];  // null until first used
     const PipelineInfo& info = kPipelines[size_t(generic)];
-    if (!pipeline)
-      pipeline = create_compute_pipeline(s.ctx, s.pipelines.layout, info.shader, info.spec);
+    if (!pipeline) pipeline = create_compute_pipeline(s.ctx, info.shader, info.spec);
     return pipeline;
   }
   Specialization spec = kPipelines[size_t(generic)].spec;
@@ -584,7 +580,7 @@ VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader
       VK_NULL_HANDLE);
   if (inserted) {
     spec.samples = samples;
-    it->second = create_compute_pipeline(s.ctx, s.pipelines.layout, shader, spec);
+    it->second = create_compute_pipeline(s.ctx, shader, spec);
   }
   return it->second;
 }

@@ -39,6 +39,7 @@ AccuracyReport compare_rendered(Renderer& renderer, const Scene& scene, const Fr
   r.pixels = vis.size();
   std::vector<uint8_t> agree(vis.size(), 1);
   std::vector<double> relative;
+  relative.reserve(3 * vis.size());
   for (size_t i = 0; i < vis.size(); ++i) {
     for (int c = 0; c < 4; ++c) r.finite = r.finite && std::isfinite(hdr.pixels[i][c]);
     const uint32_t gpu = vis[i] == ~0ull ? kNoTriangle : uint32_t(vis[i]);
@@ -83,10 +84,17 @@ AccuracyReport compare_rendered(Renderer& renderer, const Scene& scene, const Fr
   }
   r.ldr = compare_images(ldr, ref.ldr, 1.0, &agree);
   if (!relative.empty()) {
-    std::sort(relative.begin(), relative.end());
-    r.hdr_median_relative = relative[relative.size() / 2];
-    r.hdr_p999_relative = relative[size_t(double(relative.size() - 1) * 0.999)];
-    r.hdr_max_relative = relative.back();
+    // The elements a full sort would put at these places, found by selection: at 4096 x 4096
+    // the sort of 50 million errors took a sixth of the test's time. The second selection
+    // searches only the part the first left in front (every element there is at most its).
+    const auto median = relative.begin() + ptrdiff_t(relative.size() / 2);
+    const auto p999 = relative.begin() + ptrdiff_t(double(relative.size() - 1) * 0.999);
+    const auto [lo, hi] = std::minmax(median, p999);
+    r.hdr_max_relative = *std::max_element(relative.begin(), relative.end());
+    std::nth_element(relative.begin(), hi, relative.end());
+    std::nth_element(relative.begin(), lo, hi);
+    r.hdr_median_relative = *median;
+    r.hdr_p999_relative = *p999;
   }
   if (!meets_bars(r)) {
     const std::string stem = name;
