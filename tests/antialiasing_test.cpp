@@ -297,7 +297,7 @@ TEST_F(AntiAliasing, FourSamplesCutTheEdgeErrorAsTheirPatternAllows) {
 // its truths take minutes; run with --gtest_also_run_disabled_tests). AA_W x AA_H pixels
 // (default 128 x 128); with AA_FULLH, the central AA_W x AA_H of an image AA_FULLH pixels high
 // (the field of view narrowed to it, so sizes on screen and the pixel grid are that image's,
-// for even sizes).
+// for even sizes); AA_SCENE another built-in scene than the default.
 uint32_t size_from_environment(const char* name, uint32_t otherwise) {
   const char* value = std::getenv(name);
   return value ? uint32_t(std::strtoul(value, nullptr, 10)) : otherwise;
@@ -306,7 +306,8 @@ uint32_t size_from_environment(const char* name, uint32_t otherwise) {
 TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
   const uint32_t w = size_from_environment("AA_W", 128), h = size_from_environment("AA_H", 128);
   const uint32_t full_h = size_from_environment("AA_FULLH", h);
-  Scene scene = make_sphere_grid_scene();
+  const char* scene_name = std::getenv("AA_SCENE");
+  Scene scene = make_builtin_scene(scene_name ? scene_name : "spheres");
   scene.camera.vertical_fov = float(
       2.0 * std::atan(std::tan(double(scene.camera.vertical_fov) / 2.0) * h / double(full_h)));
   ReferenceSettings rs;
