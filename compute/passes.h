@@ -22,6 +22,7 @@ enum class Pass {
   environment,  // the environment's irradiance and prefiltered cube, on the first frame after
                 // set_scene changed it (also the DFG tables when first needed)
   clear,
+  object_clip,  // each object's clip-space transform (view_proj * model)
   lod,          // level of detail (FrameSettings::lod automatic only): each object's level,
   lod_scan,     // the triangle total and each batch's setup dispatch,
   lod_offsets,  // and each object's first triangle-instance id
@@ -62,6 +63,7 @@ enum class Stage {
   precompute,  // record_precomputation: timed only on frames that computed something
   clear,       // the buffers of kBindings with Clear::per_frame are filled (and those with
                // Clear::on_creation after they were created)
+  objects,     // once per frame before the batches, when the scene has triangles
   lod,         // once per frame before the batches, only under FrameSettings::lod automatic
   batch,       // once per batch of triangles (these rows are contiguous), with the GpuBatch
                // push constant set
@@ -105,6 +107,8 @@ struct PassInfo {
 constexpr PassInfo kPasses[] = {
     {Pass::environment, "environment", nullptr, Stage::precompute, Dispatch::none},
     {Pass::clear, "clear", nullptr, Stage::clear, Dispatch::none},
+    {Pass::object_clip, "object_clip", "object_clip", Stage::objects, Dispatch::per_object, 0,
+     TS_GROUP_SIZE},
     {Pass::lod, "lod", "lod", Stage::lod, Dispatch::per_object, 0, TS_LOD_GROUP_SIZE},
     {Pass::lod_scan, "lod_scan", "lod_scan", Stage::lod, Dispatch::fixed, 1},
     {Pass::lod_offsets, "lod_offsets", "lod_offsets", Stage::lod, Dispatch::per_object, 0,
@@ -129,7 +133,8 @@ constexpr PassInfo kPasses[] = {
 constexpr bool pass_row_is_filled(const PassInfo& p) {
   if (p.name == nullptr || p.name[0] == '\0') return false;
   const bool dispatches = p.dispatch != Dispatch::none;
-  if (dispatches != (p.stage == Stage::batch || p.stage == Stage::frame || p.stage == Stage::lod))
+  if (dispatches != (p.stage == Stage::batch || p.stage == Stage::frame || p.stage == Stage::lod ||
+                     p.stage == Stage::objects))
     return false;
   if (p.variants == Variants::lod &&
       (p.counter_offset % 4 != 0 ||
@@ -248,6 +253,7 @@ enum class Scale {
   pixels_if_coverage,    // per pixel under RendererOptions::debug_coverage, else 4 bytes
   tiles,                 // per screen tile (plus `extra` elements)
   raster_capacity,       // per raster triangle the scratch buffers hold (grows on overflow)
+  objects,               // per object of the scene
   lod_groups,            // per TS_LOD_GROUP_SIZE objects of the scene
   objects_if_lod_draws,  // per object once the hardware baseline drew with level of detail,
                          // else 4 bytes
@@ -320,6 +326,7 @@ constexpr BindingInfo kBindings[] = {
     // Only lowered within a frame (every bound stays valid for the later batches).
     {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame,
      0xFFFFFFFFu},
+    {TS_BINDING_OBJECT_CLIP, kStorageBuffer, Source::sized, Scale::objects, sizeof(glm::mat4)},
     {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
 };
 

@@ -399,6 +399,9 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
     case Scale::raster_capacity:
       count = s.raster_capacity;
       break;
+    case Scale::objects:
+      count = s.uploaded.objects.size();
+      break;
     case Scale::lod_groups:
       count = div_up(s.uploaded.objects.size(), TS_LOD_GROUP_SIZE);
       break;
@@ -1022,9 +1025,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         mark(pass.pass);
         ++i;
         break;
+      case Stage::objects:
       case Stage::lod:
-        // Not recorded at all without level of detail, so such frames are as before it.
-        if (settings.lod == Lod::automatic && total > 0) {
+        // The lod passes are not recorded at all without level of detail, so such frames are
+        // as before it.
+        if (total > 0 && (pass.stage == Stage::objects || settings.lod == Lod::automatic)) {
           const gpu::GpuBatch none{};  // lod.comp reads flags
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(none), &none);
           record_dispatch(s, cmd, pass, none, settings);

@@ -1,10 +1,13 @@
 #include "core/reference_brdf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
+
+#include "core/check.h"
 
 namespace tessera {
 
@@ -144,13 +147,9 @@ double reference_specular_albedo(Brdf variant, double n_dot_v, double roughness)
   return reference_specular_albedo_terms(variant, n_dot_v, roughness).y;
 }
 
-const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double roughness) {
-  roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
-  static std::mutex mutex;
-  static std::map<std::pair<Brdf, double>, std::unique_ptr<SpecularAlbedoTable>> cache;
-  std::lock_guard<std::mutex> lock(mutex);
-  std::unique_ptr<SpecularAlbedoTable>& slot = cache[{variant, roughness}];
-  if (slot) return *slot;
+namespace {
+
+std::unique_ptr<SpecularAlbedoTable> make_specular_albedo_table(Brdf variant, double roughness) {
   auto table = std::make_unique<SpecularAlbedoTable>();
   constexpr int kPoints = SpecularAlbedoTable::kPoints;
   for (int i = 0; i < kPoints; ++i) {
@@ -165,8 +164,54 @@ const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double 
     const glm::dvec2 t = reference_specular_albedo_terms(variant, mu, roughness);
     table->means += 2.0 * mu / kMeanSteps * dvec3(t.y, t.x, t.x / t.y);
   }
-  slot = std::move(table);
+  return table;
+}
+
+}  // namespace
+
+const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double roughness) {
+  roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  static std::mutex mutex;
+  static std::map<std::pair<Brdf, double>, std::unique_ptr<SpecularAlbedoTable>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  std::unique_ptr<SpecularAlbedoTable>& slot = cache[{variant, roughness}];
+  if (!slot) slot = make_specular_albedo_table(variant, roughness);
   return *slot;
+}
+
+SpecularAlbedoLookup reference_specular_albedo_lookup(Brdf variant, double roughness) {
+  TESSERA_CHECK(variant == Brdf::classic || variant == Brdf::filament);
+  constexpr int kNodes = SpecularAlbedoLookup::kNodes;
+  // Per node a once_flag, so that threads wait only for the node they need, not for each other.
+  struct Node {
+    std::once_flag built;
+    std::unique_ptr<SpecularAlbedoTable> table;
+  };
+  static std::array<Node, kNodes + 1> nodes[2];
+  std::array<Node, kNodes + 1>& grid = nodes[variant == Brdf::filament ? 1 : 0];
+  auto table = [&](int k, double node_roughness) {
+    Node& node = grid[size_t(k)];
+    std::call_once(node.built,
+                   [&] { node.table = make_specular_albedo_table(variant, node_roughness); });
+    return node.table.get();
+  };
+  roughness = std::clamp(roughness, TS_MIN_PERCEPTUAL_ROUGHNESS, 1.0);
+  const int k = std::min(int(roughness * kNodes), kNodes);
+  // The node below 0.045 stands for 0.045 itself, the lowest roughness there is.
+  const double r0 = std::max(double(k) / kNodes, TS_MIN_PERCEPTUAL_ROUGHNESS);
+  const SpecularAlbedoTable* lower = table(k, r0);
+  if (roughness == r0 || k == kNodes) return {lower, lower, 0.0};
+  const double r1 = double(k + 1) / kNodes;
+  return {lower, table(k + 1, r1), (roughness - r0) / (r1 - r0)};
+}
+
+glm::dvec2 SpecularAlbedoLookup::at(double n_dot_v) const {
+  const glm::dvec2 a = lower->at(n_dot_v);
+  return weight == 0.0 ? a : glm::mix(a, upper->at(n_dot_v), weight);
+}
+
+glm::dvec3 SpecularAlbedoLookup::means() const {
+  return weight == 0.0 ? lower->means : glm::mix(lower->means, upper->means, weight);
 }
 
 glm::dvec2 SpecularAlbedoTable::at(double n_dot_v) const {
@@ -189,7 +234,7 @@ BrdfLobes reference_compensated_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, c
   const double n_dot_l = glm::dot(n, l);
   if (n_dot_l <= 0.0 || variant == Brdf::blinn_phong)
     return reference_brdf_lobes(variant, n, v, l, m);
-  const SpecularAlbedoTable& table = reference_specular_albedo_table(variant, m.roughness);
+  const SpecularAlbedoLookup table = reference_specular_albedo_lookup(variant, m.roughness);
   const double n_dot_v = std::max(glm::dot(n, v), TS_MIN_N_DOT_V);
   const double metallic = std::clamp(double(m.metallic), 0.0, 1.0);
   const dvec3 f0 = glm::mix(dvec3(TS_DIELECTRIC_F0), dvec3(m.base_color), metallic);
@@ -202,8 +247,8 @@ BrdfLobes reference_compensated_lobes(Brdf variant, dvec3 n, dvec3 v, dvec3 l, c
   lobes.specular *= 1.0 + f0 * (1.0 / terms_v.y - 1.0);
   // (f0 E + (1 - f0) E_Fc)(1 - f0 + f0 / E), averaged term by term.
   const dvec3 g = 1.0 - f0;
-  const dvec3 average =
-      f0 * g * table.means.x + f0 * f0 + g * g * table.means.y + f0 * g * table.means.z;
+  const dvec3 means = table.means();
+  const dvec3 average = f0 * g * means.x + f0 * f0 + g * g * means.y + f0 * g * means.z;
   lobes.diffuse *= (1.0 - specular_layer_albedo(terms_v, f0)) *
                    (1.0 - specular_layer_albedo(table.at(n_dot_l), f0)) /
                    glm::max(1.0 - average, dvec3(1e-12));

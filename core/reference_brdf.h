@@ -63,6 +63,26 @@ struct SpecularAlbedoTable {
 /// Built on first use per (variant, roughness >= 0.045 applied) and cached; thread-safe.
 const SpecularAlbedoTable& reference_specular_albedo_table(Brdf variant, double roughness);
 
+/// The specular albedo at any roughness, as energy compensation reads it: the tables of the two
+/// roughness nodes k / kNodes around it (the lowest node raised to 0.045), mixed linearly by
+/// roughness; at a node, its table alone. A roughness map makes nearly every sample's roughness
+/// a new value, and a table (193 quadratures) per value made a textured ground truth take an hour;
+/// the nodes' tables are built once each. Mixing changes E by at most 1.3e-5 against the table
+/// of the exact roughness (filament at roughness 0.08, grazing; 7e-7 for classic), the means by
+/// 3e-7: below the quadrature's own error (docs/accuracy.md, "Ground truth").
+struct SpecularAlbedoLookup {
+  static constexpr int kNodes = 1024;
+  const SpecularAlbedoTable* lower;
+  const SpecularAlbedoTable* upper;  // equals lower at a node
+  double weight;                     // of upper, in [0, 1)
+  glm::dvec2 at(double n_dot_v) const;
+  glm::dvec3 means() const;
+};
+/// Builds the nodes' tables on first use, each once, without holding other threads' lookups
+/// back; thread-safe. Roughness is clamped to [0.045, 1]; `variant` classic or filament
+/// (blinn-phong has no compensation; checked).
+SpecularAlbedoLookup reference_specular_albedo_lookup(Brdf variant, double roughness);
+
 /// The lobes with energy compensation (Kulla & Conty 2017): the specular lobe times
 /// 1 + F0 (1 / E(n.v) - 1), and a Lambert diffuse lobe (for classic too, whose 1 - F weight it
 /// replaces) times (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg), Es the compensated specular

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -609,15 +610,22 @@ double srgb_encode(double linear) {  // IEC 61966-2-1
   return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
+// Calls fn(y0, y1) over blocks of rows that together cover [0, height), on `threads` threads.
+// Blocks are handed out as threads free up: rows cost very unequal amounts (sky against
+// textured spheres), and with one contiguous share per thread the others idle while the one
+// holding the costly rows works. About 8 blocks per thread keep the per-call setup (the plain
+// path walks every triangle per call) small.
 template <typename Fn>
 void parallel_rows(uint32_t height, unsigned threads, Fn&& fn) {
   threads = std::max(1u, std::min(threads, height));
+  const uint32_t block = std::max(1u, height / (threads * 8u));
+  std::atomic<uint32_t> next{0};
+  auto work = [&] {
+    for (uint32_t y0; (y0 = next.fetch_add(block)) < height;) fn(y0, std::min(height, y0 + block));
+  };
   std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) {
-    const uint32_t y0 = uint32_t(uint64_t(height) * t / threads);
-    const uint32_t y1 = uint32_t(uint64_t(height) * (t + 1) / threads);
-    pool.emplace_back([&fn, y0, y1] { fn(y0, y1); });
-  }
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
   for (std::thread& th : pool) th.join();
 }
 

@@ -17,6 +17,12 @@ layout(set = 0, binding = TS_BINDING_OBJECTS, std430) buffer Objects { GpuObject
 #else
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
 #endif
+// Written by the object_clip pass (which defines TS_OBJECT_CLIP_PASS), read by setup and after.
+#ifdef TS_OBJECT_CLIP_PASS
+layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) writeonly buffer ObjectClip { mat4 object_clip[]; };
+#else
+layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) readonly buffer ObjectClip { mat4 object_clip[]; };
+#endif
 layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = 0, binding = TS_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = TS_BINDING_RASTER_TRIS, std430) buffer RasterTris { GpuRasterTri raster_tris[]; };

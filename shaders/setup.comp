@@ -67,15 +67,44 @@ uint classify(uint slot, uint id, out RasterTri t) {
     slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot); \
   }
 
+// find_object(tri) for a `tri` the same in every lane, searched by all of them at once: each
+// step every lane loads one object and the ballot of their answers keeps one of
+// (gl_SubgroupSize + 1) parts of the range, where a binary search keeps one of 2. With 32 lanes a
+// million objects take 4 steps of dependent loads instead of 20: setup ran at a quarter of its
+// ALU rate on the H200 whichever lane searched (docs/performance.md, "What limits each pass"), so
+// the chain's latency, not its loads, was the cost. The answer, the last object whose first
+// triangle-instance id is <= tri (objects are sorted by it), is unique, so it is find_object's.
+// Every lane of the subgroup must be active (main calls it first, and a workgroup is a whole
+// number of subgroups): an inactive lane would vote "no" in the middle of the "yes" lanes.
+// gl_SubgroupSize rather than a count of the active lanes lets the compiler turn the division
+// into a shift (the subgroup size is a power of two, and a constant of the device).
+uint find_object_in_subgroup(uint tri) {
+  uint lanes = gl_SubgroupSize;
+  uint lane = gl_SubgroupInvocationID;
+  // Invariant: the answer is in [lo, hi), and lo is it unless a later object starts <= tri.
+  uint lo = 0u;
+  uint hi = frame.object_count;
+  while (hi - lo > 1u) {
+    // Lane k probes lo + 1 + k * stride (clamped to the last candidate, hi - 1): non-decreasing
+    // in k, so the lanes whose object starts <= tri are the first `below` ones.
+    uint stride = (hi - lo - 1u + lanes - 1u) / lanes;
+    uint probe = min(lo + 1u + lane * stride, hi - 1u);
+    uint below = subgroupBallotBitCount(subgroupBallot(objects[probe].first_triangle <= tri));
+    // The answer lies from the last "yes" probe (lo if none) to before the first "no" one (equal
+    // probes answer alike, so the two differ).
+    uint first_no = below < lanes ? min(lo + 1u + below * stride, hi - 1u) : hi;
+    if (below > 0u) lo = min(lo + 1u + (below - 1u) * stride, hi - 1u);
+    hi = first_no;
+  }
+  return lo;
+}
+
 void main() {
   uint local = gl_GlobalInvocationID.x;
   uint id = batch.first_triangle + local;
-  // The subgroup's triangles are consecutive ids, so one binary search finds the object of the
-  // first and each lane walks forward from it (at most a step for meshes of many triangles):
-  // a search per thread, 20 dependent loads deep for a million objects, was setup's bottleneck.
-  uint slot = 0u;
-  if (subgroupElect()) slot = find_object(subgroupBroadcastFirst(id));
-  slot = subgroupBroadcastFirst(slot);
+  // The subgroup's triangles are consecutive ids, so one search finds the object of the first
+  // and each lane walks forward from it (at most a step for meshes of many triangles).
+  uint slot = find_object_in_subgroup(subgroupBroadcastFirst(id));
   while (slot + 1u < frame.object_count && objects[slot + 1u].first_triangle <= id) ++slot;
   RasterTri t;
   uint count = LOD ? counters[batch.index].lod_triangles : batch.triangle_count;
@@ -101,6 +130,10 @@ void main() {
     counters[batch.index].clip_dispatch.yz = uvec2(1u);
     counters[batch.index].big_dispatch.yz = uvec2(1u);
   }
+  // At 10^6 grid objects nearly every subgroup culls all its triangles: such a subgroup skips
+  // the appends' ballots, prefix sums and broadcasts (the condition is the same in all its lanes).
+  // A ballot rather than subgroupAny: the device is asked for the ballot operations, not votes.
+  if (subgroupBallot(outcome >= OUTCOME_CLIP) == uvec4(0u)) return;
   uint clip_slot;
   {
     uvec4 ballot = subgroupBallot(outcome == OUTCOME_CLIP);

@@ -152,7 +152,8 @@ TEST(BenchCli, YardstickLayoutIsTheMinimalProgramsLayout) {
 
 // The minimal graphics program computes its layout from the formulas itself, projects
 // with its own matrices and rasterizes on the device's graphics pipeline: the pixels it covers
-// must be those the compute path's visibility buffer holds for the yardstick family.
+// must be those the compute path's visibility buffer holds for the yardstick family, at every
+// rung of its ladder (--variant all).
 TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
 #ifndef TESSERA_MINIMAL_GRAPHICS
   GTEST_SKIP() << "built without bench/ (TESSERA_BUILD_BENCH off)";
@@ -165,7 +166,8 @@ TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
   std::string out;
   // The validation layer prints to stdout when no messenger is installed.
   ASSERT_EQ(test::run_command("VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation " +
-                                  std::string(TESSERA_MINIMAL_GRAPHICS) + common + minimal,
+                                  std::string(TESSERA_MINIMAL_GRAPHICS) + " --variant all" +
+                                  common + minimal,
                               out),
             0)
       << out;
@@ -179,14 +181,20 @@ TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
       << out;
   std::ifstream m(minimal), b(bench);
   const nlohmann::json mj = nlohmann::json::parse(m), bj = nlohmann::json::parse(b);
-  ASSERT_EQ(mj["results"].size(), 3u);
+  // Rung after rung, each with the three counts in order.
+  const size_t rungs = 8;
+  ASSERT_EQ(mj["results"].size(), 3u * rungs);
   ASSERT_EQ(bj["results"].size(), 3u);
-  for (size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(mj["results"][i]["objects"], bj["results"][i]["objects"]);
-    EXPECT_GT(int(mj["results"][i]["pixels_shaded"]), 1000);
-    EXPECT_EQ(mj["results"][i]["pixels_shaded"], bj["results"][i]["pixels_shaded"])
-        << "objects " << mj["results"][i]["objects"];
+  for (size_t k = 0; k < mj["results"].size(); ++k) {
+    const nlohmann::json& m = mj["results"][k];
+    const nlohmann::json& b = bj["results"][k % 3];
+    EXPECT_EQ(m["variant"], k / 3);
+    EXPECT_EQ(m["objects"], b["objects"]);
+    EXPECT_GT(int(m["pixels_shaded"]), 1000);
+    EXPECT_EQ(m["pixels_shaded"], b["pixels_shaded"])
+        << "rung " << m["backend"] << ", objects " << m["objects"];
   }
+  EXPECT_EQ(mj["results"][0]["backend"], "minimal");
 #endif
 }
 

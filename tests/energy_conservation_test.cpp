@@ -124,6 +124,29 @@ TEST(EnergyConservation, CompensatedBrdfIsReciprocal) {
   }
 }
 
+// Compensation reads E through roughness nodes (reference_specular_albedo_lookup); between them
+// it must stay within the stated 1.3e-5 of the table quadrature builds for the roughness itself,
+// and at a node equal it.
+TEST(EnergyConservation, AlbedoBetweenRoughnessNodesMatchesTheExactRoughness) {
+  for (Brdf variant : {Brdf::classic, Brdf::filament}) {
+    for (double roughness : {0.045, 0.0791, 0.37, double(0.7f), 0.5, 1.0}) {
+      const SpecularAlbedoLookup lookup = reference_specular_albedo_lookup(variant, roughness);
+      const SpecularAlbedoTable& exact = reference_specular_albedo_table(variant, roughness);
+      const double position = roughness * SpecularAlbedoLookup::kNodes;
+      const bool node = roughness == 0.045 || position == std::floor(position);
+      EXPECT_EQ(lookup.weight == 0.0, node) << roughness;
+      for (double nv : {0.0, 0.01, 0.05, 0.2, 0.5, 0.9, 1.0}) {
+        const glm::dvec2 a = lookup.at(nv), b = exact.at(nv);
+        const double tolerance = node ? 0.0 : 1.5e-5;
+        EXPECT_NEAR(a.x, b.x, tolerance) << roughness << " N.V " << nv;
+        EXPECT_NEAR(a.y, b.y, tolerance) << roughness << " N.V " << nv;
+      }
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(lookup.means()[k], exact.means[k], node ? 0.0 : 5e-7) << roughness;
+    }
+  }
+}
+
 class EnergyConservationGpu : public test::VulkanTest {};
 
 // The white furnace on the GPU: white spheres, dielectric and metal, under a uniform environment

@@ -99,10 +99,12 @@ using glm::vec4;
 // Per screen tile: an upper bound on the high word of every visibility key of the tile's
 // samples (hierarchical depth rejection, raster_common.glsl), all ones when nothing is known.
 #define TS_BINDING_TILE_FAR 32
+// Per object: its clip-space transform this frame, view_proj * model (object_clip.comp).
+#define TS_BINDING_OBJECT_CLIP 33
 // Per index of TS_BINDING_INDICES (3 per triangle): the mesh's triangle across that corner's
 // edge to the next, or TS_NO_NEIGHBOUR (core/mesh_adjacency.h), for silhouette coverage.
-#define TS_BINDING_ADJACENCY 33
-#define TS_BINDING_COUNT 34
+#define TS_BINDING_ADJACENCY 34
+#define TS_BINDING_COUNT 35
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 
 // GpuBatch.flags
