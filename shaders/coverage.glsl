@@ -1,6 +1,8 @@
-// Analytic coverage (FrameSettings::aa_coverage analytic) of a pixel whose samples see one
-// triangle and the background: how much of it the surface covers. The reference
-// renderer's version is core/pixel_coverage.cpp. Needs bindings.glsl and raster_common.glsl.
+// How much of a pixel a surface covers, for anti-aliasing's weights (FrameSettings::
+// aa_coverage): analytic (outline_coverage, where the samples see one triangle and the
+// background) and silhouette (silhouette_coverage, one surface and the background). The
+// reference renderer's versions are in core/pixel_coverage.cpp. Needs bindings.glsl and
+// raster_common.glsl.
 
 #include "view_clip.glsl"
 

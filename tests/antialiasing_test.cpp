@@ -293,11 +293,21 @@ TEST_F(AntiAliasing, FourSamplesCutTheEdgeErrorAsTheirPatternAllows) {
   EXPECT_GE(count[1] / silhouette, 3.0);
 }
 
+// The 16 x 16 supersampled truth of `scene`'s own triangles, width x height pixels.
+ReferenceFrame supersampled_truth(const Scene& scene, uint32_t width, uint32_t height) {
+  ReferenceSettings rs;
+  rs.frame.width = width;
+  rs.frame.height = height;
+  rs.ground_truth.supersampling = 16;
+  rs.threads = 2;
+  return render_reference(scene, rs);
+}
+
 // The edge error of the test above at other sizes, for docs/tradeoffs.md's table (disabled:
 // its truths take minutes; run with --gtest_also_run_disabled_tests). AA_W x AA_H pixels
 // (default 128 x 128); with AA_FULLH, the central AA_W x AA_H of an image AA_FULLH pixels high
 // (the field of view narrowed to it, so sizes on screen and the pixel grid are that image's,
-// for even sizes).
+// for even sizes); AA_SCENE another built-in scene than the default.
 uint32_t size_from_environment(const char* name, uint32_t otherwise) {
   const char* value = std::getenv(name);
   return value ? uint32_t(std::strtoul(value, nullptr, 10)) : otherwise;
@@ -306,15 +316,11 @@ uint32_t size_from_environment(const char* name, uint32_t otherwise) {
 TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
   const uint32_t w = size_from_environment("AA_W", 128), h = size_from_environment("AA_H", 128);
   const uint32_t full_h = size_from_environment("AA_FULLH", h);
-  Scene scene = make_sphere_grid_scene();
+  const char* scene_name = std::getenv("AA_SCENE");
+  Scene scene = make_builtin_scene(scene_name ? scene_name : "spheres");
   scene.camera.vertical_fov = float(
       2.0 * std::atan(std::tan(double(scene.camera.vertical_fov) / 2.0) * h / double(full_h)));
-  ReferenceSettings rs;
-  rs.frame.width = w;
-  rs.frame.height = h;
-  rs.ground_truth.supersampling = 16;
-  rs.threads = 2;
-  const ReferenceFrame truth = render_reference(scene, rs);
+  const ReferenceFrame truth = supersampled_truth(scene, w, h);
   const std::vector<uint8_t> edges = outline_pixels(truth.ownership);
   double one = 0.0;
   Renderer renderer(context());
@@ -566,12 +572,7 @@ TEST_F(AntiAliasing, InteriorErrorOfSubPixelTrianglesFallsWithSamples) {
   Scene scene = make_bench_scene("grid", 100, 32, 192.0f / 108.0f);
   for (Material& m : scene.materials) m.roughness = std::max(m.roughness, 1.0f / 3.0f);
   const uint32_t width = 192, height = 108;
-  ReferenceSettings rs;
-  rs.frame.width = width;
-  rs.frame.height = height;
-  rs.ground_truth.supersampling = 16;
-  rs.threads = 2;
-  const ReferenceFrame truth = render_reference(scene, rs);
+  const ReferenceFrame truth = supersampled_truth(scene, width, height);
   std::vector<uint8_t> interior(size_t(width) * height);
   for (size_t i = 0; i < interior.size(); ++i)
     interior[i] = truth.ownership.first[i + 1] - truth.ownership.first[i] == 1 ? 1 : 0;

@@ -137,9 +137,10 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
   uint64_t all_bytes = scene.objects.size() * sizeof(tessera::gpu::GpuObject) +
                        scene.materials.size() * sizeof(tessera::gpu::GpuMaterial) +
                        scene.lights.size() * sizeof(tessera::gpu::GpuLight);
+  // Per index, its word and the adjacency word of its edge (TS_BINDING_ADJACENCY).
   for (const Mesh& m : scene.meshes) {
-    all_bytes +=
-        m.positions.size() * sizeof(tessera::gpu::GpuVertex) + m.indices.size() * sizeof(uint32_t);
+    all_bytes += m.positions.size() * sizeof(tessera::gpu::GpuVertex) +
+                 m.indices.size() * 2 * sizeof(uint32_t);
   }
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
