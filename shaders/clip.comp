@@ -31,9 +31,7 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) 
   } else {
     uint entries = bin_entry_count(t);
     uint first = atomicAdd(counters[batch.index].big_tris, entries);
-    if (reaches_new_grain(first, entries))
-      atomicMax(counters[batch.index].big_dispatch.x,
-                grain_dispatch_groups(first + entries, TS_BIN_ENTRIES_PER_GROUP));
+    RAISE_DISPATCH(counters[batch.index].big_dispatch.x, first, entries, TS_BIN_ENTRIES_PER_GROUP);
     store_bin_entries(index, t, first, entries);
   }
 }

@@ -141,8 +141,7 @@ void main() {
     uint base = 0u;
     if (n > 0u && subgroupElect()) {
       base = atomicAdd(counters[batch.index].clip_list, n);
-      if (reaches_new_grain(base, n))
-        atomicMax(counters[batch.index].clip_dispatch.x, grain_dispatch_groups(base + n, TS_GROUP_SIZE));
+      RAISE_DISPATCH(counters[batch.index].clip_dispatch.x, base, n, TS_GROUP_SIZE);
     }
     clip_slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
   }
@@ -163,9 +162,7 @@ void main() {
   uint base = 0u;
   if (total > 0u && subgroupElect()) {
     base = atomicAdd(counters[batch.index].big_tris, total);
-    if (reaches_new_grain(base, total))
-      atomicMax(counters[batch.index].big_dispatch.x,
-                grain_dispatch_groups(base + total, TS_BIN_ENTRIES_PER_GROUP));
+    RAISE_DISPATCH(counters[batch.index].big_dispatch.x, base, total, TS_BIN_ENTRIES_PER_GROUP);
   }
   uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
   if (entries > 0u) store_bin_entries(index, t, first_entry, entries);

@@ -102,6 +102,11 @@ bool reaches_new_grain(uint base, uint count) {
 uint grain_dispatch_groups(uint end, uint per_group) {
   return dispatch_groups((end + DISPATCH_GRAIN - 1u) / DISPATCH_GRAIN * DISPATCH_GRAIN, per_group);
 }
+// After an append took entries [base, base + count) of a list, raises the indirect dispatch
+// whose x is `groups_x` (per_group entries a workgroup) if the append reached a new grain.
+#define RAISE_DISPATCH(groups_x, base, count, per_group)                        \
+  if (reaches_new_grain(base, count))                                          \
+    atomicMax(groups_x, grain_dispatch_groups((base) + (count), per_group))
 
 // Bin entries of a binned triangle: its tile range split into blocks of at most
 // TS_BIN_CHUNK x TS_BIN_CHUNK tiles, each packed as x | y << 10 | (w - 1) << 20 | (h - 1) << 24
