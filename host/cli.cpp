@@ -5,6 +5,7 @@
 #include <functional>
 #include <tuple>
 
+#include "compute/context.h"
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
@@ -43,14 +44,32 @@ uint32_t parse_count(const std::string& text, const std::string& expected) {
   return uint32_t(std::stoul(text));
 }
 
+// A device index past the devices present, naming them (as `tessera devices` lists them). It
+// asks the Vulkan loader, so an index on the command line costs an instance here.
+void check_device_index(uint32_t index) {
+  const std::vector<DeviceInfo> devices = list_devices();
+  if (devices.empty())
+    throw Error("no Vulkan device found (for the CPU driver: Debian package mesa-vulkan-drivers)");
+  if (index < devices.size()) return;
+  std::string names;
+  for (const DeviceInfo& d : devices)
+    names += (d.index ? ", " : "") + std::to_string(d.index) + " '" + d.name + "'";
+  throw Error("device index " + std::to_string(index) + " is out of range: only " +
+              std::to_string(devices.size()) + (devices.size() == 1 ? " device: " : " devices: ") +
+              names + " (`tessera devices`)");
+}
+
 // --device: what create_context's choose_device accepts (and, for render, the CPU
 // reference), checked here so that a misspelt device is a bad command line (exit status 2).
 CLI::Validator device_choice(bool reference) {
   return checked_by([reference](const std::string& text) {
     const bool index = !text.empty() && text.size() <= 9 &&
                        text.find_first_not_of("0123456789") == std::string::npos;
-    if (index || text == "auto" || text == "lavapipe" || text == "gpu" ||
-        (reference && text == "reference"))
+    if (index) {
+      check_device_index(uint32_t(std::stoul(text)));
+      return;
+    }
+    if (text == "auto" || text == "lavapipe" || text == "gpu" || (reference && text == "reference"))
       return;
     throw Error("unknown device '" + text + "' (lavapipe, gpu, " +
                 (reference ? "reference, " : "") + "or a device index of `tessera devices`)");
@@ -124,6 +143,26 @@ CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& he
       ->check(checked_by([](const std::string& text) {
         validate_samples(parse_count(text, "1, 4, 8 or 16 samples per pixel"));
       }));
+}
+
+// A coverage mode other than count weighs a pixel's visibility samples; at 1 sample there is
+// nothing to weigh and the frame would drop the option silently. That is a bad command line,
+// as --samples above 1 is where the hardware backend renders (an option given explicitly that
+// the rest of the command line makes do nothing is refused, not ignored).
+void check_aa_coverage(const CLI::App& command, uint32_t samples, Quality quality,
+                       const std::string& help_command) {
+  const CLI::Option* option = command.get_option_no_throw("--aa-coverage");
+  if (!option || option->count() == 0 || samples > 1) return;
+  const std::string mode = option->results().back();
+  if (mode == "count") return;  // one sample's count is that sample: the 1-sample image
+  const std::string whence = command.count("--samples") > 0 ? "--samples 1"
+                             : quality != Quality::none
+                                 ? "1 sample per pixel (--quality " +
+                                       command.get_option("--quality")->results().back() + "'s)"
+                                 : "1 sample per pixel (the default of --samples)";
+  throw UsageError("--aa-coverage " + mode + " does nothing at " + whence +
+                       ": it weighs the visibility samples of a pixel; add --samples 4, 8 or 16",
+                   help_command);
 }
 
 // --aa-coverage: how anti-aliasing weighs a pixel's triangles (FrameSettings::aa_coverage).
@@ -305,7 +344,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->check(whole_number(4, 4096));
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(false));
   app.add_option("--backends", a.backends,
                  "compute, hardware, reference (default\ncompute,hardware)")
       ->type_name("LIST")
@@ -439,7 +479,8 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
       ->check(checked_by([](const std::string& knob) { knob_settings(knob, {}, {}); }));
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
-      ->type_name("D");
+      ->type_name("D")
+      ->check(device_choice(false));
   add_size(app, a.frame.width, a.frame.height,
            "image size, each side 1..16384 (default: the\nscene's, else 512x512)");
   add_hdr_format(app, a.frame.hdr_format);
@@ -580,6 +621,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
   r.view_given = render->count("--view") > 0;
+  check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
   {
@@ -595,6 +637,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
+  check_aa_coverage(*bench, b.samples, b.quality, help_command);
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
   // What the hardware baseline cannot render leaves it out of the default backends.

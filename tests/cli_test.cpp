@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "compute/context.h"
 #include "core/check.h"
 #include "core/image.h"
 #include "host/cli.h"
@@ -245,7 +246,16 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
        "tessera: error: cannot write output file '/nonexistent-dir/x.png': folder "
        "'/nonexistent-dir' does not exist"},
       {"devices", 0, "(CPU) - usable (--device "},
-      {"render --device 99", 1, "out of range"},
+      // A device index is checked against the devices present while parsing, as a misspelt
+      // device name is.
+      {"render --device 99", 2, "tessera: error: --device: device index 99 is out of range: only "},
+      {"bench --device 99", 2, "tessera: error: --device: device index 99 is out of range: only "},
+      {"view --device 99", 2, "tessera: error: --device: device index 99 is out of range: only "},
+      {"tradeoff --knob lod --device 99", 2,
+       "tessera: error: --device: device index 99 is out of range: only "},
+      {"bench --device foo", 2, "tessera: error: --device: unknown device 'foo'"},
+      {"render --aa-coverage analytic", 2,
+       "tessera: error: --aa-coverage analytic does nothing at 1 sample per pixel"},
       {"render --device warp-drive", 2, "tessera: error: --device: unknown device 'warp-drive'"},
       {"view --device foo", 2, "tessera: error: --device: unknown device 'foo'"},
       {"view --script /nonexistent/s.txt", 2,
@@ -376,6 +386,53 @@ TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
   EXPECT_NE(usage_error({"bench", "--samples", "4", "--backends", "compute,hardware"})
                 .find("--samples 4: the hardware backend"),
             std::string::npos);
+}
+
+// An index past the devices present names each of them, as `tessera devices` lists them.
+TEST(Cli, DeviceIndexPastTheDevicesNamesThem) {
+  const std::vector<DeviceInfo> devices = list_devices();
+  ASSERT_FALSE(devices.empty());  // lavapipe, where the tests run
+  for (const char* command : {"render", "bench", "view"}) {
+    const std::string message = usage_error({command, "--device", "123456"});
+    EXPECT_TRUE(message.starts_with("--device: device index 123456 is out of range: only " +
+                                    std::to_string(devices.size()) +
+                                    (devices.size() == 1 ? " device: " : " devices: ")))
+        << message;
+    for (const DeviceInfo& d : devices)
+      EXPECT_NE(message.find(std::to_string(d.index) + " '" + d.name + "'"), std::string::npos)
+          << message;
+    EXPECT_TRUE(message.ends_with(" (`tessera devices`)")) << message;
+    // The last index present is accepted.
+    EXPECT_EQ(usage_error({command, "--device", std::to_string(devices.size() - 1)}), "");
+  }
+}
+
+// --aa-coverage weighs a pixel's samples: a mode other than count at 1 sample would do nothing,
+// so it is refused, naming where the 1 sample came from.
+TEST(AntiAliasingCli, CoverageModeAtOneSampleIsABadCommandLine) {
+  for (const std::string command : {"render", "bench"}) {
+    EXPECT_EQ(usage_error({command, "--aa-coverage", "analytic"}),
+              "--aa-coverage analytic does nothing at 1 sample per pixel (the default of "
+              "--samples): it weighs the visibility samples of a pixel; add --samples 4, 8 or 16");
+    EXPECT_EQ(usage_error({command, "--aa-coverage", "silhouette", "--samples", "1"}),
+              "--aa-coverage silhouette does nothing at --samples 1: it weighs the visibility "
+              "samples of a pixel; add --samples 4, 8 or 16");
+    EXPECT_EQ(usage_error({command, "--quality", "draft", "--aa-coverage", "silhouette"}),
+              "--aa-coverage silhouette does nothing at 1 sample per pixel (--quality draft's): "
+              "it weighs the visibility samples of a pixel; add --samples 4, 8 or 16");
+    // What is not refused: count (one sample's count is that sample), more samples, given or
+    // from a preset.
+    EXPECT_EQ(usage_error({command, "--aa-coverage", "count"}), "");
+    EXPECT_EQ(usage_error({command, "--aa-coverage", "analytic", "--samples", "4"}), "");
+    EXPECT_EQ(usage_error({command, "--quality", "balanced", "--aa-coverage", "silhouette"}), "");
+    EXPECT_EQ(usage_error({command, "--quality", "balanced", "--samples", "1", "--aa-coverage",
+                           "analytic"}),
+              "--aa-coverage analytic does nothing at --samples 1: it weighs the visibility "
+              "samples of a pixel; add --samples 4, 8 or 16");
+  }
+  EXPECT_EQ(parse_command_line({"render", "--aa-coverage", "silhouette", "--samples", "8"})
+                .render.frame.aa_coverage,
+            AaCoverage::silhouette);
 }
 
 }  // namespace
