@@ -412,6 +412,16 @@ int main(int argc, char** argv) {
   summary("compute, 4 samples", compute_aa, converged);
   summary("reference exact spheres, 1 sample", sphere1.hdr, converged);
 
+  {
+    const std::vector<double> e8 = per_pixel_errors(t.hdr, converged, &guard);
+    const size_t worst = size_t(std::max_element(e8.begin(), e8.end()) - e8.begin());
+    std::printf(
+        "truth pixels more than 5 %% off: %zu; the worst, (%zu,%zu): truth %s, converged "
+        "%s\n",
+        size_t(std::count_if(e8.begin(), e8.end(), [](double e) { return e > 0.05; })),
+        worst % width, worst / width, rgb(t.hdr.pixels[worst]).c_str(),
+        rgb(converged.pixels[worst]).c_str());
+  }
   if (argc > 2) {
     const std::string prefix = argv[2];
     write_png(prefix + "_image.png", compute_ldr);
