@@ -227,9 +227,11 @@ float silhouette_coverage(ivec2 pixel, uint seen[SAMPLES]) {
       uint across = adjacency[o.first_index + 3u * local + e];
       if (across == TS_NO_NEIGHBOUR) continue;
       uint id = o.first_triangle + across;
-      bool known = false;
-      for (int j = 0; j < count; ++j) known = known || taken[j] == id;
-      if (known) continue;
+      // Counted rather than or-ed with a short circuit: a branch per entry made this scan a
+      // quarter of the walk's time on the H200.
+      uint hits = 0u;
+      for (int j = 0; j < count; ++j) hits += uint(taken[j] == id);
+      if (hits != 0u) continue;
       // Outside the pixel (or touching it along a line), or past the silhouette: left out.
       float area = front_face_area(slot, id, pixel, facing);
       if (area <= 0.0) continue;
@@ -239,9 +241,9 @@ float silhouette_coverage(ivec2 pixel, uint seen[SAMPLES]) {
     }
   }
   for (uint s = 0u; s < SAMPLES; ++s) {
-    bool found = seen[s] == 0xFFFFFFFFu;
-    for (int j = 0; j < count; ++j) found = found || taken[j] == seen[s];
-    if (!found) return -1.0;
+    uint hits = uint(seen[s] == 0xFFFFFFFFu);
+    for (int j = 0; j < count; ++j) hits += uint(taken[j] == seen[s]);
+    if (hits == 0u) return -1.0;
   }
   // Front faces may overlap where snapping folds the outline: the area is a fraction.
   return clamp(total, 0.0, 1.0);
