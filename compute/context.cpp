@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string_view>
 
 #include "compute/pipelines.h"
 #include "compute/vk_check.h"
@@ -89,6 +91,18 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
   std::vector<VkPhysicalDevice> devices(count);
   VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
   return devices;
+}
+
+// Whether `device` offers the device extension `name`.
+bool device_has_extension(VkPhysicalDevice device, std::string_view name) {
+  uint32_t count = 0;
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
+  std::vector<VkExtensionProperties> available(count);
+  VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, available.data()));
+  for (const VkExtensionProperties& e : available) {
+    if (std::string_view(e.extensionName) == name) return true;
+  }
+  return false;
 }
 
 // Features Tessera needs that `device` lacks, as a readable list ("" if none).
@@ -321,21 +335,31 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   features.features.drawIndirectFirstInstance = ctx->multi_draw_indirect ? VK_TRUE : VK_FALSE;
 
   std::vector<const char*> extensions;
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_info{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  const char* statistics = std::getenv("TESSERA_PIPELINE_STATISTICS");
+  if (statistics && std::string_view(statistics) == "1") {
+    if (device_has_extension(ctx->physical_device,
+                             VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+      extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+      executable_info.pipelineExecutableInfo = VK_TRUE;
+      v12.pNext = &executable_info;
+      ctx->pipeline_statistics = true;
+    } else {
+      std::fprintf(stderr, "tessera: TESSERA_PIPELINE_STATISTICS: device '%s' lacks %s\n",
+                   ctx->properties.deviceName,
+                   VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    }
+  }
   if (options.swapchain) {
     extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     // Lets the resolve pass write B8G8R8A8 and sRGB swapchain images through an R8G8B8A8_UNORM
     // view (compute/swapchain.h); its dependencies (image format list, maintenance2) are core
     // in Vulkan 1.2.
-    uint32_t count = 0;
-    VK_CHECK(vkEnumerateDeviceExtensionProperties(ctx->physical_device, nullptr, &count, nullptr));
-    std::vector<VkExtensionProperties> available(count);
-    VK_CHECK(vkEnumerateDeviceExtensionProperties(ctx->physical_device, nullptr, &count,
-                                                  available.data()));
-    for (const VkExtensionProperties& e : available) {
-      if (std::string_view(e.extensionName) == VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME) {
-        extensions.push_back(VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME);
-        ctx->swapchain_mutable_format = true;
-      }
+    if (device_has_extension(ctx->physical_device,
+                             VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME)) {
+      extensions.push_back(VK_KHR_SWAPCHAIN_MUTABLE_FORMAT_EXTENSION_NAME);
+      ctx->swapchain_mutable_format = true;
     }
   }
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};

@@ -60,6 +60,11 @@ struct Context {
   // multiDrawIndirect and drawIndirectFirstInstance, enabled where the device has both (the
   // hardware baseline's level of detail draws with them).
   bool multi_draw_indirect = false;
+  /// Set when the environment variable TESSERA_PIPELINE_STATISTICS is 1 and the device has
+  /// VK_KHR_pipeline_executable_properties: each compute pipeline, as it is built, prints the
+  /// driver's statistics of its code (registers, spills, ...) to stderr. A developer's
+  /// diagnostic (docs/development.md, "Pipeline statistics").
+  bool pipeline_statistics = false;
   std::string driver;                         // driver name and version, e.g. "NVIDIA 580.159.04"
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
   // The compute pipelines built on this device, with the layouts they share: every renderer of

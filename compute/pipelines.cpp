@@ -1,6 +1,7 @@
 #include "compute/pipelines.h"
 
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -94,6 +95,57 @@ VkPipelineLayout cached_layout(const Context& ctx, PipelineCache& cache) {
   return cache.layout;
 }
 
+// Prints the driver's statistics of `pipeline`'s code (VK_KHR_pipeline_executable_properties:
+// on NVIDIA registers, spills, shared memory ...) to stderr, one line per executable, with the
+// specialization constants that distinguish the variants of one shader.
+void print_pipeline_statistics(const Context& ctx, VkPipeline pipeline, std::string_view shader,
+                               const Specialization& values) {
+  const auto properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+      vkGetInstanceProcAddr(ctx.instance, "vkGetPipelineExecutablePropertiesKHR"));
+  const auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+      vkGetInstanceProcAddr(ctx.instance, "vkGetPipelineExecutableStatisticsKHR"));
+  if (!properties || !statistics) return;
+  VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+  info.pipeline = pipeline;
+  uint32_t count = 0;
+  VK_CHECK(properties(ctx.device, &info, &count, nullptr));
+  std::vector<VkPipelineExecutablePropertiesKHR> executables(
+      count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+  VK_CHECK(properties(ctx.device, &info, &count, executables.data()));
+  for (uint32_t e = 0; e < count; ++e) {
+    VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+    which.pipeline = pipeline;
+    which.executableIndex = e;
+    uint32_t n = 0;
+    VK_CHECK(statistics(ctx.device, &which, &n, nullptr));
+    std::vector<VkPipelineExecutableStatisticKHR> stats(
+        n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+    VK_CHECK(statistics(ctx.device, &which, &n, stats.data()));
+    std::string line = "pipeline statistics: " + std::string(shader) + " (samples " +
+                       std::to_string(values.samples) + ", aa_coverage " +
+                       std::to_string(values.aa_coverage) + ", " + executables[e].name + "):";
+    for (const VkPipelineExecutableStatisticKHR& s : stats) {
+      line += std::string(" ") + s.name + " ";
+      switch (s.format) {
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+          line += s.value.b32 ? "true" : "false";
+          break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+          line += std::to_string(s.value.i64);
+          break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+          line += std::to_string(s.value.u64);
+          break;
+        default:
+          line += std::to_string(s.value.f64);
+          break;
+      }
+      line += ";";
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
+}
+
 VkPipeline build_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
                                   std::string_view shader, Specialization values) {
   VkShaderModule module = create_shader_module(ctx, shader);
@@ -107,11 +159,13 @@ VkPipeline build_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = &spec;
   info.layout = layout;
+  if (ctx.pipeline_statistics) info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkResult result =
       vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
   vkDestroyShaderModule(ctx.device, module, nullptr);
   vk_check(result, ("vkCreateComputePipelines(" + std::string(shader) + ")").c_str());
+  if (ctx.pipeline_statistics) print_pipeline_statistics(ctx, pipeline, shader, values);
   return pipeline;
 }
 

@@ -80,7 +80,13 @@ double silhouette_coverage(const std::vector<uint64_t>& seen,
     const std::vector<glm::dvec2> corners = polygon(id);
     const double twice = twice_signed_area(corners);
     if (facing == 0.0) facing = twice > 0.0 ? 1.0 : -1.0;
-    return twice * facing > 0.0 ? area_in_pixel(corners) : 0.0;
+    if (twice * facing <= 0.0) return 0.0;
+    // One that only touches the pixel along a line has no area in it: left out exactly, not by
+    // rounding (as the GPU does).
+    glm::dvec2 lo = corners[0], hi = corners[0];
+    for (const glm::dvec2& c : corners) lo = glm::min(lo, c), hi = glm::max(hi, c);
+    if (hi.x <= 0.0 || hi.y <= 0.0 || lo.x >= 1.0 || lo.y >= 1.0) return 0.0;
+    return area_in_pixel(corners);
   };
   std::vector<uint64_t> taken = {*std::min_element(seen.begin(), seen.end())};
   double total = front_face_area(taken[0]);
