@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
-// integer edge functions from pixel centre to pixel centre, and atomicMin's each covered sample
-// (SAMPLES per pixel) into the visibility buffer.
+// integer edge functions from pixel centre to pixel centre (in int32 where that is exact,
+// edges_fit_int32), and atomicMin's each covered sample (SAMPLES per pixel) into the
+// visibility buffer.
 // With hierarchical depth rejection (REJECTION, raster_common.glsl) it first compares the
 // triangle's nearest depth with the bounds of the tiles its box touches (tile_far, lowered by
 // fill and raster_tiles, which ran before) and skips a triangle behind all of them; per
@@ -13,6 +14,36 @@
 #include "raster_common.glsl"
 
 layout(local_size_x = TS_GROUP_SIZE) in;
+
+// Whether every edge value at every sample point of the triangle's box lies in int32's range,
+// so that the box can be walked in 32-bit arithmetic (half the instructions of int64 on a GPU).
+// E_ab(p) = dx * (p.y - a.y) - dy * (p.x - a.x) with a, b vertices and p a sample point of the
+// box: all lie in the rectangle `w` wide that holds the vertices and the box's sample points,
+// so |dx|, |p.x - a.x| <= w.x and |dy|, |p.y - a.y| <= w.y, and |E| <= 2 * w.x * w.y. Below
+// 2^30 for w.x * w.y, |E| <= 2^31 - 2, which leaves room for the threshold taken off (<= 1).
+// Nothing else bounds this: the small-triangle area (RendererOptions::small_triangle_max_area)
+// is that of the box, which is clamped to the image, and the vertices may lie anywhere in the
+// guard band (+-TS_GUARD_BAND_PX, 2^23 fixed-point units). A box of n.x * n.y <= 64 pixels
+// (the default limit) reaches at most about a pixel past its vertices, so w.x * w.y is at most
+// about (n.x + 1) * (n.y + 1) * 256^2 <= 130 * 2^16, near 2^23; a sliver reaching far out of
+// the image, or a box under a raised limit, takes the int64 walk.
+// Vertices and sample points lie within 2^23 of the origin, so w < 2^24 fits an int and the
+// product an int64.
+bool edges_fit_int32(RasterTri t) {
+  ivec2 lo = min(min(min(t.v0, t.v1), t.v2), t.box_min * TS_SUBPIXEL_ONE + sample_offset_min());
+  ivec2 hi = max(max(max(t.v0, t.v1), t.v2), t.box_max * TS_SUBPIXEL_ONE + sample_offset_max());
+  ivec2 w = hi - lo;
+  return int64_t(w.x) * int64_t(w.y) < (1l << 30);
+}
+
+#define EDGE_VEC ivec3
+#define RASTER_BOX raster_box_32
+#include "raster_small_box.glsl"
+#undef EDGE_VEC
+#undef RASTER_BOX
+#define EDGE_VEC i64vec3
+#define RASTER_BOX raster_box_64
+#include "raster_small_box.glsl"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -34,46 +65,9 @@ void main() {
     if (n > 0u && subgroupElect()) atomicAdd(counters[batch.index].rejected_small, n);
     if (hidden) return;
   }
-  Thresholds h = thresholds_of(t);
-  // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
-  Edges step_x, step_y;
-  step_x.e0 = -int64_t(t.v2.y - t.v1.y) * TS_SUBPIXEL_ONE;
-  step_x.e1 = -int64_t(t.v0.y - t.v2.y) * TS_SUBPIXEL_ONE;
-  step_x.e2 = -int64_t(t.v1.y - t.v0.y) * TS_SUBPIXEL_ONE;
-  step_y.e0 = int64_t(t.v2.x - t.v1.x) * TS_SUBPIXEL_ONE;
-  step_y.e1 = int64_t(t.v0.x - t.v2.x) * TS_SUBPIXEL_ONE;
-  step_y.e2 = int64_t(t.v1.x - t.v0.x) * TS_SUBPIXEL_ONE;
-
-  // Each sample's edge values differ from its pixel centre's by the same amounts in every pixel:
-  // taken once here rather than per pixel and sample (six int64 products each).
-  Edges to_sample[SAMPLES];
-  Edges zero = Edges(0l, 0l, 0l);
-  for (uint s = 0u; s < SAMPLES; ++s) {
-    to_sample[s] = edges_moved(t, zero, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
-  }
-
-  Edges row = edges_at(t, pixel_centre(t.box_min));
-  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
-    Edges e = row;
-    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-      for (uint s = 0u; s < SAMPLES; ++s) {
-        Edges es = Edges(e.e0 + to_sample[s].e0, e.e1 + to_sample[s].e1, e.e2 + to_sample[s].e2);
-        if (!is_covered(es, h)) continue;
-        uint p = pixel_index(ivec2(x, y));
-        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint v = sample_index(p, s);
-        // A plain read first skips most atomics; a stale value is never below the true one.
-        uint64_t current = visibility[v];
-        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
-        uint64_t key = visibility_key(depth_at(t, es), t.id);
-        if (current > key) atomicMin(visibility[v], key);
-      }
-      e.e0 += step_x.e0;
-      e.e1 += step_x.e1;
-      e.e2 += step_x.e2;
-    }
-    row.e0 += step_y.e0;
-    row.e1 += step_y.e1;
-    row.e2 += step_y.e2;
+  if (edges_fit_int32(t)) {
+    raster_box_32(t, near_high);
+  } else {
+    raster_box_64(t, near_high);
   }
 }
