@@ -36,6 +36,29 @@ bool edges_fit_int32(RasterTri t) {
   return int64_t(w.x) * int64_t(w.y) < (1l << 30);
 }
 
+// The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the one declaration
+// that the other passes use; Vulkan lets variables of one binding alias): a pixel's SAMPLES keys
+// are contiguous and, SAMPLES being even, start on a 16-byte boundary.
+layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) readonly buffer VisibilityPairs {
+  u64vec2 visibility_pairs[];
+};
+
+// The current keys of pixel p's samples, read together before any is lowered: one wait for
+// memory per pixel instead of one per covered sample (each atomicMin between two plain reads
+// of the same buffer kept them apart). The read is a filter only (atomicMin decides), so a
+// stale value, never below the true one, costs an atomic at most.
+void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
+  if (SAMPLES == 1u) {
+    keys[0] = visibility[p];
+    return;
+  }
+  for (uint k = 0u; k < SAMPLES / 2u; ++k) {
+    u64vec2 pair = visibility_pairs[sample_index(p, 0u) / 2u + k];
+    keys[2u * k] = pair.x;
+    keys[2u * k + 1u] = pair.y;
+  }
+}
+
 #define EDGE_VEC ivec3
 #define RASTER_BOX raster_box_32
 #include "raster_small_box.glsl"

@@ -49,19 +49,23 @@ void RASTER_BOX(RasterTri t, uint near_high) {
         continue;
       }
       entered = true;
+      uint covered = SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
+      for (uint s = 0u; s < SAMPLES && SAMPLES > 1u; ++s) {
+        EDGE_VEC es = e + to_sample[s];
+        if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
+      }
+      if (covered == 0u) continue;
       uint p = pixel_index(ivec2(x, y));
+      uint64_t keys[SAMPLES];
+      load_pixel_keys(p, keys);
       for (uint s = 0u; s < SAMPLES; ++s) {
-        // With one sample, m is the sample's value and has passed.
-        EDGE_VEC es = SAMPLES == 1u ? m : e + to_sample[s];
-        if (SAMPLES > 1u && (es.x | es.y | es.z) < 0) continue;
+        if ((covered & (1u << s)) == 0u) continue;
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint v = sample_index(p, s);
         // A plain read first skips most atomics; a stale value is never below the true one.
-        uint64_t current = visibility[v];
-        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
-        i64vec3 exact = i64vec3(es) + threshold;
+        if (REJECTION && uint(keys[s] >> 32) < near_high) continue;  // the key would be above
+        i64vec3 exact = i64vec3(SAMPLES == 1u ? m : e + to_sample[s]) + threshold;
         uint64_t key = visibility_key(depth_at(t, Edges(exact.x, exact.y, exact.z), area), t.id);
-        if (current > key) atomicMin(visibility[v], key);
+        if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
       }
     }
     row += step_y;
