@@ -15,25 +15,33 @@
 
 layout(local_size_x = TS_GROUP_SIZE) in;
 
-// Whether every edge value at every sample point of the triangle's box lies in int32's range,
-// so that the box can be walked in 32-bit arithmetic (half the instructions of int64 on a GPU).
+// Whether the triangle's box can be walked in 32-bit arithmetic (half the instructions of int64
+// on a GPU) with the same keys: every edge value at every sample point of the box lies in
+// int32's range, and every covered sample's edge values convert to float exactly.
 // E_ab(p) = dx * (p.y - a.y) - dy * (p.x - a.x) with a, b vertices and p a sample point of the
 // box: all lie in the rectangle `w` wide that holds the vertices and the box's sample points,
-// so |dx|, |p.x - a.x| <= w.x and |dy|, |p.y - a.y| <= w.y, and |E| <= 2 * w.x * w.y. Below
-// 2^30 for w.x * w.y, |E| <= 2^31 - 2, which leaves room for the threshold taken off (<= 1).
+// so |dx|, |p.x - a.x| <= w.x and |dy|, |p.y - a.y| <= w.y, and |E| <= 2 * w.x * w.y. At a
+// covered sample each of the three values is >= 0 and they sum to the doubled area, which is
+// at most the area of the vertices' bounding box (a triangle fills at most half of it), so at
+// most w.x * w.y. With w.x * w.y <= 2^24: |E| <= 2^25, far inside int32 with the threshold
+// taken off (<= 1), and a covered sample's values are integers <= 2^24, which float holds
+// exactly, so converting the int32 value gives the float that converting the int64 one does
+// whatever rounding the implementation uses (Vulkan leaves it open).
 // Nothing else bounds this: the small-triangle area (RendererOptions::small_triangle_max_area)
 // is that of the box, which is clamped to the image, and the vertices may lie anywhere in the
-// guard band (+-TS_GUARD_BAND_PX, 2^23 fixed-point units). A box of n.x * n.y <= 64 pixels
-// (the default limit) reaches at most about a pixel past its vertices, so w.x * w.y is at most
-// about (n.x + 1) * (n.y + 1) * 256^2 <= 130 * 2^16, near 2^23; a sliver reaching far out of
-// the image, or a box under a raised limit, takes the int64 walk.
+// guard band (+-TS_GUARD_BAND_PX, 2^23 fixed-point units). Where the box is not clamped,
+// setup's rounding puts the vertices and the box's sample points within (n + 2) * 256 on each
+// axis of a box n pixels wide, so a box of n.x * n.y <= 64 pixels (the default limit) has
+// w.x * w.y < (n.x + 2) * (n.y + 2) * 2^16 <= 198 * 2^16 < 2^24 (64 x 1 is the worst): the
+// default scenes' small triangles all take the int32 walk. A sliver reaching far out of the
+// image, or a box under a raised limit, takes the int64 one.
 // Vertices and sample points lie within 2^23 of the origin, so w < 2^24 fits an int and the
 // product an int64.
 bool edges_fit_int32(RasterTri t) {
   ivec2 lo = min(min(min(t.v0, t.v1), t.v2), t.box_min * TS_SUBPIXEL_ONE + sample_offset_min());
   ivec2 hi = max(max(max(t.v0, t.v1), t.v2), t.box_max * TS_SUBPIXEL_ONE + sample_offset_max());
   ivec2 w = hi - lo;
-  return int64_t(w.x) * int64_t(w.y) < (1l << 30);
+  return int64_t(w.x) * int64_t(w.y) <= (1l << 24);
 }
 
 // The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the one declaration

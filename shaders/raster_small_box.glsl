@@ -1,7 +1,8 @@
 // The pixel-box walk of raster_small.comp, included once per width of its edge values:
 // EDGE_VEC (ivec3 or i64vec3) holds the three edge values, RASTER_BOX names the function.
 // Every value is taken in int64 first (exact: edge_function's bound) and converted; the walk
-// then only adds. SPIR-V defines OpIAdd as the low bits of the exact sum and OpSConvert to a
+// then only adds, and converts a covered sample's edge values to float for its depth (exact in
+// ivec3, edges_fit_int32). SPIR-V defines OpIAdd as the low bits of the exact sum and OpSConvert to a
 // narrower type as truncation, so in ivec3 every value is exact modulo 2^32, and a value that
 // the caller has shown to lie in int32's range (edges_fit_int32) is the exact one. Only values
 // at sample points (less a threshold) are compared or converted back; the stepped values past
@@ -63,8 +64,8 @@ void RASTER_BOX(RasterTri t, uint near_high) {
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
         // A plain read first skips most atomics; a stale value is never below the true one.
         if (REJECTION && uint(keys[s] >> 32) < near_high) continue;  // the key would be above
-        i64vec3 exact = i64vec3(SAMPLES == 1u ? m : e + to_sample[s]) + threshold;
-        uint64_t key = visibility_key(depth_at(t, Edges(exact.x, exact.y, exact.z), area), t.id);
+        EDGE_VEC exact = (SAMPLES == 1u ? m : e + to_sample[s]) + EDGE_VEC(threshold);
+        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
         if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
       }
     }
