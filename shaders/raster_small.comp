@@ -44,17 +44,17 @@ bool edges_fit_int32(RasterTri t) {
   return int64_t(w.x) * int64_t(w.y) <= (1l << 24);
 }
 
-// The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the one declaration
-// that the other passes use; Vulkan lets variables of one binding alias): a pixel's SAMPLES keys
-// are contiguous and, SAMPLES being even, start on a 16-byte boundary.
+// The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the declaration
+// that the other passes use; Vulkan lets variables of one binding alias): a pixel's SAMPLES
+// keys are contiguous and, SAMPLES being even, start on a 16-byte boundary.
 layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) readonly buffer VisibilityPairs {
   u64vec2 visibility_pairs[];
 };
 
 // The current keys of pixel p's samples, read together before any is lowered: one wait for
 // memory per pixel instead of one per covered sample (each atomicMin between two plain reads
-// of the same buffer kept them apart). The read is a filter only (atomicMin decides), so a
-// stale value, never below the true one, costs an atomic at most.
+// of the same buffer kept them apart). A plain read only filters (atomicMin decides): a stale
+// value, never below the true one, costs an atomic at most.
 void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
   if (SAMPLES == 1u) {
     keys[0] = visibility[p];
@@ -67,14 +67,100 @@ void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
   }
 }
 
-#define EDGE_VEC ivec3
-#define RASTER_BOX raster_box_32
-#include "raster_small_box.glsl"
-#undef EDGE_VEC
-#undef RASTER_BOX
-#define EDGE_VEC i64vec3
-#define RASTER_BOX raster_box_64
-#include "raster_small_box.glsl"
+// The box walked in int32 (edges_fit_int32 has shown that exact). Every value is taken in
+// int64 first (exact: edge_function's bound) and converted; the walk then only adds. SPIR-V
+// defines OpIAdd as the low bits of the exact sum and OpSConvert to a narrower type as
+// truncation, so every value here is exact modulo 2^32, and the values at the box's sample
+// points (less a threshold), the only ones compared or converted to float, lie in int32's range
+// and are the exact ones; the stepped values past the box's last column or row may wrap and are
+// never used.
+// Thresholds are folded in: a sample is covered when each edge value less its threshold
+// (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
+void raster_box_int32(RasterTri t, uint near_high) {
+  Thresholds h = thresholds_of(t);
+  i64vec3 threshold = i64vec3(h.t0, h.t1, h.t2);
+  Edges first = edges_at(t, pixel_centre(t.box_min));
+  // The three edge functions sum to the doubled area at every point (barycentric weights sum
+  // to one), so float(e0 + e1 + e2), which depth_at divides by, is the same for every sample.
+  float area = float(first.e0 + first.e1 + first.e2);
+  // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
+  ivec3 dx = ivec3(t.v2.x - t.v1.x, t.v0.x - t.v2.x, t.v1.x - t.v0.x);
+  ivec3 dy = ivec3(t.v2.y - t.v1.y, t.v0.y - t.v2.y, t.v1.y - t.v0.y);
+  ivec3 step_x = ivec3(-i64vec3(dy) * TS_SUBPIXEL_ONE);
+  ivec3 step_y = ivec3(i64vec3(dx) * TS_SUBPIXEL_ONE);
+
+  // Each sample's edge values less the thresholds differ from its pixel centre's by the same
+  // amounts in every pixel; `reach` is their largest on each edge, so that one test per pixel
+  // tells whether any of its samples can be covered (the largest value on each edge is that
+  // of some sample: a sample point's value less its threshold, in range like the others).
+  ivec3 to_sample[SAMPLES];
+  i64vec3 reach;
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    Edges d = edges_moved(t, Edges(0l, 0l, 0l), sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+    i64vec3 moved = i64vec3(d.e0, d.e1, d.e2) - threshold;
+    to_sample[s] = ivec3(moved);
+    reach = s == 0u ? moved : max(reach, moved);
+  }
+  ivec3 pixel_reach = ivec3(reach);
+
+  ivec3 row = ivec3(i64vec3(first.e0, first.e1, first.e2));
+  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
+    ivec3 e = row;
+    bool entered = false;
+    for (int x = t.box_min.x; x <= t.box_max.x; ++x, e += step_x) {
+      ivec3 m = e + pixel_reach;
+      // Each of m's components is affine in x, so the pixels of a row that pass are one run:
+      // after it, the rest of the row cannot pass either.
+      if ((m.x | m.y | m.z) < 0) {
+        if (entered) break;
+        continue;
+      }
+      entered = true;
+      uint covered = SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
+      for (uint s = 0u; s < SAMPLES && SAMPLES > 1u; ++s) {
+        ivec3 es = e + to_sample[s];
+        if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
+      }
+      if (covered == 0u) continue;
+      uint p = pixel_index(ivec2(x, y));
+      uint64_t keys[SAMPLES];
+      load_pixel_keys(p, keys);
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        if ((covered & (1u << s)) == 0u) continue;
+        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+        if (REJECTION && uint(keys[s] >> 32) < near_high) continue;  // the key would be above
+        ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + ivec3(threshold);
+        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
+        if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
+      }
+    }
+    row += step_y;
+  }
+}
+
+// The box walked with each sample's edge values taken anew in int64 (edges_at), for the boxes
+// edges_fit_int32 refuses: rare (slivers reaching far out of the image, a raised small-triangle
+// limit), so slower per sample, but with few live values, so that it does not raise the
+// registers, and lower the occupancy, of the whole shader.
+void raster_box_int64(RasterTri t, uint near_high) {
+  Thresholds h = thresholds_of(t);
+  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
+    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
+      uint p = pixel_index(ivec2(x, y));
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        Edges e = edges_at(t, sample_position(ivec2(x, y), s));
+        if (!is_covered(e, h)) continue;
+        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+        uint v = sample_index(p, s);
+        // A plain read first skips most atomics; a stale value is never below the true one.
+        uint64_t current = visibility[v];
+        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
+        uint64_t key = visibility_key(depth_at(t, e), t.id);
+        if (current > key) atomicMin(visibility[v], key);
+      }
+    }
+  }
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -97,8 +183,8 @@ void main() {
     if (hidden) return;
   }
   if (edges_fit_int32(t)) {
-    raster_box_32(t, near_high);
+    raster_box_int32(t, near_high);
   } else {
-    raster_box_64(t, near_high);
+    raster_box_int64(t, near_high);
   }
 }
