@@ -213,6 +213,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
     uint ids[SAMPLES];
     for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
     uint next = 0u;  // every id below this has been listed
+    uint listed = 0u;  // samples in the groups listed
     for (uint group = 0u; group < SAMPLES; ++group) {
       uint id = 0xFFFFFFFFu;
       for (uint s = 0u; s < SAMPLES; ++s) {
@@ -235,7 +236,10 @@ void resolve_samples(ivec2 pixel, bool inside) {
       slots[groups] = slot;
       weights[groups] = float(count) / float(SAMPLES);
       groups++;
-      if (id == 0xFFFFFFFFu) break;
+      listed += count;
+      // Every sample is in a group: a search for the next id would find none (the empty id,
+      // all ones, is always the last group).
+      if (listed == SAMPLES) break;
       next = id + 1u;
     }
     // One triangle and the background (listed last): the triangle's outline coverage is wanted;
