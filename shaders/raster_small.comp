@@ -72,8 +72,7 @@ void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
 // defines OpIAdd as the low bits of the exact sum and OpSConvert to a narrower type as
 // truncation, so every value here is exact modulo 2^32, and the values at the box's sample
 // points (less a threshold), the only ones compared or converted to float, lie in int32's range
-// and are the exact ones; the stepped values past the box's last column or row may wrap and are
-// never used.
+// and are the exact ones (the terms they are summed from need not).
 // Thresholds are folded in: a sample is covered when each edge value less its threshold
 // (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
 void raster_box_int32(RasterTri t, uint near_high) {
@@ -104,25 +103,24 @@ void raster_box_int32(RasterTri t, uint near_high) {
   ivec3 pixel_reach = ivec3(reach);
 
   ivec3 row = ivec3(i64vec3(first.e0, first.e1, first.e2));
-  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
-    ivec3 e = row;
-    bool entered = false;
-    for (int x = t.box_min.x; x <= t.box_max.x; ++x, e += step_x) {
-      ivec3 m = e + pixel_reach;
-      // Each of m's components is affine in x, so the pixels of a row that pass are one run:
-      // after it, the rest of the row cannot pass either.
-      if ((m.x | m.y | m.z) < 0) {
-        if (entered) break;
-        continue;
-      }
-      entered = true;
-      uint covered = SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
-      for (uint s = 0u; s < SAMPLES && SAMPLES > 1u; ++s) {
+  ivec3 e = row;
+  ivec2 pixel = t.box_min;
+  bool entered = false;  // a pixel of this row has passed
+  // One loop over the box's pixels, not one per row: the threads of a SIMD group walk boxes of
+  // different shapes, and nested loops would hold the group for its widest box's width in
+  // every row of its tallest box.
+  while (true) {
+    ivec3 m = e + pixel_reach;
+    bool passes = (m.x | m.y | m.z) >= 0;
+    uint covered = passes && SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
+    if (passes && SAMPLES > 1u) {
+      for (uint s = 0u; s < SAMPLES; ++s) {
         ivec3 es = e + to_sample[s];
         if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
       }
-      if (covered == 0u) continue;
-      uint p = pixel_index(ivec2(x, y));
+    }
+    if (covered != 0u) {
+      uint p = pixel_index(pixel);
       uint64_t keys[SAMPLES];
       load_pixel_keys(p, keys);
       for (uint s = 0u; s < SAMPLES; ++s) {
@@ -134,7 +132,21 @@ void raster_box_int32(RasterTri t, uint near_high) {
         if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
       }
     }
-    row += step_y;
+    // Each of m's components is affine in x, so the pixels of a row that pass are one run:
+    // after it, the rest of the row cannot pass either.
+    bool row_done = pixel.x == t.box_max.x || (entered && !passes);
+    entered = entered || passes;
+    if (!row_done) {
+      pixel.x++;
+      e += step_x;
+    } else if (pixel.y < t.box_max.y) {
+      pixel = ivec2(t.box_min.x, pixel.y + 1);
+      row += step_y;
+      e = row;
+      entered = false;
+    } else {
+      break;
+    }
   }
 }
 
