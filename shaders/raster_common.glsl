@@ -98,10 +98,15 @@ Edges edges_moved(RasterTri t, Edges e, ivec2 d) {
 // Reverse depth near/w at a covered sample: an affine function of screen position, so the
 // screen-space barycentrics (edge values over the doubled area) interpolate it exactly.
 // The weights are >= 0 and the vertex depths > 0, so the result is > 0 and finite.
-float depth_at(RasterTri t, Edges e) {
-  precise float area = float(e.e0 + e.e1 + e.e2);
-  precise float d = float(e.e0) * t.depth.x + float(e.e1) * t.depth.y + float(e.e2) * t.depth.z;
+// `weights` are the edge values converted to float, `area` their sum converted: the edge
+// functions sum to the doubled area everywhere, so a caller with many samples of one triangle
+// converts it once (raster_small, which also converts 32-bit values where that is exact).
+float depth_at(RasterTri t, vec3 weights, float area) {
+  precise float d = weights.x * t.depth.x + weights.y * t.depth.y + weights.z * t.depth.z;
   return d / area;
+}
+float depth_at(RasterTri t, Edges e) {
+  return depth_at(t, vec3(float(e.e0), float(e.e1), float(e.e2)), float(e.e0 + e.e1 + e.e2));
 }
 
 // 64-bit visibility key: inverted depth bits above, triangle-instance id below. Positive

@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
-// integer edge functions from pixel centre to pixel centre, and atomicMin's each covered sample
-// (SAMPLES per pixel) into the visibility buffer.
+// integer edge functions from pixel centre to pixel centre (in int32 where that is exact,
+// edges_fit_int32), and atomicMin's each covered sample (SAMPLES per pixel) into the
+// visibility buffer.
 // With hierarchical depth rejection (REJECTION, raster_common.glsl) it first compares the
 // triangle's nearest depth with the bounds of the tiles its box touches (tile_far, lowered by
 // fill and raster_tiles, which ran before) and skips a triangle behind all of them; per
@@ -13,6 +14,165 @@
 #include "raster_common.glsl"
 
 layout(local_size_x = TS_GROUP_SIZE) in;
+
+// Whether the triangle's box can be walked in 32-bit arithmetic (half the instructions of int64
+// on a GPU) with the same keys: every edge value at every sample point of the box lies in
+// int32's range, and every covered sample's edge values convert to float exactly.
+// E_ab(p) = dx * (p.y - a.y) - dy * (p.x - a.x) with a, b vertices and p a sample point of the
+// box: all lie in the rectangle `w` wide that holds the vertices and the box's sample points,
+// so |dx|, |p.x - a.x| <= w.x and |dy|, |p.y - a.y| <= w.y, and |E| <= 2 * w.x * w.y. At a
+// covered sample each of the three values is >= 0 and they sum to the doubled area, which is
+// at most the area of the vertices' bounding box (a triangle fills at most half of it), so at
+// most w.x * w.y. With w.x * w.y <= 2^24: |E| <= 2^25, far inside int32 with the threshold
+// taken off (<= 1), and a covered sample's values are integers <= 2^24, which float holds
+// exactly, so converting the int32 value gives the float that converting the int64 one does
+// whatever rounding the implementation uses (Vulkan leaves it open).
+// Nothing else bounds this: the small-triangle area (RendererOptions::small_triangle_max_area)
+// is that of the box, which is clamped to the image, and the vertices may lie anywhere in the
+// guard band (+-TS_GUARD_BAND_PX, 2^23 fixed-point units). Where the box is not clamped,
+// setup's rounding puts the vertices and the box's sample points within (n + 2) * 256 on each
+// axis of a box n pixels wide, so a box of n.x * n.y <= 64 pixels (the default limit) has
+// w.x * w.y < (n.x + 2) * (n.y + 2) * 2^16 <= 198 * 2^16 < 2^24 (64 x 1 is the worst): the
+// default scenes' small triangles all take the int32 walk. A sliver reaching far out of the
+// image, or a box under a raised limit, takes the int64 one.
+// Vertices and sample points lie within 2^23 of the origin, so w < 2^24 fits an int and the
+// product an int64.
+bool edges_fit_int32(RasterTri t) {
+  ivec2 lo = min(min(min(t.v0, t.v1), t.v2), t.box_min * TS_SUBPIXEL_ONE + sample_offset_min());
+  ivec2 hi = max(max(max(t.v0, t.v1), t.v2), t.box_max * TS_SUBPIXEL_ONE + sample_offset_max());
+  ivec2 w = hi - lo;
+  return int64_t(w.x) * int64_t(w.y) <= (1l << 24);
+}
+
+// The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the declaration
+// that the other passes use; Vulkan lets variables of one binding alias): a pixel's SAMPLES
+// keys are contiguous and, SAMPLES being even, start on a 16-byte boundary.
+layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) readonly buffer VisibilityPairs {
+  u64vec2 visibility_pairs[];
+};
+
+// The current keys of pixel p's samples, read together before any is lowered: one wait for
+// memory per pixel instead of one per covered sample (each atomicMin between two plain reads
+// of the same buffer kept them apart). A plain read only filters (atomicMin decides): a stale
+// value, never below the true one, costs an atomic at most.
+void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
+  if (SAMPLES == 1u) {
+    keys[0] = visibility[p];
+    return;
+  }
+  for (uint k = 0u; k < SAMPLES / 2u; ++k) {
+    u64vec2 pair = visibility_pairs[sample_index(p, 0u) / 2u + k];
+    keys[2u * k] = pair.x;
+    keys[2u * k + 1u] = pair.y;
+  }
+}
+
+// The box walked in int32 (edges_fit_int32 has shown that exact). Every value is taken in
+// int64 first (exact: edge_function's bound) and converted; the walk then only adds. SPIR-V
+// defines OpIAdd as the low bits of the exact sum and OpSConvert to a narrower type as
+// truncation, so every value here is exact modulo 2^32, and the values at the box's sample
+// points (less a threshold), the only ones compared or converted to float, lie in int32's range
+// and are the exact ones (the terms they are summed from need not).
+// Thresholds are folded in: a sample is covered when each edge value less its threshold
+// (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
+void raster_box_int32(RasterTri t, uint near_high) {
+  Thresholds h = thresholds_of(t);
+  i64vec3 threshold = i64vec3(h.t0, h.t1, h.t2);
+  Edges first = edges_at(t, pixel_centre(t.box_min));
+  // The three edge functions sum to the doubled area at every point (barycentric weights sum
+  // to one), so float(e0 + e1 + e2), which depth_at divides by, is the same for every sample.
+  float area = float(first.e0 + first.e1 + first.e2);
+  // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
+  ivec3 dx = ivec3(t.v2.x - t.v1.x, t.v0.x - t.v2.x, t.v1.x - t.v0.x);
+  ivec3 dy = ivec3(t.v2.y - t.v1.y, t.v0.y - t.v2.y, t.v1.y - t.v0.y);
+  ivec3 step_x = ivec3(-i64vec3(dy) * TS_SUBPIXEL_ONE);
+  ivec3 step_y = ivec3(i64vec3(dx) * TS_SUBPIXEL_ONE);
+
+  // Each sample's edge values less the thresholds differ from its pixel centre's by the same
+  // amounts in every pixel; `reach` is their largest on each edge, so that one test per pixel
+  // tells whether any of its samples can be covered (the largest value on each edge is that
+  // of some sample: a sample point's value less its threshold, in range like the others).
+  ivec3 to_sample[SAMPLES];
+  i64vec3 reach;
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    Edges d = edges_moved(t, Edges(0l, 0l, 0l), sample_offset(s) - TS_SUBPIXEL_ONE / 2);
+    i64vec3 moved = i64vec3(d.e0, d.e1, d.e2) - threshold;
+    to_sample[s] = ivec3(moved);
+    reach = s == 0u ? moved : max(reach, moved);
+  }
+  ivec3 pixel_reach = ivec3(reach);
+
+  ivec3 row = ivec3(i64vec3(first.e0, first.e1, first.e2));
+  ivec3 e = row;
+  ivec2 pixel = t.box_min;
+  bool entered = false;  // a pixel of this row has passed
+  // One loop over the box's pixels, not one per row: the threads of a SIMD group walk boxes of
+  // different shapes, and nested loops would hold the group for its widest box's width in
+  // every row of its tallest box.
+  while (true) {
+    ivec3 m = e + pixel_reach;
+    bool passes = (m.x | m.y | m.z) >= 0;
+    uint covered = passes && SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
+    if (passes && SAMPLES > 1u) {
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        ivec3 es = e + to_sample[s];
+        if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
+      }
+    }
+    if (covered != 0u) {
+      uint p = pixel_index(pixel);
+      uint64_t keys[SAMPLES];
+      load_pixel_keys(p, keys);
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        if ((covered & (1u << s)) == 0u) continue;
+        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+        if (REJECTION && uint(keys[s] >> 32) < near_high) continue;  // the key would be above
+        ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + ivec3(threshold);
+        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
+        if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
+      }
+    }
+    // Each of m's components is affine in x, so the pixels of a row that pass are one run:
+    // after it, the rest of the row cannot pass either.
+    bool row_done = pixel.x == t.box_max.x || (entered && !passes);
+    entered = entered || passes;
+    if (!row_done) {
+      pixel.x++;
+      e += step_x;
+    } else if (pixel.y < t.box_max.y) {
+      pixel = ivec2(t.box_min.x, pixel.y + 1);
+      row += step_y;
+      e = row;
+      entered = false;
+    } else {
+      break;
+    }
+  }
+}
+
+// The box walked with each sample's edge values taken anew in int64 (edges_at), for the boxes
+// edges_fit_int32 refuses: rare (slivers reaching far out of the image, a raised small-triangle
+// limit), so slower per sample, but with few live values, so that it does not raise the
+// registers, and lower the occupancy, of the whole shader.
+void raster_box_int64(RasterTri t, uint near_high) {
+  Thresholds h = thresholds_of(t);
+  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
+    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
+      uint p = pixel_index(ivec2(x, y));
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        Edges e = edges_at(t, sample_position(ivec2(x, y), s));
+        if (!is_covered(e, h)) continue;
+        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+        uint v = sample_index(p, s);
+        // A plain read first skips most atomics; a stale value is never below the true one.
+        uint64_t current = visibility[v];
+        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
+        uint64_t key = visibility_key(depth_at(t, e), t.id);
+        if (current > key) atomicMin(visibility[v], key);
+      }
+    }
+  }
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -34,46 +194,9 @@ void main() {
     if (n > 0u && subgroupElect()) atomicAdd(counters[batch.index].rejected_small, n);
     if (hidden) return;
   }
-  Thresholds h = thresholds_of(t);
-  // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
-  Edges step_x, step_y;
-  step_x.e0 = -int64_t(t.v2.y - t.v1.y) * TS_SUBPIXEL_ONE;
-  step_x.e1 = -int64_t(t.v0.y - t.v2.y) * TS_SUBPIXEL_ONE;
-  step_x.e2 = -int64_t(t.v1.y - t.v0.y) * TS_SUBPIXEL_ONE;
-  step_y.e0 = int64_t(t.v2.x - t.v1.x) * TS_SUBPIXEL_ONE;
-  step_y.e1 = int64_t(t.v0.x - t.v2.x) * TS_SUBPIXEL_ONE;
-  step_y.e2 = int64_t(t.v1.x - t.v0.x) * TS_SUBPIXEL_ONE;
-
-  // Each sample's edge values differ from its pixel centre's by the same amounts in every pixel:
-  // taken once here rather than per pixel and sample (six int64 products each).
-  Edges to_sample[SAMPLES];
-  Edges zero = Edges(0l, 0l, 0l);
-  for (uint s = 0u; s < SAMPLES; ++s) {
-    to_sample[s] = edges_moved(t, zero, sample_offset(s) - TS_SUBPIXEL_ONE / 2);
-  }
-
-  Edges row = edges_at(t, pixel_centre(t.box_min));
-  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
-    Edges e = row;
-    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-      for (uint s = 0u; s < SAMPLES; ++s) {
-        Edges es = Edges(e.e0 + to_sample[s].e0, e.e1 + to_sample[s].e1, e.e2 + to_sample[s].e2);
-        if (!is_covered(es, h)) continue;
-        uint p = pixel_index(ivec2(x, y));
-        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint v = sample_index(p, s);
-        // A plain read first skips most atomics; a stale value is never below the true one.
-        uint64_t current = visibility[v];
-        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
-        uint64_t key = visibility_key(depth_at(t, es), t.id);
-        if (current > key) atomicMin(visibility[v], key);
-      }
-      e.e0 += step_x.e0;
-      e.e1 += step_x.e1;
-      e.e2 += step_x.e2;
-    }
-    row.e0 += step_y.e0;
-    row.e1 += step_y.e1;
-    row.e2 += step_y.e2;
+  if (edges_fit_int32(t)) {
+    raster_box_int32(t, near_high);
+  } else {
+    raster_box_int64(t, near_high);
   }
 }

@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Shading: one thread per pixel. Reads the visibility buffer, rebuilds the visible triangle
 // in world space, intersects the pixel's camera ray with it for perspective-correct
 // barycentrics and texture footprints, applies the material's texture maps, and evaluates the
@@ -187,6 +189,16 @@ uvec3 get_request(uint slot) {
 }
 shared uint request_count;
 
+// A new slot in the request list. The threads that take one together share one atomic on
+// request_count: each their own would all hit one shared-memory address, one after another.
+// The slots' order differs from run to run, which nothing reads (see above).
+uint request_slot() {
+  uvec4 takers = subgroupBallot(true);
+  uint base = 0u;
+  if (subgroupElect()) base = atomicAdd(request_count, subgroupBallotBitCount(takers));
+  return subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(takers);
+}
+
 void resolve_samples(ivec2 pixel, bool inside) {
   uint thread = gl_LocalInvocationIndex;
   if (thread == 0u) request_count = 0u;
@@ -201,6 +213,7 @@ void resolve_samples(ivec2 pixel, bool inside) {
     uint ids[SAMPLES];
     for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
     uint next = 0u;  // every id below this has been listed
+    uint listed = 0u;  // samples in the groups listed
     for (uint group = 0u; group < SAMPLES; ++group) {
       uint id = 0xFFFFFFFFu;
       for (uint s = 0u; s < SAMPLES; ++s) {
@@ -218,12 +231,15 @@ void resolve_samples(ivec2 pixel, bool inside) {
       if (count == 0u) break;
       vec2 point = count == SAMPLES ? vec2(pixel) + 0.5
                                     : vec2(pixel) + vec2(offsets) / float(TS_SUBPIXEL_ONE * count);
-      uint slot = atomicAdd(request_count, 1u);
+      uint slot = request_slot();
       put_request(slot, uvec3(id, floatBitsToUint(point)));
       slots[groups] = slot;
       weights[groups] = float(count) / float(SAMPLES);
       groups++;
-      if (id == 0xFFFFFFFFu) break;
+      listed += count;
+      // Every sample is in a group: a search for the next id would find none (the empty id,
+      // all ones, is always the last group).
+      if (listed == SAMPLES) break;
       next = id + 1u;
     }
     // One triangle and the background (listed last): the triangle's outline coverage is wanted;
