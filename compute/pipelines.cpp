@@ -95,6 +95,18 @@ VkPipelineLayout cached_layout(const Context& ctx, PipelineCache& cache) {
   return cache.layout;
 }
 
+// Vulkan's two calls for an array: its length, then that many elements, each first set to
+// `blank` (for its sType). `call(count, elements)` returns the VkResult.
+template <typename T, typename Call>
+std::vector<T> enumerate(Call call, T blank) {
+  uint32_t n = 0;
+  VK_CHECK(call(&n, nullptr));
+  std::vector<T> out(n, blank);
+  VK_CHECK(call(&n, out.data()));
+  out.resize(n);
+  return out;
+}
+
 // Prints the driver's statistics of `pipeline`'s code (VK_KHR_pipeline_executable_properties:
 // on NVIDIA registers, spills, shared memory ...) to stderr, one line per executable, with the
 // specialization constants that distinguish the variants of one shader.
@@ -107,20 +119,20 @@ void print_pipeline_statistics(const Context& ctx, VkPipeline pipeline, std::str
   if (!properties || !statistics) return;
   VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
   info.pipeline = pipeline;
-  uint32_t count = 0;
-  VK_CHECK(properties(ctx.device, &info, &count, nullptr));
-  std::vector<VkPipelineExecutablePropertiesKHR> executables(
-      count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
-  VK_CHECK(properties(ctx.device, &info, &count, executables.data()));
-  for (uint32_t e = 0; e < count; ++e) {
+  const auto executables = enumerate(
+      [&](uint32_t* n, VkPipelineExecutablePropertiesKHR* out) {
+        return properties(ctx.device, &info, n, out);
+      },
+      VkPipelineExecutablePropertiesKHR{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+  for (uint32_t e = 0; e < executables.size(); ++e) {
     VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
     which.pipeline = pipeline;
     which.executableIndex = e;
-    uint32_t n = 0;
-    VK_CHECK(statistics(ctx.device, &which, &n, nullptr));
-    std::vector<VkPipelineExecutableStatisticKHR> stats(
-        n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
-    VK_CHECK(statistics(ctx.device, &which, &n, stats.data()));
+    const auto stats = enumerate(
+        [&](uint32_t* n, VkPipelineExecutableStatisticKHR* out) {
+          return statistics(ctx.device, &which, n, out);
+        },
+        VkPipelineExecutableStatisticKHR{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
     std::string line = "pipeline statistics: " + std::string(shader) + " (samples " +
                        std::to_string(values.samples) + ", aa_coverage " +
                        std::to_string(values.aa_coverage) + ", " + executables[e].name + "):";
