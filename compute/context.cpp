@@ -195,7 +195,15 @@ VkPhysicalDevice choose_device(VkInstance instance, const std::string& wanted) {
       }
     }
     if (!chosen && wanted == "gpu") {
-      throw Error("no GPU with the features Tessera needs; devices: " + describe_devices(devices));
+      bool any_gpu = false;
+      for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(d, &props);
+        any_gpu = any_gpu || props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
+      }
+      throw Error(std::string(any_gpu ? "no GPU with the features Tessera needs"
+                                      : "no GPU found (--device lavapipe renders on the CPU)") +
+                  "; devices: " + describe_devices(devices));
     }
     if (!chosen) {
       for (VkPhysicalDevice d : devices) {

@@ -407,6 +407,23 @@ TEST(Cli, DeviceIndexPastTheDevicesNamesThem) {
   }
 }
 
+// `--device gpu` where only CPU devices are present (as here, on lavapipe) says so and names the
+// way to render anyway, rather than that a GPU lacks features.
+TEST(Cli, GpuAskedForWhereThereIsNoneNamesTheCpuDevice) {
+  for (const DeviceInfo& d : list_devices()) {
+    if (d.type != VK_PHYSICAL_DEVICE_TYPE_CPU) GTEST_SKIP() << "a GPU is present: " << d.name;
+  }
+  std::string out;
+  EXPECT_EQ(test::run_command(tool() + " render --device gpu --size 8x8 --out " +
+                                  test::output_path("never.png"),
+                              out),
+            1);
+  EXPECT_NE(out.find("tessera: error: no GPU found (--device lavapipe renders on the CPU); "
+                     "devices: "),
+            std::string::npos)
+      << out;
+}
+
 // --aa-coverage weighs a pixel's samples: a mode other than count at 1 sample would do nothing,
 // so it is refused, naming where the 1 sample came from.
 TEST(AntiAliasingCli, CoverageModeAtOneSampleIsABadCommandLine) {
