@@ -5,30 +5,73 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "compute/vk_check.h"
+
 namespace tessera::test {
 
+namespace {
+
+// One lavapipe context for every Vulkan test of the process. lavapipe translates each pipeline's
+// SPIR-V anew for every device (its disk cache keeps only the machine code), which cost each test
+// about 0.7 s before it rendered anything; with one device, a test suite's tests (ctest runs a
+// suite per process: tests/suite_tests.cmake) build each pipeline once between them.
+std::unique_ptr<Context>& shared_context() {
+  static std::unique_ptr<Context> ctx;
+  return ctx;
+}
+
+// Fails the test (ADD_FAILURE) for every report `log` holds, then empties it.
+void report_validation(ValidationLog& log, const char* when) {
+  EXPECT_EQ(log.errors.load(), 0u) << "validation errors reported " << when;
+  EXPECT_EQ(log.warnings.load(), 0u) << "validation warnings reported " << when;
+  for (const std::string& m : log.messages) ADD_FAILURE() << m;
+  log.clear();
+}
+
+// Destroys the shared context when the test program ends, and fails the program if the layer
+// reports anything then (objects a test leaked are reported as the device is destroyed).
+class SharedContextEnvironment : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::unique_ptr<Context>& ctx = shared_context();
+    if (!ctx) return;
+    // Move the log out first: destroying the context may itself report (leaked objects).
+    std::unique_ptr<ValidationLog> keep = std::move(ctx->validation);
+    // Keep the messenger's user pointer alive until the instance is gone.
+    ctx.reset();
+    report_validation(*keep, "while the device was destroyed");
+  }
+};
+::testing::Environment* const kSharedContextEnvironment =
+    ::testing::AddGlobalTestEnvironment(new SharedContextEnvironment);
+
+}  // namespace
+
 void VulkanTest::SetUp() {
-  ContextOptions options;
-  options.device = "lavapipe";
-  options.validation = true;
-  ctx_ = create_context(options);
+  std::unique_ptr<Context>& ctx = shared_context();
+  if (!ctx) {
+    ContextOptions options;
+    options.device = "lavapipe";
+    options.validation = true;
+    ctx = create_context(options);
+  }
+  ASSERT_NE(ctx->validation, nullptr);
+  ctx->validation->clear();  // an earlier test's reports failed that test already
 }
 
 void VulkanTest::TearDown() {
-  // Move the log out first: destroying the context may itself report (leaked objects).
-  ValidationLog* log = ctx_->validation.get();
-  ASSERT_NE(log, nullptr);
-  std::unique_ptr<ValidationLog> keep = std::move(ctx_->validation);
-  // Keep the messenger's user pointer alive until the instance is gone.
-  ctx_.reset();
-  EXPECT_EQ(keep->errors.load(), 0u) << "validation errors reported";
-  EXPECT_EQ(keep->warnings.load(), 0u) << "validation warnings reported";
-  for (const std::string& m : keep->messages) ADD_FAILURE() << m;
+  Context& ctx = *shared_context();
+  VK_CHECK(vkDeviceWaitIdle(ctx.device));
+  report_validation(*ctx.validation, "during the test");
+}
+
+Context& VulkanTest::context() {
+  return *shared_context();
 }
 
 VulkanTest::Frame VulkanTest::render(const Scene& scene, uint32_t width, uint32_t height,
                                      RendererOptions options, uint32_t samples) {
-  Renderer renderer(*ctx_, options);
+  Renderer renderer(context(), options);
   return render(renderer, scene, width, height, samples, options.debug_coverage);
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Base fixture of every test that touches Vulkan: a lavapipe context with the Khronos
-// validation layer and synchronization validation on. The test fails if the layer reports any
-// warning or error, including while the device is destroyed at the end of the test.
+// validation layer and synchronization validation on, one for all the tests of the process
+// (vulkan_fixture.cpp says why). A test fails if the layer reports any warning or error while
+// it runs; the test program fails if it reports any as the device is destroyed at its end
+// (objects a test leaked).
 
 #include <memory>
 
@@ -18,7 +20,7 @@ class VulkanTest : public ::testing::Test {
  public:
   void SetUp() override;
   void TearDown() override;
-  Context& context() { return *ctx_; }
+  Context& context();
 
   /// Renders `scene` once with a fresh renderer, at `samples` per pixel (FrameSettings), and
   /// returns what the tests look at.
@@ -43,9 +45,6 @@ class VulkanTest : public ::testing::Test {
   /// The same with every frame setting given (anti-aliasing weights, for one).
   static Frame render(Renderer& renderer, const Scene& scene, const FrameSettings& settings,
                       bool coverage = false);
-
- private:
-  std::unique_ptr<Context> ctx_;
 };
 
 /// Path of a file in the test's own output folder (created if needed).
