@@ -19,19 +19,37 @@ namespace {
 const std::vector<std::string> kCommands = {"render",   "bench",   "view",
                                             "tradeoff", "devices", "scenes"};
 
+// A scene or model file named on the command line that is not there is a bad command line,
+// as a mistyped scene name is; one written as a built-in scene's file name (metals.json, from
+// a folder without it) points to the built-in scene. What is in a file that exists is read when
+// the command runs, where its errors name file and place.
+void check_file_exists(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) return;
+  std::string message = "no file '" + path + "'";
+  const std::string stem = std::filesystem::path(path).stem().string();
+  const std::vector<std::string> known = known_scene_names();
+  if (std::find(known.begin(), known.end(), stem) != known.end())
+    message += "; the built-in scene '" + stem + "' is --scene " + stem;
+  throw Error(message);
+}
+
 // Checks that a scene exists, naming every known scene otherwise (as `tessera scenes` lists
-// them). A scene file (a path) is read when the command runs, where its errors name file and
-// place.
+// them).
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_scene_path(name)) check_scene_name(name);
+    if (is_scene_path(name))
+      check_file_exists(name);
+    else
+      check_scene_name(name);
   });
 }
 
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
-    if (!is_builtin_scene(name) && !is_scene_path(name) && !is_model_path(name) &&
-        !is_named_scene(name))
+    if (is_scene_path(name) || is_model_path(name))
+      check_file_exists(name);
+    else if (!is_builtin_scene(name) && !is_named_scene(name))
       make_bench_scene(name, 1, 8, 1.0f);
   });
 }

@@ -407,6 +407,22 @@ TEST(Cli, DeviceIndexPastTheDevicesNamesThem) {
   }
 }
 
+// A scene or model file that is not there is a bad command line, as a mistyped scene name is;
+// one named like a built-in scene's file points to the built-in scene.
+TEST(Cli, MissingSceneFileIsABadCommandLine) {
+  for (const std::string command : {"render", "bench", "view"}) {
+    EXPECT_EQ(usage_error({command, "--scene", "no/such/file.json"}),
+              "--scene: no file 'no/such/file.json'")
+        << command;
+    EXPECT_EQ(usage_error({command, "--scene", "metals.json"}),
+              "--scene: no file 'metals.json'; the built-in scene 'metals' is --scene metals")
+        << command;
+  }
+  EXPECT_EQ(usage_error({"bench", "--scene", "nosuch.glb"}), "--scene: no file 'nosuch.glb'");
+  std::string out;
+  EXPECT_EQ(test::run_command(tool() + " render --scene nosuch.json", out), 2) << out;
+}
+
 // `--device gpu` where only CPU devices are present (as here, on lavapipe) says so and names the
 // way to render anyway, rather than that a GPU lacks features.
 TEST(Cli, GpuAskedForWhereThereIsNoneNamesTheCpuDevice) {
