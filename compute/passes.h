@@ -328,9 +328,6 @@ constexpr BindingInfo kBindings[] = {
      0xFFFFFFFFu},
     {TS_BINDING_OBJECT_CLIP, kStorageBuffer, Source::sized, Scale::objects, sizeof(glm::mat4)},
     {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
-    // TS_BINDING_LIGHTS' buffer again (Renderer::update_descriptors), its first
-    // TS_MAX_UNIFORM_LIGHTS lights.
-    {TS_BINDING_LIGHTS_UNIFORM, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, Source::scene},
 };
 
 constexpr bool binding_table_is_complete() {

@@ -189,30 +189,17 @@ struct PendingCopy {
   VkDeviceSize size;
 };
 
-// How a scene array's buffer is made besides kStorageUsage: extra usage, and a size below
-// which it is never made.
-struct ArrayBuffer {
-  VkBufferUsageFlags extra_usage = 0;
-  VkDeviceSize min_bytes = 256;  // Vulkan forbids size 0
-};
-
-// The lights' buffer is also bound as a uniform buffer of TS_MAX_UNIFORM_LIGHTS lights
-// (TS_BINDING_LIGHTS_UNIFORM), which it must hold in full whatever the scene's count.
-constexpr ArrayBuffer kLightsBuffer{VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                    TS_MAX_UNIFORM_LIGHTS * sizeof(gpu::GpuLight)};
-
 // Reallocates `buffer` and queues a copy of all of `next` if the buffer is too small for it.
 // Returns true if it did.
 template <typename T>
 bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>& next,
-                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty,
-                        ArrayBuffer kind = {}) {
+                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
   const VkDeviceSize bytes = next.size() * sizeof(T);
   if (buffer.buffer && buffer.size >= bytes) return false;
   destroy_buffer(ctx, buffer);
-  // Room to grow so small edits do not reallocate.
-  buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, kind.min_bytes),
-                         kStorageUsage | kind.extra_usage, MemoryKind::device);
+  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
+  buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
+                         MemoryKind::device);
   stats.buffers_created++;
   dirty = true;
   if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
@@ -233,8 +220,8 @@ void queue_tail_upload(const Context& ctx, Buffer& buffer, const std::vector<T>&
 template <typename T>
 void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
                         const std::vector<T>& next, std::vector<PendingCopy>& copies,
-                        UploadStats& stats, bool& dirty, ArrayBuffer kind = {}) {
-  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty, kind)) return;
+                        UploadStats& stats, bool& dirty) {
+  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty)) return;
   size_t first = 0;
   size_t common = std::min(previous.size(), next.size());
   while (first < common && std::memcmp(&previous[first], &next[first], sizeof(T)) == 0) ++first;
@@ -342,7 +329,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_MATERIALS), prev.materials, next.materials, copies,
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_LIGHTS), prev.lights, next.lights, copies, stats,
-                     s.descriptors_dirty, kLightsBuffer);
+                     s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXELS), prev.texels, next.texels, copies, stats,
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXTURES), prev.textures, next.textures, copies,
@@ -867,17 +854,11 @@ void Renderer::update_descriptors() {
       w.pImageInfo = &image_infos.back();
     } else {
       const Buffer* buffer = &s.buffer(b.binding);
-      VkDeviceSize range = VK_WHOLE_SIZE;
       if (b.source == Source::frame_constants) buffer = &s.frame_constants;
       if (b.binding == TS_BINDING_ENV_LEVELS) buffer = &s.env.level_texels;
       if (b.binding == TS_BINDING_ENV_IRRADIANCE) buffer = &s.env.irradiance;
-      if (b.binding == TS_BINDING_LIGHTS_UNIFORM) {
-        // The block's size: the buffer may be longer than a uniform buffer range may be.
-        buffer = &s.buffer(TS_BINDING_LIGHTS);
-        range = kLightsBuffer.min_bytes;
-      }
       TESSERA_CHECK(buffer->buffer != VK_NULL_HANDLE);
-      buffer_infos.push_back({buffer->buffer, 0, range});
+      buffer_infos.push_back({buffer->buffer, 0, VK_WHOLE_SIZE});
       w.pBufferInfo = &buffer_infos.back();
     }
     writes.push_back(w);

@@ -25,12 +25,6 @@ layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) readonly buffer Object
 #endif
 layout(set = 0, binding = TS_BINDING_MATERIALS, std430) readonly buffer Materials { GpuMaterial materials[]; };
 layout(set = 0, binding = TS_BINDING_LIGHTS, std430) readonly buffer Lights { GpuLight lights[]; };
-// The same lights as a uniform buffer (its first TS_MAX_UNIFORM_LIGHTS): a uniform buffer read at
-// an index the whole dispatch shares is one load, where lavapipe (Mesa 22.3) loads a storage
-// buffer lane by lane whatever the index (lighting.glsl, UNIFORM_LIGHTS).
-layout(set = 0, binding = TS_BINDING_LIGHTS_UNIFORM, std140) uniform LightsUniform {
-  GpuLight uniform_lights[TS_MAX_UNIFORM_LIGHTS];
-};
 layout(set = 0, binding = TS_BINDING_RASTER_TRIS, std430) buffer RasterTris { GpuRasterTri raster_tris[]; };
 layout(set = 0, binding = TS_BINDING_SMALL_LIST, std430) buffer SmallList { uint small_list[]; };
 layout(set = 0, binding = TS_BINDING_BIG_LIST, std430) buffer BigList { uvec2 big_list[]; };  // (raster triangle, tile block)

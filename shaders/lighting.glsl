@@ -137,24 +137,9 @@ LightSample light_sample(GpuLight light, uint kind, vec3 P, vec3 N) {
   return ls;
 }
 
-// Lights read from the uniform view of the light buffer (TS_BINDING_LIGHTS_UNIFORM), where the
-// pipeline is specialized to at most TS_MAX_UNIFORM_LIGHTS of them: the same values as the
-// storage buffer's, but lavapipe (Mesa 22.3) loads a storage buffer lane by lane in a loop even
-// where every lane reads the same light, and a uniform buffer at a shared index once (4 lights:
-// shading 1.4x faster on lavapipe, docs/performance.md).
-const bool UNIFORM_LIGHTS =
-    LIGHTS_SPECIALIZED && POINT_LIGHTS + SPOT_LIGHTS + DIRECTIONAL_LIGHTS <= TS_MAX_UNIFORM_LIGHTS;
-
-// Light i, from whichever view holds it for this pipeline. (A ?: between the two blocks' structs,
-// whose layouts make them distinct SPIR-V types, compiles to invalid SPIR-V.)
-GpuLight light_at(uint i) {
-  if (UNIFORM_LIGHTS) return uniform_lights[i];
-  return lights[i];
-}
-
 // Light i's contribution; `kind` is a compile-time constant in the specialized loops.
 vec3 light_contribution(ShadingPoint s, PixelParams p, uint i, uint kind) {
-  LightSample light = light_sample(light_at(i), kind, s.P, s.N);
+  LightSample light = light_sample(lights[i], kind, s.P, s.N);
   if (ENERGY_COMPENSATION && BRDF_VARIANT != TS_BRDF_BLINN_PHONG) {
     // The light's half of the reciprocal diffuse weight: 1 - Es(mu_i).
     p.diffuse_layer *= 1.0 - specular_layer_albedo(dfg_lookup(dot(s.N, light.L), p.roughness), p.f0);

@@ -104,12 +104,7 @@ using glm::vec4;
 // Per index of TS_BINDING_INDICES (3 per triangle): the mesh's triangle across that corner's
 // edge to the next, or TS_NO_NEIGHBOUR (core/mesh_adjacency.h), for silhouette coverage.
 #define TS_BINDING_ADJACENCY 34
-// The lights buffer again, as a uniform buffer of TS_MAX_UNIFORM_LIGHTS lights: what a shading
-// pipeline specialized to at most that many lights reads (lighting.glsl, UNIFORM_LIGHTS).
-#define TS_BINDING_LIGHTS_UNIFORM 35
-#define TS_BINDING_COUNT 36
-// 128 x 80 bytes = 10 KiB, within the 16 KiB every Vulkan device's uniform buffers allow.
-#define TS_MAX_UNIFORM_LIGHTS 128u
+#define TS_BINDING_COUNT 35
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 
 // GpuBatch.flags
@@ -390,11 +385,6 @@ static_assert(offsetof(GpuLight, inv_range4) == 44);
 static_assert(offsetof(GpuLight, attenuation) == 48);
 static_assert(offsetof(GpuLight, cone_scale) == 60);
 static_assert(offsetof(GpuLight, cone_offset) == 64);
-// The uniform view (TS_BINDING_LIGHTS_UNIFORM, std140) lays GpuLight out as std430 does: every
-// vec3 starts a 16-byte slot that its scalar completes, and 80 is a multiple of 16 (the std140
-// array stride). Its size fits the smallest maxUniformBufferRange Vulkan allows.
-static_assert(sizeof(GpuLight) % 16 == 0);
-static_assert(TS_MAX_UNIFORM_LIGHTS * sizeof(GpuLight) <= 16384);
 static_assert(sizeof(GpuFrame) == 272);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
