@@ -185,7 +185,8 @@ void list_outline_pixel(ivec2 pixel, vec3 surface) {
   if (subgroupElect()) {
     base = atomicAdd(counters[0].outline_pixels, count);
     // One more workgroup of the outline pass for each multiple of its size these entries reach.
-    uint groups = (base + count + TS_GROUP_SIZE - 1u) / TS_GROUP_SIZE - (base + TS_GROUP_SIZE - 1u) / TS_GROUP_SIZE;
+    const uint per_group = TS_OUTLINE_PIXELS_PER_GROUP;
+    uint groups = (base + count + per_group - 1u) / per_group - (base + per_group - 1u) / per_group;
     if (groups != 0u) atomicAdd(counters[0].outline_dispatch.x, groups);
   }
   uint slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(takers);

@@ -323,6 +323,12 @@ struct GpuOutlinePixel {
   uint pixel;  // x | y << 16
 };
 
+// The outline pass walks each outline pixel's mesh with TS_OUTLINE_LANES threads, which test
+// the neighbours of a step of the walk together, TS_OUTLINE_PIXELS_PER_GROUP pixels per
+// workgroup (the multiple the shading pass raises its dispatch by).
+#define TS_OUTLINE_LANES 8
+#define TS_OUTLINE_PIXELS_PER_GROUP 8
+
 // A triangle after setup, clipped and snapped, ready to rasterize. 48 bytes.
 struct GpuRasterTri {
   uvec4 xy01;      // x0, y0, x1, y1: int32 fixed point (TS_SUBPIXEL_BITS), stored as bits
