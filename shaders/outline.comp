@@ -47,58 +47,74 @@ const uint WALKING = 0u;
 const uint MEASURED = 1u;  // the walk ended: taken_area sums to the coverage
 const uint COUNTS = 2u;    // the counts stay (no pixel, or a walk the measure does not cover)
 
-// A triangle as the walk needs it: its id, its area in the pixel, and per edge the neighbour
-// across it (NONE at an open edge) with that neighbour's vertices.
-struct WalkTriangle {
-  uint id;
-  float area;
-  uint neighbour[3];
-  uvec3 neighbour_vertices[3];
-};
-
-// Per pixel of the workgroup: the triangles taken in, in the order taken; the walk's step
-// (taken[step_begin, step_end)) and the first of its 3 (step_end - step_begin) neighbours
-// the next round tests.
-shared WalkTriangle taken[PIXELS][CAP];
+// Per pixel of the workgroup: the triangles taken in, in the order taken (their ids, areas,
+// and per edge the neighbour across it, NONE at an open edge, with that neighbour's vertex
+// indices); the walk's step (taken[step_begin, step_end)) and the first of its
+// 3 (step_end - step_begin) neighbours the next round tests. Arrays of words, not of structs:
+// a struct with arrays in it is copied through local memory.
+shared uint taken_id[PIXELS][CAP];
+shared float taken_area[PIXELS][CAP];
+shared uint taken_neighbour[PIXELS][3 * CAP];
+shared uint taken_neighbour_vertex[PIXELS][9 * CAP];
 shared uint taken_count[PIXELS];
 shared uint step_begin[PIXELS];
 shared uint step_end[PIXELS];
 shared uint next_neighbour[PIXELS];
 shared uint walk_state[PIXELS];
 shared int facing_sign[PIXELS];
-// Each thread's triangle of this round (id NONE unless it took one in).
-shared WalkTriangle round_result[PIXELS][LANES];
+// Each thread's triangle of this round: its id (NONE unless it took one in).
+shared uint round_id[PIXELS][LANES];
 
 // Whether `id` is among the `count` triangles pixel p has taken in. Over the whole capacity so
 // that the loads do not wait on one another.
 bool is_taken(uint p, uint count, uint id) {
   uint hits = 0u;
-  for (uint j = 0u; j < CAP; ++j) hits += uint(j < count && taken[p][j].id == id);
+  for (uint j = 0u; j < CAP; ++j) hits += uint(j < count && taken_id[p][j] == id);
   return hits != 0u;
 }
 
-// Triangle `id` of object `o` (slot `slot`) with vertices `vi`, measured in `pixel`; its
-// neighbours and their vertices are fetched alongside its corners.
-WalkTriangle measure(GpuObject o, uint slot, uint id, uvec3 vi, ivec2 pixel, inout int64_t facing) {
-  WalkTriangle t;
-  t.id = id;
+// A triangle being measured: its neighbours across its edges (NONE at an open edge) and their
+// vertices, fetched alongside its corners.
+struct Neighbours {
+  uvec3 id;
+  uvec3 vertices0, vertices1, vertices2;
+};
+
+Neighbours fetch_neighbours(GpuObject o, uint id) {
+  Neighbours n;
+  uvec3 across = uvec3(0u);
   uint edges = o.first_index + 3u * (id - o.first_triangle);
-  for (uint e = 0u; e < 3u; ++e) {
-    uint across = adjacency[edges + e];
-    t.neighbour[e] = across == TS_NO_NEIGHBOUR ? NONE : o.first_triangle + across;
-    uint corners = o.first_index + 3u * (across == TS_NO_NEIGHBOUR ? 0u : across);
-    t.neighbour_vertices[e] = uvec3(indices[corners], indices[corners + 1u], indices[corners + 2u]) + o.base_vertex;
+  for (uint e = 0u; e < 3u; ++e) across[e] = adjacency[edges + e];
+  n.id = mix(o.first_triangle + across, uvec3(NONE), equal(across, uvec3(TS_NO_NEIGHBOUR)));
+  uvec3 corners = o.first_index + 3u * mix(across, uvec3(0u), equal(across, uvec3(TS_NO_NEIGHBOUR)));
+  n.vertices0 = uvec3(indices[corners.x], indices[corners.x + 1u], indices[corners.x + 2u]) + o.base_vertex;
+  n.vertices1 = uvec3(indices[corners.y], indices[corners.y + 1u], indices[corners.y + 2u]) + o.base_vertex;
+  n.vertices2 = uvec3(indices[corners.z], indices[corners.z + 1u], indices[corners.z + 2u]) + o.base_vertex;
+  return n;
+}
+
+// Stores triangle `id` (area `area`, neighbours `n`) as pixel p's taken triangle `slot`.
+void store_taken(uint p, uint slot, uint id, float area, Neighbours n) {
+  taken_id[p][slot] = id;
+  taken_area[p][slot] = area;
+  for (uint e = 0u; e < 3u; ++e) taken_neighbour[p][3u * slot + e] = n.id[e];
+  uint base = 9u * slot;
+  for (uint c = 0u; c < 3u; ++c) {
+    taken_neighbour_vertex[p][base + c] = n.vertices0[c];
+    taken_neighbour_vertex[p][base + 3u + c] = n.vertices1[c];
+    taken_neighbour_vertex[p][base + 6u + c] = n.vertices2[c];
   }
-  t.area = front_face_area(slot, id, vi, pixel, facing);
-  return t;
 }
 
 // Pixel p's neighbour `k` of the current step (k < 3 * step size): its id (NONE at an open
-// edge) and vertices.
-uint step_neighbour(uint p, uint k, out uvec3 vi) {
-  uint from = step_begin[p] + k / 3u;
-  vi = taken[p][from].neighbour_vertices[k % 3u];
-  return taken[p][from].neighbour[k % 3u];
+// edge); `vi` its vertices.
+uint step_neighbour(uint p, uint k) {
+  return taken_neighbour[p][3u * step_begin[p] + k];
+}
+uvec3 step_neighbour_vertices(uint p, uint k) {
+  uint base = 3u * (3u * step_begin[p] + k);
+  return uvec3(taken_neighbour_vertex[p][base], taken_neighbour_vertex[p][base + 1u],
+               taken_neighbour_vertex[p][base + 2u]);
 }
 
 void main() {
@@ -124,10 +140,11 @@ void main() {
     walk_state[p] = COUNTS;
     if (listed) {
       int64_t facing = 0l;
-      WalkTriangle t = measure(o, slot, first, triangle_vertices(o, first), pixel, facing);
+      Neighbours n = fetch_neighbours(o, first);
+      float area = front_face_area(slot, first, triangle_vertices(o, first), pixel, facing);
       facing_sign[p] = int(facing);
-      if (t.area > 0.0) {
-        taken[p][0] = t;
+      if (area > 0.0) {
+        store_taken(p, 0u, first, area, n);
         taken_count[p] = 1u;
         step_begin[p] = 0u;
         step_end[p] = 1u;
@@ -149,25 +166,23 @@ void main() {
     // round reached it too (that thread tests it first, as the one-thread walk would).
     bool walking = walk_state[p] == WALKING;
     uint count = walking ? taken_count[p] : 0u;
-    WalkTriangle result;
-    result.id = NONE;
     uint k = walking ? next_neighbour[p] + lane : NONE;
     uint step_neighbours = walking ? 3u * (step_end[p] - step_begin[p]) : 0u;
+    uint took = NONE;
+    float area = 0.0;
+    Neighbours n;
     if (k < step_neighbours) {
-      uvec3 vi;
-      uint id = step_neighbour(p, k, vi);
+      uint id = step_neighbour(p, k);
       bool test = id != NONE && !is_taken(p, count, id);
-      for (uint j = 0u; j < lane; ++j) {
-        uvec3 unused;
-        if (step_neighbour(p, k - lane + j, unused) == id) test = false;
-      }
+      for (uint j = 0u; j < lane; ++j) test = test && step_neighbour(p, k - lane + j) != id;
       if (test) {
         int64_t facing = int64_t(facing_sign[p]);
-        WalkTriangle t = measure(o, slot, id, vi, pixel, facing);
-        if (t.area > 0.0) result = t;
+        n = fetch_neighbours(o, id);
+        area = front_face_area(slot, id, step_neighbour_vertices(p, k), pixel, facing);
+        if (area > 0.0) took = id;
       }
     }
-    if (walking) round_result[p][lane] = result;
+    if (walking) round_id[p][lane] = took;
     barrier();
 
     // Append in thread order, after the triangles earlier threads took in; the first thread
@@ -175,11 +190,11 @@ void main() {
     if (walking) {
       uint earlier = 0u, all = 0u;
       for (uint j = 0u; j < LANES; ++j) {
-        uint took = uint(round_result[p][j].id != NONE);
-        earlier += j < lane ? took : 0u;
-        all += took;
+        uint one = uint(round_id[p][j] != NONE);
+        earlier += j < lane ? one : 0u;
+        all += one;
       }
-      if (result.id != NONE && count + earlier < CAP) taken[p][count + earlier] = result;
+      if (took != NONE && count + earlier < CAP) store_taken(p, count + earlier, took, area, n);
       if (lane == 0u) {
         if (count + all > CAP) {
           walk_state[p] = COUNTS;
@@ -205,7 +220,7 @@ void main() {
     if (seen[s] != NONE && !is_taken(p, count, seen[s])) return;
   }
   float total = 0.0;
-  for (uint j = 0u; j < count; ++j) total += taken[p][j].area;
+  for (uint j = 0u; j < count; ++j) total += taken_area[p][j];
   // Front faces may overlap where snapping folds the outline: the area is a fraction.
   float covered = clamp(total, 0.0, 1.0);
   uint empty = 0u;
