@@ -39,6 +39,10 @@ const uint LANES = TS_OUTLINE_LANES;
 const uint PIXELS = TS_OUTLINE_PIXELS_PER_GROUP;
 const uint CAP = TS_SILHOUETTE_TRIANGLES;
 const uint NONE = 0xFFFFFFFFu;
+// The first round tests the first triangle and its three neighbours at once.
+#if TS_OUTLINE_LANES < 4
+#error "the outline pass needs at least 4 threads per pixel"
+#endif
 
 layout(local_size_x = TS_OUTLINE_PIXELS_PER_GROUP * TS_OUTLINE_LANES) in;
 
@@ -67,19 +71,23 @@ bool is_taken(uint p, uint id) {
   return hits != 0u;
 }
 
+// The triangle of object `o` across edge `e` of its triangle instance `id` (TS_BINDING_ADJACENCY),
+// or NONE at an open edge.
+uint neighbour_of(GpuObject o, uint id, uint e) {
+  uint across = adjacency[o.first_index + 3u * (id - o.first_triangle) + e];
+  return across == TS_NO_NEIGHBOUR ? NONE : o.first_triangle + across;
+}
+
 // Pixel p's neighbour `k` of the walk's current step (k < 3 * the step's size): the triangle of
 // object `o` across edge k % 3 of the step's triangle k / 3, or NONE at an open edge.
 uint step_neighbour(GpuObject o, uint p, uint k) {
-  uint from = taken_id[p][step_begin[p] + k / 3u];
-  uint across = adjacency[o.first_index + 3u * (from - o.first_triangle) + k % 3u];
-  return across == TS_NO_NEIGHBOUR ? NONE : o.first_triangle + across;
+  return neighbour_of(o, taken_id[p][step_begin[p] + k / 3u], k % 3u);
 }
 
 // The first thread of pixel p moves its walk on after a round that took `all` triangles in
 // (`count` before it): to the next step once every neighbour of this one is tested, and to
 // its end once a step takes nothing in; or ends it with the counts.
 void advance_walk(uint p, uint count, uint all) {
-  if (gl_LocalInvocationIndex % LANES != 0u) return;
   if (count + all > CAP || (all != 0u && step_index[p] + 1u >= TS_SILHOUETTE_STEPS)) {
     walk_state[p] = COUNTS;
     return;
@@ -92,6 +100,24 @@ void advance_walk(uint p, uint count, uint all) {
   step_end[p] = count + all;
   next_neighbour[p] = 0u;
   if (step_begin[p] == step_end[p]) walk_state[p] = MEASURED;
+}
+
+// After a round (round_taken written, `count` triangles taken before it), thread `lane` of
+// pixel p appends the triangle it took in (area `area`) after those of earlier threads, and the
+// first thread moves the walk on (no other thread reads what it writes before the next
+// barrier).
+void append_round(uint p, uint lane, uint count, float area) {
+  uint earlier = 0u, all = 0u;
+  for (uint j = 0u; j < LANES; ++j) {
+    uint took = uint(round_taken[p][j] != NONE);
+    earlier += j < lane ? took : 0u;
+    all += took;
+  }
+  if (round_taken[p][lane] != NONE && count + earlier < CAP) {
+    taken_id[p][count + earlier] = round_taken[p][lane];
+    taken_area[p][count + earlier] = area;
+  }
+  if (lane == 0u) advance_walk(p, count, all);
 }
 
 void main() {
@@ -113,12 +139,18 @@ void main() {
   uint slot = listed ? find_object(first) : 0u;
   GpuObject o = objects[slot];
 
+  // Step 0 and the tests of step 1 at once: the first thread measures the first triangle,
+  // threads 1 to 3 its neighbours across edges 0 to 2, each in its own winding (facing 0),
+  // kept below if it is the first's.
+  uint id = NONE;
+  if (listed) id = lane == 0u ? first : lane <= 3u ? neighbour_of(o, first, lane - 1u) : NONE;
+  float area = 0.0;
+  int64_t own_facing = 0l;
+  if (id != NONE) area = front_face_area(slot, id, triangle_vertices(o, id), pixel, own_facing);
   if (lane == 0u) {
     walk_state[p] = COUNTS;
     if (listed) {
-      int64_t facing = 0l;
-      float area = front_face_area(slot, first, triangle_vertices(o, first), pixel, facing);
-      facing_sign[p] = int(facing);
+      facing_sign[p] = int(own_facing);
       if (area > 0.0) {
         taken_id[p][0] = first;
         taken_area[p][0] = area;
@@ -132,18 +164,28 @@ void main() {
     }
   }
   barrier();
+  bool walking = walk_state[p] == WALKING;
+  if (walking) {
+    bool took = lane != 0u && area > 0.0 && int(own_facing) == facing_sign[p] && id != first;
+    // A neighbour reached across two edges is the earlier edge's.
+    for (uint j = 1u; j < lane; ++j) took = took && neighbour_of(o, first, j - 1u) != id;
+    round_taken[p][lane] = took ? id : NONE;
+  }
+  barrier();
+  if (walking) append_round(p, lane, 1u, area);
+  barrier();
 
   while (true) {
-    // The same decision in every thread (all read the states after the barrier), so that the
+    // The same decision in every thread (all read the states after a barrier), so that the
     // barriers below are reached by the whole workgroup.
     bool any_walking = false;
     for (uint q = 0u; q < PIXELS; ++q) any_walking = any_walking || walk_state[q] == WALKING;
     if (!any_walking) break;
 
-    bool walking = walk_state[p] == WALKING;
+    walking = walk_state[p] == WALKING;
     uint count = walking ? taken_count[p] : 0u;
     uint k = walking ? next_neighbour[p] + lane : NONE;
-    uint id = NONE;
+    id = NONE;
     if (k < 3u * (step_end[p] - step_begin[p])) {
       id = step_neighbour(o, p, k);
       if (id != NONE && is_taken(p, id)) id = NONE;
@@ -153,29 +195,14 @@ void main() {
         if (step_neighbour(o, p, k - lane + j) == id) id = NONE;
       }
     }
-    float area = 0.0;
+    area = 0.0;
     if (id != NONE) {
       int64_t facing = int64_t(facing_sign[p]);
       area = front_face_area(slot, id, triangle_vertices(o, id), pixel, facing);
     }
     if (walking) round_taken[p][lane] = area > 0.0 ? id : NONE;
     barrier();
-
-    // Append in thread order, after the triangles earlier threads took in; the first thread
-    // moves the walk on (no other thread reads what it writes before the next barrier).
-    if (walking) {
-      uint earlier = 0u, all = 0u;
-      for (uint j = 0u; j < LANES; ++j) {
-        uint took = uint(round_taken[p][j] != NONE);
-        earlier += j < lane ? took : 0u;
-        all += took;
-      }
-      if (id != NONE && area > 0.0 && count + earlier < CAP) {
-        taken_id[p][count + earlier] = id;
-        taken_area[p][count + earlier] = area;
-      }
-      advance_walk(p, count, all);
-    }
+    if (walking) append_round(p, lane, count, area);
     barrier();
   }
 
