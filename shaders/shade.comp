@@ -184,10 +184,12 @@ void list_outline_pixel(ivec2 pixel, vec3 surface) {
   uint base = 0u;
   if (subgroupElect()) {
     base = atomicAdd(counters[0].outline_pixels, count);
-    // One more workgroup of the outline pass for each multiple of its size these entries reach.
-    const uint per_group = TS_OUTLINE_PIXELS_PER_GROUP;
-    uint groups = (base + count + per_group - 1u) / per_group - (base + per_group - 1u) / per_group;
-    if (groups != 0u) atomicAdd(counters[0].outline_dispatch.x, groups);
+    // The outline pass's workgroups, raised a grain of 8 at a time as these entries reach into
+    // a new grain's worth: 8 times fewer atomics on a second contended address than one per
+    // workgroup, for at most 7 workgroups that find no pixel.
+    const uint grain = 8u * TS_OUTLINE_PIXELS_PER_GROUP;
+    uint grains = (base + count + grain - 1u) / grain - (base + grain - 1u) / grain;
+    if (grains != 0u) atomicAdd(counters[0].outline_dispatch.x, 8u * grains);
   }
   uint slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(takers);
   outline[slot] = GpuOutlinePixel(surface, uint(pixel.x) | (uint(pixel.y) << 16));
