@@ -39,8 +39,9 @@ const uint LANES = TS_OUTLINE_LANES;
 const uint PIXELS = TS_OUTLINE_PIXELS_PER_GROUP;
 const uint CAP = TS_SILHOUETTE_TRIANGLES;
 const uint NONE = 0xFFFFFFFFu;
-#if TS_OUTLINE_LANES < TS_SILHOUETTE_SOURCES
-#error "the outline pass measures a pixel's sources in one round"
+// The first round tests the first triangle and its three neighbours at once.
+#if TS_OUTLINE_LANES < 4
+#error "the outline pass needs at least 4 threads per pixel"
 #endif
 
 layout(local_size_x = TS_OUTLINE_PIXELS_PER_GROUP * TS_OUTLINE_LANES) in;
@@ -59,15 +60,10 @@ shared uint step_index[PIXELS];
 shared uint step_begin[PIXELS];
 shared uint step_end[PIXELS];
 shared uint next_neighbour[PIXELS];
-shared uint step_candidates[PIXELS];  // the current step's: sources (step 0), else neighbours
 shared uint walk_state[PIXELS];
 shared int facing_sign[PIXELS];
 // This round's triangle per thread: the neighbour it tested if it took it in, else NONE.
 shared uint round_taken[PIXELS][LANES];
-// Step 0, per thread: the winding (facing sign) of the source it measured, 0 if it had none,
-// SOURCE_FAILED if its source has no area in the pixel or is of another object.
-shared int round_sign[PIXELS][LANES];
-const int SOURCE_FAILED = 2;
 
 bool is_taken(uint p, uint id) {
   uint hits = 0u;  // counted rather than short-circuited, as in silhouette_coverage
@@ -92,27 +88,20 @@ uint step_neighbour(GpuObject o, uint p, uint k) {
 // (`count` before it): to the next step once every neighbour of this one is tested, and to
 // its end once a step takes nothing in; or ends it with the counts.
 void advance_walk(uint p, uint count, uint all) {
-  bool sources_ok = true;  // step 0: each source reaches into the pixel and winds as the first
-  for (uint j = 0u; j < LANES && step_index[p] == 0u; ++j) {
-    int sign = round_sign[p][j];
-    sources_ok = sources_ok && (sign == 0 || sign == facing_sign[p]);
-  }
-  // What a round of step s takes in is step s + 1 (of step 0: the sources, step 0).
-  bool too_deep = all != 0u && step_index[p] != 0u && step_index[p] + 1u >= TS_SILHOUETTE_STEPS;
-  if (!sources_ok || count + all > CAP || too_deep) {
+  if (count + all > CAP) {
     walk_state[p] = COUNTS;
     return;
   }
   taken_count[p] = count + all;
   next_neighbour[p] += LANES;
-  if (next_neighbour[p] < step_candidates[p]) return;
-  uint begin = step_index[p] == 0u ? 0u : step_end[p];
+  if (next_neighbour[p] < 3u * (step_end[p] - step_begin[p])) return;
   step_index[p]++;
-  step_begin[p] = begin;
+  step_begin[p] = step_end[p];
   step_end[p] = count + all;
-  step_candidates[p] = 3u * (count + all - begin);
   next_neighbour[p] = 0u;
-  if (step_candidates[p] == 0u) walk_state[p] = MEASURED;
+  // The walk ends where a step takes nothing in, or at its last step, whose triangles it does
+  // not walk from.
+  if (step_begin[p] == step_end[p] || step_index[p] + 1u >= TS_SILHOUETTE_STEPS) walk_state[p] = MEASURED;
 }
 
 // After a round (round_taken written, `count` triangles taken before it), thread `lane` of
@@ -152,42 +141,40 @@ void main() {
   uint slot = listed ? find_object(first) : 0u;
   GpuObject o = objects[slot];
 
-  // Step 0: the distinct triangles the samples see, the k-th smallest to thread k, each
-  // measured in its own winding (facing 0); the walk goes on only if each reaches into the
-  // pixel, winds as the first (the smallest id) does and is of the first's object.
-  uint sources = 0u;
+  // Step 0 and the tests of step 1 at once: the first thread measures the first triangle,
+  // threads 1 to 3 its neighbours across edges 0 to 2, each in its own winding (facing 0),
+  // kept below if it is the first's.
   uint id = NONE;
-  if (listed) {
-    uint least = 0u;
-    for (uint k = 0u; k < SAMPLES; ++k) {
-      uint next = NONE;
-      for (uint s = 0u; s < SAMPLES; ++s) next = seen[s] >= least ? min(next, seen[s]) : next;
-      if (next == NONE) break;
-      if (k == lane) id = next;
-      sources++;
-      least = next + 1u;
-    }
-  }
-  uint object_end = slot + 1u < frame.object_count ? objects[slot + 1u].first_triangle : NONE;
+  if (listed) id = lane == 0u ? first : lane <= 3u ? neighbour_of(o, first, lane - 1u) : NONE;
   float area = 0.0;
   int64_t own_facing = 0l;
   if (id != NONE) area = front_face_area(slot, id, triangle_vertices(o, id), pixel, own_facing);
-  bool source_ok = area > 0.0 && id < object_end;
-  if (listed) {
-    round_taken[p][lane] = source_ok ? id : NONE;
-    round_sign[p][lane] = id == NONE ? 0 : source_ok ? int(own_facing) : SOURCE_FAILED;
-  }
   if (lane == 0u) {
-    walk_state[p] = listed && sources <= TS_SILHOUETTE_SOURCES ? WALKING : COUNTS;
-    facing_sign[p] = int(own_facing);
-    taken_count[p] = 0u;
-    step_index[p] = 0u;
-    step_candidates[p] = sources;
-    next_neighbour[p] = 0u;
+    walk_state[p] = COUNTS;
+    if (listed) {
+      facing_sign[p] = int(own_facing);
+      if (area > 0.0) {
+        taken_id[p][0] = first;
+        taken_area[p][0] = area;
+        taken_count[p] = 1u;
+        step_index[p] = 0u;
+        step_begin[p] = 0u;
+        step_end[p] = 1u;
+        next_neighbour[p] = 0u;
+        walk_state[p] = WALKING;
+      }
+    }
   }
   barrier();
   bool walking = walk_state[p] == WALKING;
-  if (walking) append_round(p, lane, 0u, area);
+  if (walking) {
+    bool took = lane != 0u && area > 0.0 && int(own_facing) == facing_sign[p] && id != first;
+    // A neighbour reached across two edges is the earlier edge's.
+    for (uint j = 1u; j < lane; ++j) took = took && neighbour_of(o, first, j - 1u) != id;
+    round_taken[p][lane] = took ? id : NONE;
+  }
+  barrier();
+  if (walking) append_round(p, lane, 1u, area);
   barrier();
 
   while (true) {
@@ -201,7 +188,7 @@ void main() {
     uint count = walking ? taken_count[p] : 0u;
     uint k = walking ? next_neighbour[p] + lane : NONE;
     id = NONE;
-    if (k < step_candidates[p]) {
+    if (k < 3u * (step_end[p] - step_begin[p])) {
       id = step_neighbour(o, p, k);
       if (id != NONE && is_taken(p, id)) id = NONE;
       // A neighbour an earlier thread of this round also reached is that thread's to test: the
@@ -222,6 +209,10 @@ void main() {
   }
 
   if (lane != 0u || walk_state[p] != MEASURED) return;
+  // Every sample sees the background or a triangle taken in (else two pieces of surface).
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    if (seen[s] != NONE && !is_taken(p, seen[s])) return;
+  }
   float total = 0.0;
   for (uint j = 0u; j < taken_count[p]; ++j) total += taken_area[p][j];
   // Front faces may overlap where snapping folds the outline: the area is a fraction.

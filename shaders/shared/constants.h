@@ -97,9 +97,6 @@
 // neighbours taken in step 1, and so on (the compute path's and the reference's): a pixel that
 // needs more keeps the counts.
 #define TS_SILHOUETTE_STEPS 32
-// Distinct triangles a pixel's samples may see for a silhouette coverage walk, which starts
-// from all of them: a pixel that sees more keeps the counts.
-#define TS_SILHOUETTE_SOURCES 8
 
 // Tone-mapping operators (GpuFrame.tonemap).
 #define TS_TONEMAP_ACES 0u
