@@ -88,7 +88,7 @@ uint step_neighbour(GpuObject o, uint p, uint k) {
 // (`count` before it): to the next step once every neighbour of this one is tested, and to
 // its end once a step takes nothing in; or ends it with the counts.
 void advance_walk(uint p, uint count, uint all) {
-  if (count + all > CAP || (all != 0u && step_index[p] + 1u >= TS_SILHOUETTE_STEPS)) {
+  if (count + all > CAP) {
     walk_state[p] = COUNTS;
     return;
   }
@@ -99,7 +99,9 @@ void advance_walk(uint p, uint count, uint all) {
   step_begin[p] = step_end[p];
   step_end[p] = count + all;
   next_neighbour[p] = 0u;
-  if (step_begin[p] == step_end[p]) walk_state[p] = MEASURED;
+  // The walk ends where a step takes nothing in, or at its last step, whose triangles it does
+  // not walk from.
+  if (step_begin[p] == step_end[p] || step_index[p] + 1u >= TS_SILHOUETTE_STEPS) walk_state[p] = MEASURED;
 }
 
 // After a round (round_taken written, `count` triangles taken before it), thread `lane` of
