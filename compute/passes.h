@@ -34,6 +34,7 @@ enum class Pass {
   raster_tiles,
   raster_small,
   shade,
+  outline,  // silhouette coverage (several samples): the outline pixels' exact coverage
   resolve,
   count
 };
@@ -89,6 +90,7 @@ enum class Variants {
   shading,  // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
   lod,      // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
             // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
+  silhouette,  // only at several samples per pixel under AaCoverage::silhouette, built then
 };
 
 struct PassInfo {
@@ -127,6 +129,8 @@ constexpr PassInfo kPasses[] = {
     {Pass::raster_small, "raster_small", "raster_small", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
     {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},
+    {Pass::outline, "outline", "outline", Stage::frame, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, outline_dispatch), Variants::silhouette},
     {Pass::resolve, "resolve", "resolve", Stage::frame, Dispatch::per_pixel, 0, 8},
 };
 
@@ -259,6 +263,7 @@ enum class Scale {
                          // else 4 bytes
   tile_entry_capacity,   // per tile-list entry (grows on overflow)
   batches,               // per batch of the frame (GpuCounters slots)
+  pixels_if_outlines,    // per pixel once a frame used silhouette coverage, else 4 bytes
 };
 
 /// When a Source::sized buffer is filled with `clear_value`: never, at the start of every
@@ -328,6 +333,9 @@ constexpr BindingInfo kBindings[] = {
      0xFFFFFFFFu},
     {TS_BINDING_OBJECT_CLIP, kStorageBuffer, Source::sized, Scale::objects, sizeof(glm::mat4)},
     {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
+    // As many entries as pixels: every pixel may be an outline pixel (10^6 spheres of a pixel).
+    {TS_BINDING_OUTLINE, kStorageBuffer, Source::sized, Scale::pixels_if_outlines,
+     sizeof(gpu::GpuOutlinePixel)},
 };
 
 constexpr bool binding_table_is_complete() {

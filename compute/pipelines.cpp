@@ -225,7 +225,10 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
   }
 
   for (const PassInfo& row : kPasses) {
-    if (row.shader == nullptr || row.variants == Variants::shading) continue;
+    // The outline pass runs only at several samples per pixel: sampled_pipeline builds it.
+    if (row.shader == nullptr || row.variants == Variants::shading ||
+        row.variants == Variants::silhouette)
+      continue;
     // Every pass gets the tile size and the rejection switch; only those that bin or
     // rasterize by tiles read them.
     PassInfo pass = row;

@@ -29,8 +29,14 @@ uint32_t div_up(uint64_t a, uint64_t b) {
   return uint32_t((a + b - 1) / b);
 }
 
+// Whether a frame of `settings` lists outline pixels for the outline pass (silhouette coverage).
+bool lists_outlines(const FrameSettings& settings) {
+  return settings.samples > 1 && settings.aa_coverage == AaCoverage::silhouette;
+}
+
 // Barrier between two compute passes: writes of the first visible to reads and writes of the
 // second, and to indirect-argument reads.
+
 void compute_to_compute(VkCommandBuffer cmd) {
   memory_barrier(
       cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -430,6 +436,10 @@ uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
     case Scale::batches:
       count = s.counter_slots;
       break;
+    case Scale::pixels_if_outlines:
+      if (!s.outlines) return 4;
+      count = uint64_t(s.width) * s.height;
+      break;
   }
   return std::max<uint64_t>((count + b.extra) * b.bytes, 4);  // Vulkan forbids size 0
 }
@@ -459,6 +469,8 @@ void clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
 
 bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
+  // The outline list is allocated by ensure_scratch_buffers from the first frame that needs it.
+  s.outlines = s.outlines || lists_outlines(settings);
   check_frame_size(ctx, settings.width, settings.height, settings.samples, s.options.tile_size);
   if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples &&
       settings.hdr_format == s.hdr_format)
@@ -938,6 +950,9 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     case Variants::lod:
       if (settings.lod == Lod::automatic) return s.pipelines.lod[size_t(pass.pass)];
       break;
+    case Variants::silhouette:
+      TESSERA_CHECK(false);  // recorded only at several samples (above)
+      break;
   }
   return s.pipelines[pass.pass];
 }
@@ -995,9 +1010,13 @@ void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejecti
     compute_to_compute(cmd);
     return;
   }
+  // The outline pass after shading reads its dispatch from the counters and writes pixels
+  // again.
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                     VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                     VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
 }  // namespace
@@ -1073,6 +1092,10 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
+        if (pass.pass == Pass::outline && !lists_outlines(settings)) {
+          ++i;
+          break;
+        }
         if (pass.pass == Pass::resolve && (!s.options.resolve || resolves_in_shading(s))) {
           // The shading pass resolved its own pixels (GpuFrame.resolve_in_shading), or the
           // caller records it (RendererOptions::resolve off).

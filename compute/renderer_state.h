@@ -45,6 +45,7 @@ struct Renderer::State {
   uint64_t lod_triangles = 0;     // the last such frame's triangle instances (sizes batches)
   uint32_t frame_batches = 0;     // batches of the frame being recorded
   bool lod_draws = false;         // the hardware baseline drew with level of detail
+  bool outlines = false;          // a frame used silhouette coverage (sizes TS_BINDING_OUTLINE)
 
   // Every buffer of the shared set that the renderer owns (kBindings' Source::scene, ::sized
   // and ::frame_constants), by binding (TS_BINDING_*); the others stay empty.

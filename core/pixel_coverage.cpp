@@ -73,7 +73,7 @@ double outline_coverage(const std::vector<glm::dvec2>& corners,
 double silhouette_coverage(const std::vector<uint64_t>& seen,
                            const std::function<std::vector<glm::dvec2>(uint64_t)>& polygon,
                            const std::function<std::array<uint64_t, 3>(uint64_t)>& neighbours,
-                           size_t max_triangles) {
+                           size_t max_triangles, size_t max_steps) {
   double facing = 0.0;
   // The area of triangle `id` in the pixel if it winds as `facing` says (0: set it), else 0.
   const auto front_face_area = [&](uint64_t id) {
@@ -89,6 +89,7 @@ double silhouette_coverage(const std::vector<uint64_t>& seen,
     return area_in_pixel(corners);
   };
   std::vector<uint64_t> taken = {*std::min_element(seen.begin(), seen.end())};
+  std::vector<size_t> step = {0};  // of each triangle taken in
   double total = front_face_area(taken[0]);
   if (total <= 0.0) return -1.0;
   for (size_t head = 0; head < taken.size(); ++head) {
@@ -97,8 +98,9 @@ double silhouette_coverage(const std::vector<uint64_t>& seen,
         continue;
       const double area = front_face_area(across);
       if (area <= 0.0) continue;  // outside the pixel, or past the silhouette
-      if (taken.size() == max_triangles) return -1.0;
+      if (taken.size() == max_triangles || step[head] + 1 >= max_steps) return -1.0;
       taken.push_back(across);
+      step.push_back(step[head] + 1);
       total += area;
     }
   }

@@ -1057,7 +1057,8 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
         const double covered = silhouette_coverage(
             std::vector<uint64_t>(ids_held.begin(), ids_held.end()),
             [&](uint64_t id) { return pixel_polygon(c, uint32_t(id), x, y); },
-            [&](uint64_t id) { return neighbours_of(c.instances, id); }, TS_SILHOUETTE_TRIANGLES);
+            [&](uint64_t id) { return neighbours_of(c.instances, id); }, TS_SILHOUETTE_TRIANGLES,
+            TS_SILHOUETTE_STEPS);
         if (covered > 0.0) {
           for (size_t g = 0; g < held.size(); ++g)
             weights[g] = covered * (double(held[g]) / double(n - empty));

@@ -37,6 +37,7 @@ layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) buffer Visibility { uin
 layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint coverage[]; };
 layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint clip_list[]; };
 layout(set = 0, binding = TS_BINDING_TILE_FAR, std430) buffer TileFar { uint tile_far[]; };
+layout(set = 0, binding = TS_BINDING_OUTLINE, std430) buffer Outline { GpuOutlinePixel outline[]; };
 // DFG tables (shaders/dfg.comp): classic then filament, each TS_DFG_SIZE^2, row = roughness.
 layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec4 dfg[]; };
 // RGBA16F or RGBA32F (FrameSettings::hdr_format), declared without a format so that one SPIR-V

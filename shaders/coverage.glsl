@@ -1,7 +1,8 @@
 // How much of a pixel a surface covers, for anti-aliasing's weights (FrameSettings::
 // aa_coverage): analytic (outline_coverage, where the samples see one triangle and the
-// background) and silhouette (silhouette_coverage, one surface and the background). The
-// reference renderer's versions are in core/pixel_coverage.cpp. Needs bindings.glsl and
+// background) and silhouette (front_face_area, the measure of the outline pass's walk, over
+// one surface and the background). The reference renderer's versions are in
+// core/pixel_coverage.cpp. Needs bindings.glsl and
 // raster_common.glsl.
 
 #include "view_clip.glsl"
@@ -154,14 +155,15 @@ bool box_reaches_pixel(ivec2 lo, ivec2 hi) {
 }
 
 // Area (px^2) of pixel `pixel` inside triangle instance `t` of object slot `slot` (clipped and
-// snapped as the rasterizer saw it) if it winds as `facing` says (the sign of its doubled
+// snapped as the rasterizer saw it; `vi` its vertices, triangle_vertices, which the outline pass
+// fetches ahead) if it winds as `facing` says (the sign of its doubled
 // area; 0: take the triangle's own, and set it), else 0: facing away, edge-on after snapping,
 // or outside the pixel. A triangle wholly in front of the near plane and inside the guard band
 // (nearly every one) is taken in registers, corner by corner; only one the view clips is
 // rebuilt as a polygon (pixel_corners).
-float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
+float front_face_area(uint slot, uint t, uvec3 vi, ivec2 pixel, inout int64_t facing) {
   vec4 c[3];
-  triangle_clip_coords(slot, t, c);
+  corner_clip_coords(slot, vi, c);
   bool unclipped = true;
   for (int plane = 0; plane < 5; ++plane) {
     unclipped = unclipped && plane_distance(c[0], plane) >= 0.0 && plane_distance(c[1], plane) >= 0.0 &&
@@ -195,56 +197,4 @@ float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
   float share = 0.0;
   for (int k = 0; k < n; ++k) share += edge_share_in_pixel(in_pixels(corner[k]), in_pixels(corner[(k + 1) % n]));
   return abs(share);
-}
-
-// Silhouette coverage of pixel `pixel`, whose samples see triangles of one surface and the
-// background, `seen` (SAMPLES ids, TS_VIS_EMPTY's low word for empty samples) what each
-// sample sees: the area (px^2, 0..1) of the pixel covered by the front faces of that surface,
-// up to its silhouette. From the first triangle seen, a breadth-first walk across the mesh's
-// edges (TS_BINDING_ADJACENCY) takes in each neighbour that winds as the first does on screen
-// (past a silhouette edge a neighbour faces away; or the mesh ends there) and reaches into
-// the pixel, adding its area in the pixel (the square clipped by all its edges): the thin
-// slivers at the outline that no sample hits included. Only those taken in are listed (and
-// walked from); a neighbour left out may be tested again from another. On a closed mesh the
-// front faces do not overlap on screen, so the sum is the area of the surface's outline in
-// the pixel. Returns -1 (the counts stay) if a triangle the samples see is not taken in (two
-// pieces of surface, or two objects, in one pixel), or more than TS_SILHOUETTE_TRIANGLES
-// would be.
-float silhouette_coverage(ivec2 pixel, uint seen[SAMPLES]) {
-  uint first = 0xFFFFFFFFu;
-  for (uint s = 0u; s < SAMPLES; ++s) first = min(first, seen[s]);
-  uint slot = find_object(first);
-  GpuObject o = objects[slot];
-  int64_t facing = 0l;
-  float total = front_face_area(slot, first, pixel, facing);
-  if (total <= 0.0) return -1.0;
-  uint taken[TS_SILHOUETTE_TRIANGLES];
-  taken[0] = first;
-  int count = 1;
-  for (int head = 0; head < count; ++head) {
-    uint local = taken[head] - o.first_triangle;
-    for (uint e = 0u; e < 3u; ++e) {
-      uint across = adjacency[o.first_index + 3u * local + e];
-      if (across == TS_NO_NEIGHBOUR) continue;
-      uint id = o.first_triangle + across;
-      // Counted rather than or-ed with a short circuit: a branch per entry made this scan a
-      // quarter of the walk's time on the H200.
-      uint hits = 0u;
-      for (int j = 0; j < count; ++j) hits += uint(taken[j] == id);
-      if (hits != 0u) continue;
-      // Outside the pixel (or touching it along a line), or past the silhouette: left out.
-      float area = front_face_area(slot, id, pixel, facing);
-      if (area <= 0.0) continue;
-      if (count == TS_SILHOUETTE_TRIANGLES) return -1.0;
-      taken[count++] = id;
-      total += area;
-    }
-  }
-  for (uint s = 0u; s < SAMPLES; ++s) {
-    uint hits = uint(seen[s] == 0xFFFFFFFFu);
-    for (int j = 0; j < count; ++j) hits += uint(taken[j] == seen[s]);
-    if (hits == 0u) return -1.0;
-  }
-  // Front faces may overlap where snapping folds the outline: the area is a fraction.
-  return clamp(total, 0.0, 1.0);
 }

@@ -14,19 +14,13 @@
 #include "raster_common.glsl"
 #include "coverage.glsl"
 #include "display.glsl"
+#include "pixel_colour.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // How anti-aliasing weighs a pixel's triangles (TS_AA_COVERAGE_*): a specialization constant,
 // so that the count's pipelines carry none of the analytic code.
 layout(constant_id = TS_SPEC_AA_COVERAGE) const uint AA_COVERAGE = TS_AA_COVERAGE_COUNT;
-
-// Unit ray through the point `pixel_point` of the image, in pixels.
-vec3 camera_ray_at(vec2 pixel_point) {
-  vec2 ndc = pixel_point / vec2(frame.image_size) * 2.0 - 1.0;
-  vec4 far_point = frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
-  return normalize(far_point.xyz / far_point.w - frame.camera_position);
-}
 
 // Unclamped barycentrics of the ray's hit on the triangle's plane, for texture footprints;
 // false if the ray is parallel to the plane.
@@ -135,36 +129,18 @@ vec3 shade_triangle(uint id, vec2 point) {
   return shade_surface(P, -dir, ms);
 }
 
-// What samples no triangle covers show, seen through `point` (in pixels).
-vec3 background(vec2 point) {
-  if (ibl_enabled() && frame.view == TS_VIEW_SHADED) {
-    return textureLod(env_map, equirect_uv(camera_ray_at(point)), 0.0).rgb;
-  }
-  return frame.background;
-}
-
-// The colour a group of samples stores: pre-exposed and clamped to what the HDR image's format
-// holds (65504 for fp16), so that overflow saturates instead of becoming Inf.
-vec3 stored(vec3 color) {
-  return min(color * pre_exposure(), vec3(frame.hdr_max));
-}
-
-// Writes a pixel's stored colour into the HDR image and, when the shading pass resolves
-// (GpuFrame.resolve_in_shading), its display colour into the display image: from the value as
-// the HDR image holds it, so the bytes are those the resolve pass would compute from that image,
-// without its dispatch, its barrier and its reading of the image.
-void write_pixel(ivec2 pixel, vec3 value) {
-  imageStore(hdr_image, pixel, vec4(value, 1.0));
-  if (frame.resolve_in_shading != 0u) imageStore(ldr_image, pixel, vec4(display_colour(as_stored(value)), 1.0));
-}
-
 // Anti-aliased pixels (SAMPLES > 1): each distinct triangle among a pixel's samples, and the
 // background if a sample is empty, is shaded once, at the pixel centre if it holds every
 // sample and else at the mean of its samples (inside the triangle, which is convex). Its weight
 // is the fraction of samples it holds, except under analytic coverage (TS_AA_COVERAGE_ANALYTIC)
 // in a pixel whose samples see one triangle and the background, where the triangle takes its
-// outline coverage (outline_coverage) if it has an outline edge, the background the rest. The pixels of the workgroup first list these shading requests in shared
-// memory, then all threads shade the list together, a request per thread in turn, so that a
+// outline coverage (outline_coverage) if it has an outline edge, the background the rest.
+// Under silhouette coverage (TS_AA_COVERAGE_SILHOUETTE) a pixel whose samples see one surface
+// and the background is written with the counts and listed for the outline pass
+// (outline.comp), which writes it again with the surface's exact area where it finds one: the
+// walk across the mesh that measures it runs there, over a compact list, rather than here,
+// where its registers cost every pixel and a SIMD group waits for its one walking thread.
+// The pixels of the workgroup first list these shading requests in shared memory, then all threads shade the list together, a request per thread in turn, so that a
 // pixel with four triangles does not keep the others of its SIMD group waiting for four
 // shading evaluations while most have one; each pixel then sums its own requests' colours in
 // increasing id, the empty id (all ones) last, so the sum is the same whatever order the
@@ -199,9 +175,34 @@ uint request_slot() {
   return subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(takers);
 }
 
+// Lists `pixel` for the outline pass (silhouette coverage) with its surface's stored colour.
+// The threads that list together share one atomic; the list's order differs from run to run,
+// and nothing reads it (each entry is one pixel's, written by the outline pass alone).
+void list_outline_pixel(ivec2 pixel, vec3 surface) {
+  uvec4 takers = subgroupBallot(true);
+  uint count = subgroupBallotBitCount(takers);
+  uint base = 0u;
+  if (subgroupElect()) {
+    base = atomicAdd(counters[0].outline_pixels, count);
+    // The outline pass's workgroups, raised a grain of 8 at a time as these entries reach into
+    // a new grain's worth: 8 times fewer atomics on a second contended address than one per
+    // workgroup, for at most 7 workgroups that find no pixel.
+    const uint grain = 8u * TS_OUTLINE_PIXELS_PER_GROUP;
+    uint grains = (base + count + grain - 1u) / grain - (base + grain - 1u) / grain;
+    if (grains != 0u) atomicAdd(counters[0].outline_dispatch.x, 8u * grains);
+  }
+  uint slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(takers);
+  outline[slot] = GpuOutlinePixel(surface, uint(pixel.x) | (uint(pixel.y) << 16));
+}
+
 void resolve_samples(ivec2 pixel, bool inside) {
   uint thread = gl_LocalInvocationIndex;
   if (thread == 0u) request_count = 0u;
+  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && all(equal(gl_GlobalInvocationID.xy, uvec2(0u)))) {
+    // The outline pass's dispatch: y and z one (the counters start the frame at zero).
+    counters[0].outline_dispatch.y = 1u;
+    counters[0].outline_dispatch.z = 1u;
+  }
   barrier();
 
   uint slots[SAMPLES];
@@ -242,12 +243,10 @@ void resolve_samples(ivec2 pixel, bool inside) {
       if (listed == SAMPLES) break;
       next = id + 1u;
     }
-    // One triangle and the background (listed last): the triangle's outline coverage is wanted;
-    // silhouette coverage: any triangles and the background, computed with the first's request.
+    // One triangle and the background (listed last): the triangle's outline coverage is wanted.
     bool analytic = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && empty_mask != 0u && groups == 2u;
-    bool silhouette = AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && empty_mask != 0u && groups >= 2u;
-    for (uint g = 0u; g < groups && AA_COVERAGE != TS_AA_COVERAGE_COUNT; ++g) {
-      request_coverage[slots[g]] = (analytic || silhouette) && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
+    for (uint g = 0u; g < groups && AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC; ++g) {
+      request_coverage[slots[g]] = analytic && g == 0u ? NEEDS_COVERAGE | empty_mask : 0u;
     }
   }
   barrier();
@@ -260,18 +259,11 @@ void resolve_samples(ivec2 pixel, bool inside) {
     vec3 color = empty ? background(point) : shade_triangle(q.x, point);
     put_request(r, floatBitsToUint(stored(color)));
     // The request's point lies inside its pixel (the mean of some of its samples). Tested on
-    // the constant first, so that the count's pipelines fold the clipping code away.
-    uint wanted = AA_COVERAGE != TS_AA_COVERAGE_COUNT ? request_coverage[r] : 0u;
+    // the constant first, so that the other pipelines fold the clipping code away.
+    uint wanted = AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC ? request_coverage[r] : 0u;
     if (AA_COVERAGE == TS_AA_COVERAGE_ANALYTIC && wanted != 0u && !empty) {
       float covered = outline_coverage(q.x, ivec2(floor(point)), wanted & ~NEEDS_COVERAGE);
       request_coverage[r] = floatBitsToUint(covered);
-    }
-    if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && wanted != 0u && !empty) {
-      ivec2 at = ivec2(floor(point));
-      uint base = sample_index(pixel_index(at), 0u);
-      uint seen[SAMPLES];
-      for (uint s = 0u; s < SAMPLES; ++s) seen[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
-      request_coverage[r] = floatBitsToUint(silhouette_coverage(at, seen));
     }
   }
   barrier();
@@ -286,19 +278,19 @@ void resolve_samples(ivec2 pixel, bool inside) {
                                              // 1-sample compile sees no constant index past 0)
     }
   }
-  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && empty_mask != 0u && groups >= 2u) {
-    // The surface's coverage shared among its triangles as their samples are; the background
-    // (listed last) takes the rest. Without it (-1), the counts stay.
-    float covered = uintBitsToFloat(request_coverage[slots[0]]);
-    if (covered > 0.0) {
-      float seen = float(SAMPLES - uint(bitCount(empty_mask)));
-      for (uint g = 0u; g + 1u < groups; ++g) weights[g] = covered * (weights[g] * float(SAMPLES) / seen);
-      weights[groups - 1u] = 1.0 - covered;
-    }
-  }
   vec3 sum = vec3(0.0);
   for (uint g = 0u; g < groups; ++g) sum += uintBitsToFloat(get_request(slots[g])) * weights[g];
   write_pixel(pixel, sum);
+  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && empty_mask != 0u && groups >= 2u) {
+    // Samples of one surface, or of several, and the background (listed last): the outline
+    // pass decides, with the surface's colour (its groups weighted as their samples are).
+    float seen = float(SAMPLES - uint(bitCount(empty_mask)));
+    vec3 surface = vec3(0.0);
+    for (uint g = 0u; g + 1u < groups; ++g) {
+      surface += uintBitsToFloat(get_request(slots[g])) * (weights[g] * float(SAMPLES) / seen);
+    }
+    list_outline_pixel(pixel, surface);
+  }
 }
 
 void main() {

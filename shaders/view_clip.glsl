@@ -2,13 +2,17 @@
 // shared by the clip pass (which rasterizes what is left) and analytic coverage (coverage.glsl,
 // which measures it). Needs bindings.glsl.
 
+// Clip-space position of vertices `vi` (indices into `vertices`) of object slot `slot`.
+void corner_clip_coords(uint slot, uvec3 vi, out vec4 c[3]) {
+  mat4 to_clip = object_clip[slot];
+  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
+}
+
 // Clip-space position of the corners of triangle instance `id` of object slot `slot`. The
 // object's view_proj * model comes from the object_clip pass: computed there once per object
 // rather than here once per triangle, with the same expression, so the same floats.
 void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
-  uvec3 vi = triangle_vertices(objects[slot], id);
-  mat4 to_clip = object_clip[slot];
-  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
+  corner_clip_coords(slot, triangle_vertices(objects[slot], id), c);
 }
 
 // Signed distance to clip plane `plane` (inside >= 0): the near plane, then the guard band.

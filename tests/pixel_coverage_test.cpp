@@ -59,10 +59,11 @@ TEST(PixelCoverage, OutlineCoverageCutsOnlyAlongEdgesBetweenCoveredAndEmptySampl
 struct TriangleSet {
   std::vector<std::vector<dvec2>> corners;
   std::vector<std::array<uint64_t, 3>> across;
-  double coverage(const std::vector<uint64_t>& seen, size_t max_triangles = 24) const {
+  double coverage(const std::vector<uint64_t>& seen, size_t max_triangles = 24,
+                  size_t max_steps = 24) const {
     return silhouette_coverage(
         seen, [&](uint64_t id) { return corners[id]; }, [&](uint64_t id) { return across[id]; },
-        max_triangles);
+        max_triangles, max_steps);
   }
 };
 
@@ -90,6 +91,12 @@ TEST(PixelCoverage, SilhouetteCoverageAddsTheSliversNoSampleSees) {
   EXPECT_EQ(alone.coverage({0, 1}), -1.0);
   // A walk that would list more than the limit: -1.
   EXPECT_EQ(s.coverage({0}, 2), -1.0);
+  // Steps: triangle 0 is step 0, 1 step 1, 2 step 2 (3 faces away). Three steps reach the
+  // whole strip; two would take 2 in at step 2: -1. From the sliver 1 (step 0), 0 and 2 are
+  // both step 1: two steps are enough.
+  EXPECT_NEAR(s.coverage({0}, 24, 3), 0.75, 1e-12);
+  EXPECT_EQ(s.coverage({0}, 24, 2), -1.0);
+  EXPECT_NEAR(s.coverage({1}, 24, 2), 0.75, 1e-12);
   // Triangles outside the pixel add nothing and are not walked across: triangle 1 moved to
   // x >= 1 keeps 2 (inside) from being reached.
   TriangleSet outside = s;

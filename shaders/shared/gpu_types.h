@@ -104,7 +104,10 @@ using glm::vec4;
 // Per index of TS_BINDING_INDICES (3 per triangle): the mesh's triangle across that corner's
 // edge to the next, or TS_NO_NEIGHBOUR (core/mesh_adjacency.h), for silhouette coverage.
 #define TS_BINDING_ADJACENCY 34
-#define TS_BINDING_COUNT 35
+// Silhouette coverage: the outline pixels the shading pass found (GpuOutlinePixel), which the
+// outline pass measures; GpuCounters.outline_pixels of batch 0 says how many.
+#define TS_BINDING_OUTLINE 35
+#define TS_BINDING_COUNT 36
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 
 // GpuBatch.flags
@@ -309,6 +312,23 @@ struct GpuBatch {
   uint flags;  // TS_BATCH_* bits
 };
 
+// An outline pixel (silhouette coverage, several samples): one whose samples see triangles of
+// one surface and the background. The shading pass writes the pixel with the counts' weights
+// and lists it here with its surface's colour; the outline pass, once it has the surface's
+// exact area in the pixel, writes it again. 16 bytes.
+struct GpuOutlinePixel {
+  // The surface's stored colour (pre-exposed, clamped): its triangles' colours weighted by the
+  // share of the surface's samples each holds.
+  vec3 surface;
+  uint pixel;  // x | y << 16
+};
+
+// The outline pass walks each outline pixel's mesh with TS_OUTLINE_LANES threads, which test
+// the neighbours of a step of the walk together, TS_OUTLINE_PIXELS_PER_GROUP pixels per
+// workgroup (the multiple the shading pass raises its dispatch by).
+#define TS_OUTLINE_LANES 8
+#define TS_OUTLINE_PIXELS_PER_GROUP 8
+
 // A triangle after setup, clipped and snapped, ready to rasterize. 48 bytes.
 struct GpuRasterTri {
   uvec4 xy01;      // x0, y0, x1, y1: int32 fixed point (TS_SUBPIXEL_BITS), stored as bits
@@ -344,6 +364,13 @@ struct GpuCounters {
   uint rejected_small;
   uvec2 pad_rejected;  // std430 rounds the array stride to 16 bytes
   uvec4 clip_dispatch;  // VkDispatchIndirectCommand for the clip pass, raised as big_dispatch
+  // Silhouette coverage, batch 0's slot: VkDispatchIndirectCommand (xyz) for the outline pass,
+  // x raised by the shading pass as its appends reach into a new workgroup's worth, and the
+  // outline pixels it listed (TS_BINDING_OUTLINE).
+  uvec4 outline_dispatch;
+  uint outline_pixels;
+  uint pad_outline0;
+  uvec2 pad_outline1;  // std430 rounds the array stride to 16 bytes
 };
 
 #ifdef __cplusplus
@@ -413,7 +440,11 @@ static_assert(offsetof(GpuBrdfSample, base_color) == 48);
 static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
-static_assert(sizeof(GpuCounters) == 144);
+static_assert(sizeof(GpuOutlinePixel) == 16);
+static_assert(offsetof(GpuOutlinePixel, pixel) == 12);
+static_assert(sizeof(GpuCounters) == 176);
+static_assert(offsetof(GpuCounters, outline_dispatch) == 144);
+static_assert(offsetof(GpuCounters, outline_pixels) == 160);
 static_assert(offsetof(GpuCounters, clip_dispatch) == 128);
 static_assert(offsetof(GpuCounters, rejected_entries) == 112);
 static_assert(offsetof(GpuCounters, lod_triangles) == 88);
