@@ -588,7 +588,7 @@ VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader
                             Specialization spec, uint32_t samples) {
   auto [it, inserted] = s.sampled_pipelines.try_emplace(
       std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE, spec.lod == VK_TRUE,
-                      spec.aa_coverage),
+                      spec.aa_coverage, spec.silhouette_steps),
       VK_NULL_HANDLE);
   if (inserted) {
     spec.samples = samples;
@@ -634,6 +634,9 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
   if (settings.max_anisotropy < 1 || settings.max_anisotropy > 16) {
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
+  }
+  if (settings.silhouette_steps == 1) {
+    throw Error("a silhouette coverage walk of 1 step is not one: 0 (no limit) or 2 and more");
   }
   if (!std::isfinite(settings.lod_error_px) || settings.lod_error_px <= 0.0f) {
     throw Error("level-of-detail error bound " + std::to_string(settings.lod_error_px) +
@@ -919,6 +922,7 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
       spec.debug_coverage = VK_TRUE;
     if (pass.variants == Variants::lod && settings.lod == Lod::automatic) spec.lod = VK_TRUE;
+    if (pass.variants == Variants::silhouette) spec.silhouette_steps = settings.silhouette_steps;
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
   switch (pass.variants) {

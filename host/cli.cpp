@@ -183,6 +183,33 @@ void check_aa_coverage(const CLI::App& command, uint32_t samples, Quality qualit
                    help_command);
 }
 
+// --aa-walk-steps: the silhouette coverage walk's steps (FrameSettings::silhouette_steps).
+void add_aa_walk_steps(CLI::App& app, uint32_t& steps) {
+  app.add_option("--aa-walk-steps", steps,
+                 "with --aa-coverage silhouette: steps of the\n"
+                 "walk that measures a pixel's outline, 2..32,\n"
+                 "or 0 (default) for no limit; fewer are faster\n"
+                 "and, where triangles are small against a\n"
+                 "pixel, less exact")
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        const std::string expected = "0 (no limit) or 2..32 steps";
+        const uint32_t steps = parse_count(text, expected);
+        if (steps == 1 || steps > 32) throw Error("expects " + expected + ", got '" + text + "'");
+      }));
+}
+
+// --aa-walk-steps shapes the silhouette walk alone: with another coverage mode it would do
+// nothing, so it is refused rather than ignored.
+void check_aa_walk_steps(const CLI::App& command, AaCoverage coverage,
+                         const std::string& help_command) {
+  if (command.count("--aa-walk-steps") == 0 || coverage == AaCoverage::silhouette) return;
+  throw UsageError(
+      "--aa-walk-steps does nothing without --aa-coverage silhouette: it limits the walk that "
+      "measures a pixel's outline under silhouette coverage",
+      help_command);
+}
+
 // --aa-coverage: how anti-aliasing weighs a pixel's triangles (FrameSettings::aa_coverage).
 void add_aa_coverage(CLI::App& app, AaCoverage& coverage) {
   add_choice(app, "--aa-coverage", coverage,
@@ -304,6 +331,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
               "1 (default), 4, 8 or 16; each triangle in a\n"
               "pixel is shaded once, weighted by its samples");
   add_aa_coverage(app, a.frame.aa_coverage);
+  add_aa_walk_steps(app, a.frame.silhouette_steps);
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
@@ -356,6 +384,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
               "4, 8 or 16; compute and reference backends\n"
               "only (the default backends are then compute)");
   add_aa_coverage(app, a.aa_coverage);
+  add_aa_walk_steps(app, a.silhouette_steps);
   app.add_option("--segments", a.segments,
                  "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
       ->type_name("S")
@@ -640,6 +669,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
   r.view_given = render->count("--view") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
+  check_aa_walk_steps(*render, r.frame.aa_coverage, help_command);
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
   {
@@ -656,6 +686,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.hdr_format = preset.hdr_format;
   }
   check_aa_coverage(*bench, b.samples, b.quality, help_command);
+  check_aa_walk_steps(*bench, b.aa_coverage, help_command);
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
   // What the hardware baseline cannot render leaves it out of the default backends.
