@@ -516,8 +516,9 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
-                 "env-samples, samples, aa-coverage, hdr,\n"
-                 "small-triangle, tile-size, depth-rejection\n"
+                 "env-samples, samples, aa-coverage,\n"
+                 "aa-walk-steps, hdr, small-triangle, tile-size,\n"
+                 "depth-rejection\n"
                  "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')

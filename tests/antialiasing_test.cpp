@@ -352,7 +352,8 @@ ReferenceFrame supersampled_truth(const Scene& scene, uint32_t width, uint32_t h
 // its truths take minutes; run with --gtest_also_run_disabled_tests). AA_W x AA_H pixels
 // (default 128 x 128); with AA_FULLH, the central AA_W x AA_H of an image AA_FULLH pixels high
 // (the field of view narrowed to it, so sizes on screen and the pixel grid are that image's,
-// for even sizes); AA_SCENE another built-in scene than the default.
+// for even sizes); AA_SCENE another built-in scene than the default; AA_STEPS silhouette walk
+// step limits to measure too (e.g. 3,4).
 uint32_t size_from_environment(const char* name, uint32_t otherwise) {
   const char* value = std::getenv(name);
   return value ? uint32_t(std::strtoul(value, nullptr, 10)) : otherwise;
@@ -369,20 +370,38 @@ TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
   const std::vector<uint8_t> edges = outline_pixels(truth.ownership);
   double one = 0.0;
   Renderer renderer(context());
-  for (const auto& [samples, coverage] :
-       {std::pair{1u, AaCoverage::count}, std::pair{4u, AaCoverage::count},
-        std::pair{4u, AaCoverage::analytic}, std::pair{4u, AaCoverage::silhouette}}) {
+  struct Mode {
+    uint32_t samples;
+    AaCoverage coverage;
+    uint32_t steps;
+  };
+  std::vector<Mode> modes = {{1u, AaCoverage::count, 0}, {4u, AaCoverage::count, 0},
+                             {4u, AaCoverage::analytic, 0}, {4u, AaCoverage::silhouette, 0}};
+  // AA_STEPS: silhouette walk step limits to measure too, comma-separated (FrameSettings::
+  // silhouette_steps).
+  if (const char* steps = std::getenv("AA_STEPS")) {
+    for (const char* p = steps; *p != '\0';) {
+      char* end = nullptr;
+      modes.push_back({4u, AaCoverage::silhouette, uint32_t(std::strtoul(p, &end, 10))});
+      p = *end == ',' ? end + 1 : end;
+      if (end == p && *p != '\0') break;
+    }
+  }
+  for (const Mode& m : modes) {
     FrameSettings fs;
     fs.width = w;
     fs.height = h;
-    fs.samples = samples;
-    fs.aa_coverage = coverage;
+    fs.samples = m.samples;
+    fs.aa_coverage = m.coverage;
+    fs.silhouette_steps = m.steps;
     const double e =
         radiance_error(render(renderer, scene, fs).hdr, truth.hdr, &edges).mean_relative;
-    if (samples == 1) one = e;
-    std::printf("AA edge error %ux%u of %u rows, %u sample(s), mode %d: %.4f (%.2fx) over %zu px\n",
-                w, h, full_h, samples, int(coverage), e, one / e,
-                size_t(std::count(edges.begin(), edges.end(), uint8_t(1))));
+    if (m.samples == 1) one = e;
+    std::printf(
+        "AA edge error %ux%u of %u rows, %u sample(s), mode %d, walk steps %u: %.4f (%.2fx) over "
+        "%zu px\n",
+        w, h, full_h, m.samples, int(m.coverage), m.steps, e, one / e,
+        size_t(std::count(edges.begin(), edges.end(), uint8_t(1))));
   }
 }
 
