@@ -203,7 +203,9 @@ void add_aa_walk_steps(CLI::App& app, uint32_t& steps) {
 // nothing, so it is refused rather than ignored.
 void check_aa_walk_steps(const CLI::App& command, AaCoverage coverage,
                          const std::string& help_command) {
-  if (command.count("--aa-walk-steps") == 0 || coverage == AaCoverage::silhouette) return;
+  const CLI::Option* option = command.get_option_no_throw("--aa-walk-steps");
+  if (!option || option->count() == 0 || coverage == AaCoverage::silhouette) return;
+  if (option->results().back() == "0") return;  // the default, no limit: nothing to ignore
   throw UsageError(
       "--aa-walk-steps does nothing without --aa-coverage silhouette: it limits the walk that "
       "measures a pixel's outline under silhouette coverage",

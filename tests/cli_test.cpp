@@ -488,6 +488,8 @@ TEST(AntiAliasingCli, WalkStepsNeedSilhouetteCoverage) {
     EXPECT_EQ(usage_error({command, "--samples", "4", "--aa-coverage", "silhouette",
                            "--aa-walk-steps", "0"}),
               "");
+    // 0, the default, limits nothing: given without silhouette coverage it is not refused.
+    EXPECT_EQ(usage_error({command, "--aa-walk-steps", "0"}), "");
   }
   EXPECT_EQ(parse_command_line(
                 {"render", "--samples", "4", "--aa-coverage", "silhouette", "--aa-walk-steps", "3"})
