@@ -56,6 +56,7 @@ struct Specialization {
   uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
   VkBool32 depth_rejection = VK_TRUE;           // RendererOptions::depth_rejection
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
+  uint32_t silhouette_steps = 0;  // FrameSettings::silhouette_steps (the outline pass)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -87,9 +88,9 @@ enum class Dispatch {
 enum class Variants {
   plain,           // the one built from `shader` and `spec`
   debug_coverage,  // that, or with TS_SPEC_DEBUG_COVERAGE on under RendererOptions::debug_coverage
-  shading,  // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
-  lod,      // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
-            // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
+  shading,     // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
+  lod,         // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
+               // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
   silhouette,  // only at several samples per pixel under AaCoverage::silhouette, built then
 };
 

@@ -42,7 +42,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_LOD, offsetof(Specialization, lod), sizeof(VkBool32)},
       {TS_SPEC_TILE_SIZE, offsetof(Specialization, tile_size), sizeof(uint32_t)},
       {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)},
-      {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)}};
+      {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)},
+      {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),

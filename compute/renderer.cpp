@@ -606,7 +606,7 @@ VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader
                             Specialization spec, uint32_t samples) {
   auto [it, inserted] = s.sampled_pipelines.try_emplace(
       std::make_tuple(index, samples, spec.debug_coverage == VK_TRUE, spec.lod == VK_TRUE,
-                      spec.aa_coverage),
+                      spec.aa_coverage, spec.silhouette_steps),
       VK_NULL_HANDLE);
   if (inserted) {
     spec.samples = samples;
@@ -652,6 +652,9 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
   if (settings.max_anisotropy < 1 || settings.max_anisotropy > 16) {
     throw Error("texture anisotropy " + std::to_string(settings.max_anisotropy) +
                 " is outside 1..16");
+  }
+  if (settings.silhouette_steps == 1) {
+    throw Error("a silhouette coverage walk of 1 step is not one: 0 (no limit) or 2 and more");
   }
   if (!std::isfinite(settings.lod_error_px) || settings.lod_error_px <= 0.0f) {
     throw Error("level-of-detail error bound " + std::to_string(settings.lod_error_px) +
@@ -937,6 +940,7 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
       spec.debug_coverage = VK_TRUE;
     if (pass.variants == Variants::lod && settings.lod == Lod::automatic) spec.lod = VK_TRUE;
+    if (pass.variants == Variants::silhouette) spec.silhouette_steps = settings.silhouette_steps;
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
   switch (pass.variants) {
@@ -995,28 +999,28 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
   }
 }
 
-// Shading is the last pass render() records: its writes (the images, the counters) are read by
-// the copies after the frame and read-backs, and, under RendererOptions::resolve off, by the
-// resolve pass the caller records after it. Every other pass feeds the next compute pass.
+// Shading is the last pass render() records (or the outline pass after it, under silhouette
+// coverage): its writes (the images, the counters) are read by the copies after the frame and
+// read-backs, and, under RendererOptions::resolve off, by the resolve pass the caller records
+// after it. Every other pass feeds the next compute pass.
 // Without depth rejection the two rasterizers only atomicMin into the visibility buffer (and
 // count into the coverage one): neither reads what the other writes, so they run without a
 // barrier between them and the per-triangle one's time is from the per-tile one's end to both
 // ends. With it, raster_small reads the tile bounds raster_tiles lowers at its end (a stale
 // bound would still be exact, only reject less), so the barrier stays.
 static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
-void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejection = false) {
+// `outlines_next`: the outline pass follows, which reads its dispatch from the counters and
+// writes pixels again (the wider barrier cost the 1-sample frame's last pass 2 us on the H200).
+void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejection = false,
+                   bool outlines_next = false) {
   if (pass.pass == Pass::raster_tiles && !depth_rejection) return;
-  if (pass.stage != Stage::frame) {
+  if (pass.stage != Stage::frame || outlines_next) {
     compute_to_compute(cmd);
     return;
   }
-  // The outline pass after shading reads its dispatch from the counters and writes pixels
-  // again.
   memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                     VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                     VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 }  // namespace
@@ -1103,7 +1107,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
           break;
         }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
-        barrier_after(cmd, pass);
+        barrier_after(cmd, pass, false, pass.pass == Pass::shade && lists_outlines(settings));
         mark(pass.pass);
         ++i;
         break;

@@ -73,8 +73,9 @@ struct Renderer::State {
   std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
   // The passes (by Pass) and generic shading pipelines (by Pipeline, after the passes) for more
   // than one sample per pixel, built on first use: key (index, samples, debug coverage, level
-  // of detail, TS_AA_COVERAGE_*).
-  std::map<std::tuple<size_t, uint32_t, bool, bool, uint32_t>, VkPipeline> sampled_pipelines;
+  // of detail, TS_AA_COVERAGE_*, silhouette steps).
+  std::map<std::tuple<size_t, uint32_t, bool, bool, uint32_t, uint32_t>, VkPipeline>
+      sampled_pipelines;
   bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
   // How the device rounds shader stores to the RGBA16F HDR image, probed by the first frame
   // that uses one: TS_HDR_ROUNDING_HALF_*, or TS_HDR_ROUNDING_AS_IS if the probe found neither

@@ -71,6 +71,11 @@ struct FrameSettings {
   /// or, where its samples see one triangle and the background, by the triangle's outline
   /// coverage (analytic; docs/tradeoffs.md says why it is not the default).
   AaCoverage aa_coverage = AaCoverage::count;
+  /// Under silhouette coverage: the steps of the walk that measures a pixel (the first triangle
+  /// step 0, its neighbours taken in step 1, ...), after which it stops with the area found so
+  /// far; 0 for no limit (the default). At least 2. Fewer steps are faster and, where triangles
+  /// are small against a pixel, less exact (docs/tradeoffs.md, "Anti-aliasing").
+  uint32_t silhouette_steps = 0;
 };
 
 /// Throws Error naming `samples` unless it is 1, 4, 8 or 16.

@@ -93,12 +93,13 @@ double silhouette_coverage(const std::vector<uint64_t>& seen,
   double total = front_face_area(taken[0]);
   if (total <= 0.0) return -1.0;
   for (size_t head = 0; head < taken.size(); ++head) {
+    if (step[head] + 1 >= max_steps) continue;  // the last step is not walked from
     for (uint64_t across : neighbours(taken[head])) {
       if (across == kNoNeighbourId || std::find(taken.begin(), taken.end(), across) != taken.end())
         continue;
       const double area = front_face_area(across);
       if (area <= 0.0) continue;  // outside the pixel, or past the silhouette
-      if (taken.size() == max_triangles || step[head] + 1 >= max_steps) return -1.0;
+      if (taken.size() == max_triangles) return -1.0;
       taken.push_back(across);
       step.push_back(step[head] + 1);
       total += area;

@@ -37,9 +37,9 @@ double outline_coverage(const std::vector<glm::dvec2>& corners,
 /// the ids of the triangles the samples see (at least one; the walk starts from the smallest).
 /// `polygon(id)`: that triangle as the rasterizer saw it (clipped and snapped), in pixels
 /// relative to the pixel's top-left corner; `neighbours(id)`: the ids across its three edges
-/// in corner order (kNoNeighbourId: none). -1 if a seen triangle is not taken in, if more
-/// than `max_triangles` would be, or if one would be taken in at step `max_steps` or later (the
-/// first triangle is step 0, the neighbours taken in from it step 1, and so on).
+/// in corner order (kNoNeighbourId: none). The walk does not go on from the triangles of step
+/// `max_steps` - 1 (the first triangle is step 0, the neighbours taken in from it step 1, and
+/// so on). -1 if a seen triangle is not taken in, or if more than `max_triangles` would be.
 inline constexpr uint64_t kNoNeighbourId = ~uint64_t(0);
 double silhouette_coverage(const std::vector<uint64_t>& seen,
                            const std::function<std::vector<glm::dvec2>(uint64_t)>& polygon,

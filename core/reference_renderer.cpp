@@ -1058,7 +1058,7 @@ void render_msaa_rows(const ShadeContext& c, const std::vector<RasterTriangle>& 
             std::vector<uint64_t>(ids_held.begin(), ids_held.end()),
             [&](uint64_t id) { return pixel_polygon(c, uint32_t(id), x, y); },
             [&](uint64_t id) { return neighbours_of(c.instances, id); }, TS_SILHOUETTE_TRIANGLES,
-            TS_SILHOUETTE_STEPS);
+            frame.silhouette_steps == 0 ? SIZE_MAX : frame.silhouette_steps);
         if (covered > 0.0) {
           for (size_t g = 0; g < held.size(); ++g)
             weights[g] = covered * (double(held[g]) / double(n - empty));

@@ -42,7 +42,8 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
   const BenchResults results = measure_bench(ctx.get(), a);
 
   if (!a.quiet) print_bench_table(results, a);
-  if (!a.compare.empty()) print_comparison(base, compare_runs(base, results, a));
+  if (!a.compare.empty())
+    print_comparison(base, compare_runs(base, results, a), differing_settings(base, a));
   if (!a.csv.empty()) write_bench_csv(a.csv, results, a);
   if (!a.json.empty()) write_bench_json(a.json, results, a, command_line);
   if (!a.chart.empty()) write_bench_chart(a.chart, results, a);

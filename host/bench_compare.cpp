@@ -68,6 +68,9 @@ SavedRun read_bench_json(const std::string& path) {
   run.path = path;
   if (doc.contains("device") && doc["device"].is_string()) run.device = doc["device"];
   if (doc.contains("date") && doc["date"].is_string()) run.date = doc["date"];
+  for (const auto& [key, value] : bench_settings(BenchArgs{})) {
+    if (const auto it = doc.find(key); it != doc.end()) run.settings.emplace_back(key, it->dump());
+  }
   const std::string scene = member<std::string>(doc, "scene", "", path);
   const uint32_t width = member<uint32_t>(doc, "width", "", path);
   const uint32_t height = member<uint32_t>(doc, "height", "", path);
@@ -121,9 +124,47 @@ std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults
   return out;
 }
 
-void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points) {
+const char* aa_coverage_name(AaCoverage c) {
+  return c == AaCoverage::analytic     ? "analytic"
+         : c == AaCoverage::silhouette ? "silhouette"
+                                       : "count";
+}
+
+std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs& a) {
+  return {{"samples", json(a.samples).dump()},
+          {"aa_coverage", json(aa_coverage_name(a.aa_coverage)).dump()},
+          {"aa_walk_steps", json(a.silhouette_steps).dump()},
+          {"lod", json(a.lod == Lod::automatic ? "auto" : "off").dump()},
+          {"segments", json(a.segments).dump()},
+          {"small_triangle_area", json(a.small_triangle_area).dump()},
+          {"tile_size", json(a.tile_size).dump()},
+          {"depth_rejection", json(a.depth_rejection).dump()},
+          {"hdr_format", json(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16").dump()}};
+}
+
+std::vector<std::string> differing_settings(const SavedRun& base, const BenchArgs& args) {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : bench_settings(args)) {
+    for (const auto& [base_key, base_value] : base.settings) {
+      if (base_key == key && base_value != value)
+        out.push_back(key + " " + value + " (base: " + base_value + ")");
+    }
+  }
+  return out;
+}
+
+void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points,
+                      const std::vector<std::string>& differing) {
   std::printf("compared with %s (device '%s', %s): new / old < 1 is faster\n", base.path.c_str(),
               base.device.c_str(), base.date.c_str());
+  if (!differing.empty()) {
+    std::string list;
+    for (const std::string& d : differing) list += (list.empty() ? "" : ", ") + d;
+    std::printf(
+        "warning: this run's settings differ from the base's: %s; the ratios compare "
+        "unlike frames\n",
+        list.c_str());
+  }
   std::printf("%9s %9s %10s %10s %10s\n", "objects", "backend", "old ms", "new ms", "new / old");
   for (const ComparedPoint& c : points) {
     if (c.matched()) {

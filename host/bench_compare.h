@@ -25,7 +25,21 @@ struct SavedRun {
   std::string path;
   std::string device, date;  // as recorded (empty if the file has none)
   std::vector<SavedPoint> points;
+  // The frame settings it recorded (bench_settings' keys present in the file), as JSON text.
+  std::vector<std::pair<std::string, std::string>> settings;
 };
+
+/// The name `--aa-coverage` and the `--json` file give coverage mode `c`.
+const char* aa_coverage_name(AaCoverage c);
+
+/// The settings of a bench run that change what a frame computes, by the keys its `--json`
+/// file records them under (samples, aa_coverage, aa_walk_steps, lod, segments,
+/// small_triangle_area, tile_size, depth_rejection, hdr_format), each as JSON text.
+std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs& args);
+
+/// "key value (base: value)" for each setting `base` recorded that this run's `args` differ in;
+/// empty if none (a file from before a key was recorded is not compared on it).
+std::vector<std::string> differing_settings(const SavedRun& base, const BenchArgs& args);
 
 /// Reads the points of a file `tessera bench --json` wrote. Throws Error naming `path` when it
 /// cannot be read, is not JSON (with the parser's line and column), or lacks a field of that
@@ -45,7 +59,10 @@ struct ComparedPoint {
 std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults& results,
                                         const BenchArgs& args);
 
-/// Prints the comparison table: old ms, new ms, new / old, and the unmatched points by name.
-void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points);
+/// Prints the comparison table: old ms, new ms, new / old, and the unmatched points by name;
+/// first a warning naming the settings that differ from the base's (`differing`), whose ratios
+/// then compare unlike frames.
+void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points,
+                      const std::vector<std::string>& differing);
 
 }  // namespace tessera

@@ -146,6 +146,7 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
   fs.lod_error_px = a.lod_error_px;
   fs.samples = a.samples;
   fs.aa_coverage = a.aa_coverage;
+  fs.silhouette_steps = a.silhouette_steps;
   fs.hdr_format = a.hdr_format;
   const float aspect = float(a.width) / float(a.height);
 

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/check.h"
+#include "host/bench_compare.h"
 #include "host/chart.h"
 
 namespace tessera {
@@ -63,13 +64,26 @@ static std::string warmup_text(const BenchRow& r, const BenchArgs& a) {
   return buf;
 }
 
+namespace {
+
+// ", <coverage> coverage[, walk of N steps]" for several samples per pixel, else "".
+std::string coverage_phrase(const BenchArgs& a) {
+  if (a.samples == 1) return "";
+  std::string out = std::string(", ") + aa_coverage_name(a.aa_coverage) + " coverage";
+  if (a.aa_coverage == AaCoverage::silhouette && a.silhouette_steps != 0)
+    out += ", walk of " + std::to_string(a.silhouette_steps) + " steps";
+  return out;
+}
+
+}  // namespace
+
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
-      "scene %s, %ux%u, %u sample%s per pixel, %u segments, small-triangle area %u, device "
+      "scene %s, %ux%u, %u sample%s per pixel%s, %u segments, small-triangle area %u, device "
       "'%s' (%s),\n%s\n",
-      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s", a.segments,
-      a.small_triangle_area, results.device.c_str(), results.driver.c_str(),
-      method_phrase(a).c_str());
+      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
+      coverage_phrase(a).c_str(), a.segments, a.small_triangle_area, results.device.c_str(),
+      results.driver.c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");
@@ -128,6 +142,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"command\": " << json_string(command_line) << ",\n  \"date\": " << json_string(date)
     << ",\n  \"scene\": " << json_string(a.scene) << ",\n  \"width\": " << a.width
     << ",\n  \"height\": " << a.height << ",\n  \"samples\": " << a.samples
+    << ",\n  \"aa_coverage\": " << json_string(aa_coverage_name(a.aa_coverage))
+    << ",\n  \"aa_walk_steps\": " << a.silhouette_steps
     << ",\n  \"lod\": " << json_string(a.lod == Lod::automatic ? "auto" : "off")
     << ",\n  \"lod_error_px\": " << a.lod_error_px << ",\n  \"segments\": " << a.segments
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area
@@ -177,8 +193,8 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
   spec.title = "tessera bench: " + a.scene + ", " + std::to_string(a.width) + "x" +
                std::to_string(a.height) +
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
-               (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " + results.device + " (" +
-               frames_phrase(a.repeat) +
+               coverage_phrase(a) + (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " +
+               results.device + " (" + frames_phrase(a.repeat) +
                (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";

@@ -183,6 +183,35 @@ void check_aa_coverage(const CLI::App& command, uint32_t samples, Quality qualit
                    help_command);
 }
 
+// --aa-walk-steps: the silhouette coverage walk's steps (FrameSettings::silhouette_steps).
+void add_aa_walk_steps(CLI::App& app, uint32_t& steps) {
+  app.add_option("--aa-walk-steps", steps,
+                 "with --aa-coverage silhouette: steps of the\n"
+                 "walk that measures a pixel's outline, 2..32,\n"
+                 "or 0 (default) for no limit; fewer are faster\n"
+                 "and, where triangles are small against a\n"
+                 "pixel, less exact")
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        const std::string expected = "0 (no limit) or 2..32 steps";
+        const uint32_t steps = parse_count(text, expected);
+        if (steps == 1 || steps > 32) throw Error("expects " + expected + ", got '" + text + "'");
+      }));
+}
+
+// --aa-walk-steps shapes the silhouette walk alone: with another coverage mode it would do
+// nothing, so it is refused rather than ignored.
+void check_aa_walk_steps(const CLI::App& command, AaCoverage coverage,
+                         const std::string& help_command) {
+  const CLI::Option* option = command.get_option_no_throw("--aa-walk-steps");
+  if (!option || option->count() == 0 || coverage == AaCoverage::silhouette) return;
+  if (option->results().back() == "0") return;  // the default, no limit: nothing to ignore
+  throw UsageError(
+      "--aa-walk-steps does nothing without --aa-coverage silhouette: it limits the walk that "
+      "measures a pixel's outline under silhouette coverage",
+      help_command);
+}
+
 // --aa-coverage: how anti-aliasing weighs a pixel's triangles (FrameSettings::aa_coverage).
 void add_aa_coverage(CLI::App& app, AaCoverage& coverage) {
   add_choice(app, "--aa-coverage", coverage,
@@ -304,6 +333,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
               "1 (default), 4, 8 or 16; each triangle in a\n"
               "pixel is shaded once, weighted by its samples");
   add_aa_coverage(app, a.frame.aa_coverage);
+  add_aa_walk_steps(app, a.frame.silhouette_steps);
   add_lod_options(app, a.frame.lod, a.frame.lod_error_px);
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
@@ -356,6 +386,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
               "4, 8 or 16; compute and reference backends\n"
               "only (the default backends are then compute)");
   add_aa_coverage(app, a.aa_coverage);
+  add_aa_walk_steps(app, a.silhouette_steps);
   app.add_option("--segments", a.segments,
                  "sphere slices, 4..4096; S/2 stacks (default\n32: 960 triangles)")
       ->type_name("S")
@@ -488,8 +519,9 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
-                 "env-samples, samples, aa-coverage, hdr,\n"
-                 "small-triangle, tile-size, depth-rejection\n"
+                 "env-samples, samples, aa-coverage,\n"
+                 "aa-walk-steps, hdr, small-triangle, tile-size,\n"
+                 "depth-rejection\n"
                  "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
@@ -642,6 +674,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.view_given = render->count("--view") > 0;
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
+  check_aa_walk_steps(*render, r.frame.aa_coverage, help_command);
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
   {
@@ -661,6 +694,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   check_aa_coverage(*bench, b.samples, b.quality, help_command);
+  check_aa_walk_steps(*bench, b.aa_coverage, help_command);
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
   // What the hardware baseline cannot render leaves it out of the default backends.

@@ -50,6 +50,7 @@ struct BenchArgs {
   uint32_t segments = 32;  // sphere tessellation: 960 triangles per sphere
   uint32_t samples = 1;    // FrameSettings::samples (compute and reference backends)
   AaCoverage aa_coverage = AaCoverage::count;  // FrameSettings::aa_coverage
+  uint32_t silhouette_steps = 0;               // FrameSettings::silhouette_steps
   std::string device = "auto";
   std::vector<std::string> backends = {"compute", "hardware"};  // and/or "reference"
   uint32_t repeat = 10;    // timed frames per point; figures are their medians

@@ -18,6 +18,7 @@ const std::vector<KnobInfo>& knobs() {
       {"env-samples", "GGX samples per prefiltered texel, 8..2048"},
       {"samples", "visibility samples per pixel (anti-aliasing): 1, 4, 8, 16"},
       {"aa-coverage", "anti-aliasing weights (at 4 samples if 1): count, analytic, silhouette"},
+      {"aa-walk-steps", "silhouette coverage's walk (at 4 samples if 1): 2..6 steps, no limit"},
       {"hdr", "storage of the HDR image: fp16, fp32"},
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
@@ -139,6 +140,21 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       s.frame.samples = n;
       s.frame.aa_coverage = c;
       s.is_default = c == frame.aa_coverage;  // the command line's mode, at its samples or 4
+      out.push_back(s);
+    }
+  } else if (knob == "aa-walk-steps") {
+    // Silhouette coverage at the command line's sample count, or 4 where that is 1.
+    const uint32_t n = std::max(frame.samples, 4u);
+    for (uint32_t steps : {2u, 3u, 4u, 6u, 0u}) {
+      KnobSetting s = base(knob,
+                           std::to_string(n) + " samples, " +
+                               (steps == 0 ? std::string("no limit")
+                                           : std::to_string(steps) + " steps"),
+                           frame, options);
+      s.frame.samples = n;
+      s.frame.aa_coverage = AaCoverage::silhouette;
+      s.frame.silhouette_steps = steps;
+      s.is_default = steps == frame.silhouette_steps;  // the command line's limit, as aa-coverage
       out.push_back(s);
     }
   } else if (knob == "small-triangle") {

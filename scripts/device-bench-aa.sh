@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs ON THE GPU MACHINE (the device tool) and builds nothing. Issue 12's anti-aliasing time
 # bound: the default scene at 1920x1080, 1 sample against 4 samples with each coverage mode
-# (count, analytic, silhouette), per pass, medians of 3 runs of REPEAT frames. With a staging
+# (count, analytic, silhouette, and silhouette with walks of 3 and 4 steps: STEP_POINTS), per
+# pass, medians of 3 runs of REPEAT frames. With a staging
 # in .device-before too (a copy of an earlier scripts/stage-device.sh), each point runs the
 # before and after binaries in turn. Pass carry [".gl", ".device-build"(, ".device-before")].
 # Writes $OUT/aa.tar.gz and prints a table of frame and per-pass medians last.
@@ -21,14 +22,19 @@ trap 'tar -C "$work" -czf "$out/aa.tar.gz" .' EXIT
   --backends hardware --repeat 20 --warmup-ms 3000 --quiet
 versions=after
 [[ -x $PWD/.device-before/tessera ]] && versions="before after"
-for point in "1 count" "4 count" "4 analytic" "4 silhouette"; do
+# A third field is the silhouette walk's --aa-walk-steps, run by the new build alone.
+for point in "1 count" "4 count" "4 analytic" "4 silhouette" ${STEP_POINTS:-"4 silhouette 3" "4 silhouette 4"}; do
   set -- $point
+  steps=()
+  name=s$1_$2
+  [[ $# -ge 3 ]] && steps=(--aa-walk-steps "$3") && name=${name}_steps$3
   for version in $versions; do
+    [[ $version == before && ${#steps[@]} -gt 0 ]] && continue
     b=$bin
     [[ $version == before ]] && b=$PWD/.device-before
     LD_LIBRARY_PATH=$b "$b/tessera" bench --device gpu --scene spheres --size "$size" \
-      --samples "$1" --aa-coverage "$2" --backends compute --repeat "$repeat" --runs 3 \
-      --warmup-ms 500 --json "$work/${version}_s$1_$2.json" > "$work/${version}_s$1_$2.txt"
+      --samples "$1" --aa-coverage "$2" "${steps[@]}" --backends compute --repeat "$repeat" \
+      --runs 3 --warmup-ms 500 --json "$work/${version}_$name.json" > "$work/${version}_$name.txt"
   done
 done
 python3 - "$work" <<'PY'

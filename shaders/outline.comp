@@ -15,18 +15,23 @@
 // pixel, adding its area in the pixel (front_face_area): the thin slivers at the outline that
 // no sample hits included. Only those taken in are walked from; a neighbour left out may be
 // tested again from another. On a closed mesh the front faces do not overlap on screen, so the
-// sum is the area of the surface's outline in the pixel. The counts stay where a triangle the
-// samples see is not taken in (two pieces of surface, or two objects, in one pixel), where more
-// than TS_SILHOUETTE_TRIANGLES would be, or where the walk would take one in at step
-// TS_SILHOUETTE_STEPS (the first triangle is step 0, its neighbours taken in step 1, ...).
+// sum is the area of the surface's outline in the pixel. With a limit of S steps
+// (FrameSettings::silhouette_steps, 0 for none) the walk does not go on from the triangles of
+// its step S - 1 (the first triangle is step 0, its neighbours taken in step 1, ...), and the
+// area found so far stands. The counts stay where a triangle the samples see is not taken in
+// (two pieces of surface, or two objects, in one pixel) or where more than
+// TS_SILHOUETTE_TRIANGLES would be.
 //
 // How it runs: TS_OUTLINE_LANES threads walk a pixel together, each round testing that many
-// neighbours of the walk's current step at once. Each works out which of the round's
-// neighbours an earlier thread of the round also reached, and appends the triangles it takes
-// in after those of earlier threads: the triangles, their order and the sum are those of the
-// one-thread walk, step by step and in edge order. The pass waits for its longest walk, so one
-// thread per pixel, which tests a walk's neighbours one after another, took 0.128 ms on the
-// H200 for the default scene's 10,000 outline pixels, and 8 threads 0.081 ms.
+// neighbours of the walk's current step at once; the first round tests the first triangle and
+// its three neighbours. Each thread works out which of the round's neighbours an earlier
+// thread of the round also reached, and appends the triangles it takes in after those of
+// earlier threads: the triangles, their order and the sum are those of the one-thread walk,
+// step by step and in edge order. The pass waits for its longest walks. On the H200 (default
+// scene, 1920 x 1080, 4 samples, about 10,000 outline pixels, no step limit) one thread per
+// pixel took 0.128 ms, 8 threads 0.081 ms (4: 0.088, 16: 0.092, 32: 0.127), and with the first
+// round merged 0.075 ms; fetching each tested triangle's neighbours ahead, so that a round
+// waits for one load, was slower (0.146 ms). A limit of 3 steps: 0.020 ms.
 #include "bindings.glsl"
 #include "material.glsl"
 #include "lighting.glsl"
@@ -40,9 +45,12 @@ const uint PIXELS = TS_OUTLINE_PIXELS_PER_GROUP;
 const uint CAP = TS_SILHOUETTE_TRIANGLES;
 const uint NONE = 0xFFFFFFFFu;
 // The first round tests the first triangle and its three neighbours at once.
+// The first round tests the first triangle and its three neighbours (step 1) at once: at least
+// 4 threads a pixel, and 2 steps (Renderer::render refuses fewer).
 #if TS_OUTLINE_LANES < 4
 #error "the outline pass needs at least 4 threads per pixel"
 #endif
+layout(constant_id = TS_SPEC_SILHOUETTE_STEPS) const uint SILHOUETTE_STEPS = 0u;
 
 layout(local_size_x = TS_OUTLINE_PIXELS_PER_GROUP * TS_OUTLINE_LANES) in;
 
@@ -101,7 +109,8 @@ void advance_walk(uint p, uint count, uint all) {
   next_neighbour[p] = 0u;
   // The walk ends where a step takes nothing in, or at its last step, whose triangles it does
   // not walk from.
-  if (step_begin[p] == step_end[p] || step_index[p] + 1u >= TS_SILHOUETTE_STEPS) walk_state[p] = MEASURED;
+  bool last_step = SILHOUETTE_STEPS != 0u && step_index[p] + 1u >= SILHOUETTE_STEPS;
+  if (step_begin[p] == step_end[p] || last_step) walk_state[p] = MEASURED;
 }
 
 // After a round (round_taken written, `count` triangles taken before it), thread `lane` of

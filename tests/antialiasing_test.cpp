@@ -31,12 +31,14 @@ class AntiAliasing : public test::VulkanTest {
                   RendererOptions options = {}) {
     return render(scene, size, size, options, samples);
   }
-  Frame render_with(const Scene& scene, uint32_t size, uint32_t samples, AaCoverage coverage) {
+  Frame render_with(const Scene& scene, uint32_t size, uint32_t samples, AaCoverage coverage,
+                    uint32_t silhouette_steps = 0) {
     Renderer renderer(context());
     FrameSettings fs;
     fs.width = fs.height = size;
     fs.samples = samples;
     fs.aa_coverage = coverage;
+    fs.silhouette_steps = silhouette_steps;
     return render(renderer, scene, fs);
   }
 };
@@ -163,14 +165,23 @@ TEST_F(AntiAliasing, EveryPixelOfAClosedMeshCountsEachSampleOnce) {
 TEST_F(AntiAliasing, AgreesWithTheReferenceAtTheSameSamples) {
   const Scene scene = make_sphere_grid_scene();
   const uint32_t size = 96;
-  for (const auto& [samples, coverage] :
-       {std::pair{4u, AaCoverage::count}, std::pair{16u, AaCoverage::count},
-        std::pair{4u, AaCoverage::analytic}, std::pair{4u, AaCoverage::silhouette}}) {
-    const Frame gpu = render_with(scene, size, samples, coverage);
+  // Silhouette coverage also with a walk of 2 steps, which at this size (spheres 10 px
+  // across, their triangles far below a pixel) stops many walks short.
+  struct Mode {
+    uint32_t samples;
+    AaCoverage coverage;
+    uint32_t steps;
+  };
+  for (const auto& [samples, coverage, steps] :
+       {Mode{4u, AaCoverage::count, 0}, Mode{16u, AaCoverage::count, 0},
+        Mode{4u, AaCoverage::analytic, 0}, Mode{4u, AaCoverage::silhouette, 0},
+        Mode{4u, AaCoverage::silhouette, 2}}) {
+    const Frame gpu = render_with(scene, size, samples, coverage, steps);
     ReferenceSettings rs;
     rs.frame.width = rs.frame.height = size;
     rs.frame.samples = samples;
     rs.frame.aa_coverage = coverage;
+    rs.frame.silhouette_steps = steps;
     rs.threads = 2;
     const ReferenceFrame ref = render_reference(scene, rs);
     ASSERT_EQ(ref.sample_ids.size(), gpu.visibility.size());
@@ -190,13 +201,47 @@ TEST_F(AntiAliasing, AgreesWithTheReferenceAtTheSameSamples) {
     const ImageDifference d = compare_images(gpu.ldr, ref.ldr, 1.0, &agree);
     EXPECT_LE(d.max_abs_error, 1.0) << samples << " samples at " << d.worst_x << "," << d.worst_y;
     std::printf(
-        "AA %u samples (%s) vs reference: %zu of %zu samples owned differently, max %g "
-        "levels\n",
+        "AA %u samples (%s, walk steps %u) vs reference: %zu of %zu samples owned differently, "
+        "max %g levels\n",
         samples,
         coverage == AaCoverage::count      ? "count"
         : coverage == AaCoverage::analytic ? "analytic"
                                            : "silhouette",
-        mismatches, gpu_ids.size(), d.max_abs_error);
+        steps, mismatches, gpu_ids.size(), d.max_abs_error);
+  }
+}
+
+// A limit on the silhouette walk's steps stops walks short where triangles are small against a
+// pixel, and so changes pixels there (the reference follows it: AgreesWithTheReference...);
+// a walk of 1 step is refused, naming the value.
+TEST_F(AntiAliasing, SilhouetteWalkStepsStopLongWalks) {
+  const Scene scene = make_sphere_grid_scene();
+  const Frame whole = render_with(scene, 96, 4, AaCoverage::silhouette);
+  const Frame short_walks = render_with(scene, 96, 4, AaCoverage::silhouette, 2);
+  size_t changed = 0;
+  for (size_t p = 0; p < whole.hdr.pixels.size(); ++p) {
+    if (whole.hdr.pixels[p] == short_walks.hdr.pixels[p]) continue;
+    ++changed;
+    // Only outline pixels change: samples that see the background and some that do not.
+    size_t empty = 0;
+    for (uint32_t s = 0; s < 4; ++s) empty += whole.visibility[p * 4 + s] == TS_VIS_EMPTY ? 1 : 0;
+    EXPECT_TRUE(empty > 0 && empty < 4) << "pixel " << p << " has " << empty << " empty samples";
+  }
+  EXPECT_GT(changed, 0u);
+  std::printf("AA walk of 2 steps: %zu pixels of %zu differ from the whole walk\n", changed,
+              whole.hdr.pixels.size());
+  Renderer renderer(context());
+  FrameSettings fs;
+  fs.width = fs.height = 32;
+  fs.samples = 4;
+  fs.aa_coverage = AaCoverage::silhouette;
+  fs.silhouette_steps = 1;
+  renderer.set_scene(scene);
+  try {
+    renderer.render(fs);
+    FAIL() << "a walk of 1 step was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("1 step"), std::string::npos) << e.what();
   }
 }
 
@@ -307,7 +352,8 @@ ReferenceFrame supersampled_truth(const Scene& scene, uint32_t width, uint32_t h
 // its truths take minutes; run with --gtest_also_run_disabled_tests). AA_W x AA_H pixels
 // (default 128 x 128); with AA_FULLH, the central AA_W x AA_H of an image AA_FULLH pixels high
 // (the field of view narrowed to it, so sizes on screen and the pixel grid are that image's,
-// for even sizes); AA_SCENE another built-in scene than the default.
+// for even sizes); AA_SCENE another built-in scene than the default; AA_STEPS silhouette walk
+// step limits to measure too (e.g. 3,4).
 uint32_t size_from_environment(const char* name, uint32_t otherwise) {
   const char* value = std::getenv(name);
   return value ? uint32_t(std::strtoul(value, nullptr, 10)) : otherwise;
@@ -324,20 +370,38 @@ TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
   const std::vector<uint8_t> edges = outline_pixels(truth.ownership);
   double one = 0.0;
   Renderer renderer(context());
-  for (const auto& [samples, coverage] :
-       {std::pair{1u, AaCoverage::count}, std::pair{4u, AaCoverage::count},
-        std::pair{4u, AaCoverage::analytic}, std::pair{4u, AaCoverage::silhouette}}) {
+  struct Mode {
+    uint32_t samples;
+    AaCoverage coverage;
+    uint32_t steps;
+  };
+  std::vector<Mode> modes = {{1u, AaCoverage::count, 0}, {4u, AaCoverage::count, 0},
+                             {4u, AaCoverage::analytic, 0}, {4u, AaCoverage::silhouette, 0}};
+  // AA_STEPS: silhouette walk step limits to measure too, comma-separated (FrameSettings::
+  // silhouette_steps).
+  if (const char* steps = std::getenv("AA_STEPS")) {
+    for (const char* p = steps; *p != '\0';) {
+      char* end = nullptr;
+      modes.push_back({4u, AaCoverage::silhouette, uint32_t(std::strtoul(p, &end, 10))});
+      p = *end == ',' ? end + 1 : end;
+      if (end == p && *p != '\0') break;
+    }
+  }
+  for (const Mode& m : modes) {
     FrameSettings fs;
     fs.width = w;
     fs.height = h;
-    fs.samples = samples;
-    fs.aa_coverage = coverage;
+    fs.samples = m.samples;
+    fs.aa_coverage = m.coverage;
+    fs.silhouette_steps = m.steps;
     const double e =
         radiance_error(render(renderer, scene, fs).hdr, truth.hdr, &edges).mean_relative;
-    if (samples == 1) one = e;
-    std::printf("AA edge error %ux%u of %u rows, %u sample(s), mode %d: %.4f (%.2fx) over %zu px\n",
-                w, h, full_h, samples, int(coverage), e, one / e,
-                size_t(std::count(edges.begin(), edges.end(), uint8_t(1))));
+    if (m.samples == 1) one = e;
+    std::printf(
+        "AA edge error %ux%u of %u rows, %u sample(s), mode %d, walk steps %u: %.4f (%.2fx) over "
+        "%zu px\n",
+        w, h, full_h, m.samples, int(m.coverage), m.steps, e, one / e,
+        size_t(std::count(edges.begin(), edges.end(), uint8_t(1))));
   }
 }
 

@@ -539,6 +539,32 @@ TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
       << out;
 }
 
+// A base recorded with other frame settings is compared, with a warning naming each setting
+// that differs (keys the base does not record, as in files from before them, are not).
+TEST(BenchCli, CompareWarnsOfSettingsThatDiffer) {
+  const std::string path = test::output_path("base_settings.json");
+  std::ofstream(path) << R"({"scene": "spheres", "width": 32, "height": 32, "samples": 4,
+      "aa_coverage": "silhouette", "aa_walk_steps": 3, "tile_size": 16,
+      "results": [{"objects": 49, "backend": "compute", "total_ms": 2.0}]})";
+  const SavedRun base = read_bench_json(path);
+  BenchArgs a;
+  a.samples = 4;
+  a.aa_coverage = AaCoverage::silhouette;
+  a.silhouette_steps = 3;
+  a.tile_size = 16;
+  EXPECT_TRUE(differing_settings(base, a).empty());
+  a.aa_coverage = AaCoverage::count;
+  a.silhouette_steps = 0;
+  a.tile_size = 8;
+  EXPECT_EQ(differing_settings(base, a),
+            (std::vector<std::string>{"aa_coverage \"count\" (base: \"silhouette\")",
+                                      "aa_walk_steps 0 (base: 3)", "tile_size 8 (base: 16)"}));
+  // kBase records none of them: nothing to warn of.
+  const std::string old_path = test::output_path("base_no_settings.json");
+  std::ofstream(old_path) << kBase;
+  EXPECT_TRUE(differing_settings(read_bench_json(old_path), a).empty());
+}
+
 TEST(BenchCli, BadCompareFilesAreClearErrors) {
   auto error_of = [](const std::string& name, const std::string& text) {
     const std::string path = test::output_path(name);

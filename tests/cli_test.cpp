@@ -430,10 +430,10 @@ TEST(Cli, GpuAskedForWhereThereIsNoneNamesTheCpuDevice) {
     if (d.type != VK_PHYSICAL_DEVICE_TYPE_CPU) GTEST_SKIP() << "a GPU is present: " << d.name;
   }
   std::string out;
-  EXPECT_EQ(test::run_command(tool() + " render --device gpu --size 8x8 --out " +
-                                  test::output_path("never.png"),
-                              out),
-            1);
+  EXPECT_EQ(
+      test::run_command(
+          tool() + " render --device gpu --size 8x8 --out " + test::output_path("never.png"), out),
+      1);
   EXPECT_NE(out.find("tessera: error: no GPU found (--device lavapipe renders on the CPU); "
                      "devices: "),
             std::string::npos)
@@ -466,6 +466,39 @@ TEST(AntiAliasingCli, CoverageModeAtOneSampleIsABadCommandLine) {
   EXPECT_EQ(parse_command_line({"render", "--aa-coverage", "silhouette", "--samples", "8"})
                 .render.frame.aa_coverage,
             AaCoverage::silhouette);
+}
+
+// --aa-walk-steps limits the silhouette walk: with another coverage mode it does nothing and is
+// refused; 1 is not a walk, and neither is anything above 32 (the walk's triangle limit).
+TEST(AntiAliasingCli, WalkStepsNeedSilhouetteCoverage) {
+  for (const std::string command : {"render", "bench"}) {
+    const std::string refused =
+        "--aa-walk-steps does nothing without --aa-coverage silhouette: it limits the walk that "
+        "measures a pixel's outline under silhouette coverage";
+    EXPECT_EQ(usage_error({command, "--samples", "4", "--aa-walk-steps", "3"}), refused);
+    EXPECT_EQ(usage_error(
+                  {command, "--samples", "4", "--aa-coverage", "analytic", "--aa-walk-steps", "3"}),
+              refused);
+    EXPECT_NE(usage_error({command, "--samples", "4", "--aa-coverage", "silhouette",
+                           "--aa-walk-steps", "1"}),
+              "");
+    EXPECT_NE(usage_error({command, "--samples", "4", "--aa-coverage", "silhouette",
+                           "--aa-walk-steps", "33"}),
+              "");
+    EXPECT_EQ(usage_error({command, "--samples", "4", "--aa-coverage", "silhouette",
+                           "--aa-walk-steps", "0"}),
+              "");
+    // 0, the default, limits nothing: given without silhouette coverage it is not refused.
+    EXPECT_EQ(usage_error({command, "--aa-walk-steps", "0"}), "");
+  }
+  EXPECT_EQ(parse_command_line(
+                {"render", "--samples", "4", "--aa-coverage", "silhouette", "--aa-walk-steps", "3"})
+                .render.frame.silhouette_steps,
+            3u);
+  EXPECT_EQ(parse_command_line(
+                {"bench", "--samples", "4", "--aa-coverage", "silhouette", "--aa-walk-steps", "4"})
+                .bench.silhouette_steps,
+            4u);
 }
 
 }  // namespace

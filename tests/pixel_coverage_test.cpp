@@ -92,10 +92,11 @@ TEST(PixelCoverage, SilhouetteCoverageAddsTheSliversNoSampleSees) {
   // A walk that would list more than the limit: -1.
   EXPECT_EQ(s.coverage({0}, 2), -1.0);
   // Steps: triangle 0 is step 0, 1 step 1, 2 step 2 (3 faces away). Three steps reach the
-  // whole strip; two would take 2 in at step 2: -1. From the sliver 1 (step 0), 0 and 2 are
-  // both step 1: two steps are enough.
+  // whole strip. Two stop at 1, 0.25 wide at y = -2 narrowing to 0 at y = 3, whose area in the
+  // pixel is the mean of 0.25 (3 - y) / 5 over y in [0, 1], 0.125: 0.5 + 0.125. From the
+  // sliver 1 (step 0), 0 and 2 are both step 1: two steps reach the whole strip.
   EXPECT_NEAR(s.coverage({0}, 24, 3), 0.75, 1e-12);
-  EXPECT_EQ(s.coverage({0}, 24, 2), -1.0);
+  EXPECT_NEAR(s.coverage({0}, 24, 2), 0.625, 1e-12);
   EXPECT_NEAR(s.coverage({1}, 24, 2), 0.75, 1e-12);
   // Triangles outside the pixel add nothing and are not walked across: triangle 1 moved to
   // x >= 1 keeps 2 (inside) from being reached.

@@ -52,6 +52,14 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   EXPECT_EQ(lod[2].frame.lod, Lod::automatic);
   EXPECT_EQ(lod[2].frame.lod_error_px, 0.5f);
   EXPECT_EQ(lod[5].frame.lod_error_px, 4.0f);
+  // The silhouette walk's steps: silhouette coverage at 4 samples, no limit the default.
+  const std::vector<KnobSetting> walk = knob_settings("aa-walk-steps", frame, options);
+  ASSERT_EQ(walk.size(), 5u);
+  EXPECT_EQ(walk[1].label, "4 samples, 3 steps");
+  EXPECT_EQ(walk[1].frame.silhouette_steps, 3u);
+  EXPECT_EQ(walk[1].frame.aa_coverage, AaCoverage::silhouette);
+  EXPECT_EQ(walk[1].frame.samples, 4u);
+  EXPECT_TRUE(walk[4].is_default);
   const std::vector<KnobSetting> hdr = knob_settings("hdr", frame, options);
   ASSERT_EQ(hdr.size(), 2u);
   EXPECT_EQ(hdr[1].frame.hdr_format, HdrFormat::fp32);

@@ -93,10 +93,6 @@
 // at 128 x 128 and 4 samples (spheres 14 px across, whose poles gather 64 slivers in a pixel)
 // 24 gave an edge error 3.61x below 1 sample's, 32 4.39x, 48 5.17x (docs/tradeoffs.md).
 #define TS_SILHOUETTE_TRIANGLES 32
-// Steps a silhouette coverage walk takes at most, the first triangle being step 0, its
-// neighbours taken in step 1, and so on (the compute path's and the reference's): a pixel that
-// needs more keeps the counts.
-#define TS_SILHOUETTE_STEPS 32
 
 // Tone-mapping operators (GpuFrame.tonemap).
 #define TS_TONEMAP_ACES 0u

@@ -131,7 +131,9 @@ using glm::vec4;
 #define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 13
+#define TS_SPEC_SILHOUETTE_STEPS \
+  13  // the outline pass: FrameSettings::silhouette_steps (0: no limit)
+#define TS_SPEC_LIGHT_COUNT_BASE 14
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -362,7 +364,7 @@ struct GpuCounters {
   // its nearest depth lies behind everything already drawn in its tile(s).
   uint rejected_entries;
   uint rejected_small;
-  uvec2 pad_rejected;  // std430 rounds the array stride to 16 bytes
+  uvec2 pad_rejected;   // std430 rounds the array stride to 16 bytes
   uvec4 clip_dispatch;  // VkDispatchIndirectCommand for the clip pass, raised as big_dispatch
   // Silhouette coverage, batch 0's slot: VkDispatchIndirectCommand (xyz) for the outline pass,
   // x raised by the shading pass as its appends reach into a new workgroup's worth, and the
