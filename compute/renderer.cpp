@@ -113,6 +113,24 @@ void validate_tile_size(uint32_t tile_size) {
     throw Error("tile size " + std::to_string(tile_size) + " is not 8 or 16");
 }
 
+RasterTuning raster_tuning(VkPhysicalDeviceType type) {
+  const RendererOptions gpu;
+  if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
+    return {gpu.small_triangle_max_area, gpu.depth_rejection};
+  // A CPU device runs both sides of every branch and at least one iteration of every loop for
+  // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
+  // subgroups however little the tile holds, where one thread per triangle pays it once for 8
+  // triangles.
+  return {kCpuSmallTriangleArea, gpu.depth_rejection};
+}
+
+RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
+  const RasterTuning t = raster_tuning(ctx.properties.deviceType);
+  options.small_triangle_max_area = t.small_triangle_max_area;
+  options.depth_rejection = t.depth_rejection;
+  return options;
+}
+
 Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;

@@ -70,6 +70,23 @@ struct RendererOptions {
 /// Throws Error naming `tile_size` unless it is 8 or 16.
 void validate_tile_size(uint32_t tile_size);
 
+/// The rasterizer settings of RendererOptions that change the speed and never the image.
+struct RasterTuning {
+  uint32_t small_triangle_max_area;
+  bool depth_rejection;
+};
+
+/// The settings measured fastest on a device of `type` (docs/performance.md, "Device-tuned
+/// rasterization"): RendererOptions' defaults, tuned on GPUs, except on CPU devices
+/// (VK_PHYSICAL_DEVICE_TYPE_CPU, such as lavapipe), which take every triangle whose pixel box
+/// has up to kCpuSmallTriangleArea pixels on the per-triangle rasterizer.
+RasterTuning raster_tuning(VkPhysicalDeviceType type);
+constexpr uint32_t kCpuSmallTriangleArea = 4096;
+
+/// `options` with raster_tuning's settings for `ctx`'s device: what the command-line tool
+/// starts from, before the options its user gives.
+RendererOptions tuned_for_device(const Context& ctx, RendererOptions options);
+
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
   std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches

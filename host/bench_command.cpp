@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "compute/context.h"
+#include "compute/renderer.h"
 #include "core/check.h"
 #include "core/image.h"
 #include "host/bench_compare.h"
@@ -14,7 +15,8 @@
 
 namespace tessera {
 
-int run_bench(const BenchArgs& a, const std::string& command_line) {
+int run_bench(const BenchArgs& given, const std::string& command_line) {
+  BenchArgs a = given;
   // Check outputs before spending time on a sweep.
   for (const std::string* path : {&a.csv, &a.json, &a.chart}) {
     if (std::string why = path->empty() ? "" : unwritable_reason(*path); !why.empty())
@@ -31,6 +33,11 @@ int run_bench(const BenchArgs& a, const std::string& command_line) {
     options.device = a.device;
     options.validation = a.validate;
     ctx = create_context(options);
+    // The device's rasterizer settings where the command line gave none; the report and the
+    // JSON say which were used.
+    const RasterTuning tuned = raster_tuning(ctx->properties.deviceType);
+    if (!a.small_triangle_area_given) a.small_triangle_area = tuned.small_triangle_max_area;
+    if (!a.depth_rejection_given) a.depth_rejection = tuned.depth_rejection;
   }
   const BenchResults results = measure_bench(ctx.get(), a);
 

@@ -433,7 +433,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--small-triangle-area", a.small_triangle_area,
                  "pixel-box area up to which a triangle is\n"
                  "rasterized by one thread; larger ones are\n"
-                 "binned into tiles (default 64)")
+                 "binned into tiles (default 64; 4096 on a CPU\n"
+                 "device such as lavapipe)")
       ->type_name("A")
       ->check(whole_number(0, 1u << 24));
   add_lod_options(app, a.lod, a.lod_error_px);
@@ -671,6 +672,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
   r.view_given = render->count("--view") > 0;
+  r.depth_rejection_given = render->count("--depth-rejection") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(*render, r.frame.aa_coverage, help_command);
   line.view.size_given = view->count("--size") > 0;
@@ -688,6 +690,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
+  b.small_triangle_area_given =
+      bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
+  b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   check_aa_coverage(*bench, b.samples, b.quality, help_command);
   check_aa_walk_steps(*bench, b.aa_coverage, help_command);
   const bool hardware =
@@ -708,6 +713,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
                 &t.small_triangle_area);
   t.size_given = tradeoff->count("--size") > 0;
+  t.small_triangle_area_given = t.quality != Quality::none;
   t.brdf_given = t.quality != Quality::none;
   reject_extras(app, help_command);
   line.command = render->parsed()     ? Command::render

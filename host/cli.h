@@ -38,6 +38,8 @@ struct RenderArgs {
   // "render" block when it has them.
   bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
        view_given = false;
+  // --depth-rejection given: else the device's (raster_tuning, compute/renderer.h).
+  bool depth_rejection_given = false;
 };
 
 struct BenchArgs {
@@ -65,6 +67,9 @@ struct BenchArgs {
   uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
   bool depth_rejection = true;                   // RendererOptions::depth_rejection
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
+  // --small-triangle-area (or --quality) and --depth-rejection given: else the device's
+  // (raster_tuning, compute/renderer.h), written here by run_bench once the device is known.
+  bool small_triangle_area_given = false, depth_rejection_given = false;
   std::string csv, json, chart;
   bool quiet = false;
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
@@ -92,7 +97,9 @@ struct TradeoffArgs {
   EnvironmentOptions env_options;  // the environment knobs' defaults
   uint32_t tile_size = TS_TILE_SIZE;  // RendererOptions::tile_size of every setting but its knob's
   uint32_t small_triangle_area = 64;  // RendererOptions::small_triangle_max_area, likewise
-  Quality quality = Quality::none;    // --quality, applied by parse_command_line
+  bool small_triangle_area_given = false;  // by --quality: else the device's (raster_tuning,
+                                           // compute/renderer.h)
+  Quality quality = Quality::none;         // --quality, applied by parse_command_line
   std::string device = "auto";
   uint32_t repeat = 10;               // timed frames per setting and round
   uint32_t warmup = 2;                // untimed frames per setting and round, at least

@@ -124,10 +124,10 @@ int run_render(const RenderArgs& given) {
   options.device = args.device;
   options.validation = args.validate;
   std::unique_ptr<Context> ctx = create_context(options);
-  RendererOptions renderer_options;
+  RendererOptions renderer_options = tuned_for_device(*ctx, {});
   renderer_options.environment = args.env_options;
   renderer_options.tile_size = args.tile_size;
-  renderer_options.depth_rejection = args.depth_rejection;
+  if (args.depth_rejection_given) renderer_options.depth_rejection = args.depth_rejection;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 

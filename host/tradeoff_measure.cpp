@@ -98,10 +98,10 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   FrameSettings frame = args.frame;
   const Scene scene = load_scene(args, frame);
   validate_scene(scene);
-  RendererOptions options;
+  RendererOptions options = tuned_for_device(ctx, {});
   options.environment = args.env_options;
   options.tile_size = args.tile_size;
-  options.small_triangle_max_area = args.small_triangle_area;
+  if (args.small_triangle_area_given) options.small_triangle_max_area = args.small_triangle_area;
 
   std::vector<Candidate> candidates;
   for (const std::string& knob : args.knobs) {

@@ -235,7 +235,7 @@ int run_view(const ViewArgs& args) {
   std::printf("compiling shaders...\n");
   set_window_title(*v.window, "tessera view: " + args.scene + " (compiling shaders...)");
   poll_window(*v.window, 0.0);
-  v.renderer = std::make_unique<Renderer>(*v.ctx, RendererOptions{.resolve = false});
+  v.renderer = std::make_unique<Renderer>(*v.ctx, tuned_for_device(*v.ctx, {.resolve = false}));
   v.renderer->set_scene(v.scene);
   catch_stop_signals();
   run_loop(v);

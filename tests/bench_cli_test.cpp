@@ -455,6 +455,28 @@ constexpr const char* kBase = R"({
   ]
 })";
 
+// Without --small-triangle-area and --depth-rejection, bench takes the device's settings
+// (raster_tuning: lavapipe is a CPU device) and its JSON says which; given, they win.
+TEST(BenchCli, RasterizerSettingsAreTheDevicesUnlessGiven) {
+  const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
+  const std::string base = std::string(TESSERA_BINARY) +
+                           " bench --device lavapipe --validate --objects 1 --size 32x32 "
+                           "--segments 6 --backends compute --repeat 1 --warmup 0 "
+                           "--warmup-ms 0 --quiet --json ";
+  const std::string tuned = test::output_path("tuned.json");
+  const std::string given = test::output_path("given.json");
+  std::string out;
+  ASSERT_EQ(test::run_command(base + tuned, out), 0) << out;
+  ASSERT_EQ(
+      test::run_command(base + given + " --small-triangle-area 64 --depth-rejection off", out), 0)
+      << out;
+  const nlohmann::json t = read_json(tuned), g = read_json(given);
+  EXPECT_EQ(t["small_triangle_area"], cpu.small_triangle_max_area);
+  EXPECT_EQ(t["depth_rejection"], cpu.depth_rejection);
+  EXPECT_EQ(g["small_triangle_area"], 64);
+  EXPECT_EQ(g["depth_rejection"], false);
+}
+
 TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {
   const std::string base_path = test::output_path("base.json");
   std::ofstream(base_path) << kBase;
