@@ -37,7 +37,7 @@ enum class AaCoverage {
   count,       // by the fraction of the pixel's samples each holds
   analytic,    // one triangle and the background: by its outline coverage (shaders/coverage.glsl)
   silhouette,  // one surface and the background: by the area of the pixel its front faces
-               // cover, up to its silhouette (shaders/coverage.glsl, silhouette_coverage)
+               // cover, up to its silhouette (shaders/outline.comp)
 };
 
 struct FrameSettings {

@@ -44,7 +44,6 @@ const uint LANES = TS_OUTLINE_LANES;
 const uint PIXELS = TS_OUTLINE_PIXELS_PER_GROUP;
 const uint CAP = TS_SILHOUETTE_TRIANGLES;
 const uint NONE = 0xFFFFFFFFu;
-// The first round tests the first triangle and its three neighbours at once.
 // The first round tests the first triangle and its three neighbours (step 1) at once: at least
 // 4 threads a pixel, and 2 steps (Renderer::render refuses fewer).
 #if TS_OUTLINE_LANES < 4
@@ -74,7 +73,9 @@ shared int facing_sign[PIXELS];
 shared uint round_taken[PIXELS][LANES];
 
 bool is_taken(uint p, uint id) {
-  uint hits = 0u;  // counted rather than short-circuited, as in silhouette_coverage
+  // Counted rather than short-circuited: a branch per entry made such scans a quarter of the
+  // walk's time on the H200 (docs/tradeoffs.md).
+  uint hits = 0u;
   for (uint j = 0u; j < taken_count[p]; ++j) hits += uint(taken_id[p][j] == id);
   return hits != 0u;
 }
