@@ -36,7 +36,6 @@ bool lists_outlines(const FrameSettings& settings) {
 
 // Barrier between two compute passes: writes of the first visible to reads and writes of the
 // second, and to indirect-argument reads.
-
 void compute_to_compute(VkCommandBuffer cmd) {
   memory_barrier(
       cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

@@ -40,6 +40,13 @@ enum class AaCoverage {
                // cover, up to its silhouette (shaders/outline.comp)
 };
 
+/// The name `--aa-coverage`, `tessera tradeoff` and `tessera bench --json` give `c`.
+inline const char* aa_coverage_name(AaCoverage c) {
+  return c == AaCoverage::analytic     ? "analytic"
+         : c == AaCoverage::silhouette ? "silhouette"
+                                       : "count";
+}
+
 struct FrameSettings {
   uint32_t width = 512;  // pixels, 1..16384 (TS_MAX_IMAGE_SIDE); renderers throw Error otherwise
   uint32_t height = 512;

@@ -29,17 +29,17 @@ double outline_coverage(const std::vector<glm::dvec2>& corners,
                         const std::vector<glm::dvec2>& empty_samples,
                         const std::vector<glm::dvec2>& covered_samples);
 
-/// Silhouette coverage of a pixel whose samples see triangles of one surface and the
-/// background (shaders/outline.comp states the method): the area
-/// (px^2, 0..1) of the pixel covered by the surface's triangles that wind as the first seen
-/// does, taken in by a breadth-first walk across their edges from it, which leaves out
-/// triangles winding the other way (or edge-on) and those not reaching into the pixel. `seen`:
-/// the ids of the triangles the samples see (at least one; the walk starts from the smallest).
-/// `polygon(id)`: that triangle as the rasterizer saw it (clipped and snapped), in pixels
-/// relative to the pixel's top-left corner; `neighbours(id)`: the ids across its three edges
-/// in corner order (kNoNeighbourId: none). The walk does not go on from the triangles of step
-/// `max_steps` - 1 (the first triangle is step 0, the neighbours taken in from it step 1, and
-/// so on). -1 if a seen triangle is not taken in, or if more than `max_triangles` would be.
+/// Silhouette coverage of a pixel whose samples see triangles of one surface and the background
+/// (shaders/outline.comp states the method): the area (px^2, 0..1) of the pixel covered by the
+/// surface's triangles that wind as the first seen does, taken in by a breadth-first walk across
+/// their edges from it, which leaves out triangles winding the other way (or edge-on) and those not
+/// reaching into the pixel. `seen`: the ids of the triangles the samples see (at least one; the
+/// walk starts from the smallest). `polygon(id)`: that triangle as the rasterizer saw it (clipped
+/// and snapped), in pixels relative to the pixel's top-left corner; `neighbours(id)`: the ids
+/// across its three edges in corner order (kNoNeighbourId: none). The walk does not go on from the
+/// triangles of step `max_steps` - 1 (the first triangle is step 0, the neighbours taken in from it
+/// step 1, and so on). -1 if a seen triangle is not taken in, or if more than `max_triangles` would
+/// be.
 inline constexpr uint64_t kNoNeighbourId = ~uint64_t(0);
 double silhouette_coverage(const std::vector<uint64_t>& seen,
                            const std::function<std::vector<glm::dvec2>(uint64_t)>& polygon,

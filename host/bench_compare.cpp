@@ -124,12 +124,6 @@ std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults
   return out;
 }
 
-const char* aa_coverage_name(AaCoverage c) {
-  return c == AaCoverage::analytic     ? "analytic"
-         : c == AaCoverage::silhouette ? "silhouette"
-                                       : "count";
-}
-
 std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs& a) {
   return {{"samples", json(a.samples).dump()},
           {"aa_coverage", json(aa_coverage_name(a.aa_coverage)).dump()},

@@ -29,9 +29,6 @@ struct SavedRun {
   std::vector<std::pair<std::string, std::string>> settings;
 };
 
-/// The name `--aa-coverage` and the `--json` file give coverage mode `c`.
-const char* aa_coverage_name(AaCoverage c);
-
 /// The settings of a bench run that change what a frame computes, by the keys its `--json`
 /// file records them under (samples, aa_coverage, aa_walk_steps, lod, segments,
 /// small_triangle_area, tile_size, depth_rejection, hdr_format), each as JSON text.

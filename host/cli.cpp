@@ -201,11 +201,9 @@ void add_aa_walk_steps(CLI::App& app, uint32_t& steps) {
 
 // --aa-walk-steps shapes the silhouette walk alone: with another coverage mode it would do
 // nothing, so it is refused rather than ignored.
-void check_aa_walk_steps(const CLI::App& command, AaCoverage coverage,
-                         const std::string& help_command) {
-  const CLI::Option* option = command.get_option_no_throw("--aa-walk-steps");
-  if (!option || option->count() == 0 || coverage == AaCoverage::silhouette) return;
-  if (option->results().back() == "0") return;  // the default, no limit: nothing to ignore
+void check_aa_walk_steps(AaCoverage coverage, uint32_t steps, const std::string& help_command) {
+  // 0, the default (no limit), limits nothing: given or not, there is nothing to ignore.
+  if (steps == 0 || coverage == AaCoverage::silhouette) return;
   throw UsageError(
       "--aa-walk-steps does nothing without --aa-coverage silhouette: it limits the walk that "
       "measures a pixel's outline under silhouette coverage",
@@ -674,7 +672,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.view_given = render->count("--view") > 0;
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
-  check_aa_walk_steps(*render, r.frame.aa_coverage, help_command);
+  check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);
   line.view.size_given = view->count("--size") > 0;
   BenchArgs& b = line.bench;
   {
@@ -694,7 +692,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   check_aa_coverage(*bench, b.samples, b.quality, help_command);
-  check_aa_walk_steps(*bench, b.aa_coverage, help_command);
+  check_aa_walk_steps(b.aa_coverage, b.silhouette_steps, help_command);
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
   // What the hardware baseline cannot render leaves it out of the default backends.

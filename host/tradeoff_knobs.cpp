@@ -133,10 +133,8 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
     // At the command line's sample count, or 4 where that is 1 (one sample has no weights).
     const uint32_t n = std::max(frame.samples, 4u);
     for (const AaCoverage c : {AaCoverage::count, AaCoverage::analytic, AaCoverage::silhouette}) {
-      const char* name = c == AaCoverage::count      ? "count"
-                         : c == AaCoverage::analytic ? "analytic"
-                                                     : "silhouette";
-      KnobSetting s = base(knob, std::to_string(n) + " samples, " + name, frame, options);
+      KnobSetting s =
+          base(knob, std::to_string(n) + " samples, " + aa_coverage_name(c), frame, options);
       s.frame.samples = n;
       s.frame.aa_coverage = c;
       s.is_default = c == frame.aa_coverage;  // the command line's mode, at its samples or 4
@@ -146,11 +144,11 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
     // Silhouette coverage at the command line's sample count, or 4 where that is 1.
     const uint32_t n = std::max(frame.samples, 4u);
     for (uint32_t steps : {2u, 3u, 4u, 6u, 0u}) {
-      KnobSetting s = base(knob,
-                           std::to_string(n) + " samples, " +
-                               (steps == 0 ? std::string("no limit")
-                                           : std::to_string(steps) + " steps"),
-                           frame, options);
+      KnobSetting s =
+          base(knob,
+               std::to_string(n) + " samples, " +
+                   (steps == 0 ? std::string("no limit") : std::to_string(steps) + " steps"),
+               frame, options);
       s.frame.samples = n;
       s.frame.aa_coverage = AaCoverage::silhouette;
       s.frame.silhouette_steps = steps;
