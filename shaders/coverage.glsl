@@ -2,8 +2,7 @@
 // aa_coverage): analytic (outline_coverage, where the samples see one triangle and the
 // background) and silhouette (front_face_area, the measure of the outline pass's walk, over
 // one surface and the background). The reference renderer's versions are in
-// core/pixel_coverage.cpp. Needs bindings.glsl and
-// raster_common.glsl.
+// core/pixel_coverage.cpp. Needs bindings.glsl and raster_common.glsl.
 
 #include "view_clip.glsl"
 
@@ -155,15 +154,14 @@ bool box_reaches_pixel(ivec2 lo, ivec2 hi) {
 }
 
 // Area (px^2) of pixel `pixel` inside triangle instance `t` of object slot `slot` (clipped and
-// snapped as the rasterizer saw it; `vi` its vertices, triangle_vertices, which the outline pass
-// fetches ahead) if it winds as `facing` says (the sign of its doubled
+// snapped as the rasterizer saw it) if it winds as `facing` says (the sign of its doubled
 // area; 0: take the triangle's own, and set it), else 0: facing away, edge-on after snapping,
 // or outside the pixel. A triangle wholly in front of the near plane and inside the guard band
 // (nearly every one) is taken in registers, corner by corner; only one the view clips is
 // rebuilt as a polygon (pixel_corners).
-float front_face_area(uint slot, uint t, uvec3 vi, ivec2 pixel, inout int64_t facing) {
+float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
   vec4 c[3];
-  corner_clip_coords(slot, vi, c);
+  triangle_clip_coords(slot, t, c);
   bool unclipped = true;
   for (int plane = 0; plane < 5; ++plane) {
     unclipped = unclipped && plane_distance(c[0], plane) >= 0.0 && plane_distance(c[1], plane) >= 0.0 &&

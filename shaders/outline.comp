@@ -158,7 +158,7 @@ void main() {
   if (listed) id = lane == 0u ? first : lane <= 3u ? neighbour_of(o, first, lane - 1u) : NONE;
   float area = 0.0;
   int64_t own_facing = 0l;
-  if (id != NONE) area = front_face_area(slot, id, triangle_vertices(o, id), pixel, own_facing);
+  if (id != NONE) area = front_face_area(slot, id, pixel, own_facing);
   if (lane == 0u) {
     walk_state[p] = COUNTS;
     if (listed) {
@@ -210,7 +210,7 @@ void main() {
     area = 0.0;
     if (id != NONE) {
       int64_t facing = int64_t(facing_sign[p]);
-      area = front_face_area(slot, id, triangle_vertices(o, id), pixel, facing);
+      area = front_face_area(slot, id, pixel, facing);
     }
     if (walking) round_taken[p][lane] = area > 0.0 ? id : NONE;
     barrier();

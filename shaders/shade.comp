@@ -140,11 +140,12 @@ vec3 shade_triangle(uint id, vec2 point) {
 // (outline.comp), which writes it again with the surface's exact area where it finds one: the
 // walk across the mesh that measures it runs there, over a compact list, rather than here,
 // where its registers cost every pixel and a SIMD group waits for its one walking thread.
-// The pixels of the workgroup first list these shading requests in shared memory, then all threads shade the list together, a request per thread in turn, so that a
-// pixel with four triangles does not keep the others of its SIMD group waiting for four
-// shading evaluations while most have one; each pixel then sums its own requests' colours in
-// increasing id, the empty id (all ones) last, so the sum is the same whatever order the
-// samples were written or the requests listed in.
+// The pixels of the workgroup first list these shading requests in shared memory, then all
+// threads shade the list together, a request per thread in turn, so that a pixel with four
+// triangles does not keep the others of its SIMD group waiting for four shading evaluations
+// while most have one; each pixel then sums its own requests' colours in increasing id, the
+// empty id (all ones) last, so the sum is the same whatever order the samples were written or
+// the requests listed in.
 const uint GROUP_PIXELS = 64u;  // local_size_x * local_size_y
 const uint MAX_REQUESTS = GROUP_PIXELS * SAMPLES;
 // A request: (id, point.x, point.y) as written by its pixel, then its stored colour (as bits)

@@ -2,17 +2,11 @@
 // shared by the clip pass (which rasterizes what is left) and analytic coverage (coverage.glsl,
 // which measures it). Needs bindings.glsl.
 
-// Clip-space position of vertices `vi` (indices into `vertices`) of object slot `slot`.
-void corner_clip_coords(uint slot, uvec3 vi, out vec4 c[3]) {
-  mat4 to_clip = object_clip[slot];
-  for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
-}
-
 // Clip-space position of the corners of triangle instance `id` of object slot `slot`. The
 // object's view_proj * model comes from the object_clip pass: computed there once per object
-// rather than here once per triangle, with the same expression, so the same floats. Written
-// out rather than through corner_clip_coords: that call made the H200's setup pass 24 % slower
-// at 10^6 grid objects (21.6 -> 26.8 ms), though it computes the same.
+// rather than here once per triangle, with the same expression, so the same floats. Setup calls
+// it per triangle: written through a helper taking the vertex indices, the same computation made
+// the H200's setup pass 24 % slower at 10^6 grid objects (21.6 -> 26.8 ms).
 void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
   uvec3 vi = triangle_vertices(objects[slot], id);
   mat4 to_clip = object_clip[slot];
