@@ -694,7 +694,7 @@ void probe_hdr_rounding(Renderer::State& s) {
 
 }  // namespace
 
-FrameStats Renderer::render(const FrameSettings& settings) {
+FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
   State& s = *s_;
   Context& ctx = s.ctx;
   check_frame(s, settings, "render()");
@@ -744,7 +744,7 @@ FrameStats Renderer::render(const FrameSettings& settings) {
     std::vector<Pass> query_passes;  // pass that ends at each timestamp after the first
     const auto start = std::chrono::steady_clock::now();
     submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-      record_frame(cmd, batches, timestamps, query_passes, settings);
+      record_frame(cmd, batches, timestamps, timing, query_passes, settings);
       stats.cpu_record_submit_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
@@ -825,7 +825,8 @@ FrameStats Renderer::render(const FrameSettings& settings) {
       const double ns_per_tick = ctx.properties.limits.timestampPeriod;
       for (size_t i = 0; i < query_passes.size(); ++i) {
         const uint64_t delta = ((ticks[i + 1] & mask) - (ticks[i] & mask)) & mask;
-        stats.pass_ms[size_t(query_passes[i])] += double(delta) * ns_per_tick * 1e-6;
+        if (query_passes[i] != Pass::count)
+          stats.pass_ms[size_t(query_passes[i])] += double(delta) * ns_per_tick * 1e-6;
       }
       const uint64_t all = ((ticks.back() & mask) - (ticks.front() & mask)) & mask;
       stats.gpu_total_ms = double(all) * ns_per_tick * 1e-6;
@@ -1024,13 +1025,13 @@ void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejecti
 
 }  // namespace
 
-void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
+void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps, Timing timing,
                             std::vector<Pass>& query_passes, const FrameSettings& settings) {
   State& s = *s_;
   const Pipelines& p = s.pipelines;
   query_passes.clear();
   auto mark = [&](Pass pass) {
-    if (!timestamps) return;
+    if (!timestamps || (timing == Timing::frame && pass != Pass::count)) return;
     query_passes.push_back(pass);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries,
                         uint32_t(query_passes.size()));
@@ -1112,6 +1113,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
     }
   }
+
+  if (timing == Timing::frame) mark(Pass::count);  // the frame's end
 
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   VkBufferCopy region{0, 0, counters.size};

@@ -87,9 +87,18 @@ constexpr uint32_t kCpuSmallTriangleArea = 4096;
 /// starts from, before the options its user gives.
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options);
 
+/// What a frame's GPU timestamps measure.
+enum class Timing {
+  per_pass,  // each pass (FrameStats::pass_ms) and the frame
+  frame,     // the frame alone (pass_ms all 0): a timestamp after every pass costs the H200
+             // about 0.8 us each, 6 % of a one-sphere frame (docs/performance.md, "Issue 13,
+             // sixth round"), so the frame's own time is measured without them
+};
+
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
-  std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches
+  std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches (0 under
+                                             // Timing::frame)
   double gpu_total_ms = 0.0;
   double cpu_record_submit_ms = 0.0;   // recording and submitting the final attempt
   uint64_t triangles_submitted = 0;    // triangle instances set up (after the level of detail)
@@ -130,7 +139,7 @@ class Renderer {
 
   /// Renders the current scene into the output images. Throws Error for a size the device
   /// cannot handle or when no scene was set.
-  FrameStats render(const FrameSettings& settings);
+  FrameStats render(const FrameSettings& settings, Timing timing = Timing::per_pass);
 
   /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts
   /// covered samples per pixel. read_visibility holds FrameSettings::samples keys per pixel,
@@ -170,7 +179,9 @@ class Renderer {
 
   void update_descriptors();
   void write_frame_constants(const FrameSettings& settings);
-  void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps,
+  // `query_passes`: the pass that ends at each timestamp after the first, Pass::count for the
+  // frame's end under Timing::frame.
+  void record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestamps, Timing timing,
                     std::vector<Pass>& query_passes, const FrameSettings& settings);
 
   std::unique_ptr<State> s_;

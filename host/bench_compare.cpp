@@ -93,6 +93,8 @@ SavedRun read_bench_json(const std::string& path) {
         throw Error("--compare: '" + path + "': " + where + " repeats the point " + point_name(p));
     }
     run.points.push_back(p);
+    if (p.backend == "compute" && !r.contains("per_pass_total_ms"))
+      run.compute_timed_by_pass = true;
   }
   return run;
 }
@@ -158,6 +160,11 @@ void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& po
         "warning: this run's settings differ from the base's: %s; the ratios compare "
         "unlike frames\n",
         list.c_str());
+  }
+  if (base.compute_timed_by_pass) {
+    std::printf(
+        "note: the base timed its compute frames pass by pass (it has no per_pass_total_ms), "
+        "with timestamps between the passes that add to a frame; this run times them whole\n");
   }
   std::printf("%9s %9s %10s %10s %10s\n", "objects", "backend", "old ms", "new ms", "new / old");
   for (const ComparedPoint& c : points) {

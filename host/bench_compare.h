@@ -27,6 +27,9 @@ struct SavedRun {
   std::vector<SavedPoint> points;
   // The frame settings it recorded (bench_settings' keys present in the file), as JSON text.
   std::vector<std::pair<std::string, std::string>> settings;
+  // A compute point lacks per_pass_total_ms: the file is from before `tessera bench` timed the
+  // compute frames whole, so its compute times include the timestamps between passes.
+  bool compute_timed_by_pass = false;
 };
 
 /// The settings of a bench run that change what a frame computes, by the keys its `--json`

@@ -56,17 +56,23 @@ void set_range(BenchRow& row, const std::vector<double>& totals) {
   row.max_ms = s.max;
 }
 
+// `repeat` frames timed pass by pass, for the passes' times, then as many timed whole, for the
+// frame's: the timestamps between passes would add to it (Timing::frame).
 BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
   const WarmupStats warmup = warm_up([&] { return r.render(fs).gpu_total_ms; }, warmup_rule(a));
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < a.repeat; ++i) frames.push_back(r.render(fs));
-  std::vector<double> cpu;
-  for (const FrameStats& f : frames) cpu.push_back(f.cpu_record_submit_ms);
-  std::vector<double> total;
-  for (const FrameStats& f : frames) total.push_back(f.gpu_total_ms);
+  std::vector<double> cpu, per_pass_total, total;
+  for (const FrameStats& f : frames) per_pass_total.push_back(f.gpu_total_ms);
+  for (uint32_t i = 0; i < a.repeat; ++i) {
+    const FrameStats f = r.render(fs, Timing::frame);
+    total.push_back(f.gpu_total_ms);
+    cpu.push_back(f.cpu_record_submit_ms);
+  }
   BenchRow row;
   row.warmup = warmup;
   row.pass_ms = pass_medians(frames);
+  row.per_pass_total_ms = median(per_pass_total);
   set_range(row, total);
   row.cpu_record_ms = median(cpu);
   const FrameStats& last = frames.back();
@@ -209,13 +215,14 @@ std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs)
   std::vector<BenchRow> merged = runs.front();
   for (size_t i = 0; i < merged.size(); ++i) {
     BenchRow& m = merged[i];
-    std::vector<double> cpu;
+    std::vector<double> cpu, per_pass_total;
     m.run_ms.clear();
     for (const std::vector<BenchRow>& run : runs) {
       const BenchRow& r = run[i];
       TESSERA_CHECK(r.objects == m.objects && r.backend == m.backend);
       m.run_ms.push_back(r.total_ms);
       cpu.push_back(r.cpu_record_ms);
+      per_pass_total.push_back(r.per_pass_total_ms);
       m.min_ms = std::min(m.min_ms, r.min_ms);
       m.max_ms = std::max(m.max_ms, r.max_ms);
       if (&run != &runs.front()) {
@@ -226,6 +233,7 @@ std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs)
     }
     m.total_ms = median(m.run_ms);
     m.cpu_record_ms = median(cpu);
+    m.per_pass_total_ms = median(per_pass_total);
     // Counts come from the first run; a run that split the frame differently is named, since
     // each batch is a whole sequence of passes (one sphere once ran in 17 batches after 10^6).
     bool batches_differ = false;

@@ -29,6 +29,9 @@ struct BenchRow {
   uint64_t rejected_entries = 0;  // compute: of those, skipped by depth rejection
   uint64_t rejected_small = 0;    // compute: small triangles skipped by depth rejection
   double total_ms = 0.0;          // GPU time (compute, hardware) or wall time (reference)
+  // compute: the frames pass_ms comes from, timed with a timestamp after every pass, which
+  // adds to the frame (Timing::frame); total_ms is of as many frames timed without them.
+  double per_pass_total_ms = 0.0;
   double cpu_record_ms = 0.0;
   std::array<double, kPassCount> pass_ms{};
   double min_ms = 0.0;  // the fastest and slowest timed frame (of every run)

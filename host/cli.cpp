@@ -642,8 +642,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   bench->footer(
       "Figures are medians of GPU timestamps over --repeat frames after the\n"
       "warm-up (--warmup, --warmup-ms; its frames and time are reported), with\n"
-      "the fastest and slowest frame: per pass for the compute path, around the\n"
-      "render pass for the hardware baseline; wall time for the CPU reference.\n"
+      "the fastest and slowest frame: around the frame for the compute path,\n"
+      "and per pass in as many frames more (timestamps between the passes add\n"
+      "to a frame: their frames' total is per_pass_total_ms in CSV and JSON);\n"
+      "around the render pass for the hardware baseline; wall time for the CPU\n"
+      "reference.\n"
       "With --runs K, the median of the K runs' medians and their spread,\n"
       "(max - min) / median.\n" +
       exit_statuses);

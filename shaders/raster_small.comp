@@ -6,8 +6,7 @@
 // visibility buffer.
 // With hierarchical depth rejection (REJECTION, raster_common.glsl) it first compares the
 // triangle's nearest depth with the bounds of the tiles its box touches (tile_far, lowered by
-// fill and raster_tiles, which ran before) and skips a triangle behind all of them; per
-// sample, a key that cannot win is not computed.
+// fill and raster_tiles, which ran before) and skips a triangle behind all of them.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "bindings.glsl"
@@ -44,29 +43,6 @@ bool edges_fit_int32(RasterTri t) {
   return int64_t(w.x) * int64_t(w.y) <= (1l << 24);
 }
 
-// The visibility buffer again, a pixel's keys two at a time (bindings.glsl has the declaration
-// that the other passes use; Vulkan lets variables of one binding alias): a pixel's SAMPLES
-// keys are contiguous and, SAMPLES being even, start on a 16-byte boundary.
-layout(set = 0, binding = TS_BINDING_VISIBILITY, std430) readonly buffer VisibilityPairs {
-  u64vec2 visibility_pairs[];
-};
-
-// The current keys of pixel p's samples, read together before any is lowered: one wait for
-// memory per pixel instead of one per covered sample (each atomicMin between two plain reads
-// of the same buffer kept them apart). A plain read only filters (atomicMin decides): a stale
-// value, never below the true one, costs an atomic at most.
-void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
-  if (SAMPLES == 1u) {
-    keys[0] = visibility[p];
-    return;
-  }
-  for (uint k = 0u; k < SAMPLES / 2u; ++k) {
-    u64vec2 pair = visibility_pairs[sample_index(p, 0u) / 2u + k];
-    keys[2u * k] = pair.x;
-    keys[2u * k + 1u] = pair.y;
-  }
-}
-
 // The box walked in int32 (edges_fit_int32 has shown that exact). Every value is taken in
 // int64 first (exact: edge_function's bound) and converted; the walk then only adds. SPIR-V
 // defines OpIAdd as the low bits of the exact sum and OpSConvert to a narrower type as
@@ -75,7 +51,15 @@ void load_pixel_keys(uint p, out uint64_t keys[SAMPLES]) {
 // and are the exact ones (the terms they are summed from need not).
 // Thresholds are folded in: a sample is covered when each edge value less its threshold
 // (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
-void raster_box_int32(RasterTri t, uint near_high) {
+// Every covered sample's key goes to an atomicMin whose result is not read, so that no step of
+// the walk waits for memory. Reading the pixel's keys first, to skip the atomics of samples
+// already nearer (and, with depth rejection, the keys' depths), made each pixel wait for a
+// load: a thread walking a 64-pixel box waited 64 times in a row, the whole pass's time for a
+// frame of few small triangles. On the H200 at 1920x1080 (docs/performance.md, "Issue 13,
+// sixth round") the pass went from 0.021 to 0.013 ms for one grid sphere, from 0.042 to
+// 0.027 ms for 1,000, and was unchanged on scatter at 10^5 and 10^6 objects, whose hidden
+// triangles depth rejection skips before their walk.
+void raster_box_int32(RasterTri t) {
   Thresholds h = thresholds_of(t);
   i64vec3 threshold = i64vec3(h.t0, h.t1, h.t2);
   Edges first = edges_at(t, pixel_centre(t.box_min));
@@ -121,15 +105,11 @@ void raster_box_int32(RasterTri t, uint near_high) {
     }
     if (covered != 0u) {
       uint p = pixel_index(pixel);
-      uint64_t keys[SAMPLES];
-      load_pixel_keys(p, keys);
       for (uint s = 0u; s < SAMPLES; ++s) {
         if ((covered & (1u << s)) == 0u) continue;
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        if (REJECTION && uint(keys[s] >> 32) < near_high) continue;  // the key would be above
         ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + ivec3(threshold);
-        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
-        if (keys[s] > key) atomicMin(visibility[sample_index(p, s)], key);
+        atomicMin(visibility[sample_index(p, s)], visibility_key(depth_at(t, vec3(exact), area), t.id));
       }
     }
     // Each of m's components is affine in x, so the pixels of a row that pass are one run:
@@ -195,7 +175,7 @@ void main() {
     if (hidden) return;
   }
   if (edges_fit_int32(t)) {
-    raster_box_int32(t, near_high);
+    raster_box_int32(t);
   } else {
     raster_box_int64(t, near_high);
   }

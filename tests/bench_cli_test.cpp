@@ -430,6 +430,10 @@ TEST(BenchCli, RunsRepeatTheSweepAndReportTheirSpreadAndWarmup) {
     std::vector<double> sorted = runs;
     std::sort(sorted.begin(), sorted.end());
     EXPECT_EQ(double(r["total_ms"]), sorted[1]) << "the median of three runs' medians";
+    // The compute path's passes are timed in frames of their own (Timing::per_pass).
+    if (r["backend"] == "compute") {
+      EXPECT_GT(double(r["per_pass_total_ms"]), 0.0) << r;
+    }
     // The file holds 9 significant digits.
     const double spread = (sorted[2] - sorted[0]) / sorted[1] * 100.0;
     EXPECT_NEAR(double(r["run_spread_pct"]), spread, 1e-6 * spread + 1e-9);
@@ -537,6 +541,12 @@ TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
       << out;
   EXPECT_NE(out.find("only in the base: yardstick, 7 objects, 32x32, compute"), std::string::npos)
       << out;
+  // kBase has no per_pass_total_ms: its compute frames were timed pass by pass.
+  EXPECT_NE(out.find("note: the base timed its compute frames pass by pass"), std::string::npos)
+      << out;
+  // A file this version wrote has it, and is not so marked.
+  EXPECT_TRUE(read_bench_json(test::output_path("base_cli.json")).compute_timed_by_pass);
+  EXPECT_FALSE(read_bench_json(json_path).compute_timed_by_pass);
 }
 
 // A base recorded with other frame settings is compared, with a warning naming each setting
