@@ -1,7 +1,10 @@
 #include "host/bench_compare.h"
 
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <type_traits>
 
@@ -51,8 +54,11 @@ T member(const json& object, const char* key, const std::string& where, const st
 }  // namespace
 
 SavedRun read_bench_json(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("--compare: '" + path + "' is a folder, not a `tessera bench --json` file");
   std::ifstream f(path);
-  if (!f) throw Error("--compare: cannot read '" + path + "'");
+  if (!f) throw Error("--compare: cannot read '" + path + "': " + std::strerror(errno));
   json doc;
   try {
     doc = json::parse(f);
@@ -90,7 +96,8 @@ SavedRun read_bench_json(const std::string& path) {
                  member<double>(r, "total_ms", where, path)};
     for (const SavedPoint& q : run.points) {
       if (same_point(p, q))
-        throw Error("--compare: '" + path + "': " + where + " repeats the point " + point_name(p));
+        throw Error("--compare: '" + path + "': results[" + std::to_string(i) +
+                    "] repeats the point " + point_name(p));
     }
     run.points.push_back(p);
     if (p.backend == "compute" && !r.contains("per_pass_total_ms"))

@@ -54,7 +54,7 @@ static std::string method_phrase(const BenchArgs& a) {
   if (a.runs > 1)
     s += "; " + std::to_string(a.runs) + " runs, the median of their medians and their spread";
   // Timestamps between the passes would add to the frame (Timing::frame).
-  s += "; compute frames timed whole, their passes in as many frames more";
+  s += "; compute frames timed whole, their passes (CSV, JSON, chart) in as many frames more";
   return s;
 }
 
@@ -124,8 +124,9 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
       << r.triangles_submitted << "," << r.triangles_rasterized << "," << r.pixels_shaded << ","
       << r.total_ms << "," << r.cpu_record_ms << "," << r.triangles_per_second() << "," << r.min_ms
       << "," << r.max_ms << "," << r.run_ms.size() << "," << r.run_spread_percent() << ","
-      << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0) << ","
-      << r.per_pass_total_ms;
+      << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0) << ",";
+    // Only the compute path is timed pass by pass: empty for the others, not a measured 0.
+    if (r.backend == "compute") f << r.per_pass_total_ms;
     for (double ms : r.pass_ms) f << "," << ms;
     f << "," << r.batches << "," << r.frames << ",\"" << results.device << "\",\"" << r.note
       << "\"\n";
@@ -167,8 +168,9 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
       << ", \"tile_entries\": " << r.tile_entries
       << ", \"rejected_entries\": " << r.rejected_entries
       << ", \"rejected_small\": " << r.rejected_small << ", \"pixels_shaded\": " << r.pixels_shaded
-      << ", \"total_ms\": " << r.total_ms << ", \"per_pass_total_ms\": " << r.per_pass_total_ms
-      << ", \"min_ms\": " << r.min_ms << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
+      << ", \"total_ms\": " << r.total_ms;
+    if (r.backend == "compute") f << ", \"per_pass_total_ms\": " << r.per_pass_total_ms;
+    f << ", \"min_ms\": " << r.min_ms << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
     for (size_t i = 0; i < r.run_ms.size(); ++i) f << (i ? ", " : "") << r.run_ms[i];
     f << "], \"run_spread_pct\": " << r.run_spread_percent()
       << ", \"warmup_frames\": " << r.warmup.frames << ", \"warmup_ms\": " << r.warmup.ms

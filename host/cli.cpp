@@ -45,12 +45,21 @@ CLI::Validator builtin_scene() {
   });
 }
 
+// A benchmark family, a built-in scene or a scene or model file; an unknown name is told all three.
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
-    if (is_scene_path(name) || is_model_path(name))
+    if (is_scene_path(name) || is_model_path(name)) {
       check_file_exists(name);
-    else if (!is_builtin_scene(name) && !is_named_scene(name))
-      make_bench_scene(name, 1, 8, 1.0f);
+    } else if (!is_builtin_scene(name) && !is_named_scene(name)) {
+      try {
+        make_bench_scene(name, 1, 8, 1.0f);
+      } catch (const Error& e) {
+        std::string scenes;
+        for (const std::string& s : known_scene_names()) scenes += (scenes.empty() ? "" : ", ") + s;
+        throw Error(std::string(e.what()) + "; or a built-in scene (" + scenes +
+                    "); or a scene file (.json) or model (.gltf, .glb, .obj)");
+      }
+    }
   });
 }
 
@@ -454,7 +463,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
             "backend) and the compute path's per-pass\n"
             "breakdown, as SVG or PNG");
   add_validate(app, a.validate);
-  app.add_flag("--quiet", a.quiet, "no progress bar or table");
+  app.add_flag("--quiet", a.quiet,
+               "no progress bar or results table (--compare's\ntable still prints)");
 }
 
 void add_view_options(CLI::App& app, ViewArgs& a) {
@@ -694,6 +704,20 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   b.small_triangle_area_given =
       bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
+  // A count twice would be two points of one name: --compare matches points by count.
+  for (size_t i = 0; i < b.objects.size(); ++i) {
+    if (std::find(b.objects.begin(), b.objects.begin() + i, b.objects[i]) != b.objects.begin() + i)
+      throw UsageError("--objects: " + std::to_string(b.objects[i]) + " is given twice",
+                       help_command);
+  }
+  if (!b.compare.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::exists(b.compare, ec))
+      throw UsageError("--compare: no file '" + b.compare + "'", help_command);
+    if (std::filesystem::is_directory(b.compare, ec))
+      throw UsageError("--compare: '" + b.compare + "' is a folder, not a --json file",
+                       help_command);
+  }
   check_aa_coverage(*bench, b.samples, b.quality, help_command);
   check_aa_walk_steps(b.aa_coverage, b.silhouette_steps, help_command);
   const bool hardware =

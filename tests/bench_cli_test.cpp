@@ -199,6 +199,8 @@ TEST(BenchCli, MinimalProgramCoversTheYardsticksPixels) {
 }
 
 TEST(BenchCli, ParsesEveryOption) {
+  const std::string base = test::output_path("base.json");  // --compare's file must exist
+  std::ofstream(base) << "{}";
   const CommandLine line = parse_command_line({"bench",
                                                "--scene",
                                                "scatter",
@@ -221,7 +223,7 @@ TEST(BenchCli, ParsesEveryOption) {
                                                "--runs",
                                                "3",
                                                "--compare",
-                                               "base.json",
+                                               base,
                                                "--reference-max-triangles",
                                                "1000",
                                                "--small-triangle-area",
@@ -248,7 +250,7 @@ TEST(BenchCli, ParsesEveryOption) {
   EXPECT_EQ(a.warmup, 1u);
   EXPECT_EQ(a.warmup_ms, 250.0);
   EXPECT_EQ(a.runs, 3u);
-  EXPECT_EQ(a.compare, "base.json");
+  EXPECT_EQ(a.compare, base);
   EXPECT_EQ(a.reference_max_triangles, 1000u);
   EXPECT_EQ(a.small_triangle_area, 16u);
   EXPECT_TRUE(a.generic_shading);
@@ -306,7 +308,19 @@ TEST(BenchCli, BadArgumentsNameTheOption) {
     }
     return std::string();
   };
-  EXPECT_NE(error({"--scene", "forest"}).find("--scene: unknown benchmark scene 'forest'"),
+  const std::string forest = error({"--scene", "forest"});
+  EXPECT_NE(forest.find("--scene: unknown benchmark scene 'forest' (known: grid, scatter, huge, "
+                        "yardstick); or a built-in scene (bench-grid, environment, "),
+            std::string::npos)
+      << forest;
+  EXPECT_NE(forest.find("; or a scene file (.json) or model (.gltf, .glb, .obj)"),
+            std::string::npos)
+      << forest;
+  EXPECT_NE(error({"--objects", "1,10,1"}).find("--objects: 1 is given twice"), std::string::npos);
+  EXPECT_NE(error({"--compare", "/nonexistent/base.json"})
+                .find("--compare: no file '/nonexistent/base.json'"),
+            std::string::npos);
+  EXPECT_NE(error({"--compare", test::output_path("")}).find("' is a folder, not a --json file"),
             std::string::npos);
   EXPECT_NE(error({"--objects", "1,x"}).find("--objects: expects a whole number"),
             std::string::npos);
@@ -606,17 +620,24 @@ TEST(BenchCli, BadCompareFilesAreClearErrors) {
   EXPECT_NE(error_of("twice.json", R"({"scene": "grid", "width": 8, "height": 8,
       "results": [{"objects": 1, "backend": "compute", "total_ms": 1},
                   {"objects": 1, "backend": "compute", "total_ms": 2}]})")
-                .find("results[1]. repeats the point grid, 1 objects, 8x8, compute"),
+                .find("results[1] repeats the point grid, 1 objects, 8x8, compute"),
             std::string::npos);
-  // From the command line: status 1, named, before anything is measured.
+  try {
+    read_bench_json("/nonexistent/base.json");
+    ADD_FAILURE() << "no error for a missing file";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "--compare: cannot read '/nonexistent/base.json': No such file or directory"),
+              std::string::npos)
+        << e.what();
+  }
+  // From the command line: a bad command line (status 2), named, before anything is measured.
   std::string out;
   EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
                                   " bench --device lavapipe --compare /nonexistent/base.json",
                               out),
-            1);
-  EXPECT_NE(out.find("tessera: error: --compare: cannot read '/nonexistent/base.json'"),
-            std::string::npos)
-      << out;
+            2);
+  EXPECT_NE(out.find("--compare: no file '/nonexistent/base.json'"), std::string::npos) << out;
   EXPECT_EQ(out.find("objects"), std::string::npos) << out;
 }
 
