@@ -109,7 +109,8 @@ void raster_box_int32(RasterTri t) {
         if ((covered & (1u << s)) == 0u) continue;
         if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
         ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + ivec3(threshold);
-        atomicMin(visibility[sample_index(p, s)], visibility_key(depth_at(t, vec3(exact), area), t.id));
+        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
+        atomicMin(visibility[sample_index(p, s)], key);
       }
     }
     // Each of m's components is affine in x, so the pixels of a row that pass are one run:

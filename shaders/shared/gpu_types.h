@@ -129,10 +129,10 @@ using glm::vec4;
 #define TS_SPEC_DEPTH_REJECTION \
   11  // RendererOptions::depth_rejection: fill, raster_tiles, raster_small
 #define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
+// The outline pass's walk limit: FrameSettings::silhouette_steps (0: no limit).
+#define TS_SPEC_SILHOUETTE_STEPS 13
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_SILHOUETTE_STEPS \
-  13  // the outline pass: FrameSettings::silhouette_steps (0: no limit)
 #define TS_SPEC_LIGHT_COUNT_BASE 14
 
 #define TS_IBL_OFF 0u
