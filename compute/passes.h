@@ -33,6 +33,7 @@ enum class Pass {
   fill,
   raster_tiles,
   raster_small,
+  list_tiles,  // shading by tiles (RendererOptions::shade_tiles): the drawn tiles and the others
   shade,
   outline,  // silhouette coverage (several samples): the outline pixels' exact coverage
   resolve,
@@ -56,7 +57,8 @@ struct Specialization {
   uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
   VkBool32 depth_rejection = VK_TRUE;           // RendererOptions::depth_rejection
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
-  uint32_t silhouette_steps = 0;  // FrameSettings::silhouette_steps (the outline pass)
+  uint32_t silhouette_steps = 0;              // FrameSettings::silhouette_steps (the outline pass)
+  uint32_t shade_tiles = TS_SHADE_TILES_OFF;  // RendererOptions::shade_tiles (TS_SHADE_TILES_*)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -129,6 +131,8 @@ constexpr PassInfo kPasses[] = {
      offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
     {Pass::raster_small, "raster_small", "raster_small", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
+    {Pass::list_tiles, "list_tiles", "list_tiles", Stage::frame, Dispatch::per_tile, 0,
+     TS_GROUP_SIZE},
     {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},
     {Pass::outline, "outline", "outline", Stage::frame, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, outline_dispatch), Variants::silhouette},
@@ -337,6 +341,8 @@ constexpr BindingInfo kBindings[] = {
     // As many entries as pixels: every pixel may be an outline pixel (10^6 spheres of a pixel).
     {TS_BINDING_OUTLINE, kStorageBuffer, Source::sized, Scale::pixels_if_outlines,
      sizeof(gpu::GpuOutlinePixel)},
+    {TS_BINDING_TILE_DRAWN, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame},
+    {TS_BINDING_SHADE_TILES, kStorageBuffer, Source::sized, Scale::tiles, 4},
 };
 
 constexpr bool binding_table_is_complete() {

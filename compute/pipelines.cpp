@@ -43,7 +43,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_TILE_SIZE, offsetof(Specialization, tile_size), sizeof(uint32_t)},
       {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)},
       {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)},
-      {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)}};
+      {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)},
+      {TS_SPEC_SHADE_TILES, offsetof(Specialization, shade_tiles), sizeof(uint32_t)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -68,7 +69,9 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
           .uv1_maps = v.uv1_maps,
           .samples = v.samples,
+          .tile_size = v.tile_size,
           .aa_coverage = v.aa_coverage,
+          .shade_tiles = v.shade_tiles,
           .light_counts = v.light_counts};
 }
 
@@ -216,7 +219,8 @@ void destroy_pipeline_cache(Context& ctx) {
   cache.set_layout = VK_NULL_HANDLE;
 }
 
-Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection) {
+Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection,
+                           bool shade_tiles) {
   TESSERA_CHECK(ctx.pipeline_cache);
   Pipelines p;
   {
@@ -230,11 +234,12 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
     if (row.shader == nullptr || row.variants == Variants::shading ||
         row.variants == Variants::silhouette)
       continue;
-    // Every pass gets the tile size and the rejection switch; only those that bin or
-    // rasterize by tiles read them.
+    // Every pass gets the tile size and the rejection and tile-shading switches; only those
+    // that bin, rasterize or list by tiles read them.
     PassInfo pass = row;
     pass.spec.tile_size = tile_size;
     pass.spec.depth_rejection = depth_rejection ? VK_TRUE : VK_FALSE;
+    pass.spec.shade_tiles = shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF;
     p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, pass.spec);
     if (pass.variants == Variants::debug_coverage) {
       Specialization coverage = pass.spec;

@@ -72,6 +72,8 @@ struct ShadeVariant {
   uint32_t uv1_maps;
   uint32_t samples = 1;                         // per pixel
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage, with samples > 1
+  uint32_t shade_tiles = TS_SHADE_TILES_OFF;    // which dispatch (RendererOptions::shade_tiles)
+  uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size, for shade_tiles
   auto operator<=>(const ShadeVariant&) const = default;
 };
 
@@ -95,9 +97,11 @@ VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& variant
 /// The layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V, built
 /// unless the context has them (create_compute_pipeline), the passes specialized to tiles of
 /// `tile_size` pixels per side (validate_tile_size) and to hierarchical depth rejection on or
-/// off (`depth_rejection`, RendererOptions), except the generic shading pipelines of kPipelines
-/// (shader "shade"), left null for the renderer to get on first use.
-Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection);
+/// off (`depth_rejection`, RendererOptions) and to marking drawn tiles or not (`shade_tiles`),
+/// except the generic shading pipelines of kPipelines (shader "shade"), left null for the
+/// renderer to get on first use.
+Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection,
+                           bool shade_tiles);
 /// Forgets `pipelines`; their handles stay with the context.
 void destroy_pipelines(const Context& ctx, Pipelines& pipelines);
 

@@ -115,26 +115,33 @@ void validate_tile_size(uint32_t tile_size) {
 RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
-    return {gpu.small_triangle_max_area, gpu.depth_rejection};
+    return {gpu.small_triangle_max_area, gpu.depth_rejection, false};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
-  // triangles.
-  return {kCpuSmallTriangleArea, gpu.depth_rejection};
+  // triangles; and the shading pass pays the whole shading code for background pixels unless
+  // they are not dispatched to it.
+  return {kCpuSmallTriangleArea, gpu.depth_rejection, true};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
   const RasterTuning t = raster_tuning(ctx.properties.deviceType);
   options.small_triangle_max_area = t.small_triangle_max_area;
   options.depth_rejection = t.depth_rejection;
+  options.shade_tiles = t.shade_tiles;
   return options;
 }
 
 Renderer::Renderer(Context& ctx, const RendererOptions& options)
     : s_(std::make_unique<State>(ctx)) {
   s_->options = options;
+  // The generic shading pipelines shade every pixel (RendererOptions::shade_tiles).
+  s_->shade_tiles =
+      options.shade_tiles.value_or(raster_tuning(ctx.properties.deviceType).shade_tiles) &&
+      options.specialize_lights;
   check_tile_size(ctx, options.tile_size);
-  s_->pipelines = create_pipelines(ctx, options.tile_size, options.depth_rejection);
+  s_->pipelines =
+      create_pipelines(ctx, options.tile_size, options.depth_rejection, s_->shade_tiles);
 
   constexpr VkDescriptorType kTypes[] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
@@ -452,6 +459,7 @@ bool sized_by_frame(Scale scale) {
 
 // Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
 bool in_use(const Renderer::State& s, const BindingInfo& b) {
+  if (b.binding == TS_BINDING_TILE_DRAWN) return s.shade_tiles;
   return b.scale != Scale::pixels_if_coverage || s.options.debug_coverage;
 }
 
@@ -569,12 +577,24 @@ ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settin
 
 }  // namespace
 
-VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
+VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings, uint32_t tiles) {
   const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {
-    const ShadeVariant v = shade_variant(s, settings);
+    ShadeVariant v = shade_variant(s, settings);
+    v.shade_tiles = tiles;
+    v.tile_size = s.options.tile_size;
     auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
-    if (inserted) it->second = create_shade_pipeline(s.ctx, v);
+    if (inserted && tiles == TS_SHADE_TILES_BACKGROUND) {
+      // Only what the background reads: the same pipeline (the context's cache) for every
+      // light configuration.
+      it->second = create_compute_pipeline(s.ctx, "shade_background",
+                                           {.ibl = v.ibl ? TS_IBL_ON : TS_IBL_OFF,
+                                            .samples = v.samples,
+                                            .tile_size = v.tile_size,
+                                            .shade_tiles = tiles});
+    } else if (inserted) {
+      it->second = create_shade_pipeline(s.ctx, v);
+    }
     return it->second;
   }
   Pipeline generic = Pipeline::shade_classic;
@@ -815,6 +835,10 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
       stats.rejected_entries += c.rejected_entries;
       stats.rejected_small += c.rejected_small;
     }
+    if (s.shade_tiles) {
+      stats.shaded_tiles = counters[0].drawn_tiles;
+      stats.background_tiles = counters[0].background_tiles;
+    }
     if (timestamps) {
       std::vector<uint64_t> ticks(query_passes.size() + 1);
       VK_CHECK(vkGetQueryPoolResults(
@@ -937,6 +961,7 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     Specialization spec = pass.spec;
     spec.tile_size = s.options.tile_size;
     spec.depth_rejection = s.options.depth_rejection ? VK_TRUE : VK_FALSE;
+    spec.shade_tiles = s.shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF;
     if (pass.variants == Variants::debug_coverage && s.options.debug_coverage)
       spec.debug_coverage = VK_TRUE;
     if (pass.variants == Variants::lod && settings.lod == Lod::automatic) spec.lod = VK_TRUE;
@@ -950,7 +975,7 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
       if (s.options.debug_coverage) return s.pipelines.coverage[size_t(pass.pass)];
       break;
     case Variants::shading:
-      return shade_pipeline(s, settings);
+      return shade_pipeline(s, settings, s.shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF);
     case Variants::lod:
       if (settings.lod == Lod::automatic) return s.pipelines.lod[size_t(pass.pass)];
       break;
@@ -986,6 +1011,20 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       vkCmdDispatch(cmd, div_up(s.uploaded.objects.size(), pass.group_size), 1, 1);
       break;
     case Dispatch::per_pixel:
+      if (pass.pass == Pass::shade && s.shade_tiles) {
+        // Over the tiles list_tiles found drawn into, then the background over the others.
+        // Each writes its own tiles' pixels alone, but Vulkan sees two writes of each image and
+        // the shading pipeline may write the counters (silhouette coverage's list), which the
+        // second dispatch reads its size from: a barrier between them (lavapipe runs
+        // dispatches one after another anyway; GPUs keep shading by tiles off).
+        const VkBuffer counters = s.buffer(TS_BINDING_COUNTERS).buffer;
+        vkCmdDispatchIndirect(cmd, counters, offsetof(gpu::GpuCounters, shade_dispatch));
+        compute_to_compute(cmd);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                          shade_pipeline(s, settings, TS_SHADE_TILES_BACKGROUND));
+        vkCmdDispatchIndirect(cmd, counters, offsetof(gpu::GpuCounters, background_dispatch));
+        break;
+      }
       vkCmdDispatch(cmd, div_up(s.width, pass.group_size), div_up(s.height, pass.group_size), 1);
       break;
     case Dispatch::per_tile:
@@ -1014,7 +1053,8 @@ static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
 void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejection = false,
                    bool outlines_next = false) {
   if (pass.pass == Pass::raster_tiles && !depth_rejection) return;
-  if (pass.stage != Stage::frame || outlines_next) {
+  // list_tiles writes the shading pass's indirect dispatches.
+  if (pass.stage != Stage::frame || outlines_next || pass.pass == Pass::list_tiles) {
     compute_to_compute(cmd);
     return;
   }
@@ -1096,7 +1136,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         break;
       }
       case Stage::frame:
-        if (pass.pass == Pass::outline && !lists_outlines(settings)) {
+        if ((pass.pass == Pass::outline && !lists_outlines(settings)) ||
+            (pass.pass == Pass::list_tiles && !s.shade_tiles)) {
           ++i;
           break;
         }

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "compute/context.h"
@@ -37,6 +38,14 @@ struct RendererOptions {
   /// everything already drawn in their tile(s) (FrameStats::rejected_*). Either setting gives
   /// the same image; off, every entry and small triangle is rasterized (for comparisons).
   bool depth_rejection = true;
+  /// Shading by tiles: the rasterizers mark the screen tiles they draw into, a pass lists them
+  /// (Pass::list_tiles), and the shading pass runs over those tiles only, with a background
+  /// pass for the others that reads no visibility key and runs no shading code. Either setting
+  /// gives the same image. It saves most on CPU devices, which run a shader's every instruction
+  /// for every pixel dispatched, and costs GPUs a pass (raster_tuning). Unset: the device's
+  /// choice, raster_tuning's. Only with specialize_lights: the generic shading pipelines shade
+  /// every pixel.
+  std::optional<bool> shade_tiles;
   /// Most triangle instances set up per batch (0: as many as the scratch buffers allow).
   uint32_t max_batch_triangles = 0;
   /// Starting capacities of the scratch buffers (0: sized from the scene). They grow, and the
@@ -74,12 +83,13 @@ void validate_tile_size(uint32_t tile_size);
 struct RasterTuning {
   uint32_t small_triangle_max_area;
   bool depth_rejection;
+  bool shade_tiles;
 };
 
 /// The settings measured fastest on a device of `type` (docs/performance.md, "Device-tuned
 /// rasterization"): RendererOptions' defaults, tuned on GPUs, except on CPU devices
 /// (VK_PHYSICAL_DEVICE_TYPE_CPU, such as lavapipe), which take every triangle whose pixel box
-/// has up to kCpuSmallTriangleArea pixels on the per-triangle rasterizer.
+/// has up to kCpuSmallTriangleArea pixels on the per-triangle rasterizer and shade by tiles.
 RasterTuning raster_tuning(VkPhysicalDeviceType type);
 constexpr uint32_t kCpuSmallTriangleArea = 4096;
 
@@ -114,6 +124,10 @@ struct FrameStats {
   uint64_t clipped = 0;
   uint64_t rejected_entries = 0;  // tile-list entries skipped by depth rejection, unrasterized
   uint64_t rejected_small = 0;    // small triangles skipped likewise
+  // Shading by tiles (RendererOptions::shade_tiles; else 0): screen tiles the rasterizers drew
+  // into, which the shading pass shaded, and the others, given the background alone.
+  uint64_t shaded_tiles = 0;
+  uint64_t background_tiles = 0;
   uint32_t batches = 0;
   uint32_t attempts = 0;  // 1, plus one per re-render after growing a buffer or splitting
 };

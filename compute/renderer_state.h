@@ -19,6 +19,8 @@ namespace tessera {
 struct Renderer::State {
   Context& ctx;
   RendererOptions options;
+  // Shading by tiles as decided for this device (RendererOptions::shade_tiles, raster_tuning).
+  bool shade_tiles = false;
   Pipelines pipelines;
   VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
   VkDescriptorSet set = VK_NULL_HANDLE;
@@ -131,8 +133,10 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches);
 bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameSettings& settings);
 
 /// The shading pipeline for `settings` and the current scene: specialized to its lights (built
-/// and cached on first use) or the generic one.
-VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings);
+/// and cached on first use), and under shading by tiles to the dispatch `tiles`
+/// (TS_SHADE_TILES_*), or the generic one.
+VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings,
+                          uint32_t tiles = TS_SHADE_TILES_OFF);
 
 /// The pipeline of embedded shader `shader` specialized to `spec` with `samples` per pixel,
 /// built on first use and kept in State::sampled_pipelines under `index` (a Pass, or

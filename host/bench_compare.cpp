@@ -142,6 +142,7 @@ std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs&
           {"small_triangle_area", json(a.small_triangle_area).dump()},
           {"tile_size", json(a.tile_size).dump()},
           {"depth_rejection", json(a.depth_rejection).dump()},
+          {"shade_tiles", json(a.shade_tiles).dump()},
           {"hdr_format", json(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16").dump()}};
 }
 

@@ -268,6 +268,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     options.small_triangle_max_area = a.small_triangle_area;
     options.tile_size = a.tile_size;
     options.depth_rejection = a.depth_rejection;
+    options.shade_tiles = a.shade_tiles;
     options.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options);
     results.device = ctx->properties.deviceName;

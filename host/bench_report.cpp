@@ -153,6 +153,7 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"small_triangle_area\": " << a.small_triangle_area
     << ",\n  \"tile_size\": " << a.tile_size
     << ",\n  \"depth_rejection\": " << (a.depth_rejection ? "true" : "false")
+    << ",\n  \"shade_tiles\": " << (a.shade_tiles ? "true" : "false")
     << ",\n  \"hdr_format\": " << json_string(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16")
     << ",\n  \"frames\": " << a.repeat << ",\n  \"runs\": " << a.runs
     << ",\n  \"warmup\": {\"min_frames\": " << a.warmup << ", \"min_ms\": " << a.warmup_ms

@@ -146,6 +146,16 @@ void add_depth_rejection(CLI::App& app, bool& on) {
              "drew; off rasterizes all. The image is the same");
 }
 
+// --shade-tiles, for render and bench.
+void add_shade_tiles(CLI::App& app, bool& on) {
+  add_choice(app, "--shade-tiles", on, {{"on", true}, {"off", false}},
+             "shading by tiles: on runs the shading code\n"
+             "only in tiles something was drawn into, the\n"
+             "background apart; off shades every pixel. The\n"
+             "image is the same. Default: the device's (on\n"
+             "for CPU devices such as lavapipe)");
+}
+
 void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
   add_choice(app, "--quality", quality,
              {{"draft", Quality::draft},
@@ -345,6 +355,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
+  add_shade_tiles(app, a.shade_tiles);
   add_quality(app, a.quality,
               "--brdf, --energy-compensation, --samples,\n"
               "--lod, --lod-error, --anisotropy, --env-size,\n"
@@ -448,6 +459,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_hdr_format(app, a.hdr_format);
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
+  add_shade_tiles(app, a.shade_tiles);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
               "--small-triangle-area, --tile-size");
@@ -529,7 +541,7 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
                  "env-samples, samples, aa-coverage,\n"
                  "aa-walk-steps, hdr, small-triangle, tile-size,\n"
-                 "depth-rejection\n"
+                 "depth-rejection, shade-tiles\n"
                  "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')
@@ -684,6 +696,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
   r.view_given = render->count("--view") > 0;
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
+  r.shade_tiles_given = render->count("--shade-tiles") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);
   line.view.size_given = view->count("--size") > 0;
@@ -704,6 +717,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   b.small_triangle_area_given =
       bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
+  b.shade_tiles_given = bench->count("--shade-tiles") > 0;
   // A count twice would be two points of one name: --compare matches points by count.
   for (size_t i = 0; i < b.objects.size(); ++i) {
     if (std::find(b.objects.begin(), b.objects.begin() + i, b.objects[i]) != b.objects.begin() + i)

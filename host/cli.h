@@ -27,6 +27,7 @@ struct RenderArgs {
   uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
   uint32_t tile_size = TS_TILE_SIZE;      // RendererOptions::tile_size
   bool depth_rejection = true;            // RendererOptions::depth_rejection
+  bool shade_tiles = false;               // RendererOptions::shade_tiles
   Quality quality = Quality::none;        // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
   // first-use costs) are reported apart; the figures are medians over these.
@@ -38,8 +39,9 @@ struct RenderArgs {
   // "render" block when it has them.
   bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
        view_given = false;
-  // --depth-rejection given: else the device's (raster_tuning, compute/renderer.h).
-  bool depth_rejection_given = false;
+  // --depth-rejection and --shade-tiles given: else the device's (raster_tuning,
+  // compute/renderer.h).
+  bool depth_rejection_given = false, shade_tiles_given = false;
 };
 
 struct BenchArgs {
@@ -66,10 +68,12 @@ struct BenchArgs {
   HdrFormat hdr_format = HdrFormat::fp16;        // FrameSettings::hdr_format (not hardware)
   uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
   bool depth_rejection = true;                   // RendererOptions::depth_rejection
+  bool shade_tiles = false;                      // RendererOptions::shade_tiles
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
-  // --small-triangle-area (or --quality) and --depth-rejection given: else the device's
-  // (raster_tuning, compute/renderer.h), written here by run_bench once the device is known.
-  bool small_triangle_area_given = false, depth_rejection_given = false;
+  // --small-triangle-area (or --quality), --depth-rejection and --shade-tiles given: else the
+  // device's (raster_tuning, compute/renderer.h), written here by run_bench once the device is
+  // known.
+  bool small_triangle_area_given = false, depth_rejection_given = false, shade_tiles_given = false;
   std::string csv, json, chart;
   bool quiet = false;
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything

@@ -87,6 +87,11 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
               (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
               (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
+  if (last.shaded_tiles + last.background_tiles > 0) {
+    std::printf("shading by tiles: %llu of %llu tiles shaded, the rest background only\n",
+                (unsigned long long)last.shaded_tiles,
+                (unsigned long long)(last.shaded_tiles + last.background_tiles));
+  }
   if (!last.has_timestamps) {
     std::printf("GPU timings unavailable: the queue has no timestamp support\n");
     return;
@@ -128,6 +133,7 @@ int run_render(const RenderArgs& given) {
   renderer_options.environment = args.env_options;
   renderer_options.tile_size = args.tile_size;
   if (args.depth_rejection_given) renderer_options.depth_rejection = args.depth_rejection;
+  if (args.shade_tiles_given) renderer_options.shade_tiles = args.shade_tiles;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
 

@@ -39,7 +39,9 @@ struct KnobInfo {
 /// The knobs, in the order they are documented.
 const std::vector<KnobInfo>& knobs();
 
-/// The settings of knob `knob`, each starting from `frame` and `options` (the command line's).
+/// The settings of knob `knob`, each starting from `frame` and `options` (the command line's,
+/// with every device choice made: tuned_for_device). The setting equal to theirs is the
+/// default; with RendererOptions::shade_tiles unset, neither of that knob's is.
 /// Throws Error naming the known knobs if `knob` is not one of knobs().
 std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
                                        const RendererOptions& options);

@@ -23,6 +23,7 @@ const std::vector<KnobInfo>& knobs() {
       {"small-triangle", "pixel-box area rasterized one thread per triangle (speed only)"},
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
       {"depth-rejection", "hierarchical depth rejection: off, on (speed only)"},
+      {"shade-tiles", "shading by tiles: off, on (speed only)"},
   };
   return list;
 }
@@ -171,11 +172,16 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       s.speed_only = true;
       out.push_back(s);
     }
-  } else if (knob == "depth-rejection") {
+  } else if (knob == "depth-rejection" || knob == "shade-tiles") {
+    const bool rejection = knob == "depth-rejection";
     for (bool on : {false, true}) {
       KnobSetting s = base(knob, on ? "on" : "off", frame, options);
-      s.renderer.depth_rejection = on;
-      s.is_default = on == options.depth_rejection;
+      if (rejection) {
+        s.renderer.depth_rejection = on;
+      } else {
+        s.renderer.shade_tiles = on;
+      }
+      s.is_default = rejection ? on == options.depth_rejection : on == options.shade_tiles;
       s.speed_only = true;
       out.push_back(s);
     }

@@ -38,6 +38,8 @@ layout(set = 0, binding = TS_BINDING_COVERAGE, std430) buffer Coverage { uint co
 layout(set = 0, binding = TS_BINDING_CLIP_LIST, std430) buffer ClipList { uint clip_list[]; };
 layout(set = 0, binding = TS_BINDING_TILE_FAR, std430) buffer TileFar { uint tile_far[]; };
 layout(set = 0, binding = TS_BINDING_OUTLINE, std430) buffer Outline { GpuOutlinePixel outline[]; };
+layout(set = 0, binding = TS_BINDING_TILE_DRAWN, std430) buffer TileDrawn { uint tile_drawn[]; };
+layout(set = 0, binding = TS_BINDING_SHADE_TILES, std430) buffer ShadeTiles { uint shade_tiles[]; };
 // DFG tables (shaders/dfg.comp): classic then filament, each TS_DFG_SIZE^2, row = roughness.
 layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec4 dfg[]; };
 // RGBA16F or RGBA32F (FrameSettings::hdr_format), declared without a format so that one SPIR-V

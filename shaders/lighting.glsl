@@ -10,12 +10,7 @@
 // and the diffuse layer by (1 - Es(mu_o)) (1 - Es(mu_i)) / (1 - Es_avg), Es the specular layer's
 // albedo with Fresnel and that scale: reciprocal, and a white material reflects exactly 1.
 
-// Image-based lighting: off, on, or decided per frame (the generic pipeline).
-layout(constant_id = TS_SPEC_IBL) const uint IBL_MODE = TS_IBL_RUNTIME;
-
-bool ibl_enabled() {
-  return IBL_MODE == TS_IBL_ON || (IBL_MODE == TS_IBL_RUNTIME && frame.environment != 0u);
-}
+#include "ibl_mode.glsl"
 
 // Bilinear lookup in the DFG table of this variant at (N.V, roughness): x the Schlick-weighted
 // part of the specular albedo, y the whole albedo with F = 1, z the mean Schlick factor seen

@@ -1,6 +1,7 @@
 // What a pixel shows, shared by the shading pass and the outline pass: the camera ray through
 // a point of the image, the background along it, and how a pixel's colour is stored. Needs
-// bindings.glsl, lighting.glsl (ibl_enabled) and display.glsl.
+// bindings.glsl and display.glsl.
+#include "ibl_mode.glsl"
 
 // Unit ray through the point `pixel_point` of the image, in pixels.
 vec3 camera_ray_at(vec2 pixel_point) {

@@ -8,6 +8,10 @@ layout(constant_id = TS_SPEC_DEBUG_COVERAGE) const bool DEBUG_COVERAGE = false;
 // Tile side in pixels (RendererOptions::tile_size). A specialization constant rather than a
 // #define so that one SPIR-V module serves every size: the driver folds it like a literal.
 layout(constant_id = TS_SPEC_TILE_SIZE) const int TILE_SIZE = TS_TILE_SIZE;
+// Shading by tiles (RendererOptions::shade_tiles): TS_SHADE_TILES_OFF, or the rasterizers mark
+// each tile they may write a sample of in tile_drawn, so that list_tiles can send the others
+// to the background's dispatch.
+layout(constant_id = TS_SPEC_SHADE_TILES) const uint SHADE_TILES = TS_SHADE_TILES_OFF;
 
 struct RasterTri {
   ivec2 v0, v1, v2;     // fixed point, oriented so that the doubled area is positive

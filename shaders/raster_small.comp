@@ -175,6 +175,15 @@ void main() {
     if (n > 0u && subgroupElect()) atomicAdd(counters[batch.index].rejected_small, n);
     if (hidden) return;
   }
+  if (SHADE_TILES != TS_SHADE_TILES_OFF) {
+    // Every tile the box touches, whether or not a sample is covered there: a tile listed
+    // without need is only shaded as background by the shading pass's code.
+    ivec2 first, last;
+    tile_range(t, first, last);
+    for (int ty = first.y; ty <= last.y; ++ty) {
+      for (int tx = first.x; tx <= last.x; ++tx) tile_drawn[uint(ty) * frame.tiles.x + uint(tx)] = 1u;
+    }
+  }
   if (edges_fit_int32(t)) {
     raster_box_int32(t);
   } else {

@@ -83,7 +83,10 @@ void main() {
   // here (a binned batch dispatches every tile) and nowhere after, so zeroing it here replaces
   // a fill of the buffer and two barriers before each batch.
   barrier();
-  if (gl_LocalInvocationIndex == 0u && count != 0u) tile_counts[tile_index] = 0u;
+  if (gl_LocalInvocationIndex == 0u && count != 0u) {
+    tile_counts[tile_index] = 0u;
+    if (SHADE_TILES != TS_SHADE_TILES_OFF) tile_drawn[tile_index] = 1u;
+  }
   if (count == 0u) return;
   uint first = tile_offsets[tile_index];
   uint end = min(first + count, frame.tile_entry_capacity);  // past capacity the frame is redone anyway

@@ -15,12 +15,16 @@
 #include "coverage.glsl"
 #include "display.glsl"
 #include "pixel_colour.glsl"
+#include "shade_tiles.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // How anti-aliasing weighs a pixel's triangles (TS_AA_COVERAGE_*): a specialization constant,
 // so that the count's pipelines carry none of the analytic code.
 layout(constant_id = TS_SPEC_AA_COVERAGE) const uint AA_COVERAGE = TS_AA_COVERAGE_COUNT;
+// SHADE_TILES (raster_common.glsl): TS_SHADE_TILES_OFF dispatches a workgroup per 8x8 pixels of
+// the image; TS_SHADE_TILES_DRAWN one per 8x8 pixels of each tile list_tiles found drawn into
+// (shade_background.comp takes the others).
 
 // Unclamped barycentrics of the ray's hit on the triangle's plane, for texture footprints;
 // false if the ray is parallel to the plane.
@@ -199,8 +203,9 @@ void list_outline_pixel(ivec2 pixel, vec3 surface) {
 void resolve_samples(ivec2 pixel, bool inside) {
   uint thread = gl_LocalInvocationIndex;
   if (thread == 0u) request_count = 0u;
-  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && all(equal(gl_GlobalInvocationID.xy, uvec2(0u)))) {
-    // The outline pass's dispatch: y and z one (the counters start the frame at zero).
+  if (AA_COVERAGE == TS_AA_COVERAGE_SILHOUETTE && all(equal(pixel, ivec2(0)))) {
+    // The outline pass's dispatch: y and z one (the counters start the frame at zero). Under
+    // shading by tiles the background's dispatch may have pixel (0, 0): list_tiles sets them.
     counters[0].outline_dispatch.y = 1u;
     counters[0].outline_dispatch.z = 1u;
   }
@@ -295,7 +300,10 @@ void resolve_samples(ivec2 pixel, bool inside) {
 }
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 origin;
+  // The same for the whole workgroup, so that its barriers (resolve_samples) see every thread.
+  if (!block_origin(origin)) return;
+  ivec2 pixel = origin + ivec2(gl_LocalInvocationID.xy);
   bool inside = all(lessThan(pixel, ivec2(frame.image_size)));
   if (SAMPLES > 1u) {
     // Every thread of the workgroup takes part: the requests are shaded together.

@@ -1,6 +1,7 @@
 // Device-tuned rasterization (raster_tuning, compute/renderer.h): GPUs keep RendererOptions'
-// defaults, CPU devices take more triangles on the per-triangle rasterizer, and either choice
-// leaves every bit of the visibility buffer and the image as it is.
+// defaults and shade every pixel, CPU devices take more triangles on the per-triangle
+// rasterizer and shade by tiles, and either choice leaves every bit of the visibility buffer
+// and the image as it is.
 #include <cstring>
 #include <iterator>
 
@@ -21,6 +22,8 @@ TEST(RasterTuning, GpusKeepTheRendererDefaults) {
     const RasterTuning t = raster_tuning(type);
     EXPECT_EQ(t.small_triangle_max_area, defaults.small_triangle_max_area) << type;
     EXPECT_EQ(t.depth_rejection, defaults.depth_rejection) << type;
+    // Measured slower on the H200 (docs/performance.md, "Shading by tiles").
+    EXPECT_FALSE(t.shade_tiles) << type;
   }
 }
 
@@ -29,6 +32,7 @@ TEST(RasterTuning, CpuDevicesRasterizeBoxesUpTo4096PixelsPerTriangle) {
   const RasterTuning t = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
   EXPECT_EQ(t.small_triangle_max_area, 4096u);
   EXPECT_TRUE(t.depth_rejection);
+  EXPECT_TRUE(t.shade_tiles);
 }
 
 class RasterTuningOnDevice : public test::VulkanTest {};
@@ -41,8 +45,20 @@ TEST_F(RasterTuningOnDevice, LavapipeTakesTheCpuTuningAndKeepsTheOtherOptions) {
   const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
   EXPECT_EQ(tuned.small_triangle_max_area, cpu.small_triangle_max_area);
   EXPECT_EQ(tuned.depth_rejection, cpu.depth_rejection);
+  EXPECT_EQ(tuned.shade_tiles, cpu.shade_tiles);
   EXPECT_EQ(tuned.tile_size, 8u);
   EXPECT_FALSE(tuned.resolve);
+}
+
+// Left unset, shading by tiles is the device's choice: on for lavapipe, whose frames then
+// count every tile as shaded or background.
+TEST_F(RasterTuningOnDevice, LavapipeShadesByTilesUnlessTold) {
+  const Scene scene = make_bench_scene("grid", 1, 32, 1.0f);
+  const Frame automatic = render(scene, 64, 48, RendererOptions{});
+  EXPECT_EQ(automatic.stats.shaded_tiles + automatic.stats.background_tiles, 4u * 3u);
+  EXPECT_GT(automatic.stats.shaded_tiles, 0u);
+  const Frame off = render(scene, 64, 48, RendererOptions{.shade_tiles = false});
+  EXPECT_EQ(off.stats.shaded_tiles + off.stats.background_tiles, 0u);
 }
 
 bool same_bits(const void* a, const void* b, size_t bytes) {
@@ -63,8 +79,10 @@ TEST_F(RasterTuningOnDevice, EveryTuningGivesTheSameBits) {
     const RasterTuning c = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
     gpu.small_triangle_max_area = g.small_triangle_max_area;
     gpu.depth_rejection = g.depth_rejection;
+    gpu.shade_tiles = g.shade_tiles;
     cpu.small_triangle_max_area = c.small_triangle_max_area;
     cpu.depth_rejection = c.depth_rejection;
+    cpu.shade_tiles = c.shade_tiles;
     const Frame a = render(scene, 160, 160, gpu);
     const Frame b = render(scene, 160, 160, cpu);
     // Not vacuous: the sphere's triangles took different rasterizers, the huge ones the tiles.

@@ -30,7 +30,8 @@ TEST(Tradeoff, ParetoFrontByHand) {
 TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   FrameSettings frame;
   frame.brdf = Brdf::filament;
-  RendererOptions options;
+  // Every choice made, as tuned_for_device leaves the options the tool gives knob_settings.
+  RendererOptions options{.shade_tiles = false};
   for (const KnobInfo& k : knobs()) {
     const std::vector<KnobSetting> settings = knob_settings(k.name, frame, options);
     EXPECT_GE(settings.size(), 2u) << k.name;
@@ -77,6 +78,16 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   EXPECT_FALSE(rejection[0].renderer.depth_rejection);
   EXPECT_TRUE(rejection[1].renderer.depth_rejection);
   EXPECT_TRUE(rejection[1].is_default);
+  // And shading by tiles: off, then on, the default that tuned_for_device gives lavapipe.
+  RendererOptions tiled = options;
+  tiled.shade_tiles = true;
+  const std::vector<KnobSetting> shading = knob_settings("shade-tiles", frame, tiled);
+  ASSERT_EQ(shading.size(), 2u);
+  for (const KnobSetting& s : shading) EXPECT_TRUE(s.speed_only) << s.label;
+  EXPECT_EQ(shading[0].renderer.shade_tiles, false);
+  EXPECT_EQ(shading[1].renderer.shade_tiles, true);
+  EXPECT_FALSE(shading[0].is_default);
+  EXPECT_TRUE(shading[1].is_default);
   try {
     knob_settings("msaa", frame, options);
     FAIL() << "an unknown knob must throw";
@@ -124,7 +135,8 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const std::string command =
       std::string(TESSERA_BINARY) +
       " tradeoff --device lavapipe --validate --scene spheres --knob "
-      "brdf,small-triangle,tile-size,depth-rejection --size 48x48 --repeat 1 --rounds 1 "
+      "brdf,small-triangle,tile-size,depth-rejection,shade-tiles --size 48x48 --repeat 1 "
+      "--rounds 1 "
       "--truth-samples 4 --warmup 1 --warmup-ms 1 --json " +
       base + ".json --chart " + base + ".svg";
   ASSERT_EQ(test::run_command(command, out), 0) << out;
@@ -133,7 +145,7 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const nlohmann::json j = nlohmann::json::parse(f);
   EXPECT_EQ(j["width"], 48);
   const auto& points = j["points"];
-  ASSERT_EQ(points.size(), 14u);
+  ASSERT_EQ(points.size(), 16u);
   // The truth shades with filament and energy compensation: that setting's interior error
   // (shading alone, edges apart) must be the lowest of the BRDF knob's, and well below
   // Blinn-Phong's, which is a different model altogether.
@@ -150,13 +162,14 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   }
   EXPECT_LT(filament_ec, lowest_other) << out;
   EXPECT_LT(filament_ec, 0.5 * blinn) << out;
-  // The small-triangle threshold, the tile size and depth rejection trade speed only: every
-  // image equals the default's.
+  // The small-triangle threshold, the tile size, depth rejection and shading by tiles trade
+  // speed only: every image equals the default's.
   for (const auto& p : points) {
     // Every setting warmed up once (one round) for at least --warmup frames.
     ASSERT_EQ(p["warmups"].size(), 1u) << p.dump();
     EXPECT_GE(p["warmups"][0]["frames"].get<int>(), 1) << p.dump();
-    if (p["knob"] != "small-triangle" && p["knob"] != "tile-size" && p["knob"] != "depth-rejection")
+    if (p["knob"] != "small-triangle" && p["knob"] != "tile-size" &&
+        p["knob"] != "depth-rejection" && p["knob"] != "shade-tiles")
       continue;
     EXPECT_TRUE(p["identical_to_default"].get<bool>()) << p.dump();
     EXPECT_GT(p["gpu_ms"]["median"].get<double>(), 0.0);

@@ -107,7 +107,12 @@ using glm::vec4;
 // Silhouette coverage: the outline pixels the shading pass found (GpuOutlinePixel), which the
 // outline pass measures; GpuCounters.outline_pixels of batch 0 says how many.
 #define TS_BINDING_OUTLINE 35
-#define TS_BINDING_COUNT 36
+// Shading by tiles (RendererOptions::shade_tiles, shaders/list_tiles.comp): per screen tile,
+// nonzero once a rasterizer may have written a sample of it this frame; then the tiles the
+// shading pass shades (from the front) and those its background dispatch fills (from the back).
+#define TS_BINDING_TILE_DRAWN 36
+#define TS_BINDING_SHADE_TILES 37
+#define TS_BINDING_COUNT 38
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 
 // GpuBatch.flags
@@ -131,9 +136,19 @@ using glm::vec4;
 #define TS_SPEC_AA_COVERAGE 12  // anti-aliased shading's weights: TS_AA_COVERAGE_* (FrameSettings)
 // The outline pass's walk limit: FrameSettings::silhouette_steps (0: no limit).
 #define TS_SPEC_SILHOUETTE_STEPS 13
+// Shading by tiles (RendererOptions::shade_tiles): TS_SHADE_TILES_*. The rasterizers mark the
+// tiles they draw into unless it is TS_SHADE_TILES_OFF; the shading pass takes it as below.
+#define TS_SPEC_SHADE_TILES 14
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 14
+#define TS_SPEC_LIGHT_COUNT_BASE 15
+
+// How the shading pass is dispatched (TS_SPEC_SHADE_TILES).
+#define TS_SHADE_TILES_OFF 0u    // a workgroup per 8x8 pixels of the whole image
+#define TS_SHADE_TILES_DRAWN 1u  // over the tiles list_tiles found drawn into
+#define TS_SHADE_TILES_BACKGROUND \
+  2u  // over the others, which hold only background: no
+      // visibility read, no shading code
 
 #define TS_IBL_OFF 0u
 #define TS_IBL_ON 1u
@@ -373,6 +388,15 @@ struct GpuCounters {
   uint outline_pixels;
   uint pad_outline0;
   uvec2 pad_outline1;  // std430 rounds the array stride to 16 bytes
+  // Shading by tiles, batch 0's slot (list_tiles.comp): VkDispatchIndirectCommand (xyz) of the
+  // shading pass over the drawn tiles and of its background dispatch over the others, x a row
+  // of the tile grid's workgroups, y raised as the lists reach into a new row; and the lists'
+  // lengths in tiles.
+  uvec4 shade_dispatch;
+  uvec4 background_dispatch;
+  uint drawn_tiles;
+  uint background_tiles;
+  uvec2 pad_shade_tiles;  // std430 rounds the array stride to 16 bytes
 };
 
 #ifdef __cplusplus
@@ -444,7 +468,10 @@ static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
 static_assert(sizeof(GpuOutlinePixel) == 16);
 static_assert(offsetof(GpuOutlinePixel, pixel) == 12);
-static_assert(sizeof(GpuCounters) == 176);
+static_assert(sizeof(GpuCounters) == 224);
+static_assert(offsetof(GpuCounters, shade_dispatch) == 176);
+static_assert(offsetof(GpuCounters, background_dispatch) == 192);
+static_assert(offsetof(GpuCounters, drawn_tiles) == 208);
 static_assert(offsetof(GpuCounters, outline_dispatch) == 144);
 static_assert(offsetof(GpuCounters, outline_pixels) == 160);
 static_assert(offsetof(GpuCounters, clip_dispatch) == 128);
