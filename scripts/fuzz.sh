@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the loader fuzzers (TESSERA_FUZZ=ON, clang-14, in build-fuzz/) and runs each for
-# SECONDS (default 60) on one core, at low priority. Exit status 0 only if no target crashed,
+# Builds the loader fuzzers (TESSERA_FUZZ=ON, clang-14, in build-fuzz/) and runs them all at
+# once for SECONDS (default 60), at low priority. Exit status 0 only if no target crashed,
 # leaked, hit a sanitizer report, an internal check, an uncaught exception or a timeout.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: gltf obj scene_json; default all)
 # FUZZ_RUNS=N also stops each target after N executions (the long runs of docs/fuzzing.md).
@@ -66,16 +66,26 @@ trap 'rm -rf "$scratch"' EXIT
 export TESSERA_FUZZ_SCRATCH=$scratch
 export UBSAN_OPTIONS=print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}
 mkdir -p build-fuzz/artifacts
-failed=()
+# The targets run at once, sharing the cores (on CI's 2 cores each gets about two thirds of one
+# for SECONDS): one after another they cost three times SECONDS of wall time.
+pids=()
 for t in "${targets[@]}"; do
   make_seeds "$t" "build-fuzz/seeds/$t"
   mkdir -p "build-fuzz/corpus/$t"
   log=build-fuzz/fuzz-$t.log
   echo "fuzz: $t for ${seconds}s (log: $log)" >&2
-  if nice -n 10 "build-fuzz/fuzz/${t}_fuzzer" -max_total_time="$seconds" -max_len="${max_len[$t]}" \
-      -dict="${dict[$t]}" -runs="${FUZZ_RUNS:--1}" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="build-fuzz/artifacts/$t-" \
-      "build-fuzz/corpus/$t" "build-fuzz/seeds/$t" >"$log" 2>&1; then
+  nice -n 10 "build-fuzz/fuzz/${t}_fuzzer" -max_total_time="$seconds" -max_len="${max_len[$t]}" \
+    -dict="${dict[$t]}" -runs="${FUZZ_RUNS:--1}" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="build-fuzz/artifacts/$t-" \
+    "build-fuzz/corpus/$t" "build-fuzz/seeds/$t" >"$log" 2>&1 &
+  pids+=($!)
+done
+failed=()
+for i in "${!targets[@]}"; do
+  t=${targets[$i]}
+  log=build-fuzz/fuzz-$t.log
+  if wait "${pids[$i]}"; then
+    echo "fuzz: $t:" >&2
     grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb)' "$log" >&2 || true
   else
     echo "fuzz: $t FAILED:" >&2
