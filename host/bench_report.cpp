@@ -120,16 +120,25 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
   f << ",batches,frames,device,note\n";
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
+    // The hardware baseline counts no rasterized triangles, and only the compute path is timed
+    // pass by pass and renders in batches: those cells are empty for the others, not a
+    // measured 0.
+    const bool compute = r.backend == "compute";
     f << a.scene << "," << r.objects << "," << r.backend << "," << a.width << "," << a.height << ","
-      << r.triangles_submitted << "," << r.triangles_rasterized << "," << r.pixels_shaded << ","
-      << r.total_ms << "," << r.cpu_record_ms << "," << r.triangles_per_second() << "," << r.min_ms
-      << "," << r.max_ms << "," << r.run_ms.size() << "," << r.run_spread_percent() << ","
-      << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0) << ",";
-    // Only the compute path is timed pass by pass: empty for the others, not a measured 0.
-    if (r.backend == "compute") f << r.per_pass_total_ms;
-    for (double ms : r.pass_ms) f << "," << ms;
-    f << "," << r.batches << "," << r.frames << ",\"" << results.device << "\",\"" << r.note
-      << "\"\n";
+      << r.triangles_submitted << ",";
+    if (r.backend != "hardware") f << r.triangles_rasterized;
+    f << "," << r.pixels_shaded << "," << r.total_ms << "," << r.cpu_record_ms << ","
+      << r.triangles_per_second() << "," << r.min_ms << "," << r.max_ms << "," << r.run_ms.size()
+      << "," << r.run_spread_percent() << "," << r.warmup.frames << "," << r.warmup.ms << ","
+      << (r.warmup.stable ? 1 : 0) << ",";
+    if (compute) f << r.per_pass_total_ms;
+    for (double ms : r.pass_ms) {
+      f << ",";
+      if (compute) f << ms;
+    }
+    f << ",";
+    if (compute) f << r.batches;
+    f << "," << r.frames << ",\"" << results.device << "\",\"" << r.note << "\"\n";
   }
   if (!f) throw Error("cannot write CSV '" + path + "'");
 }
@@ -163,8 +172,8 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     if (r.skipped) continue;
     f << (first ? "\n" : ",\n") << "    {\"objects\": " << r.objects
       << ", \"backend\": " << json_string(r.backend)
-      << ", \"triangles_submitted\": " << r.triangles_submitted
-      << ", \"triangles_rasterized\": " << r.triangles_rasterized
+      << ", \"triangles_submitted\": " << r.triangles_submitted << ", \"triangles_rasterized\": "
+      << (r.backend == "hardware" ? std::string("null") : std::to_string(r.triangles_rasterized))
       << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
       << ", \"tile_entries\": " << r.tile_entries
       << ", \"rejected_entries\": " << r.rejected_entries

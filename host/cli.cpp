@@ -619,6 +619,28 @@ void reject_extras(const CLI::App& command, const std::string& help_command) {
                    help_command);
 }
 
+// CLI11 drops the empty entries of a comma-separated list ("1,,2" reads as 1 and 2): a slip in
+// a list is a bad command line rather than a silently shorter list.
+void reject_empty_list_entries(const std::vector<std::string>& args,
+                               const std::string& help_command) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    for (const char* name : {"--objects", "--backends", "--knob"}) {
+      const std::string prefix = std::string(name) + "=";
+      std::string value;
+      if (args[i] == name && i + 1 < args.size()) {
+        value = args[i + 1];
+      } else if (args[i].starts_with(prefix)) {
+        value = args[i].substr(prefix.size());
+      } else {
+        continue;
+      }
+      if (value.empty() || value.front() == ',' || value.back() == ',' ||
+          value.find(",,") != std::string::npos)
+        throw UsageError(std::string(name) + ": an empty entry in '" + value + "'", help_command);
+    }
+  }
+}
+
 }  // namespace
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
@@ -677,6 +699,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   if (command == "help") reversed.back() = "--help";
   const std::string help_command = asks_help ? "tessera --help" : "tessera " + command + " --help";
+  reject_empty_list_entries(args, help_command);
   try {
     app.parse(reversed);
   } catch (const CLI::CallForHelp&) {

@@ -3,6 +3,8 @@
 # Incremental: a second run rebuilds only what changed. Uses ccache when it is installed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache caches the tests' precompiled-header compilations only with this (tests/CMakeLists.txt).
+export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 if [[ ! -f build/CMakeCache.txt ]]; then

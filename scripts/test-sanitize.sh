@@ -6,6 +6,8 @@
 # by scripts/lsan-suppressions.txt (see there why); Tessera's own allocations stay checked.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache caches the tests' precompiled-header compilations only with this (tests/CMakeLists.txt).
+export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 if [[ ! -f build-asan/CMakeCache.txt ]]; then

@@ -4,7 +4,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <sstream>
 #include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,6 +29,23 @@ std::string read_text(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
+// The cells of a CSV row of `tessera bench`: commas inside double quotes (the device name, the
+// note) belong to their cell.
+std::vector<std::string> split_csv_row(const std::string& row) {
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (char c : row) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      cells.emplace_back();
+    } else {
+      cells.back() += c;
+    }
+  }
+  return cells;
+}
+
 TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
   for (const auto& family : bench_families()) {
     const std::string base = test::output_path(std::string(family.name));
@@ -43,7 +62,26 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 3)
         << csv;  // header + 2 counts x 3 backends
     EXPECT_NE(csv.find(std::string(family.name) + ",3,hardware,64,48"), std::string::npos) << csv;
+    // What the hardware baseline does not measure (rasterized triangles, the passes, batches)
+    // is left empty, not written as a measured 0; the compute rows have it.
+    std::istringstream rows(csv);
+    std::string header;
+    std::getline(rows, header);
+    const std::vector<std::string> names = split_csv_row(header);
+    for (std::string row; std::getline(rows, row);) {
+      const std::vector<std::string> cells = split_csv_row(row);
+      ASSERT_EQ(cells.size(), names.size()) << row;
+      const bool hardware = cells[2] == "hardware", compute = cells[2] == "compute";
+      for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches"}) {
+        const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
+        ASSERT_LT(i, names.size()) << column;
+        if (hardware) EXPECT_EQ(cells[i], "") << column << " in " << row;
+        if (compute) EXPECT_NE(cells[i], "") << column << " in " << row;
+      }
+    }
     const std::string json = read_text(base + ".json");
+    EXPECT_NE(json.find("\"backend\": \"hardware\", \"triangles_submitted\": "), std::string::npos);
+    EXPECT_NE(json.find("\"triangles_rasterized\": null"), std::string::npos) << json;
     EXPECT_NE(json.find("\"statistic\": \"median\""), std::string::npos);
     EXPECT_NE(json.find("\"compute_over_hardware\": [{\"objects\": 1"), std::string::npos) << json;
     const std::string svg = read_text(base + ".svg");

@@ -214,6 +214,11 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
       {{"view", "--scene", "nowhere"}, "--scene: unknown scene 'nowhere'"},
+      // CLI11 alone would drop empty entries of a list and run the rest.
+      {{"bench", "--objects", "1,,2"}, "--objects: an empty entry in '1,,2'"},
+      {{"bench", "--objects=1,10,"}, "--objects: an empty entry in '1,10,'"},
+      {{"bench", "--backends", ",compute"}, "--backends: an empty entry in ',compute'"},
+      {{"tradeoff", "--knob", "brdf,,lod"}, "--knob: an empty entry in 'brdf,,lod'"},
   };
   for (const BadArguments& c : cases) {
     const std::string message = usage_error(c.args);
