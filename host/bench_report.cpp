@@ -1,9 +1,11 @@
 #include "host/bench_report.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <string>
 
 #include "core/check.h"
 #include "host/bench_compare.h"
@@ -81,11 +83,11 @@ std::string coverage_phrase(const BenchArgs& a) {
 
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
-      "scene %s, %ux%u, %u sample%s per pixel%s, %u segments, small-triangle area %u, device "
-      "'%s' (%s),\n%s\n",
+      "scene %s, %ux%u, %u sample%s per pixel%s, %u segments, small-triangle area %u, shading by "
+      "tiles %s, device '%s' (%s),\n%s\n",
       a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
-      coverage_phrase(a).c_str(), a.segments, a.small_triangle_area, results.device.c_str(),
-      results.driver.c_str(), method_phrase(a).c_str());
+      coverage_phrase(a).c_str(), a.segments, a.small_triangle_area, a.shade_tiles ? "on" : "off",
+      results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");
@@ -170,15 +172,22 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
   bool first = true;
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
+    // What only the compute path counts is null for the other backends, as the CSV leaves it
+    // empty; the hardware baseline counts no rasterized triangles either.
+    const bool compute = r.backend == "compute";
+    const auto counted = [](bool known, uint64_t n) {
+      return known ? std::to_string(n) : std::string("null");
+    };
     f << (first ? "\n" : ",\n") << "    {\"objects\": " << r.objects
       << ", \"backend\": " << json_string(r.backend)
-      << ", \"triangles_submitted\": " << r.triangles_submitted << ", \"triangles_rasterized\": "
-      << (r.backend == "hardware" ? std::string("null") : std::to_string(r.triangles_rasterized))
-      << ", \"small_triangles\": " << r.small_triangles << ", \"bin_entries\": " << r.bin_entries
-      << ", \"tile_entries\": " << r.tile_entries
-      << ", \"rejected_entries\": " << r.rejected_entries
-      << ", \"rejected_small\": " << r.rejected_small << ", \"pixels_shaded\": " << r.pixels_shaded
-      << ", \"total_ms\": " << r.total_ms;
+      << ", \"triangles_submitted\": " << r.triangles_submitted
+      << ", \"triangles_rasterized\": " << counted(r.backend != "hardware", r.triangles_rasterized)
+      << ", \"small_triangles\": " << counted(compute, r.small_triangles)
+      << ", \"bin_entries\": " << counted(compute, r.bin_entries)
+      << ", \"tile_entries\": " << counted(compute, r.tile_entries)
+      << ", \"rejected_entries\": " << counted(compute, r.rejected_entries)
+      << ", \"rejected_small\": " << counted(compute, r.rejected_small)
+      << ", \"pixels_shaded\": " << r.pixels_shaded << ", \"total_ms\": " << r.total_ms;
     if (r.backend == "compute") f << ", \"per_pass_total_ms\": " << r.per_pass_total_ms;
     f << ", \"min_ms\": " << r.min_ms << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
     for (size_t i = 0; i < r.run_ms.size(); ++i) f << (i ? ", " : "") << r.run_ms[i];
@@ -186,11 +195,18 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
       << ", \"warmup_frames\": " << r.warmup.frames << ", \"warmup_ms\": " << r.warmup.ms
       << ", \"warmup_stable\": " << (r.warmup.stable ? "true" : "false")
       << ", \"cpu_record_ms\": " << r.cpu_record_ms
-      << ", \"triangles_per_s\": " << r.triangles_per_second() << ", \"batches\": " << r.batches
-      << ", \"frames\": " << r.frames << ", \"passes_ms\": {";
-    for (size_t p = 0; p < kPassCount; ++p)
-      f << (p ? ", " : "") << json_string(pass_name(Pass(p))) << ": " << r.pass_ms[p];
-    f << "}, \"note\": " << json_string(r.note) << "}";
+      << ", \"triangles_per_s\": " << r.triangles_per_second()
+      << ", \"batches\": " << counted(compute, r.batches) << ", \"frames\": " << r.frames
+      << ", \"passes_ms\": ";
+    if (compute) {
+      f << "{";
+      for (size_t p = 0; p < kPassCount; ++p)
+        f << (p ? ", " : "") << json_string(pass_name(Pass(p))) << ": " << r.pass_ms[p];
+      f << "}";
+    } else {
+      f << "null";
+    }
+    f << ", \"note\": " << json_string(r.note) << "}";
     first = false;
   }
   f << "\n  ],\n  \"compute_over_hardware\": [";

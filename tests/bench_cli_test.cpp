@@ -75,13 +75,19 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
         ASSERT_LT(i, names.size()) << column;
-        if (hardware) EXPECT_EQ(cells[i], "") << column << " in " << row;
-        if (compute) EXPECT_NE(cells[i], "") << column << " in " << row;
+        if (hardware) {
+          EXPECT_EQ(cells[i], "") << column << " in " << row;
+        }
+        if (compute) {
+          EXPECT_NE(cells[i], "") << column << " in " << row;
+        }
       }
     }
     const std::string json = read_text(base + ".json");
     EXPECT_NE(json.find("\"backend\": \"hardware\", \"triangles_submitted\": "), std::string::npos);
     EXPECT_NE(json.find("\"triangles_rasterized\": null"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"batches\": null"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"passes_ms\": null"), std::string::npos) << json;
     EXPECT_NE(json.find("\"statistic\": \"median\""), std::string::npos);
     EXPECT_NE(json.find("\"compute_over_hardware\": [{\"objects\": 1"), std::string::npos) << json;
     const std::string svg = read_text(base + ".svg");

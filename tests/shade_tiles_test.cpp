@@ -90,7 +90,9 @@ TEST_F(ShadeTiles, SameBitsAtEveryTileSizeSampleCountAndWeighting) {
                               " samples, " + aa_coverage_name(c.aa));
     EXPECT_GT(on.stats.shaded_tiles, 0u);
     // Tiles of 8 px fit between the spheres; every tile of 16 px holds some sphere.
-    if (c.tile == 8) EXPECT_GT(on.stats.background_tiles, 0u);
+    if (c.tile == 8) {
+      EXPECT_GT(on.stats.background_tiles, 0u);
+    }
   }
 }
 
