@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -20,6 +19,7 @@
 #include "core/mesh.h"
 #include "core/pixel_coverage.h"
 #include "core/reference_renderer.h"
+#include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -43,10 +43,7 @@ class AntiAliasing : public test::VulkanTest {
   }
 };
 
-bool same_bits(const ImageF& a, const ImageF& b) {
-  return a.pixels.size() == b.pixels.size() &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
-}
+using tessera::testing::same_bits;
 
 std::vector<uint32_t> ids_of(const std::vector<uint64_t>& keys) {
   std::vector<uint32_t> ids(keys.size());
@@ -375,8 +372,10 @@ TEST_F(AntiAliasing, DISABLED_EdgeErrorAtOtherSizes) {
     AaCoverage coverage;
     uint32_t steps;
   };
-  std::vector<Mode> modes = {{1u, AaCoverage::count, 0}, {4u, AaCoverage::count, 0},
-                             {4u, AaCoverage::analytic, 0}, {4u, AaCoverage::silhouette, 0}};
+  std::vector<Mode> modes = {{1u, AaCoverage::count, 0},
+                             {4u, AaCoverage::count, 0},
+                             {4u, AaCoverage::analytic, 0},
+                             {4u, AaCoverage::silhouette, 0}};
   // AA_STEPS: silhouette walk step limits to measure too, comma-separated (FrameSettings::
   // silhouette_steps).
   if (const char* steps = std::getenv("AA_STEPS")) {

@@ -2,7 +2,6 @@
 // that cannot change the image (counted against scenes whose hidden triangles are known by
 // construction), never a depth tie, and leaves every bit of the visibility buffer and the image
 // as rendering without it does.
-#include <cstring>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -10,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/bench_scenes.h"
+#include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -42,10 +42,7 @@ class DepthRejection : public test::VulkanTest {
   }
 };
 
-bool same_bits(const ImageF& a, const ImageF& b) {
-  return a.pixels.size() == b.pixels.size() &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
-}
+using tessera::testing::same_bits;
 
 // One triangle, front-facing towards +z, reaching 10 units around the origin in x and y: from
 // the default camera (z = 5, 45 degree field of view) at any depth down to z = -5 it covers

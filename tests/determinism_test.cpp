@@ -1,6 +1,5 @@
 // Same scene, same bits: across runs, submission orders, rasterizer paths and thread counts.
 #include <algorithm>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -12,6 +11,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/mesh.h"
+#include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -19,11 +19,7 @@ namespace {
 
 class Determinism : public test::VulkanTest {};
 
-bool same_bits(const ImageF& a, const ImageF& b) {
-  return a.width == b.width && a.height == b.height &&
-         std::equal(a.pixels.begin(), a.pixels.end(), b.pixels.begin(),
-                    [](glm::vec4 x, glm::vec4 y) { return std::memcmp(&x, &y, sizeof(x)) == 0; });
-}
+using tessera::testing::same_bits;
 
 // Overlapping, intersecting and coplanar objects, so that depth ties and overdraw matter.
 Scene crowded_scene() {

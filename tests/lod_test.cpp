@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <numbers>
 #include <random>
 
@@ -20,6 +19,7 @@
 #include "core/lod.h"
 #include "core/mesh.h"
 #include "core/reference_renderer.h"
+#include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -188,10 +188,7 @@ std::vector<uint32_t> gpu_object_triangles(Renderer& r, size_t objects) {
   return out;
 }
 
-bool same_bits(const ImageF& a, const ImageF& b) {
-  return a.pixels.size() == b.pixels.size() &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
-}
+using tessera::testing::same_bits;
 
 TEST_F(Lod, GpuChoiceIsTheCpuChoiceAndDeterministic) {
   // The grid family at 400 objects plus spheres scattered in depth, some scaled unevenly.

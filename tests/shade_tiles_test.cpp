@@ -3,7 +3,6 @@
 // one shading every pixel gives, whatever the tile size, sample count, anti-aliasing weights,
 // view, batching, environment or image size. The tile counts are checked against scenes whose
 // covered tiles are known by hand.
-#include <cstring>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,15 +11,13 @@
 
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
 namespace {
 
-bool same_bits(const ImageF& a, const ImageF& b) {
-  return a.pixels.size() == b.pixels.size() &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
-}
+using tessera::testing::same_bits;
 
 class ShadeTiles : public test::VulkanTest {
  protected:

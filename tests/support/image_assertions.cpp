@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -117,6 +118,11 @@ std::string test_output_path(const std::string& name) {
   }
   const Image8 golden = read_png(golden_path);
   return report(actual_expr, golden_path.c_str(), actual, golden, tolerance);
+}
+
+bool same_bits(const ImageF& a, const ImageF& b) {
+  return a.width == b.width && a.height == b.height && a.pixels.size() == b.pixels.size() &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec4)) == 0;
 }
 
 }  // namespace tessera::testing

@@ -46,6 +46,10 @@ struct ImageTolerance {
                                          const std::string& golden_path,
                                          const ImageTolerance& tolerance);
 
+/// True if `a` and `b` have the same size and every channel of every pixel the same bits (so
+/// +0 and -0, or two NaNs, are told apart): what determinism and bit-identity tests assert.
+bool same_bits(const ImageF& a, const ImageF& b);
+
 /// test_output/<Suite>.<Test>/<name>, its folder created.
 std::string test_output_path(const std::string& name);
 
