@@ -34,6 +34,12 @@ bool lists_outlines(const FrameSettings& settings) {
   return settings.samples > 1 && settings.aa_coverage == AaCoverage::silhouette;
 }
 
+// Whether the frame's shading empties the keys it reads (FrameSettings::keep_visibility off),
+// which the outline pass, reading keys after shading, does not allow.
+bool resets_visibility(const FrameSettings& settings) {
+  return !settings.keep_visibility && !lists_outlines(settings);
+}
+
 // Barrier between two compute passes: writes of the first visible to reads and writes of the
 // second, and to indirect-argument reads.
 void compute_to_compute(VkCommandBuffer cmd) {
@@ -104,6 +110,18 @@ VkFormat hdr_vk_format(HdrFormat format) {
 }
 
 }  // namespace
+
+const char* tile_lists_name(TileLists lists) {
+  switch (lists) {
+    case TileLists::counted:
+      return "counted";
+    case TileLists::direct:
+      return "direct";
+    case TileLists::automatic:
+      break;
+  }
+  return "automatic";
+}
 
 void validate_tile_size(uint32_t tile_size) {
   // 32 (1024 threads a tile) gave other images than 16 on lavapipe at 4 samples per pixel with
@@ -364,10 +382,13 @@ UploadStats Renderer::set_scene(const Scene& scene) {
     // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
     s.batch_triangles = 0;
     s.raster_capacity = 0;
-    s.lod_triangles = 0;  // another scene's levels would size this one's batches
+    s.lod_triangles = 0;           // another scene's levels would size this one's batches
+    s.tile_lists_counted = false;  // another scene's lists may fit the direct layout
   }
   s.uploaded = std::move(next);
   s.meshes = scene.meshes;
+  s.mesh_boxes.clear();
+  for (const Mesh& mesh : s.meshes) s.mesh_boxes.push_back(mesh_box(mesh));
   s.lod_uploaded = false;
   s.camera = scene.camera;
   s.background = scene.background;
@@ -460,6 +481,8 @@ bool sized_by_frame(Scale scale) {
 // Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
 bool in_use(const Renderer::State& s, const BindingInfo& b) {
   if (b.binding == TS_BINDING_TILE_DRAWN) return s.shade_tiles;
+  if (b.binding == TS_BINDING_VISIBILITY && b.clear == Clear::per_frame && s.visibility_clean)
+    return false;  // the last frame's shading emptied it
   return b.scale != Scale::pixels_if_coverage || s.options.debug_coverage;
 }
 
@@ -485,6 +508,7 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   s.width = settings.width;
   s.height = settings.height;
   s.samples = settings.samples;
+  s.visibility_clean = false;  // a new buffer, filled by the next frame's clear
   s.hdr_format = settings.hdr_format;
   s.tiles_x = div_up(s.width, s.options.tile_size);
   s.tiles_y = div_up(s.height, s.options.tile_size);
@@ -525,6 +549,81 @@ void init_capacities(Renderer::State& s) {
             : std::min<uint32_t>(std::max<uint32_t>(s.tiles_x * s.tiles_y * 4, 1u << 16),
                                  s.max_tile_entry_capacity());
   }
+}
+
+// Projection * view of the scene's camera for the current image size, as the frame constants
+// hold it (in single precision).
+glm::dmat4 clip_from_world(const Renderer::State& s) {
+  const float aspect = float(s.width) / float(s.height);
+  return glm::dmat4(projection_matrix(s.camera, aspect)) * glm::dmat4(view_matrix(s.camera));
+}
+
+// NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
+glm::vec2 guard_band(const Renderer::State& s) {
+  return glm::vec2(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
+                   float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0));
+}
+
+// Whether the frame can leave the clip pass out: no object's mesh box reaches behind the near
+// plane or out of the guard band (core/clip_prediction.h). Objects of a level of detail may
+// have other meshes, and past kClipPredictionObjects the test would cost the CPU more than the
+// pass costs the GPU: then the pass is recorded (and finds nothing if there is nothing).
+constexpr size_t kClipPredictionObjects = 16384;
+bool predicts_nothing_to_clip(const Renderer::State& s, bool lod) {
+  if (lod || s.uploaded.objects.size() > kClipPredictionObjects) return false;
+  const glm::dmat4 clip = glm::dmat4(glm::mat4(clip_from_world(s)));
+  const glm::dvec2 band(guard_band(s));
+  for (const gpu::GpuObject& o : s.uploaded.objects) {
+    if (o.mesh >= s.mesh_boxes.size() ||
+        may_need_clipping(s.mesh_boxes[o.mesh], clip, glm::dmat4(o.model), s.camera.near_plane,
+                          band))
+      return false;
+  }
+  return true;
+}
+
+// Chooses the tile lists' layout for the next attempt (RendererOptions::tile_lists) and makes
+// room for direct lists of the current stride.
+void prepare_tile_lists(Renderer::State& s) {
+  if (s.options.tile_lists == TileLists::counted || s.tile_lists_counted) {
+    s.tile_list_stride = 0;
+    return;
+  }
+  const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
+  // Start with the room the entry buffer has (at least 4 a tile: init_capacities).
+  if (s.tile_list_stride == 0)
+    s.tile_list_stride = uint32_t(std::max<uint64_t>(4, s.tile_entry_capacity / tiles));
+  const uint64_t needed = tiles * s.tile_list_stride;
+  if (needed > s.max_tile_entry_capacity()) {
+    s.tile_lists_counted = true;  // direct lists this long cannot be held
+    s.tile_list_stride = 0;
+    return;
+  }
+  s.tile_entry_capacity = uint32_t(std::max<uint64_t>(s.tile_entry_capacity, needed));
+}
+
+// After a frame with direct tile lists whose longest list had `longest` entries of the `entries`
+// binned: grows the stride to hold it, or under TileLists::automatic turns to counted lists
+// when direct ones would take more than twice the memory (and 4 MiB). Returns whether the
+// frame must be redone.
+bool fit_tile_lists(Renderer::State& s, uint64_t longest, uint64_t entries) {
+  if (longest <= s.tile_list_stride) return false;
+  const uint64_t tiles = uint64_t(s.tiles_x) * s.tiles_y;
+  const uint64_t stride = longest + longest / 4;
+  const bool too_large = tiles * stride > s.max_tile_entry_capacity() ||
+                         (s.options.tile_lists == TileLists::automatic &&
+                          tiles * stride > std::max<uint64_t>(2 * entries, 1u << 20));
+  if (too_large) {
+    s.tile_lists_counted = true;
+    s.tile_list_stride = 0;
+    if (entries > s.tile_entry_capacity) {
+      s.tile_entry_capacity =
+          uint32_t(std::min<uint64_t>(entries + entries / 4, s.max_tile_entry_capacity()));
+    }
+  } else {
+    s.tile_list_stride = uint32_t(stride);
+  }
+  return true;
 }
 
 void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
@@ -731,6 +830,8 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     restore_objects(s);
   }
 
+  s.skip_clip = predicts_nothing_to_clip(s, lod);
+
   FrameStats stats;
   stats.triangles_submitted = total;
   stats.triangles_without_lod = total;
@@ -742,6 +843,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     const uint64_t setup_triangles = lod ? std::max<uint64_t>(s.lod_triangles, 1) : total;
     const uint32_t batches = total == 0 ? 0 : div_up(setup_triangles, s.batch_triangles);
     s.frame_batches = batches;
+    prepare_tile_lists(s);
     ensure_scratch_buffers(s, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = timestamps_needed(batches);
@@ -769,6 +871,10 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
     });
+    // Whatever the attempt drew, its shading visited (the rasterizers mark the tiles they
+    // write for shading by tiles), so a reset left every key empty.
+    s.visibility_clean = resets_visibility(settings);
+    s.visibility_kept = !s.visibility_clean;
 
     // Read the counters: did any batch need more room than it had?
     const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
@@ -792,13 +898,25 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
       }
       s.lod_triangles = counters[0].lod_total;
     }
-    uint64_t need_raster = 0, need_entries = 0;
+    uint64_t need_raster = 0, need_entries = 0, longest_list = 0;
+    bool need_clip = false;
     for (uint32_t b = 0; b < batches; ++b) {
+      need_clip = need_clip || counters[b].clip_list > 0;
       need_raster =
           std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list});
       need_entries = std::max<uint64_t>(need_entries, counters[b].tile_entries);
+      longest_list = std::max<uint64_t>(longest_list, counters[b].tile_list_max);
     }
     bool redo = false;
+    if (s.skip_clip && need_clip) {
+      s.skip_clip = false;  // the prediction missed a triangle: record the pass after all
+      redo = true;
+    }
+    if (s.tile_list_stride != 0) {
+      // Direct lists hold every entry unless one overflowed its stride.
+      redo = fit_tile_lists(s, longest_list, need_entries);
+      need_entries = 0;
+    }
     if (need_raster > s.raster_capacity) {
       redo = true;
       if (s.raster_capacity < s.max_raster_capacity()) {
@@ -821,6 +939,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
 
     stats.attempts = attempt;
     stats.batches = batches;
+    stats.tile_list_stride = s.tile_list_stride;
     for (uint32_t b = 0; b < batches; ++b) {
       const gpu::GpuCounters& c = counters[b];
       stats.raster_triangles += c.raster_tris;
@@ -909,9 +1028,7 @@ void Renderer::update_descriptors() {
 void Renderer::write_frame_constants(const FrameSettings& settings) {
   State& s = *s_;
   const Camera& camera = s.camera;
-  const float aspect = float(s.width) / float(s.height);
-  const glm::dmat4 view_proj =
-      glm::dmat4(projection_matrix(camera, aspect)) * glm::dmat4(view_matrix(camera));
+  const glm::dmat4 view_proj = clip_from_world(s);
   const uint32_t hdr_rounding =
       settings.hdr_format == HdrFormat::fp16 ? s.hdr_half_rounding : TS_HDR_ROUNDING_AS_IS;
   const gpu::GpuFrame f{.view_proj = glm::mat4(view_proj),
@@ -922,9 +1039,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .exposure_scale = std::exp2(settings.exposure_ev),
                         .ambient = s.ambient,
                         .view = view_id(settings.view),
-                        // NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
-                        .guard_band = glm::vec2(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
-                                                float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0)),
+                        .guard_band = guard_band(s),
                         .tonemap = tonemap_id(settings.tonemap),
                         .cull = s.options.cull == CullMode::back    ? TS_CULL_BACK
                                 : s.options.cull == CullMode::front ? TS_CULL_FRONT
@@ -946,7 +1061,9 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .batch_triangles = s.batch_triangles,
                         .hdr_max = float(hdr_max(settings.hdr_format)),
                         .hdr_rounding = hdr_rounding,
-                        .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u};
+                        .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u,
+                        .tile_list_stride = s.tile_list_stride,
+                        .reset_visibility = resets_visibility(settings) ? 1u : 0u};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -1127,6 +1244,11 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
               0};
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
           for (size_t j = i; j < end; ++j) {
+            // Direct tile lists need no count and no packed ranges (fill.comp).
+            const Pass pass = kPasses[j].pass;
+            if (s.tile_list_stride != 0 && (pass == Pass::bin_count || pass == Pass::scan))
+              continue;
+            if (s.skip_clip && pass == Pass::clip) continue;
             record_dispatch(s, cmd, kPasses[j], batch, settings);
             barrier_after(cmd, kPasses[j], s.options.depth_rejection);
             mark(kPasses[j].pass);
@@ -1189,9 +1311,21 @@ Image8 Renderer::read_ldr() const {
   return Image8{s.width, s.height, std::move(texels)};
 }
 
+namespace {
+
+void require_kept_visibility(const Renderer::State& s) {
+  if (!s.visibility_kept)
+    throw Error(
+        "the last frame did not keep its visibility buffer: render with "
+        "FrameSettings::keep_visibility on to read it");
+}
+
+}  // namespace
+
 std::vector<uint64_t> Renderer::read_visibility() const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE);
+  require_kept_visibility(*s_);
   return download_buffer<uint64_t>(s_->ctx, visibility,
                                    uint64_t(s_->width) * s_->height * s_->samples);
 }
@@ -1199,6 +1333,7 @@ std::vector<uint64_t> Renderer::read_visibility() const {
 uint64_t Renderer::read_visibility_at(uint32_t x, uint32_t y) const {
   const Buffer& visibility = s_->buffer(TS_BINDING_VISIBILITY);
   TESSERA_CHECK(visibility.buffer != VK_NULL_HANDLE && x < s_->width && y < s_->height);
+  require_kept_visibility(*s_);
   return download_buffer<uint64_t>(s_->ctx, visibility, 1,
                                    (uint64_t(y) * s_->width + x) * s_->samples)[0];
 }

@@ -23,6 +23,24 @@
 
 namespace tessera {
 
+/// Layout of the per-tile lists of binned triangles (RendererOptions::tile_lists).
+enum class TileLists {
+  /// Counted: a count pass counts each tile's entries, a scan pass gives each list its packed
+  /// range, and the fill pass writes them. Memory is the entries' alone.
+  counted,
+  /// Direct: each tile's list has a fixed number of slots (the stride), so the fill pass writes
+  /// an entry at once and the count and scan passes are not run. The stride grows to the
+  /// longest list (the frame is redone when a list overflows it), so the lists take the number
+  /// of tiles times the longest list's length: with heavy overdraw in a few tiles, many times
+  /// the entries.
+  direct,
+  /// Direct while the stride's lists take at most twice the memory counted lists would (and
+  /// 4 MiB at least), counted from then on, until set_scene gives a scene of another triangle
+  /// count.
+  automatic,
+};
+const char* tile_lists_name(TileLists lists);  // "counted", "direct", "automatic"
+
 struct RendererOptions {
   /// Triangles whose pixel box has at most this many pixels are rasterized one thread per
   /// triangle; larger ones are binned into tiles. Any value gives the same image.
@@ -46,6 +64,9 @@ struct RendererOptions {
   /// choice, raster_tuning's. Only with specialize_lights: the generic shading pipelines shade
   /// every pixel.
   std::optional<bool> shade_tiles;
+  /// How the tile lists of binned triangles are laid out (TileLists). Every choice gives the
+  /// same image; direct lists skip two passes of every batch.
+  TileLists tile_lists = TileLists::automatic;
   /// Most triangle instances set up per batch (0: as many as the scratch buffers allow).
   uint32_t max_batch_triangles = 0;
   /// Starting capacities of the scratch buffers (0: sized from the scene). They grow, and the
@@ -117,7 +138,8 @@ struct FrameStats {
   uint64_t small_triangles = 0;
   uint64_t big_triangles = 0;
   uint64_t tile_entries = 0;
-  uint64_t culled_backface = 0;  // culled by facing (RendererOptions::cull)
+  uint32_t tile_list_stride = 0;  // slots per tile list (TileLists::direct), 0 if counted
+  uint64_t culled_backface = 0;   // culled by facing (RendererOptions::cull)
   uint64_t culled_frustum = 0;
   uint64_t culled_empty = 0;
   uint64_t culled_nonfinite = 0;
@@ -157,7 +179,9 @@ class Renderer {
 
   /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts
   /// covered samples per pixel. read_visibility holds FrameSettings::samples keys per pixel,
-  /// row-major, each pixel's samples together in the order of their TS_SAMPLES_* positions.
+  /// row-major, each pixel's samples together in the order of their TS_SAMPLES_* positions;
+  /// it and read_visibility_at throw Error if the last frame did not keep them
+  /// (FrameSettings::keep_visibility).
   ImageF read_hdr() const;
   Image8 read_ldr() const;
   std::vector<uint64_t> read_visibility() const;

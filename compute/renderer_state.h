@@ -12,6 +12,7 @@
 #include "compute/pipelines.h"
 #include "compute/renderer.h"
 #include "compute/scene_upload.h"
+#include "core/clip_prediction.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -67,8 +68,19 @@ struct Renderer::State {
 
   // Scratch, sized by capacities that grow on demand.
   uint32_t raster_capacity = 0, tile_entry_capacity = 0, batch_triangles = 0;
-  uint32_t counter_slots = 0;  // batches the GpuCounters buffer holds
-  Buffer counters_readback;    // the counters, copied back after each frame
+  // Direct tile lists (RendererOptions::tile_lists): slots per tile, 0 for counted lists; and
+  // whether TileLists::automatic chose counted lists for this scene (set_scene clears it).
+  uint32_t tile_list_stride = 0;
+  bool tile_lists_counted = false;
+  // The visibility buffer holds only empty keys: the last frame's shading emptied every key it
+  // read (FrameSettings::keep_visibility off), so the next frame's clear skips its fill.
+  bool visibility_clean = false;
+  bool visibility_kept = true;  // the last frame kept its keys (read_visibility may read them)
+  // The frame records no clip pass: the CPU found nothing to clip (core/clip_prediction.h).
+  bool skip_clip = false;
+  std::vector<MeshBox> mesh_boxes;  // of `meshes`, for that prediction
+  uint32_t counter_slots = 0;       // batches the GpuCounters buffer holds
+  Buffer counters_readback;         // the counters, copied back after each frame
 
   Buffer frame_constants;  // GpuFrame (TS_BINDING_FRAME), written before each frame
 

@@ -83,6 +83,12 @@ struct FrameSettings {
   /// far; 0 for no limit (the default). At least 2. Fewer steps are faster and, where triangles
   /// are small against a pixel, less exact (docs/tradeoffs.md, "Anti-aliasing").
   uint32_t silhouette_steps = 0;
+  /// Compute renderer: whether the visibility buffer still holds the frame's keys after it
+  /// (Renderer::read_visibility, picking). Off, the shading pass empties each key it reads, and
+  /// the next frame skips filling the buffer (docs/architecture.md, "The frame"): for frames
+  /// nobody reads the keys of, such as `tessera bench`'s timed ones. Frames with silhouette
+  /// coverage keep them (their outline pass reads them after shading).
+  bool keep_visibility = true;
 };
 
 /// Throws Error naming `samples` unless it is 1, 4, 8 or 16.

@@ -143,6 +143,7 @@ std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs&
           {"tile_size", json(a.tile_size).dump()},
           {"depth_rejection", json(a.depth_rejection).dump()},
           {"shade_tiles", json(a.shade_tiles).dump()},
+          {"tile_lists", json(tile_lists_name(a.tile_lists)).dump()},
           {"hdr_format", json(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16").dump()}};
 }
 

@@ -34,7 +34,7 @@ struct SavedRun {
 
 /// The settings of a bench run that change what a frame computes, by the keys its `--json`
 /// file records them under (samples, aa_coverage, aa_walk_steps, lod, segments,
-/// small_triangle_area, tile_size, depth_rejection, shade_tiles, hdr_format), each as JSON text.
+/// small_triangle_area, tile_size, depth_rejection, shade_tiles, tile_lists, hdr_format), each as JSON text.
 std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs& args);
 
 /// "key value (base: value)" for each setting `base` recorded that this run's `args` differ in;

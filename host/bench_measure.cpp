@@ -58,7 +58,11 @@ void set_range(BenchRow& row, const std::vector<double>& totals) {
 
 // `repeat` frames timed pass by pass, for the passes' times, then as many timed whole, for the
 // frame's: the timestamps between passes would add to it (Timing::frame).
-BenchRow measure_compute(Renderer& r, const FrameSettings& fs, const BenchArgs& a) {
+BenchRow measure_compute(Renderer& r, const FrameSettings& settings, const BenchArgs& a) {
+  // Nothing reads the timed frames' keys, so they need not be kept (the pixel count in
+  // run_sweep reads them from an untimed frame before).
+  FrameSettings fs = settings;
+  fs.keep_visibility = false;
   const WarmupStats warmup = warm_up([&] { return r.render(fs).gpu_total_ms; }, warmup_rule(a));
   std::vector<FrameStats> frames;
   for (uint32_t i = 0; i < a.repeat; ++i) frames.push_back(r.render(fs));
@@ -269,6 +273,7 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     options.tile_size = a.tile_size;
     options.depth_rejection = a.depth_rejection;
     options.shade_tiles = a.shade_tiles;
+    options.tile_lists = a.tile_lists;
     options.specialize_lights = !a.generic_shading;
     renderer = std::make_unique<Renderer>(*ctx, options);
     results.device = ctx->properties.deviceName;

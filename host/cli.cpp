@@ -156,6 +156,20 @@ void add_shade_tiles(CLI::App& app, bool& on) {
              "for CPU devices such as lavapipe)");
 }
 
+// --tile-lists, for render and bench.
+void add_tile_lists(CLI::App& app, TileLists& lists) {
+  add_choice(app, "--tile-lists", lists,
+             {{"automatic", TileLists::automatic},
+              {"direct", TileLists::direct},
+              {"counted", TileLists::counted}},
+             "layout of the binned triangles' tile lists:\n"
+             "direct (a fixed room per tile: two passes\n"
+             "fewer), counted (counted and packed: least\n"
+             "memory) or automatic (default: direct unless\n"
+             "it takes over twice the memory). The image is\n"
+             "the same");
+}
+
 void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
   add_choice(app, "--quality", quality,
              {{"draft", Quality::draft},
@@ -356,6 +370,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
   add_shade_tiles(app, a.shade_tiles);
+  add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--brdf, --energy-compensation, --samples,\n"
               "--lod, --lod-error, --anisotropy, --env-size,\n"
@@ -460,6 +475,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
   add_shade_tiles(app, a.shade_tiles);
+  add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
               "--small-triangle-area, --tile-size");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compute/environment_gpu.h"
+#include "compute/renderer.h"
 #include "compute/swapchain.h"
 #include "core/check.h"
 #include "core/frame_settings.h"
@@ -24,11 +25,12 @@ struct RenderArgs {
   std::string device = "auto";
   std::string env;  // --env: a .hdr/.pfm file, "sky", "none", or empty (the scene's)
   EnvironmentOptions env_options;
-  uint32_t env_reference_samples = 1024;  // Monte Carlo directions per lobe (reference)
-  uint32_t tile_size = TS_TILE_SIZE;      // RendererOptions::tile_size
-  bool depth_rejection = true;            // RendererOptions::depth_rejection
-  bool shade_tiles = false;               // RendererOptions::shade_tiles
-  Quality quality = Quality::none;        // --quality, applied by parse_command_line
+  uint32_t env_reference_samples = 1024;        // Monte Carlo directions per lobe (reference)
+  uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
+  bool depth_rejection = true;                  // RendererOptions::depth_rejection
+  bool shade_tiles = false;                     // RendererOptions::shade_tiles
+  TileLists tile_lists = TileLists::automatic;  // RendererOptions::tile_lists
+  Quality quality = Quality::none;              // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
   // first-use costs) are reported apart; the figures are medians over these.
   uint32_t repeat = 3;
@@ -69,6 +71,7 @@ struct BenchArgs {
   uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
   bool depth_rejection = true;                   // RendererOptions::depth_rejection
   bool shade_tiles = false;                      // RendererOptions::shade_tiles
+  TileLists tile_lists = TileLists::automatic;   // RendererOptions::tile_lists
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
   // --small-triangle-area (or --quality), --depth-rejection and --shade-tiles given: else the
   // device's (raster_tuning, compute/renderer.h), written here by run_bench once the device is

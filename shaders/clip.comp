@@ -27,11 +27,16 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) 
   if (index >= frame.raster_capacity) return;  // overflow: the host sees the count, grows, redoes
   store_raster_tri(index, t);
   if (outcome == OUTCOME_SMALL) {
-    small_list[atomicAdd(counters[batch.index].small_tris, 1u)] = index;
+    uint slot = atomicAdd(counters[batch.index].small_tris, 1u);
+    if (frame.tile_list_stride != 0u) {  // no scan pass sizes raster_small's dispatch
+      RAISE_DISPATCH(counters[batch.index].small_dispatch.x, slot, 1u, TS_GROUP_SIZE);
+    }
+    small_list[slot] = index;
   } else {
     uint entries = bin_entry_count(t);
     uint first = atomicAdd(counters[batch.index].big_tris, entries);
     RAISE_DISPATCH(counters[batch.index].big_dispatch.x, first, entries, TS_BIN_ENTRIES_PER_GROUP);
+    if (frame.tile_list_stride != 0u) WRITE_TILES_DISPATCH(batch.index);
     store_bin_entries(index, t, first, entries);
   }
 }

@@ -6,6 +6,15 @@
 // run; the rasterizer's atomicMin makes the result independent of it.
 // With depth rejection, a triangle that covers every sample of a tile also lowers the tile's
 // bound (tile_far) to its farthest depth: no sample of the tile ends up farther.
+//
+// Direct tile lists (frame.tile_list_stride != 0; RendererOptions::tile_lists): no count or
+// scan pass ran. Tile t's list is the fixed range [t * stride, (t + 1) * stride) of the entry
+// array, and the slot comes from the tile's count itself, which raster_tiles reads (and zeroes)
+// as the counted lists' count. A list longer than the stride keeps its first `stride` entries and
+// the host, seeing the longest (tile_list_max), redoes the frame with longer lists. This pass
+// also adds the batch's entry total, which the scan pass adds for counted lists.
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "bindings.glsl"
 #include "raster_common.glsl"
 
@@ -19,12 +28,22 @@ void main() {
   int width;
   if (!bin_entry_row(entry.y, gl_GlobalInvocationID.x % TS_BIN_CHUNK, first, width)) return;
   RasterTri t = load_raster_tri(entry.x);
+  uint stride = frame.tile_list_stride;
+  uint appended = 0u;  // direct lists: entries this thread appended, and the longest list's length
+  uint longest = 0u;
   for (int tx = first.x; tx < first.x + width; ++tx) {
     ivec2 tile_xy = ivec2(tx, first.y);
     if (!tile_may_overlap(t, tile_xy)) continue;
     uint tile = uint(first.y) * frame.tiles.x + uint(tx);
-    uint slot = atomicAdd(tile_cursors[tile], 1u);
-    if (slot < frame.tile_entry_capacity) tile_entries[slot] = entry.x;
+    if (stride != 0u) {
+      uint depth = atomicAdd(tile_counts[tile], 1u);
+      if (depth < stride) tile_entries[tile * stride + depth] = entry.x;
+      appended++;
+      longest = max(longest, depth + 1u);
+    } else {
+      uint slot = atomicAdd(tile_cursors[tile], 1u);
+      if (slot < frame.tile_entry_capacity) tile_entries[slot] = entry.x;
+    }
     // The box test first: most triangles cover no tile whole, and it is cheaper than the
     // three edge functions. The box holds every pixel of the image with a covered sample
     // (raster_tiles relies on it), so it holds the tile's pixels in the image if the
@@ -37,6 +56,15 @@ void main() {
       uint far_high = farthest_key_high(t.depth);
       // A plain read first skips most atomics: a stale value is never below the true one.
       if (tile_far[tile] > far_high) atomicMin(tile_far[tile], far_high);
+    }
+  }
+  if (stride != 0u) {
+    // One atomic per subgroup: per-thread atomics on one address would serialize.
+    uint total = subgroupAdd(appended);
+    uint deepest = subgroupMax(longest);
+    if (subgroupElect() && total > 0u) {
+      atomicAdd(counters[batch.index].tile_entries, total);
+      atomicMax(counters[batch.index].tile_list_max, deepest);
     }
   }
 }

@@ -88,8 +88,10 @@ void main() {
     if (SHADE_TILES != TS_SHADE_TILES_OFF) tile_drawn[tile_index] = 1u;
   }
   if (count == 0u) return;
-  uint first = tile_offsets[tile_index];
-  uint end = min(first + count, frame.tile_entry_capacity);  // past capacity the frame is redone anyway
+  // Past a list's room the frame is redone anyway (direct lists: fill.comp).
+  uint stride = frame.tile_list_stride;
+  uint first = stride != 0u ? tile_index * stride : tile_offsets[tile_index];
+  uint end = stride != 0u ? first + min(count, stride) : min(first + count, frame.tile_entry_capacity);
 
   ivec2 pixel = tile * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   ivec2 p = pixel_centre(pixel);

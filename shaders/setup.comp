@@ -129,6 +129,7 @@ void main() {
   if (gl_GlobalInvocationID.x == 0u) {
     counters[batch.index].clip_dispatch.yz = uvec2(1u);
     counters[batch.index].big_dispatch.yz = uvec2(1u);
+    counters[batch.index].small_dispatch.yz = uvec2(1u);
   }
   // At 10^6 grid objects nearly every subgroup culls all its triangles: such a subgroup skips
   // the appends' ballots, prefix sums and broadcasts (the condition is the same in all its lanes).
@@ -154,7 +155,19 @@ void main() {
   bool stored = emits && index < frame.raster_capacity;
   if (stored) store_raster_tri(index, t);
   uint small_slot;
-  APPEND_SLOT(counters[batch.index].small_tris, stored && outcome == OUTCOME_SMALL, small_slot);
+  {
+    uvec4 ballot = subgroupBallot(stored && outcome == OUTCOME_SMALL);
+    uint n = subgroupBallotBitCount(ballot);
+    uint base = 0u;
+    if (n > 0u && subgroupElect()) {
+      base = atomicAdd(counters[batch.index].small_tris, n);
+      // Direct tile lists run no scan pass, which sizes raster_small's dispatch otherwise.
+      if (frame.tile_list_stride != 0u) {
+        RAISE_DISPATCH(counters[batch.index].small_dispatch.x, base, n, TS_GROUP_SIZE);
+      }
+    }
+    small_slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
+  }
   if (stored && outcome == OUTCOME_SMALL) small_list[small_slot] = index;
   // Bin entries: a variable number per thread, so the subgroup takes them with a prefix sum.
   uint entries = stored && outcome == OUTCOME_BIG ? bin_entry_count(t) : 0u;
@@ -163,6 +176,7 @@ void main() {
   if (total > 0u && subgroupElect()) {
     base = atomicAdd(counters[batch.index].big_tris, total);
     RAISE_DISPATCH(counters[batch.index].big_dispatch.x, base, total, TS_BIN_ENTRIES_PER_GROUP);
+    if (frame.tile_list_stride != 0u) WRITE_TILES_DISPATCH(batch.index);
   }
   uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
   if (entries > 0u) store_bin_entries(index, t, first_entry, entries);

@@ -108,6 +108,10 @@ uint grain_dispatch_groups(uint end, uint per_group) {
   if (reaches_new_grain(base, count))                                          \
     atomicMax(groups_x, grain_dispatch_groups((base) + (count), per_group))
 
+// Direct tile lists (no scan pass): the per-tile rasterizer runs over every tile once a bin
+// entry is appended (the scan pass's dispatch for counted lists). Every writer writes the same.
+#define WRITE_TILES_DISPATCH(b) counters[b].tiles_dispatch = uvec4(frame.tiles.x, frame.tiles.y, 1u, 0u)
+
 // Bin entries of a binned triangle: its tile range split into blocks of at most
 // TS_BIN_CHUNK x TS_BIN_CHUNK tiles, each packed as x | y << 10 | (w - 1) << 20 | (h - 1) << 24
 // (tiles_x and tiles_y are at most TS_MAX_TILES_PER_SIDE = 1024, which the renderer checks).

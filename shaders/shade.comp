@@ -219,6 +219,14 @@ void resolve_samples(ivec2 pixel, bool inside) {
     uint base = sample_index(pixel_index(pixel), 0u);
     uint ids[SAMPLES];
     for (uint s = 0u; s < SAMPLES; ++s) ids[s] = uint(visibility[base + s] & 0xFFFFFFFFul);
+    // An empty key is all ones, so its id is too, and no drawn key's id is (the last id is
+    // never used): the drawn samples are emptied for the next frame. No pass of this frame
+    // reads a key after this one (the outline pass does: then the host does not ask).
+    if (frame.reset_visibility != 0u) {
+      for (uint s = 0u; s < SAMPLES; ++s) {
+        if (ids[s] != 0xFFFFFFFFu) visibility[base + s] = TS_VIS_EMPTY;
+      }
+    }
     uint next = 0u;  // every id below this has been listed
     uint listed = 0u;  // samples in the groups listed
     for (uint group = 0u; group < SAMPLES; ++group) {
@@ -312,6 +320,9 @@ void main() {
   }
   if (!inside) return;
   uint64_t key = visibility[pixel_index(pixel)];
+  // Emptied for the next frame, which then need not fill the buffer (GpuFrame.reset_visibility):
+  // only covered pixels are written, on a line this thread has just read.
+  if (frame.reset_visibility != 0u && key != TS_VIS_EMPTY) visibility[pixel_index(pixel)] = TS_VIS_EMPTY;
   vec2 centre = vec2(pixel) + 0.5;
   vec3 color = key == TS_VIS_EMPTY ? background(centre) : shade_triangle(uint(key & 0xFFFFFFFFul), centre);
   write_pixel(pixel, stored(color));

@@ -17,6 +17,7 @@
 namespace tessera {
 namespace {
 
+using tessera::test::frame_of;
 using tessera::testing::same_bits;
 
 class ShadeTiles : public test::VulkanTest {
@@ -42,14 +43,6 @@ class ShadeTiles : public test::VulkanTest {
     return on;
   }
 };
-
-FrameSettings frame_of(uint32_t width, uint32_t height, uint32_t samples = 1) {
-  FrameSettings f;
-  f.width = width;
-  f.height = height;
-  f.samples = samples;
-  return f;
-}
 
 // A right triangle of legs `leg` at the origin, facing +z.
 Mesh triangle(float leg) {

@@ -96,6 +96,14 @@ VulkanTest::Frame VulkanTest::render(Renderer& renderer, const Scene& scene,
   return f;
 }
 
+FrameSettings frame_of(uint32_t width, uint32_t height, uint32_t samples) {
+  FrameSettings f;
+  f.width = width;
+  f.height = height;
+  f.samples = samples;
+  return f;
+}
+
 std::string output_path(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::filesystem::path dir = std::filesystem::path("test_output") /

@@ -47,6 +47,9 @@ class VulkanTest : public ::testing::Test {
                       bool coverage = false);
 };
 
+/// Frame settings of `width` x `height` pixels and `samples` per pixel, the rest default.
+FrameSettings frame_of(uint32_t width, uint32_t height, uint32_t samples = 1);
+
 /// Path of a file in the test's own output folder (created if needed).
 std::string output_path(const std::string& name);
 

@@ -297,7 +297,16 @@ struct GpuFrame {
   // 1: the shading pass also writes the display image, from the HDR values as the HDR image
   // holds them (RendererOptions::resolve; shaders/display.glsl)
   uint resolve_in_shading;
-  uint pad0;
+  // Direct tile lists (RendererOptions::tile_lists): slots of each tile's list, which starts at
+  // tile * tile_list_stride of the tile-entry array; 0: the lists are counted (count and scan
+  // passes) and packed.
+  uint tile_list_stride;
+  // 1: the shading pass empties every key it reads (FrameSettings::keep_visibility off), so
+  // that the next frame need not fill the visibility buffer.
+  uint reset_visibility;
+  uint pad_frame0;
+  uint pad_frame1;
+  uint pad_frame2;  // std140 rounds the block to 16 bytes
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
@@ -379,7 +388,10 @@ struct GpuCounters {
   // its nearest depth lies behind everything already drawn in its tile(s).
   uint rejected_entries;
   uint rejected_small;
-  uvec2 pad_rejected;   // std430 rounds the array stride to 16 bytes
+  // Direct tile lists: the longest list the fill pass appended to (may exceed
+  // GpuFrame::tile_list_stride: then the frame is redone with longer lists).
+  uint tile_list_max;
+  uint pad_rejected;    // std430 rounds the array stride to 16 bytes
   uvec4 clip_dispatch;  // VkDispatchIndirectCommand for the clip pass, raised as big_dispatch
   // Silhouette coverage, batch 0's slot: VkDispatchIndirectCommand (xyz) for the outline pass,
   // x raised by the shading pass as its appends reach into a new workgroup's worth, and the
@@ -438,7 +450,7 @@ static_assert(offsetof(GpuLight, inv_range4) == 44);
 static_assert(offsetof(GpuLight, attenuation) == 48);
 static_assert(offsetof(GpuLight, cone_scale) == 60);
 static_assert(offsetof(GpuLight, cone_offset) == 64);
-static_assert(sizeof(GpuFrame) == 272);
+static_assert(sizeof(GpuFrame) == 288);
 static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
 static_assert(offsetof(GpuFrame, near_plane) == 140);
@@ -460,6 +472,8 @@ static_assert(offsetof(GpuFrame, lod_scale) == 244);
 static_assert(offsetof(GpuFrame, batch_triangles) == 252);
 static_assert(offsetof(GpuFrame, hdr_max) == 256);
 static_assert(offsetof(GpuFrame, resolve_in_shading) == 264);
+static_assert(offsetof(GpuFrame, tile_list_stride) == 268);
+static_assert(offsetof(GpuFrame, reset_visibility) == 272);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
@@ -476,6 +490,7 @@ static_assert(offsetof(GpuCounters, outline_dispatch) == 144);
 static_assert(offsetof(GpuCounters, outline_pixels) == 160);
 static_assert(offsetof(GpuCounters, clip_dispatch) == 128);
 static_assert(offsetof(GpuCounters, rejected_entries) == 112);
+static_assert(offsetof(GpuCounters, tile_list_max) == 120);
 static_assert(offsetof(GpuCounters, lod_triangles) == 88);
 static_assert(offsetof(GpuCounters, setup_dispatch) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
