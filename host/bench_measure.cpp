@@ -86,6 +86,7 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& settings, const Bench
   row.tile_entries = last.tile_entries;
   row.rejected_entries = last.rejected_entries;
   row.rejected_small = last.rejected_small;
+  row.tile_list_stride = last.tile_list_stride;
   row.batches = last.batches;
   row.frames = a.repeat;
   if (!last.has_timestamps) row.note = "no timestamps";

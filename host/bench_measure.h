@@ -28,6 +28,7 @@ struct BenchRow {
   uint64_t tile_entries = 0;      // compute: (tile, triangle) pairs the per-tile rasterizer tests
   uint64_t rejected_entries = 0;  // compute: of those, skipped by depth rejection
   uint64_t rejected_small = 0;    // compute: small triangles skipped by depth rejection
+  uint32_t tile_list_stride = 0;  // compute: slots per tile list (direct lists), 0 if counted
   double total_ms = 0.0;          // GPU time (compute, hardware) or wall time (reference)
   // compute: the frames pass_ms comes from, timed with a timestamp after every pass, which
   // adds to the frame (Timing::frame); total_ms is of as many frames timed without them.

@@ -87,6 +87,11 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
               (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
               (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
+  if (last.tile_list_stride > 0) {
+    std::printf("tile lists: direct, room for %u entries a tile\n", last.tile_list_stride);
+  } else {
+    std::printf("tile lists: counted\n");
+  }
   if (last.shaded_tiles + last.background_tiles > 0) {
     std::printf("shading by tiles: %llu of %llu tiles shaded, the rest background only\n",
                 (unsigned long long)last.shaded_tiles,
