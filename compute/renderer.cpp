@@ -133,13 +133,13 @@ void validate_tile_size(uint32_t tile_size) {
 RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
-    return {gpu.small_triangle_max_area, gpu.depth_rejection, false};
+    return {gpu.small_triangle_max_area, gpu.depth_rejection, false, gpu.tile_lists};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
   // triangles; and the shading pass pays the whole shading code for background pixels unless
   // they are not dispatched to it.
-  return {kCpuSmallTriangleArea, gpu.depth_rejection, true};
+  return {kCpuSmallTriangleArea, gpu.depth_rejection, true, TileLists::counted};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
@@ -147,6 +147,7 @@ RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
   options.small_triangle_max_area = t.small_triangle_max_area;
   options.depth_rejection = t.depth_rejection;
   options.shade_tiles = t.shade_tiles;
+  options.tile_lists = t.tile_lists;
   return options;
 }
 

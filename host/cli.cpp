@@ -165,9 +165,10 @@ void add_tile_lists(CLI::App& app, TileLists& lists) {
              "layout of the binned triangles' tile lists:\n"
              "direct (a fixed room per tile: two passes\n"
              "fewer), counted (counted and packed: least\n"
-             "memory) or automatic (default: direct unless\n"
-             "it takes over twice the memory). The image is\n"
-             "the same");
+             "memory) or automatic (direct unless it takes\n"
+             "over twice the memory). The image is the\n"
+             "same. Default: the device's (automatic on\n"
+             "GPUs, counted on CPU devices such as lavapipe)");
 }
 
 void add_quality(CLI::App& app, Quality& quality, const std::string& sets) {
@@ -736,6 +737,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.view_given = render->count("--view") > 0;
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
   r.shade_tiles_given = render->count("--shade-tiles") > 0;
+  r.tile_lists_given = render->count("--tile-lists") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);
   line.view.size_given = view->count("--size") > 0;
@@ -757,6 +759,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
+  b.tile_lists_given = bench->count("--tile-lists") > 0;
   // A count twice would be two points of one name: --compare matches points by count.
   for (size_t i = 0; i < b.objects.size(); ++i) {
     if (std::find(b.objects.begin(), b.objects.begin() + i, b.objects[i]) != b.objects.begin() + i)

@@ -43,7 +43,7 @@ struct RenderArgs {
        view_given = false;
   // --depth-rejection and --shade-tiles given: else the device's (raster_tuning,
   // compute/renderer.h).
-  bool depth_rejection_given = false, shade_tiles_given = false;
+  bool depth_rejection_given = false, shade_tiles_given = false, tile_lists_given = false;
 };
 
 struct BenchArgs {
@@ -76,7 +76,8 @@ struct BenchArgs {
   // --small-triangle-area (or --quality), --depth-rejection and --shade-tiles given: else the
   // device's (raster_tuning, compute/renderer.h), written here by run_bench once the device is
   // known.
-  bool small_triangle_area_given = false, depth_rejection_given = false, shade_tiles_given = false;
+  bool small_triangle_area_given = false, depth_rejection_given = false, shade_tiles_given = false,
+       tile_lists_given = false;
   std::string csv, json, chart;
   bool quiet = false;
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything

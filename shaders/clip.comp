@@ -36,7 +36,7 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) 
     uint entries = bin_entry_count(t);
     uint first = atomicAdd(counters[batch.index].big_tris, entries);
     RAISE_DISPATCH(counters[batch.index].big_dispatch.x, first, entries, TS_BIN_ENTRIES_PER_GROUP);
-    if (frame.tile_list_stride != 0u) WRITE_TILES_DISPATCH(batch.index);
+    if (frame.tile_list_stride != 0u && first == 0u) WRITE_TILES_DISPATCH(batch.index);
     store_bin_entries(index, t, first, entries);
   }
 }

@@ -176,7 +176,7 @@ void main() {
   if (total > 0u && subgroupElect()) {
     base = atomicAdd(counters[batch.index].big_tris, total);
     RAISE_DISPATCH(counters[batch.index].big_dispatch.x, base, total, TS_BIN_ENTRIES_PER_GROUP);
-    if (frame.tile_list_stride != 0u) WRITE_TILES_DISPATCH(batch.index);
+    if (frame.tile_list_stride != 0u && base == 0u) WRITE_TILES_DISPATCH(batch.index);
   }
   uint first_entry = subgroupBroadcastFirst(base) + subgroupExclusiveAdd(entries);
   if (entries > 0u) store_bin_entries(index, t, first_entry, entries);

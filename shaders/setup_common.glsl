@@ -109,7 +109,8 @@ uint grain_dispatch_groups(uint end, uint per_group) {
     atomicMax(groups_x, grain_dispatch_groups((base) + (count), per_group))
 
 // Direct tile lists (no scan pass): the per-tile rasterizer runs over every tile once a bin
-// entry is appended (the scan pass's dispatch for counted lists). Every writer writes the same.
+// entry is appended (the scan pass's dispatch for counted lists). Written by the append that
+// took the batch's first entry (base 0), one store instead of one per appending subgroup.
 #define WRITE_TILES_DISPATCH(b) counters[b].tiles_dispatch = uvec4(frame.tiles.x, frame.tiles.y, 1u, 0u)
 
 // Bin entries of a binned triangle: its tile range split into blocks of at most

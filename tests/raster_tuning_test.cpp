@@ -24,6 +24,7 @@ TEST(RasterTuning, GpusKeepTheRendererDefaults) {
     EXPECT_EQ(t.depth_rejection, defaults.depth_rejection) << type;
     // Measured slower on the H200 (docs/performance.md, "Shading by tiles").
     EXPECT_FALSE(t.shade_tiles) << type;
+    EXPECT_EQ(t.tile_lists, defaults.tile_lists) << type;
   }
 }
 
@@ -33,6 +34,7 @@ TEST(RasterTuning, CpuDevicesRasterizeBoxesUpTo4096PixelsPerTriangle) {
   EXPECT_EQ(t.small_triangle_max_area, 4096u);
   EXPECT_TRUE(t.depth_rejection);
   EXPECT_TRUE(t.shade_tiles);
+  EXPECT_EQ(t.tile_lists, TileLists::counted);
 }
 
 class RasterTuningOnDevice : public test::VulkanTest {};
@@ -46,6 +48,7 @@ TEST_F(RasterTuningOnDevice, LavapipeTakesTheCpuTuningAndKeepsTheOtherOptions) {
   EXPECT_EQ(tuned.small_triangle_max_area, cpu.small_triangle_max_area);
   EXPECT_EQ(tuned.depth_rejection, cpu.depth_rejection);
   EXPECT_EQ(tuned.shade_tiles, cpu.shade_tiles);
+  EXPECT_EQ(tuned.tile_lists, cpu.tile_lists);
   EXPECT_EQ(tuned.tile_size, 8u);
   EXPECT_FALSE(tuned.resolve);
 }
@@ -80,9 +83,11 @@ TEST_F(RasterTuningOnDevice, EveryTuningGivesTheSameBits) {
     gpu.small_triangle_max_area = g.small_triangle_max_area;
     gpu.depth_rejection = g.depth_rejection;
     gpu.shade_tiles = g.shade_tiles;
+    gpu.tile_lists = g.tile_lists;
     cpu.small_triangle_max_area = c.small_triangle_max_area;
     cpu.depth_rejection = c.depth_rejection;
     cpu.shade_tiles = c.shade_tiles;
+    cpu.tile_lists = c.tile_lists;
     const Frame a = render(scene, 160, 160, gpu);
     const Frame b = render(scene, 160, 160, cpu);
     // Not vacuous: the sphere's triangles took different rasterizers, the huge ones the tiles.
