@@ -120,7 +120,7 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
        "total_ms,cpu_record_ms,triangles_per_s,min_ms,max_ms,runs,run_spread_pct,warmup_frames,"
        "warmup_ms,warmup_stable,per_pass_total_ms";
   for (size_t p = 0; p < kPassCount; ++p) f << "," << pass_name(Pass(p)) << "_ms";
-  f << ",batches,frames,device,note\n";
+  f << ",batches,tile_entries,tile_list_stride,frames,device,note\n";
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
     // The hardware baseline counts no rasterized triangles, and only the compute path is timed
@@ -140,7 +140,8 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
       if (compute) f << ms;
     }
     f << ",";
-    if (compute) f << r.batches;
+    if (compute) f << r.batches << "," << r.tile_entries << "," << r.tile_list_stride;
+    if (!compute) f << ",,";
     f << "," << r.frames << ",\"" << results.device << "\",\"" << r.note << "\"\n";
   }
   if (!f) throw Error("cannot write CSV '" + path + "'");

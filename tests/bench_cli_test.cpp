@@ -72,7 +72,8 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
       const std::vector<std::string> cells = split_csv_row(row);
       ASSERT_EQ(cells.size(), names.size()) << row;
       const bool hardware = cells[2] == "hardware", compute = cells[2] == "compute";
-      for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches"}) {
+      for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
+                                 "tile_entries", "tile_list_stride"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
         ASSERT_LT(i, names.size()) << column;
         if (hardware) {
