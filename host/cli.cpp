@@ -615,13 +615,17 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors");
 }
 
-// CLI11's message, reworded where it is unclear for a missing value.
+// CLI11's message, reworded where it is unclear: a missing value, an option given twice.
 std::string message_of(const CLI::ParseError& e) {
   const std::string what = e.what();
   const size_t colon = what.find(':');
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && colon != std::string::npos &&
-      what.ends_with(" missing")) {
-    return what.substr(0, colon) + " needs a value";
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && colon != std::string::npos) {
+    if (what.ends_with(" missing")) return what.substr(0, colon) + " needs a value";
+    const std::string twice = ": At Most 1 required but received ";
+    if (what.find(twice) == colon) {
+      return what.substr(0, colon) + ": given " + what.substr(colon + twice.size()) +
+             " times; give it once";
+    }
   }
   return what;
 }
