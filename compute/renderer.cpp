@@ -915,7 +915,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     }
     if (s.tile_list_stride != 0) {
       // Direct lists hold every entry unless one overflowed its stride.
-      redo = fit_tile_lists(s, longest_list, need_entries);
+      if (fit_tile_lists(s, longest_list, need_entries)) redo = true;
       need_entries = 0;
     }
     if (need_raster > s.raster_capacity) {
