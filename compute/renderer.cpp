@@ -390,6 +390,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   s.meshes = scene.meshes;
   s.mesh_boxes.clear();
   for (const Mesh& mesh : s.meshes) s.mesh_boxes.push_back(mesh_box(mesh));
+  s.nothing_to_clip.reset();  // predicted again for the new objects and camera
   s.lod_uploaded = false;
   s.camera = scene.camera;
   s.background = scene.background;
@@ -482,15 +483,15 @@ bool sized_by_frame(Scale scale) {
 // Whether a sized buffer holds anything this frame (the coverage buffer only when counted).
 bool in_use(const Renderer::State& s, const BindingInfo& b) {
   if (b.binding == TS_BINDING_TILE_DRAWN) return s.shade_tiles;
-  if (b.binding == TS_BINDING_VISIBILITY && b.clear == Clear::per_frame && s.visibility_clean)
-    return false;  // the last frame's shading emptied it
   return b.scale != Scale::pixels_if_coverage || s.options.debug_coverage;
 }
 
 // Fills the sized buffers cleared `when` (kBindings) with their clear value.
 void clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
   for (const BindingInfo& b : kBindings) {
-    if (b.clear == when && in_use(s, b)) {
+    // The last frame's shading may have emptied the visibility buffer already.
+    const bool emptied = b.binding == TS_BINDING_VISIBILITY && s.visibility_clean;
+    if (b.clear == when && in_use(s, b) && !emptied) {
       vkCmdFillBuffer(cmd, s.buffer(b.binding).buffer, 0, VK_WHOLE_SIZE, b.clear_value);
     }
   }
@@ -510,6 +511,7 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   s.height = settings.height;
   s.samples = settings.samples;
   s.visibility_clean = false;  // a new buffer, filled by the next frame's clear
+  s.nothing_to_clip.reset();   // the guard band and the aspect changed
   s.hdr_format = settings.hdr_format;
   s.tiles_x = div_up(s.width, s.options.tile_size);
   s.tiles_y = div_up(s.height, s.options.tile_size);
@@ -565,13 +567,13 @@ glm::vec2 guard_band(const Renderer::State& s) {
                    float(2.0 * TS_GUARD_BAND_PX / s.height - 1.0));
 }
 
-// Whether the frame can leave the clip pass out: no object's mesh box reaches behind the near
-// plane or out of the guard band (core/clip_prediction.h). Objects of a level of detail may
-// have other meshes, and past kClipPredictionObjects the test would cost the CPU more than the
-// pass costs the GPU: then the pass is recorded (and finds nothing if there is nothing).
+// Whether frames without level of detail (whose objects may have other meshes) can leave the
+// clip pass out: no object's mesh box reaches behind the near plane or out of the guard band
+// (core/clip_prediction.h). Past kClipPredictionObjects the test would cost the CPU more than
+// the pass costs the GPU: then the pass is recorded (and finds nothing if there is nothing).
 constexpr size_t kClipPredictionObjects = 16384;
-bool predicts_nothing_to_clip(const Renderer::State& s, bool lod) {
-  if (lod || s.uploaded.objects.size() > kClipPredictionObjects) return false;
+bool predicts_nothing_to_clip(const Renderer::State& s) {
+  if (s.uploaded.objects.size() > kClipPredictionObjects) return false;
   const glm::dmat4 clip = glm::dmat4(glm::mat4(clip_from_world(s)));
   const glm::dvec2 band(guard_band(s));
   for (const gpu::GpuObject& o : s.uploaded.objects) {
@@ -831,7 +833,9 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     restore_objects(s);
   }
 
-  s.skip_clip = predicts_nothing_to_clip(s, lod);
+  // The prediction depends only on the scene and the image size: made once for both.
+  if (!lod && !s.nothing_to_clip) s.nothing_to_clip = predicts_nothing_to_clip(s);
+  s.skip_clip = !lod && *s.nothing_to_clip;
 
   FrameStats stats;
   stats.triangles_submitted = total;
@@ -910,7 +914,9 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     }
     bool redo = false;
     if (s.skip_clip && need_clip) {
-      s.skip_clip = false;  // the prediction missed a triangle: record the pass after all
+      // The prediction missed a triangle: record the pass after all, in later frames too.
+      s.skip_clip = false;
+      s.nothing_to_clip = false;
       redo = true;
     }
     if (s.tile_list_stride != 0) {

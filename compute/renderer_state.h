@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "compute/environment_gpu.h"
@@ -78,6 +79,9 @@ struct Renderer::State {
   bool visibility_kept = true;  // the last frame kept its keys (read_visibility may read them)
   // The frame records no clip pass: the CPU found nothing to clip (core/clip_prediction.h).
   bool skip_clip = false;
+  // That prediction for the scene and image size (frames without level of detail), made by the
+  // first frame after set_scene or a new size.
+  std::optional<bool> nothing_to_clip;
   std::vector<MeshBox> mesh_boxes;  // of `meshes`, for that prediction
   uint32_t counter_slots = 0;       // batches the GpuCounters buffer holds
   Buffer counters_readback;         // the counters, copied back after each frame
