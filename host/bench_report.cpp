@@ -246,11 +246,24 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
   if (std::find(a.backends.begin(), a.backends.end(), "compute") != a.backends.end()) {
     spec.bars_title = "compute path, GPU time per pass";
     spec.bars_y_label = "ms";
-    for (size_t p = 0; p < kPassCount; ++p) spec.bars.layers.push_back(pass_name(Pass(p)));
+    // Only the passes that ran at some point: the palette's ten colours then name each one
+    // (with all seventeen, two passes shared a colour).
+    std::vector<size_t> ran;
+    for (size_t p = 0; p < kPassCount; ++p) {
+      for (const BenchRow& r : results.rows) {
+        if (r.backend == "compute" && r.pass_ms[p] > 0.0) {
+          ran.push_back(p);
+          break;
+        }
+      }
+    }
+    for (size_t p : ran) spec.bars.layers.push_back(pass_name(Pass(p)));
     for (const BenchRow& r : results.rows) {
       if (r.backend != "compute") continue;
       spec.bars.categories.push_back(human_count(r.objects));
-      spec.bars.values.push_back(std::vector<double>(r.pass_ms.begin(), r.pass_ms.end()));
+      std::vector<double> values;
+      for (size_t p : ran) values.push_back(r.pass_ms[p]);
+      spec.bars.values.push_back(values);
     }
   }
   write_chart(path, spec);
