@@ -8,6 +8,9 @@
 namespace tessera {
 namespace {
 
+constexpr VkMemoryPropertyFlags kMappable =
+    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+
 uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags wanted,
                           VkMemoryPropertyFlags preferred) {
   const VkPhysicalDeviceMemoryProperties& props = ctx.memory_properties;
@@ -20,9 +23,11 @@ uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryProper
   throw Error("the device has no memory type with the properties " + std::to_string(wanted));
 }
 
-VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind kind) {
+VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind kind,
+                        bool& mappable) {
   VkMemoryPropertyFlags wanted = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   VkMemoryPropertyFlags preferred = 0;
+  if (kind == MemoryKind::device_mapped) preferred = kMappable;
   if (kind == MemoryKind::upload) {
     wanted = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   } else if (kind == MemoryKind::readback) {
@@ -32,6 +37,8 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = req.size;
   info.memoryTypeIndex = find_memory_type(ctx, req.memoryTypeBits, wanted, preferred);
+  mappable = (ctx.memory_properties.memoryTypes[info.memoryTypeIndex].propertyFlags & kMappable) ==
+             kMappable;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkResult result = vkAllocateMemory(ctx.device, &info, nullptr, &memory);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) {
@@ -56,14 +63,15 @@ Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags u
   VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+  bool mappable = false;
   try {
-    b.memory = allocate(ctx, req, kind);
+    b.memory = allocate(ctx, req, kind, mappable);
   } catch (...) {
     vkDestroyBuffer(ctx.device, b.buffer, nullptr);
     throw;
   }
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
-  if (kind != MemoryKind::device)
+  if (kind != MemoryKind::device && mappable)
     VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, size, 0, &b.mapped));
   return b;
 }
@@ -102,8 +110,9 @@ StorageImage create_image(const Context& ctx, uint32_t width, uint32_t height, u
   VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+  bool mappable = false;  // not mapped: images are only read back through copies
   try {
-    img.memory = allocate(ctx, req, MemoryKind::device);
+    img.memory = allocate(ctx, req, MemoryKind::device, mappable);
   } catch (...) {
     vkDestroyImage(ctx.device, img.image, nullptr);
     throw;

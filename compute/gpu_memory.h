@@ -14,13 +14,18 @@ enum class MemoryKind {
   device,    // device-local, for GPU-only data
   upload,    // host-visible and coherent, mapped: staging and per-frame constants
   readback,  // host-visible (cached when available), mapped: copies back to the host
+  // Device-local and, where the device has such a type (resizable BAR, integrated and CPU
+  // devices), also host-visible, coherent and mapped: GPU-side data the host resets between
+  // submissions. `Buffer::mapped` stays null where no such type exists.
+  device_mapped,
 };
 
 struct Buffer {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkDeviceSize size = 0;
-  void* mapped = nullptr;  // set for MemoryKind::upload and ::readback
+  void* mapped = nullptr;  // set for MemoryKind::upload and ::readback (and ::device_mapped where
+                           // the device has a host-visible device-local type)
 };
 
 /// Creates a buffer of `size` bytes (> 0). Throws Error if the device is out of memory.

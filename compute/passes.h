@@ -59,6 +59,7 @@ struct Specialization {
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage (shading, samples > 1)
   uint32_t silhouette_steps = 0;              // FrameSettings::silhouette_steps (the outline pass)
   uint32_t shade_tiles = TS_SHADE_TILES_OFF;  // RendererOptions::shade_tiles (TS_SHADE_TILES_*)
+  VkBool32 object_clip_inline = VK_FALSE;     // setup, in frames without the object_clip pass
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 
@@ -66,7 +67,7 @@ struct Specialization {
 enum class Stage {
   precompute,  // record_precomputation: timed only on frames that computed something
   clear,       // the buffers of kBindings with Clear::per_frame are filled (and those with
-               // Clear::on_creation after they were created)
+               // Clear::on_creation after they were created); by the host where it maps them
   objects,     // once per frame before the batches, when the scene has triangles
   lod,         // once per frame before the batches, only under FrameSettings::lod automatic
   batch,       // once per batch of triangles (these rows are contiguous), with the GpuBatch
@@ -209,6 +210,7 @@ enum class Pipeline {
   env_prefilter,   // one level of the prefiltered specular cube
   resolve_bgra,    // the resolve pass storing B, G, R, A bytes, for B8G8R8A8 swapchain images
   hdr_rounding,    // how the device rounds stores to the RGBA16F image (probe_hdr_rounding)
+  background,      // the background's stored and display colours (GpuBackground)
   count
 };
 
@@ -234,6 +236,7 @@ constexpr PipelineInfo kPipelines[] = {
     {Pipeline::env_prefilter, "env_prefilter", {}},
     {Pipeline::resolve_bgra, "resolve", {.output_bgra = VK_TRUE}},
     {Pipeline::hdr_rounding, "hdr_rounding", {}},
+    {Pipeline::background, "background", {}},
 };
 
 constexpr bool pipeline_table_is_complete() {
@@ -316,9 +319,10 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_HDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
     {TS_BINDING_LDR_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, Source::output_image},
     {TS_BINDING_CLIP_LIST, kStorageBuffer, Source::sized, Scale::raster_capacity, 4},
-    // Two tables, then a row of cosine-weighted means per variant (shaders/dfg.comp).
+    // Two tables, then a row of cosine-weighted means per variant (shaders/dfg.comp); then the
+    // background's colours (GpuBackground, shaders/background.comp).
     {TS_BINDING_DFG, kStorageBuffer, Source::sized, Scale::fixed,
-     2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(glm::vec4)},
+     TS_BACKGROUND_OFFSET + sizeof(gpu::GpuBackground)},
     {TS_BINDING_TEXELS, kStorageBuffer, Source::scene},
     {TS_BINDING_TEXTURES, kStorageBuffer, Source::scene},
     {TS_BINDING_ENV_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},
@@ -333,15 +337,17 @@ constexpr BindingInfo kBindings[] = {
     {TS_BINDING_LOD_DRAWS, kStorageBuffer, Source::sized, Scale::objects_if_lod_draws,
      sizeof(VkDrawIndexedIndirectCommand), 0, Clear::never, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT},
     {TS_BINDING_HDR_TEXTURE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::output_image},
-    // Only lowered within a frame (every bound stays valid for the later batches).
-    {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame,
+    // Only lowered within a frame (every bound stays valid for the later batches); the shading
+    // pass resets each tile's bound for the next frame (shade_tiles.glsl's reset_tile_bound).
+    {TS_BINDING_TILE_FAR, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::on_creation,
      0xFFFFFFFFu},
     {TS_BINDING_OBJECT_CLIP, kStorageBuffer, Source::sized, Scale::objects, sizeof(glm::mat4)},
     {TS_BINDING_ADJACENCY, kStorageBuffer, Source::scene},
     // As many entries as pixels: every pixel may be an outline pixel (10^6 spheres of a pixel).
     {TS_BINDING_OUTLINE, kStorageBuffer, Source::sized, Scale::pixels_if_outlines,
      sizeof(gpu::GpuOutlinePixel)},
-    {TS_BINDING_TILE_DRAWN, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::per_frame},
+    // Zeroed by list_tiles as it reads each tile's mark, ready for the next frame.
+    {TS_BINDING_TILE_DRAWN, kStorageBuffer, Source::sized, Scale::tiles, 4, 0, Clear::on_creation},
     {TS_BINDING_SHADE_TILES, kStorageBuffer, Source::sized, Scale::tiles, 4},
 };
 

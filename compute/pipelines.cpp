@@ -44,7 +44,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_DEPTH_REJECTION, offsetof(Specialization, depth_rejection), sizeof(VkBool32)},
       {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)},
       {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)},
-      {TS_SPEC_SHADE_TILES, offsetof(Specialization, shade_tiles), sizeof(uint32_t)}};
+      {TS_SPEC_SHADE_TILES, offsetof(Specialization, shade_tiles), sizeof(uint32_t)},
+      {TS_SPEC_OBJECT_CLIP_INLINE, offsetof(Specialization, object_clip_inline), sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -250,6 +251,11 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
       Specialization lod = pass.spec;
       lod.lod = VK_TRUE;
       p.lod[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, lod);
+    }
+    if (pass.pass == Pass::setup) {
+      Specialization inline_clip = pass.spec;
+      inline_clip.object_clip_inline = VK_TRUE;
+      p.setup_object_clip_inline = create_compute_pipeline(ctx, pass.shader, inline_clip);
     }
   }
   for (const PipelineInfo& info : kPipelines) {

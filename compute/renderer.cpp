@@ -486,15 +486,27 @@ bool in_use(const Renderer::State& s, const BindingInfo& b) {
   return b.scale != Scale::pixels_if_coverage || s.options.debug_coverage;
 }
 
-// Fills the sized buffers cleared `when` (kBindings) with their clear value.
-void clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
+// Fills the sized buffers cleared `when` (kBindings) with their clear value. A buffer the host
+// has mapped (the counters, where the device has host-visible device-local memory) is filled by
+// the host as the frame is recorded: every earlier submission that used it has completed
+// (render() waits for its frame), and the submission makes the host's writes visible. Returns
+// whether it recorded a fill, which the first pass must then wait for.
+bool clear_buffers(Renderer::State& s, VkCommandBuffer cmd, Clear when) {
+  bool recorded = false;
   for (const BindingInfo& b : kBindings) {
     // The last frame's shading may have emptied the visibility buffer already.
     const bool emptied = b.binding == TS_BINDING_VISIBILITY && s.visibility_clean;
     if (b.clear == when && in_use(s, b) && !emptied) {
-      vkCmdFillBuffer(cmd, s.buffer(b.binding).buffer, 0, VK_WHOLE_SIZE, b.clear_value);
+      const Buffer& buffer = s.buffer(b.binding);
+      if (buffer.mapped != nullptr) {
+        std::fill_n(static_cast<uint32_t*>(buffer.mapped), buffer.size / 4, b.clear_value);
+      } else {
+        vkCmdFillBuffer(cmd, buffer.buffer, 0, VK_WHOLE_SIZE, b.clear_value);
+        recorded = true;
+      }
     }
   }
+  return recorded;
 }
 
 }  // namespace
@@ -638,7 +650,11 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
     const uint64_t bytes = binding_size(s, b);
     if (buffer.buffer && buffer.size >= bytes) continue;
     destroy_buffer(ctx, buffer);
-    buffer = create_buffer(ctx, bytes, kStorageUsage | b.extra_usage, MemoryKind::device);
+    // The counters are zeroed for every frame: by the host where it can map them, which spares
+    // the frame a fill and the barrier after it (about 5 us on the H200).
+    const MemoryKind kind =
+        b.binding == TS_BINDING_COUNTERS ? MemoryKind::device_mapped : MemoryKind::device;
+    buffer = create_buffer(ctx, bytes, kStorageUsage | b.extra_usage, kind);
     if (b.clear == Clear::on_creation) s.creation_clears_pending = true;
     s.descriptors_dirty = true;
   }
@@ -711,13 +727,15 @@ VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings, uin
       generic = Pipeline::shade_blinn_phong;
       break;
   }
+  // Specialized to the tile size: the shading pass resets each tile's depth bound.
+  Specialization spec = kPipelines[size_t(generic)].spec;
+  spec.tile_size = s.options.tile_size;
   if (settings.samples == 1) {
     VkPipeline& pipeline = s.pipelines.pipelines[size_t(generic)];  // null until first used
-    const PipelineInfo& info = kPipelines[size_t(generic)];
-    if (!pipeline) pipeline = create_compute_pipeline(s.ctx, info.shader, info.spec);
+    if (!pipeline)
+      pipeline = create_compute_pipeline(s.ctx, kPipelines[size_t(generic)].shader, spec);
     return pipeline;
   }
-  Specialization spec = kPipelines[size_t(generic)].spec;
   spec.aa_coverage = aa_coverage_id(settings);
   return sampled_pipeline(s, kPassCount + size_t(generic), kPipelines[size_t(generic)].shader, spec,
                           settings.samples);
@@ -758,7 +776,18 @@ bool record_precomputation(Renderer::State& s, VkCommandBuffer cmd, const FrameS
   const bool environment = s.env.precompute_pending;
   if (dfg) record_dfg(s, cmd);
   record_environment_precompute(cmd, s.env, s.pipelines);
-  return dfg || environment;
+  const bool background = s.background_computed != s.background_inputs;
+  if (background) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[Pipeline::background]);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    // Read by the shading pass, which may be the next one; the hardware baseline's fragment
+    // shader reads the DFG tables of the same buffer.
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT);
+    s.background_computed = s.background_inputs;  // the frame runs to completion or throws
+  }
+  return dfg || environment || background;
 }
 
 namespace {
@@ -781,6 +810,18 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
     throw Error("level-of-detail error bound " + std::to_string(settings.lod_error_px) +
                 " px is not a positive number");
   }
+}
+
+// Whether setup forms each triangle's view_proj * model itself and the frame records no
+// object_clip pass. Up to kObjectClipInlineTriangles triangle instances that costs less than a
+// pass of its own and the barrier after it: ~5 us on the H200, where 2^17 triangles' 64
+// multiply-adds take ~0.3 us of its ALUs; ~0.2 ms at most on lavapipe (2 threads). Only setup has
+// the variant: the clip pass and analytic coverage (several samples) read the pass's transforms,
+// and level of detail keeps the pass (its frames already have three passes more).
+bool forms_object_clip_in_setup(const Renderer::State& s, const FrameSettings& settings, bool lod) {
+  constexpr uint64_t kObjectClipInlineTriangles = uint64_t(1) << 17;
+  return !lod && s.skip_clip && settings.samples == 1 &&
+         s.uploaded.triangle_count <= kObjectClipInlineTriangles;
 }
 
 }  // namespace
@@ -850,6 +891,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     s.frame_batches = batches;
     prepare_tile_lists(s);
     ensure_scratch_buffers(s, batches);
+    s.object_clip_inline = forms_object_clip_in_setup(s, settings, lod);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = timestamps_needed(batches);
     if (timestamps && s.query_capacity < queries_needed) {
@@ -1071,6 +1113,8 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u,
                         .tile_list_stride = s.tile_list_stride,
                         .reset_visibility = resets_visibility(settings) ? 1u : 0u};
+  s.background_inputs = {f.background, f.exposure_scale, f.view,
+                         f.tonemap,    f.hdr_rounding,   f.hdr_max};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.
   s.hdr_pre_exposure = settings.view == View::shaded ? f.exposure_scale : 1.0f;
   std::memcpy(s.frame_constants.mapped, &f, sizeof(f));
@@ -1092,6 +1136,7 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     if (pass.variants == Variants::silhouette) spec.silhouette_steps = settings.silhouette_steps;
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
+  if (pass.pass == Pass::setup && s.object_clip_inline) return s.pipelines.setup_object_clip_inline;
   switch (pass.variants) {
     case Variants::plain:
       break;
@@ -1166,17 +1211,19 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
 // coverage): its writes (the images, the counters) are read by the copies after the frame and
 // read-backs, and, under RendererOptions::resolve off, by the resolve pass the caller records
 // after it. Every other pass feeds the next compute pass.
-// Without depth rejection the two rasterizers only atomicMin into the visibility buffer (and
-// count into the coverage one): neither reads what the other writes, so they run without a
-// barrier between them and the per-triangle one's time is from the per-tile one's end to both
-// ends. With it, raster_small reads the tile bounds raster_tiles lowers at its end (a stale
-// bound would still be exact, only reject less), so the barrier stays.
+// The two rasterizers run without a barrier between them, so the per-triangle one's time is from
+// the per-tile one's end to both ends. Each only lowers what it writes (atomicMin into the
+// visibility buffer and the tile bounds, a count into the coverage buffer), so whatever it reads
+// of the other's writes is exact: a key or a bound read before the other lowered it is only
+// higher, which rejects less and changes no sample's final key. With depth rejection raster_small
+// reads the bounds raster_tiles lowers; the barrier that waited for them cost more than they
+// saved: on the H200 at 1920x1080 one sphere's frame took 6.5 us less without it, and scatter's
+// 10^5 objects, where rejection matters most, 0.14 ms less (docs/performance.md, ninth round).
 static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
 // `outlines_next`: the outline pass follows, which reads its dispatch from the counters and
 // writes pixels again (the wider barrier cost the 1-sample frame's last pass 2 us on the H200).
-void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool depth_rejection = false,
-                   bool outlines_next = false) {
-  if (pass.pass == Pass::raster_tiles && !depth_rejection) return;
+void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool outlines_next = false) {
+  if (pass.pass == Pass::raster_tiles) return;
   // list_tiles writes the shading pass's indirect dispatches.
   if (pass.stage != Stage::frame || outlines_next || pass.pass == Pass::list_tiles) {
     compute_to_compute(cmd);
@@ -1216,21 +1263,27 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
         if (record_precomputation(s, cmd, settings)) mark(pass.pass);
         ++i;
         break;
-      case Stage::clear:
-        clear_buffers(s, cmd, Clear::per_frame);
+      case Stage::clear: {
+        bool filled = clear_buffers(s, cmd, Clear::per_frame);
         if (s.creation_clears_pending) {
-          clear_buffers(s, cmd, Clear::on_creation);
+          filled = clear_buffers(s, cmd, Clear::on_creation) || filled;
           s.creation_clears_pending = false;
         }
-        transfer_to_compute(cmd);
-        mark(pass.pass);
+        // Most frames fill nothing: the host zeroes the counters, the shading pass empties the
+        // visibility buffer and resets the tile bounds, list_tiles the drawn tiles' marks.
+        if (filled) {
+          transfer_to_compute(cmd);
+          mark(pass.pass);
+        }
         ++i;
         break;
+      }
       case Stage::objects:
       case Stage::lod:
         // The lod passes are not recorded at all without level of detail, so such frames are
         // as before it.
-        if (total > 0 && (pass.stage == Stage::objects || settings.lod == Lod::automatic)) {
+        if (total > 0 && ((pass.stage == Stage::objects && !s.object_clip_inline) ||
+                          (pass.stage == Stage::lod && settings.lod == Lod::automatic))) {
           const gpu::GpuBatch none{};  // lod.comp reads flags
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(none), &none);
           record_dispatch(s, cmd, pass, none, settings);
@@ -1257,7 +1310,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
               continue;
             if (s.skip_clip && pass == Pass::clip) continue;
             record_dispatch(s, cmd, kPasses[j], batch, settings);
-            barrier_after(cmd, kPasses[j], s.options.depth_rejection);
+            barrier_after(cmd, kPasses[j]);
             mark(kPasses[j].pass);
           }
         }
@@ -1277,7 +1330,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
           break;
         }
         record_dispatch(s, cmd, pass, gpu::GpuBatch{}, settings);
-        barrier_after(cmd, pass, false, pass.pass == Pass::shade && lists_outlines(settings));
+        barrier_after(cmd, pass, pass.pass == Pass::shade && lists_outlines(settings));
         mark(pass.pass);
         ++i;
         break;

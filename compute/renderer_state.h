@@ -83,8 +83,11 @@ struct Renderer::State {
   // first frame after set_scene or a new size.
   std::optional<bool> nothing_to_clip;
   std::vector<MeshBox> mesh_boxes;  // of `meshes`, for that prediction
-  uint32_t counter_slots = 0;       // batches the GpuCounters buffer holds
-  Buffer counters_readback;         // the counters, copied back after each frame
+  // The frame records no object_clip pass: its few triangles form their objects' clip-space
+  // transforms themselves (GpuFrame.object_clip_inline).
+  bool object_clip_inline = false;
+  uint32_t counter_slots = 0;  // batches the GpuCounters buffer holds
+  Buffer counters_readback;    // the counters, copied back after each frame
 
   Buffer frame_constants;  // GpuFrame (TS_BINDING_FRAME), written before each frame
 
@@ -94,6 +97,17 @@ struct Renderer::State {
   // of detail, TS_AA_COVERAGE_*, silhouette steps).
   std::map<std::tuple<size_t, uint32_t, bool, bool, uint32_t, uint32_t>, VkPipeline>
       sampled_pipelines;
+  // The frame constants the background's colours (GpuBackground, TS_BINDING_BACKGROUND) depend
+  // on: those of this frame, and those the buffer was last computed from (none yet).
+  struct BackgroundInputs {
+    glm::vec3 background{0.0f};
+    float exposure_scale = 0.0f;
+    uint32_t view = 0, tonemap = 0, hdr_rounding = 0;
+    float hdr_max = 0.0f;
+    bool operator==(const BackgroundInputs&) const = default;
+  };
+  BackgroundInputs background_inputs;
+  std::optional<BackgroundInputs> background_computed;
   bool dfg_ready = false;  // the DFG tables (TS_BINDING_DFG) are computed on the first frame
   // How the device rounds shader stores to the RGBA16F HDR image, probed by the first frame
   // that uses one: TS_HDR_ROUNDING_HALF_*, or TS_HDR_ROUNDING_AS_IS if the probe found neither

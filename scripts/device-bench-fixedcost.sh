@@ -8,7 +8,8 @@
 # session read TESSERA_EXPERIMENT_FRAME_ONLY to time only the frame; `tessera bench` now does
 # that itself, docs/performance.md). With HARDWARE set, the base binary's grid (HW_GRID) against
 # the hardware baseline in one run. Then renders IMAGES (scene files or names) with each
-# binary and hashes the HDR images: a variant that should change no bit must give the base's.
+# binary and hashes the HDR and display images: a variant that should change no bit must give
+# the base's.
 # Every result is appended to $OUT/log.txt and $OUT/points.jsonl as it is made, and every
 # command has a time limit, so that a run cut short still returns what it measured.
 # Pass carry [".gl", ".device-build", ".device-variants"].
@@ -93,7 +94,7 @@ for b in "${binaries[@]}"; do
       f=$work/img_${name}_${tag}_s$s
       if timeout "$limit" "$exe" render --device "$device" --scene "$scene" --size "$size" \
           --samples $s --out "$f.png" --hdr-out "$f.pfm" > /dev/null; then
-        say "image ${name}_${tag}_s$s $(sha256sum < "$f.pfm" | cut -c1-16)"
+        say "image ${name}_${tag}_s$s hdr $(sha256sum < "$f.pfm" | cut -c1-16) display $(sha256sum < "$f.png" | cut -c1-16)"
       else
         say "image ${name}_${tag}_s$s FAILED or timed out"
       fi

@@ -42,6 +42,10 @@ layout(set = 0, binding = TS_BINDING_TILE_DRAWN, std430) buffer TileDrawn { uint
 layout(set = 0, binding = TS_BINDING_SHADE_TILES, std430) buffer ShadeTiles { uint shade_tiles[]; };
 // DFG tables (shaders/dfg.comp): classic then filament, each TS_DFG_SIZE^2, row = roughness.
 layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Dfg { vec4 dfg[]; };
+// After them, in the same buffer: the background's colours (GpuBackground).
+layout(set = 0, binding = TS_BINDING_DFG, std430) buffer Background {
+  layout(offset = TS_BACKGROUND_OFFSET) GpuBackground background_colours;
+};
 // RGBA16F or RGBA32F (FrameSettings::hdr_format), declared without a format so that one SPIR-V
 // module writes either (shaderStorageImageWriteWithoutFormat, which the context requires; the
 // stores clamp to GpuFrame.hdr_max first). Reading without a format is optional in Vulkan and

@@ -59,6 +59,8 @@ void main() {
   }
   bool in_grid = tile < tiles;
   bool drawn = in_grid && tile_drawn[tile] != 0u;
+  // Read here and nowhere after: zeroed for the next frame, which then needs no fill.
+  if (drawn) tile_drawn[tile] = 0u;
   uint slot = append(drawn, false);
   if (drawn) shade_tiles[slot] = tile;
   slot = append(in_grid && !drawn, true);

@@ -11,8 +11,13 @@ vec3 camera_ray_at(vec2 pixel_point) {
 }
 
 // What samples no triangle covers show, seen through `point` (in pixels).
+// Whether that is one colour, frame.background, everywhere (no environment behind the scene).
+bool background_is_uniform() {
+  return !(ibl_enabled() && frame.view == TS_VIEW_SHADED);
+}
+
 vec3 background(vec2 point) {
-  if (ibl_enabled() && frame.view == TS_VIEW_SHADED) {
+  if (!background_is_uniform()) {
     return textureLod(env_map, equirect_uv(camera_ray_at(point)), 0.0).rgb;
   }
   return frame.background;
@@ -31,4 +36,11 @@ vec3 stored(vec3 color) {
 void write_pixel(ivec2 pixel, vec3 value) {
   imageStore(hdr_image, pixel, vec4(value, 1.0));
   if (frame.resolve_in_shading != 0u) imageStore(ldr_image, pixel, vec4(display_colour(as_stored(value)), 1.0));
+}
+
+// write_pixel(pixel, stored(background(...))) for a pixel of one sample no triangle covers, under
+// background_is_uniform(): the values the background pass computed (GpuBackground).
+void write_background_pixel(ivec2 pixel) {
+  imageStore(hdr_image, pixel, background_colours.stored);
+  if (frame.resolve_in_shading != 0u) imageStore(ldr_image, pixel, background_colours.display);
 }

@@ -311,6 +311,7 @@ void main() {
   ivec2 origin;
   // The same for the whole workgroup, so that its barriers (resolve_samples) see every thread.
   if (!block_origin(origin)) return;
+  reset_tile_bound(origin);
   ivec2 pixel = origin + ivec2(gl_LocalInvocationID.xy);
   bool inside = all(lessThan(pixel, ivec2(frame.image_size)));
   if (SAMPLES > 1u) {
@@ -323,6 +324,10 @@ void main() {
   // Emptied for the next frame, which then need not fill the buffer (GpuFrame.reset_visibility):
   // only covered pixels are written, on a line this thread has just read.
   if (frame.reset_visibility != 0u && key != TS_VIS_EMPTY) visibility[pixel_index(pixel)] = TS_VIS_EMPTY;
+  if (key == TS_VIS_EMPTY && background_is_uniform()) {
+    write_background_pixel(pixel);
+    return;
+  }
   vec2 centre = vec2(pixel) + 0.5;
   vec3 color = key == TS_VIS_EMPTY ? background(centre) : shade_triangle(uint(key & 0xFFFFFFFFul), centre);
   write_pixel(pixel, stored(color));

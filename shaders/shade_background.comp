@@ -18,8 +18,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   ivec2 origin;
   if (!block_origin(origin)) return;
+  reset_tile_bound(origin);
   ivec2 pixel = origin + ivec2(gl_LocalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.image_size)))) return;
+  if (SAMPLES == 1u && background_is_uniform()) {
+    write_background_pixel(pixel);
+    return;
+  }
   vec3 color = stored(background(vec2(pixel) + 0.5));
   // What shade.comp stores for a pixel of empty samples, in the same arithmetic: with several
   // samples it sums its groups' colours times their weights from zero, the sole group's weight

@@ -2,14 +2,21 @@
 // shared by the clip pass (which rasterizes what is left) and analytic coverage (coverage.glsl,
 // which measures it). Needs bindings.glsl.
 
+// Setup's frames that record no object_clip pass (Renderer's forms_object_clip_in_setup) form
+// view_proj * model below. A specialization constant, not a uniform: lavapipe inlines uniforms
+// that decide branches into its shaders, and compiled setup anew every frame (16 ms and 0.6 MB
+// more a frame for one sphere).
+layout(constant_id = TS_SPEC_OBJECT_CLIP_INLINE) const bool OBJECT_CLIP_INLINE = false;
+
 // Clip-space position of the corners of triangle instance `id` of object slot `slot`. The
 // object's view_proj * model comes from the object_clip pass: computed there once per object
-// rather than here once per triangle, with the same expression, so the same floats. Setup calls
-// it per triangle: written through a helper taking the vertex indices, the same computation made
+// rather than here once per triangle, with the same expression, so the same floats (or here,
+// under OBJECT_CLIP_INLINE). Setup calls it per triangle: written through a helper taking the vertex indices, the same computation made
 // the H200's setup pass 24 % slower at 10^6 grid objects (21.6 -> 26.8 ms).
 void triangle_clip_coords(uint slot, uint id, out vec4 c[3]) {
   uvec3 vi = triangle_vertices(objects[slot], id);
-  mat4 to_clip = object_clip[slot];
+  // The same expression as object_clip.comp's, so the same floats either way.
+  mat4 to_clip = OBJECT_CLIP_INLINE ? frame.view_proj * objects[slot].model : object_clip[slot];
   for (int k = 0; k < 3; ++k) c[k] = to_clip * vec4(vertices[vi[k]].position_u.xyz, 1.0);
 }
 

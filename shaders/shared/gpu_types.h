@@ -139,9 +139,12 @@ using glm::vec4;
 // Shading by tiles (RendererOptions::shade_tiles): TS_SHADE_TILES_*. The rasterizers mark the
 // tiles they draw into unless it is TS_SHADE_TILES_OFF; the shading pass takes it as below.
 #define TS_SPEC_SHADE_TILES 14
+// Setup forms each triangle's view_proj * model itself instead of reading the object_clip pass's
+// (view_clip.glsl), in frames that record no object_clip pass (renderer.cpp's forms_object_clip_in_setup).
+#define TS_SPEC_OBJECT_CLIP_INLINE 15
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 15
+#define TS_SPEC_LIGHT_COUNT_BASE 16
 
 // How the shading pass is dispatched (TS_SPEC_SHADE_TILES).
 #define TS_SHADE_TILES_OFF 0u    // a workgroup per 8x8 pixels of the whole image
@@ -349,6 +352,19 @@ struct GpuOutlinePixel {
   uint pixel;  // x | y << 16
 };
 
+// What a pixel no triangle covers stores when the background is one colour (no environment
+// behind the scene): computed once by the background pass (background.comp) whenever what it
+// depends on changes, and stored by the shading pass, which then need not tone-map and encode
+// each background pixel. 32 bytes, after the DFG tables in their buffer (TS_BINDING_DFG,
+// TS_BACKGROUND_OFFSET): a binding of its own would be lavapipe's 33rd storage buffer of a
+// stage, one more than it allows (maxPerStageDescriptorStorageBuffers).
+#define TS_DFG_BYTES (2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * 16)  // two tables and their means
+#define TS_BACKGROUND_OFFSET TS_DFG_BYTES
+struct GpuBackground {
+  vec4 stored;   // pixel_colour.glsl's stored(frame.background), alpha 1: the HDR image's value
+  vec4 display;  // display.glsl's display_colour of it as the HDR image holds it, alpha 1
+};
+
 // The outline pass walks each outline pixel's mesh with TS_OUTLINE_LANES threads, which test
 // the neighbours of a step of the walk together, TS_OUTLINE_PIXELS_PER_GROUP pixels per
 // workgroup (the multiple the shading pass raises its dispatch by).
@@ -481,6 +497,9 @@ static_assert(sizeof(GpuBatch) == 16);
 static_assert(sizeof(GpuEnvPass) == sizeof(GpuBatch));
 static_assert(sizeof(GpuRasterTri) == 48);
 static_assert(sizeof(GpuOutlinePixel) == 16);
+static_assert(sizeof(GpuBackground) == 32);
+static_assert(TS_DFG_BYTES == 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(vec4));
+static_assert(offsetof(GpuBackground, display) == 16);
 static_assert(offsetof(GpuOutlinePixel, pixel) == 12);
 static_assert(sizeof(GpuCounters) == 224);
 static_assert(offsetof(GpuCounters, shade_dispatch) == 176);
