@@ -20,7 +20,8 @@ namespace tessera {
 /// The passes of a frame, in recording order, as FrameStats::pass_ms reports them.
 enum class Pass {
   environment,  // the environment's irradiance and prefiltered cube, on the first frame after
-                // set_scene changed it (also the DFG tables when first needed)
+                // set_scene changed it (also the DFG tables when first needed, and the
+                // background's colours when what they depend on changed: background.comp)
   clear,
   object_clip,  // each object's clip-space transform (view_proj * model)
   lod,          // level of detail (FrameSettings::lod automatic only): each object's level,
@@ -31,9 +32,9 @@ enum class Pass {
   bin_count,
   scan,
   fill,
-  raster_tiles,
-  raster_small,
-  list_tiles,  // shading by tiles (RendererOptions::shade_tiles): the drawn tiles and the others
+  raster_small,  // on GPUs recorded first: its threads' long walks start before the per-tile
+  raster_tiles,  // pass's thousands of workgroups take the GPU (renderer.cpp's barrier_after)
+  list_tiles,    // shading by tiles (RendererOptions::shade_tiles): the drawn tiles and the others
   shade,
   outline,  // silhouette coverage (several samples): the outline pixels' exact coverage
   resolve,
@@ -128,10 +129,10 @@ constexpr PassInfo kPasses[] = {
     {Pass::scan, "scan", "scan", Stage::batch, Dispatch::per_tile, 0, TS_SCAN_GROUP_SIZE},
     {Pass::fill, "fill", "fill", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, big_dispatch)},
-    {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
-     offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
     {Pass::raster_small, "raster_small", "raster_small", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
+    {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
+     offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
     {Pass::list_tiles, "list_tiles", "list_tiles", Stage::frame, Dispatch::per_tile, 0,
      TS_GROUP_SIZE},
     {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},

@@ -158,6 +158,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   s_->shade_tiles =
       options.shade_tiles.value_or(raster_tuning(ctx.properties.deviceType).shade_tiles) &&
       options.specialize_lights;
+  s_->small_first = ctx.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
   check_tile_size(ctx, options.tile_size);
   s_->pipelines =
       create_pipelines(ctx, options.tile_size, options.depth_rejection, s_->shade_tiles);
@@ -1211,19 +1212,25 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
 // coverage): its writes (the images, the counters) are read by the copies after the frame and
 // read-backs, and, under RendererOptions::resolve off, by the resolve pass the caller records
 // after it. Every other pass feeds the next compute pass.
-// The two rasterizers run without a barrier between them, so the per-triangle one's time is from
-// the per-tile one's end to both ends. Each only lowers what it writes (atomicMin into the
-// visibility buffer and the tile bounds, a count into the coverage buffer), so whatever it reads
-// of the other's writes is exact: a key or a bound read before the other lowered it is only
-// higher, which rejects less and changes no sample's final key. With depth rejection raster_small
-// reads the bounds raster_tiles lowers; the barrier that waited for them cost more than they
-// saved: on the H200 at 1920x1080 one sphere's frame took 6.5 us less without it, and scatter's
-// 10^5 objects, where rejection matters most, 0.14 ms less (docs/performance.md, ninth round).
-static_assert(size_t(Pass::raster_small) == size_t(Pass::raster_tiles) + 1);
+// The two rasterizers run without a barrier between them (the frame's loop records none after
+// the first), on GPUs the per-triangle one first (State::small_first), so the per-tile one's time
+// is from the per-triangle one's end to both ends. Each only lowers what it writes (atomicMin
+// into the visibility buffer and the tile bounds, a count into the coverage buffer), so whatever
+// it reads of the other's writes is exact: a key or a bound read before the other lowered it is
+// only higher, which rejects less and changes no sample's final key. The barrier that made
+// raster_small wait for the bounds raster_tiles lowers cost more than they saved: on the H200 at
+// 1920x1080 one sphere's frame took 6.5 us less without it, and scatter's 10^5 objects, where
+// rejection matters most, 0.14 ms less. raster_small goes first: a frame of few small triangles is
+// the length of their longest walk (up to 64 pixels, one thread each), which then runs beside
+// raster_tiles' thousands of workgroups instead of after them (grid of 1 / 10 / 100 spheres 0.0717
+// / 0.0985 / 0.1488 -> 0.0698 / 0.0929 / 0.1445 ms; scatter's 10^5 objects 10.26 -> 10.36 ms;
+// docs/performance.md, ninth round). A CPU device runs one dispatch after the other, and there
+// raster_tiles goes first so that raster_small rejects behind the bounds it lowered
+// (depth_rejection_test).
+static_assert(size_t(Pass::raster_tiles) == size_t(Pass::raster_small) + 1);
 // `outlines_next`: the outline pass follows, which reads its dispatch from the counters and
 // writes pixels again (the wider barrier cost the 1-sample frame's last pass 2 us on the H200).
 void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool outlines_next = false) {
-  if (pass.pass == Pass::raster_tiles) return;
   // list_tiles writes the shading pass's indirect dispatches.
   if (pass.stage != Stage::frame || outlines_next || pass.pass == Pass::list_tiles) {
     compute_to_compute(cmd);
@@ -1303,14 +1310,20 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
               uint32_t(first < total ? std::min<uint64_t>(s.batch_triangles, total - first) : 0), b,
               0};
           vkCmdPushConstants(cmd, p.layout, kShaderStages, 0, sizeof(batch), &batch);
-          for (size_t j = i; j < end; ++j) {
+          for (size_t k = i; k < end; ++k) {
+            size_t j = k;  // kPasses has the rasterizers in the order small_first records them
+            if (!s.small_first && j == size_t(Pass::raster_small))
+              j = size_t(Pass::raster_tiles);
+            else if (!s.small_first && j == size_t(Pass::raster_tiles))
+              j = size_t(Pass::raster_small);
             // Direct tile lists need no count and no packed ranges (fill.comp).
             const Pass pass = kPasses[j].pass;
             if (s.tile_list_stride != 0 && (pass == Pass::bin_count || pass == Pass::scan))
               continue;
             if (s.skip_clip && pass == Pass::clip) continue;
             record_dispatch(s, cmd, kPasses[j], batch, settings);
-            barrier_after(cmd, kPasses[j]);
+            // None between the two rasterizers.
+            if (k != size_t(Pass::raster_small)) barrier_after(cmd, kPasses[j]);
             mark(kPasses[j].pass);
           }
         }

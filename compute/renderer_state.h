@@ -84,8 +84,13 @@ struct Renderer::State {
   std::optional<bool> nothing_to_clip;
   std::vector<MeshBox> mesh_boxes;  // of `meshes`, for that prediction
   // The frame records no object_clip pass: its few triangles form their objects' clip-space
-  // transforms themselves (GpuFrame.object_clip_inline).
+  // transforms themselves (TS_SPEC_OBJECT_CLIP_INLINE; renderer.cpp's forms_object_clip_in_setup).
   bool object_clip_inline = false;
+  // The per-triangle rasterizer is recorded before the per-tile one (renderer.cpp's
+  // barrier_after): on GPUs, where they overlap. A CPU device (lavapipe) runs dispatches one
+  // after another, and raster_small recorded second can reject what lies behind the tile bounds
+  // raster_tiles lowered.
+  bool small_first = true;
   uint32_t counter_slots = 0;  // batches the GpuCounters buffer holds
   Buffer counters_readback;    // the counters, copied back after each frame
 

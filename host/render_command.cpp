@@ -109,8 +109,8 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   const double precompute = first.pass_ms[size_t(Pass::environment)];
   if (precompute > 0.0) {
     std::printf(
-        "environment precomputation (DFG tables, irradiance, prefiltered cube), first frame "
-        "only: %.3f ms\n",
+        "precomputation (the background's colours; DFG tables, irradiance and prefiltered cube "
+        "where used), first frame only: %.3f ms\n",
         precompute);
   }
 }
