@@ -187,8 +187,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
 
   for (const BindingInfo& b : kBindings) {
     if (b.source == Source::sized && b.scale == Scale::fixed) {
-      s_->buffer(b.binding) = create_buffer(ctx, binding_size(*s_, b),
-                                            kStorageUsage | b.extra_usage, MemoryKind::device);
+      s_->buffer(b.binding) = create_binding_buffer(ctx, b, binding_size(*s_, b));
     }
   }
   s_->frame_constants = create_buffer(ctx, sizeof(gpu::GpuFrame),
@@ -429,6 +428,11 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint3
 
 }  // namespace
 
+Buffer create_binding_buffer(const Context& ctx, const BindingInfo& b, uint64_t bytes) {
+  return create_buffer(ctx, bytes, kStorageUsage | b.extra_usage,
+                       b.host_mapped ? MemoryKind::device_mapped : MemoryKind::device);
+}
+
 uint64_t binding_size(const Renderer::State& s, const BindingInfo& b) {
   uint64_t count = 1;
   switch (b.scale) {
@@ -532,8 +536,7 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
     if (b.source != Source::sized || !sized_by_frame(b.scale)) continue;
     Buffer& buffer = s.buffer(b.binding);
     destroy_buffer(ctx, buffer);
-    buffer =
-        create_buffer(ctx, binding_size(s, b), kStorageUsage | b.extra_usage, MemoryKind::device);
+    buffer = create_binding_buffer(ctx, b, binding_size(s, b));
     if (b.clear == Clear::on_creation) s.creation_clears_pending = true;
   }
   destroy_image(ctx, s.hdr);
@@ -651,11 +654,7 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
     const uint64_t bytes = binding_size(s, b);
     if (buffer.buffer && buffer.size >= bytes) continue;
     destroy_buffer(ctx, buffer);
-    // The counters are zeroed for every frame: by the host where it can map them, which spares
-    // the frame a fill and the barrier after it (about 5 us on the H200).
-    const MemoryKind kind =
-        b.binding == TS_BINDING_COUNTERS ? MemoryKind::device_mapped : MemoryKind::device;
-    buffer = create_buffer(ctx, bytes, kStorageUsage | b.extra_usage, kind);
+    buffer = create_binding_buffer(ctx, b, bytes);
     if (b.clear == Clear::on_creation) s.creation_clears_pending = true;
     s.descriptors_dirty = true;
   }

@@ -181,6 +181,8 @@ VkPipeline sampled_pipeline(Renderer::State& s, size_t index, const char* shader
 
 /// Size in bytes that Source::sized binding `info` needs now (at least 4).
 uint64_t binding_size(const Renderer::State& s, const BindingInfo& info);
+/// A Source::sized buffer of binding `info`, `bytes` long, in the memory its row asks for.
+Buffer create_binding_buffer(const Context& ctx, const BindingInfo& info, uint64_t bytes);
 
 /// Usage of every storage buffer: read and written by shaders, filled and copied by transfers,
 /// and indices drawn from by a graphics pipeline (the hardware baseline).

@@ -140,7 +140,8 @@ using glm::vec4;
 // tiles they draw into unless it is TS_SHADE_TILES_OFF; the shading pass takes it as below.
 #define TS_SPEC_SHADE_TILES 14
 // Setup forms each triangle's view_proj * model itself instead of reading the object_clip pass's
-// (view_clip.glsl), in frames that record no object_clip pass (renderer.cpp's forms_object_clip_in_setup).
+// (view_clip.glsl), in frames that record no object_clip pass (renderer.cpp's
+// forms_object_clip_in_setup).
 #define TS_SPEC_OBJECT_CLIP_INLINE 15
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
