@@ -133,18 +133,23 @@ void validate_tile_size(uint32_t tile_size) {
 RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
-    return {gpu.small_triangle_max_area, gpu.depth_rejection, false, gpu.tile_lists};
+    return {gpu.small_triangle_max_area, gpu.small_triangle_walk_area, gpu.depth_rejection, false,
+            gpu.tile_lists};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
   // triangles; and the shading pass pays the whole shading code for background pixels unless
   // they are not dispatched to it.
-  return {kCpuSmallTriangleArea, gpu.depth_rejection, true, TileLists::counted};
+  // Each box is walked whole by one thread (its walk area is the small-triangle area), as in
+  // the measurements that chose these settings; shorter walks were not measured apart there.
+  return {kCpuSmallTriangleArea, kCpuSmallTriangleArea, gpu.depth_rejection, true,
+          TileLists::counted};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
   const RasterTuning t = raster_tuning(ctx.properties.deviceType);
   options.small_triangle_max_area = t.small_triangle_max_area;
+  options.small_triangle_walk_area = t.small_triangle_walk_area;
   options.depth_rejection = t.depth_rejection;
   options.shade_tiles = t.shade_tiles;
   options.tile_lists = t.tile_lists;
@@ -160,6 +165,8 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
       options.specialize_lights;
   s_->small_first = ctx.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
   check_tile_size(ctx, options.tile_size);
+  if (options.small_triangle_walk_area == 0)
+    throw Error("small-triangle walk area must be at least 1 pixel");
   s_->pipelines =
       create_pipelines(ctx, options.tile_size, options.depth_rejection, s_->shade_tiles);
 
@@ -949,8 +956,8 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     bool need_clip = false;
     for (uint32_t b = 0; b < batches; ++b) {
       need_clip = need_clip || counters[b].clip_list > 0;
-      need_raster =
-          std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list});
+      need_raster = std::max<uint64_t>({need_raster, counters[b].raster_tris, counters[b].clip_list,
+                                        counters[b].small_counts.x});
       need_entries = std::max<uint64_t>(need_entries, counters[b].tile_entries);
       longest_list = std::max<uint64_t>(longest_list, counters[b].tile_list_max);
     }
@@ -992,7 +999,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     for (uint32_t b = 0; b < batches; ++b) {
       const gpu::GpuCounters& c = counters[b];
       stats.raster_triangles += c.raster_tris;
-      stats.small_triangles += c.small_tris;
+      stats.small_triangles += c.small_counts.y;
       stats.big_triangles += c.big_tris;
       stats.tile_entries += c.tile_entries;
       stats.culled_backface += c.culled_backface;
@@ -1101,6 +1108,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
                         .raster_capacity = s.raster_capacity,
                         .tile_entry_capacity = s.tile_entry_capacity,
                         .small_triangle_max_area = s.options.small_triangle_max_area,
+                        .small_triangle_walk_area = s.options.small_triangle_walk_area,
                         .environment = s.env.source ? 1u : 0u,
                         .env_levels = specular_levels(s.env),
                         .anisotropy = settings.max_anisotropy,

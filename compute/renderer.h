@@ -44,7 +44,12 @@ const char* tile_lists_name(TileLists lists);  // "counted", "direct", "automati
 struct RendererOptions {
   /// Triangles whose pixel box has at most this many pixels are rasterized one thread per
   /// triangle; larger ones are binned into tiles. Any value gives the same image.
-  uint32_t small_triangle_max_area = 64;
+  uint32_t small_triangle_max_area = 128;
+  /// Pixels one thread of the per-triangle rasterizer walks, about: the rows of a larger box are
+  /// dealt out among ceil(box pixels / this) threads (at most one per row), so that one thread
+  /// does not walk a box alone while the rest of its SIMD group waits. At least 1 (the
+  /// constructor throws Error otherwise). Any value gives the same image.
+  uint32_t small_triangle_walk_area = 32;
   /// Side of the screen tiles that large triangles are binned into and rasterized by, one
   /// workgroup of tile_size^2 threads per tile: 8 or 16 (validate_tile_size). Either gives
   /// the same image; it trades binning work against idle threads. Size 8 holds images up to
@@ -103,6 +108,7 @@ void validate_tile_size(uint32_t tile_size);
 /// The rasterizer settings of RendererOptions that change the speed and never the image.
 struct RasterTuning {
   uint32_t small_triangle_max_area;
+  uint32_t small_triangle_walk_area;
   bool depth_rejection;
   bool shade_tiles;
   TileLists tile_lists;
@@ -111,7 +117,8 @@ struct RasterTuning {
 /// The settings measured fastest on a device of `type` (docs/performance.md, "Device-tuned
 /// rasterization"): RendererOptions' defaults, tuned on GPUs, except on CPU devices
 /// (VK_PHYSICAL_DEVICE_TYPE_CPU, such as lavapipe), which take every triangle whose pixel box
-/// has up to kCpuSmallTriangleArea pixels on the per-triangle rasterizer, shade by tiles and
+/// has up to kCpuSmallTriangleArea pixels on the per-triangle rasterizer, walking each box with
+/// one thread (small_triangle_walk_area = kCpuSmallTriangleArea), shade by tiles and
 /// count their tile lists (with direct lists raster_small's dispatch, sized as setup appends, is
 /// rounded up to 1,024 triangles, and lavapipe ran one sphere's 8 workgroups of triangles and 8
 /// empty ones in 1.45 ms instead of 0.96).

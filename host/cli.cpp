@@ -467,7 +467,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--small-triangle-area", a.small_triangle_area,
                  "pixel-box area up to which a triangle is\n"
                  "rasterized by one thread; larger ones are\n"
-                 "binned into tiles (default 64; 4096 on a CPU\n"
+                 "binned into tiles (default 128; 4096 on a CPU\n"
                  "device such as lavapipe)")
       ->type_name("A")
       ->check(whole_number(0, 1u << 24));

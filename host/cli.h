@@ -63,7 +63,7 @@ struct BenchArgs {
   uint32_t runs = 1;       // whole sweeps; figures are the medians of their medians
   std::string compare;     // --compare: a saved --json run to print ratios against
   uint64_t reference_max_triangles = 2'000'000;  // the CPU reference runs only up to this
-  uint32_t small_triangle_area = 64;             // RendererOptions::small_triangle_max_area
+  uint32_t small_triangle_area = 128;            // RendererOptions::small_triangle_max_area
   bool generic_shading = false;                  // RendererOptions::specialize_lights off
   Lod lod = Lod::off;                            // FrameSettings::lod, for every backend
   float lod_error_px = 0.5f;                     // FrameSettings::lod_error_px
@@ -103,8 +103,8 @@ struct TradeoffArgs {
   std::vector<std::string> knobs;  // host/tradeoff.h, knobs()
   FrameSettings frame;             // --size, --hdr-format, --quality; the rest each knob's
   EnvironmentOptions env_options;  // the environment knobs' defaults
-  uint32_t tile_size = TS_TILE_SIZE;  // RendererOptions::tile_size of every setting but its knob's
-  uint32_t small_triangle_area = 64;  // RendererOptions::small_triangle_max_area, likewise
+  uint32_t tile_size = TS_TILE_SIZE;   // RendererOptions::tile_size of every setting but its knob's
+  uint32_t small_triangle_area = 128;  // RendererOptions::small_triangle_max_area, likewise
   bool small_triangle_area_given = false;  // by --quality: else the device's (raster_tuning,
                                            // compute/renderer.h)
   Quality quality = Quality::none;         // --quality, applied by parse_command_line

@@ -18,7 +18,7 @@ const QualityPreset& quality_preset(Quality quality) {
                                    .env_specular_size = 16,
                                    .env_specular_samples = 8,
                                    .hdr_format = HdrFormat::fp16,
-                                   .small_triangle_area = 64,
+                                   .small_triangle_area = 128,
                                    .tile_size = 16};
   static const QualityPreset balanced{.brdf = Brdf::filament,
                                       .energy_compensation = true,
@@ -29,7 +29,7 @@ const QualityPreset& quality_preset(Quality quality) {
                                       .env_specular_size = 32,
                                       .env_specular_samples = 32,
                                       .hdr_format = HdrFormat::fp16,
-                                      .small_triangle_area = 64,
+                                      .small_triangle_area = 128,
                                       .tile_size = 16};
   static const QualityPreset reference{.brdf = Brdf::filament,
                                        .energy_compensation = true,
@@ -40,7 +40,7 @@ const QualityPreset& quality_preset(Quality quality) {
                                        .env_specular_size = 256,
                                        .env_specular_samples = 512,
                                        .hdr_format = HdrFormat::fp32,
-                                       .small_triangle_area = 64,
+                                       .small_triangle_area = 128,
                                        .tile_size = 16};
   switch (quality) {
     case Quality::draft:

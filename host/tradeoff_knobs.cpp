@@ -157,7 +157,7 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       out.push_back(s);
     }
   } else if (knob == "small-triangle") {
-    for (uint32_t area : {0u, 16u, 64u, 256u, 4096u}) {
+    for (uint32_t area : {0u, 16u, 64u, 128u, 256u, 4096u}) {
       KnobSetting s = base(knob, std::to_string(area) + " px", frame, options);
       s.renderer.small_triangle_max_area = area;
       s.is_default = area == options.small_triangle_max_area;

@@ -27,11 +27,12 @@ void emit(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided) 
   if (index >= frame.raster_capacity) return;  // overflow: the host sees the count, grows, redoes
   store_raster_tri(index, t);
   if (outcome == OUTCOME_SMALL) {
-    uint slot = atomicAdd(counters[batch.index].small_tris, 1u);
+    uint walks = small_walks(t);
+    uint slot = append_small(1u, walks);
     if (frame.tile_list_stride != 0u) {  // no scan pass sizes raster_small's dispatch
-      RAISE_DISPATCH(counters[batch.index].small_dispatch.x, slot, 1u, TS_GROUP_SIZE);
+      RAISE_DISPATCH(counters[batch.index].small_dispatch.x, slot, walks, TS_GROUP_SIZE);
     }
-    small_list[slot] = index;
+    store_small_entries(index, slot, walks);
   } else {
     uint entries = bin_entry_count(t);
     uint first = atomicAdd(counters[batch.index].big_tris, entries);

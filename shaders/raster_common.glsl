@@ -191,6 +191,18 @@ bool bin_entry_row(uint packed, uint row, out ivec2 first, out int width) {
   return row <= ((packed >> 24) & 0xFu);
 }
 
+// Walks of a small triangle (entries of the per-triangle rasterizer's list): the rows of its box
+// are dealt out among them, row r to walk r mod walks, so that each walk covers about
+// frame.small_triangle_walk_area pixels or fewer, and one thread does not walk a box of
+// hundreds of pixels alone while the rest of its SIMD group waits. A box one row high takes
+// one walk whatever its width.
+uint small_walks(RasterTri t) {
+  uvec2 extent = uvec2(t.box_max - t.box_min) + 1u;
+  // (area - 1) / walk_area + 1 rounds up without overflow (area >= 1, walk_area >= 1).
+  uint walks = (extent.x * extent.y - 1u) / frame.small_triangle_walk_area + 1u;
+  return min(walks, min(extent.y, TS_MAX_SMALL_WALKS));
+}
+
 // Tile range (inclusive) overlapped by the triangle's pixel box.
 void tile_range(RasterTri t, out ivec2 first, out ivec2 last) {
   first = t.box_min / TILE_SIZE;

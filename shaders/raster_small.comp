@@ -1,9 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Rasterizer for small triangles: one thread walks its triangle's pixel box, stepping the
-// integer edge functions from pixel centre to pixel centre (in int32 where that is exact,
-// edges_fit_int32), and atomicMin's each covered sample (SAMPLES per pixel) into the
-// visibility buffer.
+// Rasterizer for small triangles: one thread per entry of the list setup and clip append walks
+// its triangle's pixel box (or every walks-th row of it, for a box dealt out among several
+// walks: small_walks), stepping the integer edge functions from pixel centre to pixel centre
+// (in int32 where that is exact, edges_fit_int32), and atomicMin's each covered sample
+// (SAMPLES per pixel) into the visibility buffer.
 // With hierarchical depth rejection (REJECTION, raster_common.glsl) it first compares the
 // triangle's nearest depth with the bounds of the tiles its box touches (tile_far, lowered by
 // fill and raster_tiles, which ran before) and skips a triangle behind all of them.
@@ -43,40 +44,36 @@ bool edges_fit_int32(RasterTri t) {
   return int64_t(w.x) * int64_t(w.y) <= (1l << 24);
 }
 
-// The box walked in int32 (edges_fit_int32 has shown that exact). Every value is taken in
-// int64 first (exact: edge_function's bound) and converted; the walk then only adds. SPIR-V
-// defines OpIAdd as the low bits of the exact sum and OpSConvert to a narrower type as
-// truncation, so every value here is exact modulo 2^32, and the values at the box's sample
-// points (less a threshold), the only ones compared or converted to float, lie in int32's range
-// and are the exact ones (the terms they are summed from need not).
-// Thresholds are folded in: a sample is covered when each edge value less its threshold
-// (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
-// Every covered sample's key goes to an atomicMin whose result is not read, so that no step of
-// the walk waits for memory. Reading the pixel's keys first, to skip the atomics of samples
-// already nearer (and, with depth rejection, the keys' depths), made each pixel wait for a
-// load: a thread walking a 64-pixel box waited 64 times in a row, the whole pass's time for a
-// frame of few small triangles. On the H200 at 1920x1080 (docs/performance.md, "Issue 13,
-// sixth round") the pass went from 0.021 to 0.013 ms for one grid sphere, from 0.042 to
-// 0.027 ms for 1,000, and was unchanged on scatter at 10^5 and 10^6 objects, whose hidden
-// triangles depth rejection skips before their walk.
-void raster_box_int32(RasterTri t) {
+// What the int32 walk of a triangle needs besides its edge values: steps from pixel to pixel,
+// each sample's offset from its pixel centre's values, and their largest.
+struct Walk32 {
+  ivec3 step_x, step_y;  // one pixel right, one pixel down
+  ivec3 pixel_reach;     // the largest of the samples' offsets on each edge
+  ivec3 threshold;       // edge_threshold of each edge (0 or 1)
+  float area;            // the doubled area, as depth_at divides by it
+};
+
+// The walk's constants and the edge values (less nothing) at the centre of the box's first
+// pixel.
+Walk32 walk32_of(RasterTri t, out ivec3 first, out ivec3 to_sample[SAMPLES]) {
+  Walk32 w;
   Thresholds h = thresholds_of(t);
   i64vec3 threshold = i64vec3(h.t0, h.t1, h.t2);
-  Edges first = edges_at(t, pixel_centre(t.box_min));
+  w.threshold = ivec3(threshold);
+  Edges e = edges_at(t, pixel_centre(t.box_min));
   // The three edge functions sum to the doubled area at every point (barycentric weights sum
   // to one), so float(e0 + e1 + e2), which depth_at divides by, is the same for every sample.
-  float area = float(first.e0 + first.e1 + first.e2);
+  w.area = float(e.e0 + e.e1 + e.e2);
+  first = ivec3(i64vec3(e.e0, e.e1, e.e2));
   // One pixel right changes E_ab by -(b.y - a.y) * 256, one pixel down by (b.x - a.x) * 256.
   ivec3 dx = ivec3(t.v2.x - t.v1.x, t.v0.x - t.v2.x, t.v1.x - t.v0.x);
   ivec3 dy = ivec3(t.v2.y - t.v1.y, t.v0.y - t.v2.y, t.v1.y - t.v0.y);
-  ivec3 step_x = ivec3(-i64vec3(dy) * TS_SUBPIXEL_ONE);
-  ivec3 step_y = ivec3(i64vec3(dx) * TS_SUBPIXEL_ONE);
-
+  w.step_x = ivec3(-i64vec3(dy) * TS_SUBPIXEL_ONE);
+  w.step_y = ivec3(i64vec3(dx) * TS_SUBPIXEL_ONE);
   // Each sample's edge values less the thresholds differ from its pixel centre's by the same
   // amounts in every pixel; `reach` is their largest on each edge, so that one test per pixel
   // tells whether any of its samples can be covered (the largest value on each edge is that
   // of some sample: a sample point's value less its threshold, in range like the others).
-  ivec3 to_sample[SAMPLES];
   i64vec3 reach;
   for (uint s = 0u; s < SAMPLES; ++s) {
     Edges d = edges_moved(t, Edges(0l, 0l, 0l), sample_offset(s) - TS_SUBPIXEL_ONE / 2);
@@ -84,45 +81,76 @@ void raster_box_int32(RasterTri t) {
     to_sample[s] = ivec3(moved);
     reach = s == 0u ? moved : max(reach, moved);
   }
-  ivec3 pixel_reach = ivec3(reach);
+  w.pixel_reach = ivec3(reach);
+  return w;
+}
 
-  ivec3 row = ivec3(i64vec3(first.e0, first.e1, first.e2));
+// Writes the keys of the samples of `pixel` that the triangle covers, `e` being the edge values
+// at the pixel's centre; returns whether any sample may be covered (the row test of the walk).
+// Every covered sample's key goes to an atomicMin whose result is not read, so that no step of
+// a walk waits for memory. Reading the pixel's keys first, to skip the atomics of samples
+// already nearer (and, with depth rejection, the keys' depths), made each pixel wait for a
+// load: a thread walking a 64-pixel box waited 64 times in a row, the whole pass's time for a
+// frame of few small triangles. On the H200 at 1920x1080 (docs/performance.md, "Issue 13,
+// sixth round") the pass went from 0.021 to 0.013 ms for one grid sphere, from 0.042 to
+// 0.027 ms for 1,000, and was unchanged on scatter at 10^5 and 10^6 objects, whose hidden
+// triangles depth rejection skips before their walk.
+bool cover_pixel_int32(RasterTri t, Walk32 w, ivec3 to_sample[SAMPLES], ivec2 pixel, ivec3 e) {
+  ivec3 m = e + w.pixel_reach;
+  bool passes = (m.x | m.y | m.z) >= 0;
+  uint covered = passes && SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
+  if (passes && SAMPLES > 1u) {
+    for (uint s = 0u; s < SAMPLES; ++s) {
+      ivec3 es = e + to_sample[s];
+      if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
+    }
+  }
+  if (covered != 0u) {
+    uint p = pixel_index(pixel);
+    for (uint s = 0u; s < SAMPLES; ++s) {
+      if ((covered & (1u << s)) == 0u) continue;
+      if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+      ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + w.threshold;
+      uint64_t key = visibility_key(depth_at(t, vec3(exact), w.area), t.id);
+      atomicMin(visibility[sample_index(p, s)], key);
+    }
+  }
+  return passes;
+}
+
+// Walk `walk` of the triangle's `walks` (small_walks): rows walk, walk + walks, ... of its box,
+// in int32 (edges_fit_int32 has shown that exact). Every value is taken in int64 first (exact:
+// edge_function's bound) and converted; the walk then only adds and multiplies. SPIR-V defines
+// OpIAdd and OpIMul as the low bits of the exact result and OpSConvert to a narrower type as
+// truncation, so every value here is exact modulo 2^32, and the values at the box's sample
+// points (less a threshold), the only ones compared or converted to float, lie in int32's range
+// and are the exact ones (the terms they are summed from need not).
+// Thresholds are folded in: a sample is covered when each edge value less its threshold
+// (edge_threshold: 0 or 1) is >= 0, that is when the OR of the three has its sign bit clear.
+void raster_box_int32(RasterTri t, uint walk, uint walks) {
+  ivec3 row;
+  ivec3 to_sample[SAMPLES];
+  Walk32 w = walk32_of(t, row, to_sample);
+  row += int(walk) * w.step_y;
+  ivec3 row_step = int(walks) * w.step_y;
   ivec3 e = row;
-  ivec2 pixel = t.box_min;
+  ivec2 pixel = ivec2(t.box_min.x, t.box_min.y + int(walk));
   bool entered = false;  // a pixel of this row has passed
   // One loop over the box's pixels, not one per row: the threads of a SIMD group walk boxes of
   // different shapes, and nested loops would hold the group for its widest box's width in
   // every row of its tallest box.
   while (true) {
-    ivec3 m = e + pixel_reach;
-    bool passes = (m.x | m.y | m.z) >= 0;
-    uint covered = passes && SAMPLES == 1u ? 1u : 0u;  // with one sample, m is the sample's value
-    if (passes && SAMPLES > 1u) {
-      for (uint s = 0u; s < SAMPLES; ++s) {
-        ivec3 es = e + to_sample[s];
-        if ((es.x | es.y | es.z) >= 0) covered |= 1u << s;
-      }
-    }
-    if (covered != 0u) {
-      uint p = pixel_index(pixel);
-      for (uint s = 0u; s < SAMPLES; ++s) {
-        if ((covered & (1u << s)) == 0u) continue;
-        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        ivec3 exact = (SAMPLES == 1u ? m : e + to_sample[s]) + ivec3(threshold);
-        uint64_t key = visibility_key(depth_at(t, vec3(exact), area), t.id);
-        atomicMin(visibility[sample_index(p, s)], key);
-      }
-    }
+    bool passes = cover_pixel_int32(t, w, to_sample, pixel, e);
     // Each of m's components is affine in x, so the pixels of a row that pass are one run:
     // after it, the rest of the row cannot pass either.
     bool row_done = pixel.x == t.box_max.x || (entered && !passes);
     entered = entered || passes;
     if (!row_done) {
       pixel.x++;
-      e += step_x;
-    } else if (pixel.y < t.box_max.y) {
-      pixel = ivec2(t.box_min.x, pixel.y + 1);
-      row += step_y;
+      e += w.step_x;
+    } else if (pixel.y + int(walks) <= t.box_max.y) {
+      pixel = ivec2(t.box_min.x, pixel.y + int(walks));
+      row += row_step;
       e = row;
       entered = false;
     } else {
@@ -131,35 +159,39 @@ void raster_box_int32(RasterTri t) {
   }
 }
 
-// The box walked with each sample's edge values taken anew in int64 (edges_at), for the boxes
-// edges_fit_int32 refuses: rare (slivers reaching far out of the image, a raised small-triangle
-// limit), so slower per sample, but with few live values, so that it does not raise the
-// registers, and lower the occupancy, of the whole shader.
-void raster_box_int64(RasterTri t, uint near_high) {
+// The samples of `pixel` tested with their edge values taken anew in int64 (edges_at), for the
+// boxes edges_fit_int32 refuses: rare (slivers reaching far out of the image, a raised
+// small-triangle limit), so slower per sample, but with few live values, so that it does not
+// raise the registers, and lower the occupancy, of the whole shader.
+void cover_pixel_int64(RasterTri t, Thresholds h, ivec2 pixel, uint near_high) {
+  uint p = pixel_index(pixel);
+  for (uint s = 0u; s < SAMPLES; ++s) {
+    Edges e = edges_at(t, sample_position(pixel, s));
+    if (!is_covered(e, h)) continue;
+    if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
+    uint v = sample_index(p, s);
+    // A plain read first skips most atomics; a stale value is never below the true one.
+    uint64_t current = visibility[v];
+    if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
+    uint64_t key = visibility_key(depth_at(t, e), t.id);
+    if (current > key) atomicMin(visibility[v], key);
+  }
+}
+
+void raster_box_int64(RasterTri t, uint walk, uint walks) {
   Thresholds h = thresholds_of(t);
-  for (int y = t.box_min.y; y <= t.box_max.y; ++y) {
-    for (int x = t.box_min.x; x <= t.box_max.x; ++x) {
-      uint p = pixel_index(ivec2(x, y));
-      for (uint s = 0u; s < SAMPLES; ++s) {
-        Edges e = edges_at(t, sample_position(ivec2(x, y), s));
-        if (!is_covered(e, h)) continue;
-        if (DEBUG_COVERAGE) atomicAdd(coverage[p], 1u);
-        uint v = sample_index(p, s);
-        // A plain read first skips most atomics; a stale value is never below the true one.
-        uint64_t current = visibility[v];
-        if (REJECTION && uint(current >> 32) < near_high) continue;  // the key would be above
-        uint64_t key = visibility_key(depth_at(t, e), t.id);
-        if (current > key) atomicMin(visibility[v], key);
-      }
-    }
+  uint near_high = nearest_key_high(t.depth);
+  for (int y = t.box_min.y + int(walk); y <= t.box_max.y; y += int(walks)) {
+    for (int x = t.box_min.x; x <= t.box_max.x; ++x) cover_pixel_int64(t, h, ivec2(x, y), near_high);
   }
 }
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= min(counters[batch.index].small_tris, frame.raster_capacity)) return;
-  RasterTri t = load_raster_tri(small_list[i]);
-  uint near_high = nearest_key_high(t.depth);
+  if (i >= min(counters[batch.index].small_counts.x, frame.raster_capacity)) return;
+  uint entry = small_list[i];
+  uint walk = (entry & TS_SMALL_WALK_BIT) != 0u ? entry & ~TS_SMALL_WALK_BIT : 0u;
+  RasterTri t = load_raster_tri(walk == 0u ? entry : small_list[i - walk]);
   if (REJECTION) {
     ivec2 first, last;
     tile_range(t, first, last);
@@ -169,13 +201,14 @@ void main() {
         far_high = max(far_high, tile_far[uint(ty) * frame.tiles.x + uint(tx)]);
       }
     }
-    bool hidden = near_high > far_high;
-    // One atomic per subgroup: per-thread atomics on one address would serialize.
-    uint n = subgroupBallotBitCount(subgroupBallot(hidden));
+    bool hidden = nearest_key_high(t.depth) > far_high;
+    // Counted once per triangle, by its first walk. One atomic per subgroup: per-thread atomics
+    // on one address would serialize.
+    uint n = subgroupBallotBitCount(subgroupBallot(hidden && walk == 0u));
     if (n > 0u && subgroupElect()) atomicAdd(counters[batch.index].rejected_small, n);
     if (hidden) return;
   }
-  if (SHADE_TILES != TS_SHADE_TILES_OFF) {
+  if (SHADE_TILES != TS_SHADE_TILES_OFF && walk == 0u) {
     // Every tile the box touches, whether or not a sample is covered there: a tile listed
     // without need is only shaded as background by the shading pass's code.
     ivec2 first, last;
@@ -184,9 +217,10 @@ void main() {
       for (int tx = first.x; tx <= last.x; ++tx) tile_drawn[uint(ty) * frame.tiles.x + uint(tx)] = 1u;
     }
   }
+  uint walks = small_walks(t);
   if (edges_fit_int32(t)) {
-    raster_box_int32(t);
+    raster_box_int32(t, walk, walks);
   } else {
-    raster_box_int64(t, near_high);
+    raster_box_int64(t, walk, walks);
   }
 }

@@ -15,7 +15,7 @@ shared uint group_total;
 shared uint group_base;
 
 void write_dispatch_sizes(uint b, bool tiles_used) {
-  uint small_count = min(counters[b].small_tris, frame.raster_capacity);
+  uint small_count = min(counters[b].small_counts.x, frame.raster_capacity);
   counters[b].small_dispatch = uvec4((small_count + TS_GROUP_SIZE - 1) / TS_GROUP_SIZE, 1, 1, 0);
   counters[b].tiles_dispatch = tiles_used ? uvec4(frame.tiles.x, frame.tiles.y, 1, 0) : uvec4(0, 1, 1, 0);
 }

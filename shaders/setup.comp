@@ -154,21 +154,34 @@ void main() {
   APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
   bool stored = emits && index < frame.raster_capacity;
   if (stored) store_raster_tri(index, t);
+  // Small triangles: a variable number of walks per thread, taken with a prefix sum.
+  uint walks = stored && outcome == OUTCOME_SMALL ? small_walks(t) : 0u;
   uint small_slot;
   {
-    uvec4 ballot = subgroupBallot(stored && outcome == OUTCOME_SMALL);
+    uvec4 ballot = subgroupBallot(walks != 0u);
     uint n = subgroupBallotBitCount(ballot);
+    // Most subgroups hold no triangle of several walks: the ballot then gives the slots without
+    // the prefix sums (the condition is the same in all lanes).
+    bool single = subgroupBallot(walks > 1u) == uvec4(0u);
+    uint total = n;
+    uint before = subgroupBallotExclusiveBitCount(ballot);
+    if (!single) {
+      total = subgroupAdd(walks);
+      before = subgroupExclusiveAdd(walks);
+    }
     uint base = 0u;
     if (n > 0u && subgroupElect()) {
-      base = atomicAdd(counters[batch.index].small_tris, n);
+      // One atomic for both counts: a second on the same few addresses made setup 1.6 times
+      // slower at 10^3 grid objects on the H200.
+      base = append_small(n, total);
       // Direct tile lists run no scan pass, which sizes raster_small's dispatch otherwise.
       if (frame.tile_list_stride != 0u) {
-        RAISE_DISPATCH(counters[batch.index].small_dispatch.x, base, n, TS_GROUP_SIZE);
+        RAISE_DISPATCH(counters[batch.index].small_dispatch.x, base, total, TS_GROUP_SIZE);
       }
     }
-    small_slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
+    small_slot = subgroupBroadcastFirst(base) + before;
   }
-  if (stored && outcome == OUTCOME_SMALL) small_list[small_slot] = index;
+  if (walks != 0u) store_small_entries(index, small_slot, walks);
   // Bin entries: a variable number per thread, so the subgroup takes them with a prefix sum.
   uint entries = stored && outcome == OUTCOME_BIG ? bin_entry_count(t) : 0u;
   uint total = subgroupAdd(entries);

@@ -75,6 +75,26 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool do
   return extent.x * extent.y <= frame.small_triangle_max_area ? OUTCOME_SMALL : OUTCOME_BIG;
 }
 
+// The counters of every batch as 64-bit words, for the atomic that appends to both halves of
+// GpuCounters::small_counts at once.
+layout(set = 0, binding = TS_BINDING_COUNTERS, std430) buffer CounterWords { uint64_t counter_words[]; };
+
+// Appends `walks` entries of `triangles` small triangles to the batch's list; returns the first
+// entry's slot.
+uint append_small(uint triangles, uint walks) {
+  uint64_t both = (uint64_t(triangles) << 32) | uint64_t(walks);
+  return uint(atomicAdd(counter_words[batch.index * TS_COUNTERS_WORDS + TS_SMALL_COUNTS_WORD], both));
+}
+
+// The `walks` entries of small raster triangle `index` in the per-triangle rasterizer's list,
+// from `slot` on (TS_SMALL_WALK_BIT). Past capacity the writes are skipped; the host sees
+// small_counts, grows the buffers, redoes the frame.
+void store_small_entries(uint index, uint slot, uint walks) {
+  for (uint k = 0u; k < walks && slot + k < frame.raster_capacity; ++k) {
+    small_list[slot + k] = k == 0u ? index : (TS_SMALL_WALK_BIT | k);
+  }
+}
+
 void store_raster_tri(uint index, RasterTri t) {
   raster_tris[index].xy01 = uvec4(ivec4(t.v0, t.v1));
   raster_tris[index].xy2_box = uvec4(uvec2(t.v2), uint(t.box_min.x) | (uint(t.box_min.y) << 16),

@@ -85,10 +85,12 @@ TEST_F(AntiAliasing, SameBitsAcrossRunsObjectOrderAndRasterPaths) {
     EXPECT_TRUE(same_bits(first.hdr, reordered.hdr)) << samples << " samples, shuffled";
     EXPECT_EQ(first.visibility, reordered.visibility);
 
-    // Everything per tile, then everything per triangle: the same key in every sample.
+    // Everything per tile, then everything per triangle, each box dealt out among as many walks
+    // as it may take (small_walks): the same key in every sample.
     RendererOptions tiles, small;
     tiles.small_triangle_max_area = 0;
     small.small_triangle_max_area = 1u << 16;
+    small.small_triangle_walk_area = 1;
     // Analytic coverage: the same bits again, whatever the objects' order.
     const Frame analytic = render_with(scene, 96, samples, AaCoverage::analytic);
     const Frame analytic_reordered = render_with(shuffled, 96, samples, AaCoverage::analytic);

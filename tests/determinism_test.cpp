@@ -96,6 +96,19 @@ TEST_F(Determinism, TileSizesGiveIdenticalBits) {
   }
 }
 
+// A walk of no pixels would divide by zero in small_walks.
+TEST_F(Determinism, AWalkAreaOfZeroIsRefused) {
+  RendererOptions options;
+  options.small_triangle_walk_area = 0;
+  try {
+    Renderer renderer(context(), options);
+    ADD_FAILURE() << "accepted a walk area of 0";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("walk area must be at least 1 pixel"), std::string::npos)
+        << e.what();
+  }
+}
+
 // Sizes other than 8 and 16, and images wider than a bin entry's 1024 tiles, are refused.
 TEST_F(Determinism, TileSizesOutOfRangeAreRefused) {
   for (const uint32_t bad : {0u, 4u, 12u, 32u}) {
@@ -130,18 +143,28 @@ TEST_F(Determinism, PerTriangleAndPerTilePathsGiveIdenticalVisibility) {
   scene.camera.position = {0.0f, 0.0f, 9.0f};  // closer: triangles of many sizes
   RendererOptions all_small;
   all_small.small_triangle_max_area = 1u << 30;
+  // Every box walked whole by one thread, then dealt out among as many walks as it may take:
+  // the walks' rows interleave, some boxes in int32 and the cubes' (as large as the image)
+  // in int64 (raster_small.comp).
+  RendererOptions whole_walks = all_small, short_walks = all_small;
+  whole_walks.small_triangle_walk_area = 1u << 30;
+  short_walks.small_triangle_walk_area = 1;
   RendererOptions all_binned;
   all_binned.small_triangle_max_area = 0;
-  Frame a = render(scene, 160, 120, all_small);
+  Frame a = render(scene, 160, 120, whole_walks);
   Frame b = render(scene, 160, 120, all_binned);
   Frame c = render(scene, 160, 120);  // the default split
+  Frame d = render(scene, 160, 120, short_walks);
   EXPECT_EQ(a.stats.big_triangles, 0u);
   EXPECT_EQ(b.stats.small_triangles, 0u);
   EXPECT_GT(c.stats.small_triangles, 0u);
   EXPECT_GT(c.stats.big_triangles, 0u);
+  EXPECT_EQ(d.stats.small_triangles, a.stats.small_triangles);  // triangles, not walks
   EXPECT_EQ(a.visibility, b.visibility);
   EXPECT_EQ(a.visibility, c.visibility);
+  EXPECT_EQ(a.visibility, d.visibility);
   EXPECT_TRUE(same_bits(a.hdr, b.hdr));
+  EXPECT_TRUE(same_bits(a.hdr, d.hdr));
 }
 
 std::string read_file(const std::string& path) {

@@ -50,6 +50,17 @@ using glm::vec4;
 // Counting and filling give each row of an entry's block its own thread, so that a large
 // triangle's tiles are visited by TS_BIN_CHUNK threads in parallel: entries per workgroup.
 #define TS_BIN_ENTRIES_PER_GROUP (TS_GROUP_SIZE / TS_BIN_CHUNK)
+// An entry of the per-triangle rasterizer's list (TS_BINDING_SMALL_LIST) is a raster-triangle
+// index (below 2^31: the buffers hold fewer than 2^27 raster triangles), or, for the later walks
+// of a triangle dealt out among several (shaders/raster_common.glsl, small_walks), this bit and
+// the walk k: the triangle's index is then the entry k places earlier.
+#define TS_SMALL_WALK_BIT 0x80000000u
+// Walks a small triangle is dealt out among at most (GpuCounters::small_counts).
+#define TS_MAX_SMALL_WALKS 8u
+// GpuCounters in 64-bit words (setup_common.glsl's 64-bit view of the counters), and the word
+// of GpuCounters::small_counts.
+#define TS_COUNTERS_WORDS 28u
+#define TS_SMALL_COUNTS_WORD 7u
 
 // How a shader's store to the HDR image changes a value (GpuFrame.hdr_rounding): not at all
 // (RGBA32F), or to fp16 rounded to nearest even or toward zero (RGBA16F: Vulkan allows either;
@@ -286,9 +297,12 @@ struct GpuFrame {
   uint raster_capacity;  // raster triangles the buffers hold
   uint tile_entry_capacity;
   uint small_triangle_max_area;  // largest pixel box of the per-triangle rasterizer
-  uint environment;              // 1 if an environment lights the scene
-  uint env_levels;               // levels of the prefiltered specular cube
-  uint anisotropy;               // texture anisotropy (>= 1)
+  // Pixels a thread of the per-triangle rasterizer walks at most, about: larger boxes are dealt
+  // out among several walks (RendererOptions::small_triangle_walk_area, small_walks)
+  uint small_triangle_walk_area;
+  uint environment;  // 1 if an environment lights the scene
+  uint env_levels;   // levels of the prefiltered specular cube
+  uint anisotropy;   // texture anisotropy (>= 1)
   // Level of detail: a level is fine enough where error * (largest axis scale) * lod_scale
   // <= the view depth of the near side of the object's bounding sphere (core/lod.h).
   float lod_scale;       // lod_pixels_per_unit / lod_error_px
@@ -308,7 +322,6 @@ struct GpuFrame {
   // 1: the shading pass empties every key it reads (FrameSettings::keep_visibility off), so
   // that the next frame need not fill the visibility buffer.
   uint reset_visibility;
-  uint pad_frame0;
   uint pad_frame1;
   uint pad_frame2;  // std140 rounds the block to 16 bytes
 };
@@ -388,8 +401,14 @@ struct GpuCounters {
   uvec4 big_dispatch;
   uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
-  uint small_tris;
-  uint big_tris;      // bin entries (a binned triangle makes one per 8x8 block of tiles)
+  uint big_tris;         // bin entries (a binned triangle makes one per 8x8 block of tiles)
+  // x: entries of the per-triangle rasterizer's list (a walk each, small_walks; may exceed
+  // capacity, likewise); y: the small triangles that take them. Setup and clip append to both
+  // with one 64-bit atomic on the pair (word TS_SMALL_COUNTS_WORD of the batch's counters, x
+  // the low half). x cannot carry into y: a batch holds at most 2^26 triangles
+  // (State::max_batch), clipping makes at most 6 of each, and a triangle takes at most
+  // TS_MAX_SMALL_WALKS walks, so fewer than 3 * 2^30 entries.
+  uvec2 small_counts;
   uint tile_entries;  // entries the tile lists need (may exceed capacity, likewise)
   uint culled_backface;
   uint culled_frustum;    // entirely outside the view or behind the near plane
@@ -398,7 +417,6 @@ struct GpuCounters {
   uint clipped;           // triangles that crossed the near plane or the guard band
   uint clip_list;         // entries in the clip list (== clipped unless it overflowed)
   uint lod_triangles;     // level of detail: triangle instances of this batch
-  uint lod_total;         // level of detail, batch 0's slot: triangle instances of the frame
   uvec4 setup_dispatch;   // level of detail: VkDispatchIndirectCommand for setup (xyz)
   // Hierarchical depth rejection: tile-list entries raster_tiles skipped without testing a
   // pixel, and small triangles raster_small skipped without walking their box, each because
@@ -408,7 +426,7 @@ struct GpuCounters {
   // Direct tile lists: the longest list the fill pass appended to (may exceed
   // GpuFrame::tile_list_stride: then the frame is redone with longer lists).
   uint tile_list_max;
-  uint pad_rejected;    // std430 rounds the array stride to 16 bytes
+  uint lod_total;       // level of detail, batch 0's slot: triangle instances of the frame
   uvec4 clip_dispatch;  // VkDispatchIndirectCommand for the clip pass, raised as big_dispatch
   // Silhouette coverage, batch 0's slot: VkDispatchIndirectCommand (xyz) for the outline pass,
   // x raised by the shading pass as its appends reach into a new workgroup's worth, and the
@@ -483,14 +501,14 @@ static_assert(offsetof(GpuFrame, tiles) == 200);
 static_assert(offsetof(GpuFrame, object_count) == 208);
 static_assert(offsetof(GpuFrame, raster_capacity) == 220);
 static_assert(offsetof(GpuFrame, tile_entry_capacity) == 224);
-static_assert(offsetof(GpuFrame, env_levels) == 236);
-static_assert(offsetof(GpuFrame, anisotropy) == 240);
-static_assert(offsetof(GpuFrame, lod_scale) == 244);
-static_assert(offsetof(GpuFrame, batch_triangles) == 252);
-static_assert(offsetof(GpuFrame, hdr_max) == 256);
-static_assert(offsetof(GpuFrame, resolve_in_shading) == 264);
-static_assert(offsetof(GpuFrame, tile_list_stride) == 268);
-static_assert(offsetof(GpuFrame, reset_visibility) == 272);
+static_assert(offsetof(GpuFrame, env_levels) == 240);
+static_assert(offsetof(GpuFrame, anisotropy) == 244);
+static_assert(offsetof(GpuFrame, lod_scale) == 248);
+static_assert(offsetof(GpuFrame, batch_triangles) == 256);
+static_assert(offsetof(GpuFrame, hdr_max) == 260);
+static_assert(offsetof(GpuFrame, resolve_in_shading) == 268);
+static_assert(offsetof(GpuFrame, tile_list_stride) == 272);
+static_assert(offsetof(GpuFrame, reset_visibility) == 276);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
@@ -503,6 +521,8 @@ static_assert(TS_DFG_BYTES == 2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * sizeof(vec4)
 static_assert(offsetof(GpuBackground, display) == 16);
 static_assert(offsetof(GpuOutlinePixel, pixel) == 12);
 static_assert(sizeof(GpuCounters) == 224);
+static_assert(sizeof(GpuCounters) == TS_COUNTERS_WORDS * 8);
+static_assert(offsetof(GpuCounters, small_counts) == TS_SMALL_COUNTS_WORD * 8);
 static_assert(offsetof(GpuCounters, shade_dispatch) == 176);
 static_assert(offsetof(GpuCounters, background_dispatch) == 192);
 static_assert(offsetof(GpuCounters, drawn_tiles) == 208);
@@ -511,13 +531,15 @@ static_assert(offsetof(GpuCounters, outline_pixels) == 160);
 static_assert(offsetof(GpuCounters, clip_dispatch) == 128);
 static_assert(offsetof(GpuCounters, rejected_entries) == 112);
 static_assert(offsetof(GpuCounters, tile_list_max) == 120);
-static_assert(offsetof(GpuCounters, lod_triangles) == 88);
+static_assert(offsetof(GpuCounters, lod_triangles) == 92);
+static_assert(offsetof(GpuCounters, lod_total) == 124);
 static_assert(offsetof(GpuCounters, setup_dispatch) == 96);
 static_assert(offsetof(GpuCounters, big_dispatch) == 16);
 static_assert(offsetof(GpuCounters, tiles_dispatch) == 32);
 static_assert(offsetof(GpuCounters, raster_tris) == 48);
-static_assert(offsetof(GpuCounters, clipped) == 80);
-static_assert(offsetof(GpuCounters, clip_list) == 84);
+static_assert(offsetof(GpuCounters, small_counts) == 56);
+static_assert(offsetof(GpuCounters, clipped) == 84);
+static_assert(offsetof(GpuCounters, clip_list) == 88);
 }  // namespace tessera::gpu
 #endif
 
