@@ -49,6 +49,7 @@
 #include "compute/gpu_memory.h"
 #include "compute/renderer.h"
 #include "compute/renderer_internal.h"
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/bench_scenes.h"
 #include "core/check.h"
@@ -423,7 +424,7 @@ class Program {
                   "' cannot write timestamps on its queue");
     VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    query_info.queryCount = 2;
+    query_info.queryCount = timestamp_pool_size(ctx, 2);
     VK_CHECK(vkCreateQueryPool(ctx.device, &query_info, nullptr, &queries_));
   }
 
@@ -487,9 +488,10 @@ class Program {
                                MemoryKind::readback);
     }
     const bool own = rung_.data == Data::own;
+    note_render_pass(ctx_);
     submit_and_wait(ctx_, [&](VkCommandBuffer cmd) {
-      vkCmdResetQueryPool(cmd, queries_, 0, 2);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+      vkCmdResetQueryPool(cmd, queries_, 0, timestamp_pool_size(ctx_, 2));
+      write_timestamp(ctx_, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0, 2);
       VkClearValue clears[2];
       clears[0].color = {{0.02f, 0.02f, 0.025f, 0.0f}};  // alpha 0: not covered
       // Reverse depth: 0 is infinitely far.
@@ -521,7 +523,7 @@ class Program {
         vkCmdDrawIndexed(cmd, index_count_, objects_, 0, 0, 0);
       }
       vkCmdEndRenderPass(cmd);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+      write_timestamp(ctx_, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1, 2);
       if (pixels) record_readback(cmd, readback);
     });
     uint64_t ticks[2];

@@ -65,6 +65,10 @@ struct Context {
   /// driver's statistics of its code (registers, spills, ...) to stderr. A developer's
   /// diagnostic (docs/development.md, "Pipeline statistics").
   bool pipeline_statistics = false;
+  /// Set (note_render_pass, compute/timestamps.h) once a render pass has been recorded on the
+  /// queue: lavapipe then defers timestamps, and write_timestamp makes up for it. Mutable: the
+  /// graphics baselines and the window's overlay record through a const Context.
+  mutable std::atomic<bool> render_pass_recorded{false};
   std::string driver;                         // driver name and version, e.g. "NVIDIA 580.159.04"
   std::unique_ptr<ValidationLog> validation;  // set when validation is enabled
   // The compute pipelines built on this device, with the layouts they share: every renderer of

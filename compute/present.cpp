@@ -4,6 +4,7 @@
 
 #include "compute/passes.h"
 #include "compute/renderer_internal.h"
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 
@@ -72,14 +73,14 @@ void record_resolve(const Context& ctx, Presenter& p, const Swapchain& chain, Re
   const bool bgra = is_bgra(chain.format);
   const RendererInternal::SharedSet shared = RendererInternal::shared_set(renderer);
   const bool timed = p.queries != VK_NULL_HANDLE;
-  if (timed) vkCmdResetQueryPool(cmd, p.queries, 0, 2);
+  if (timed) vkCmdResetQueryPool(cmd, p.queries, 0, timestamp_pool_size(ctx, 2));
   if (chain.direct) {
     refresh_set(ctx, p, chain, shared, index);
     use(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
         VK_ACCESS_SHADER_WRITE_BIT);
-    if (timed) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 0);
+    if (timed) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 0, 2);
     RendererInternal::record_resolve_into(renderer, cmd, p.sets[index], bgra);
-    if (timed) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 1);
+    if (timed) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 1, 2);
     return;
   }
   // The display image stays in GENERAL between frames; the last frame's copy read it.
@@ -87,9 +88,9 @@ void record_resolve(const Context& ctx, Presenter& p, const Swapchain& chain, Re
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
   use(cmd, source, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
       VK_ACCESS_SHADER_WRITE_BIT);
-  if (timed) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 0);
+  if (timed) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 0, 2);
   RendererInternal::record_resolve_into(renderer, cmd, shared.set, bgra);
-  if (timed) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 1);
+  if (timed) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, p.queries, 1, 2);
   use(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
       VK_ACCESS_TRANSFER_READ_BIT);
   use(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -169,7 +170,7 @@ void create_presenter(const Context& ctx, Presenter& p) {
   if (ctx.timestamp_valid_bits > 0) {
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    info.queryCount = 2;
+    info.queryCount = timestamp_pool_size(ctx, 2);
     VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &p.queries));
   }
 }

@@ -14,6 +14,7 @@
 #include "compute/renderer_internal.h"
 #include "compute/renderer_state.h"
 #include "compute/scene_upload.h"
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "core/lod.h"
@@ -905,7 +906,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
       if (s.queries) vkDestroyQueryPool(ctx.device, s.queries, nullptr);
       VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
       info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      info.queryCount = queries_needed;
+      info.queryCount = timestamp_pool_size(ctx, queries_needed);
       VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &s.queries));
       s.query_capacity = queries_needed;
     }
@@ -1258,14 +1259,14 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
   auto mark = [&](Pass pass) {
     if (!timestamps || (timing == Timing::frame && pass != Pass::count)) return;
     query_passes.push_back(pass);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries,
-                        uint32_t(query_passes.size()));
+    write_timestamp(s.ctx, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s.queries,
+                    uint32_t(query_passes.size()), s.query_capacity);
   };
 
   full_barrier(cmd);  // earlier submissions (uploads, read-backs, the last frame) are done
   if (timestamps) {
-    vkCmdResetQueryPool(cmd, s.queries, 0, s.query_capacity);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0);
+    vkCmdResetQueryPool(cmd, s.queries, 0, timestamp_pool_size(s.ctx, s.query_capacity));
+    write_timestamp(s.ctx, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s.queries, 0, s.query_capacity);
   }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &s.set, 0, nullptr);
 

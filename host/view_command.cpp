@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "core/image.h"
@@ -74,6 +75,7 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   bool overlay_drawn = false;
   OverlayRecorder recorder;
   if (overlay) {
+    note_render_pass(*v.ctx);  // the overlay's render pass: compute/timestamps.h says why
     recorder = [&](VkCommandBuffer cmd, uint32_t index) {
       record_overlay(v.overlay, v.chain, cmd, index);
       overlay_drawn = true;

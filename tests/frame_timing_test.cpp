@@ -1,13 +1,22 @@
 // What a frame's timestamps measure (Timing, compute/renderer.h): per pass, or the frame alone,
 // which `tessera bench` reports as the frame's time because timestamps between the passes add to
 // it. Either way the image is the same, and the per-pass times add up to their frame's total.
+// And timestamps are taken when the command buffer reaches them, also after a render pass.
+#include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include <gtest/gtest.h>
 
+#include "compute/baselines/graphics_util.h"
+#include "compute/baselines/hardware_baseline.h"
+#include "compute/gpu_memory.h"
+#include "compute/pipelines.h"
 #include "compute/renderer.h"
+#include "compute/timestamps.h"
+#include "compute/vk_check.h"
 #include "core/builtin_scenes.h"
+#include "tests/test_shaders.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -43,6 +52,112 @@ TEST_F(FrameTiming, FrameTimingLeavesThePassesOutAndTheImageAlone) {
     EXPECT_EQ(frame.tile_entries, per_pass.tile_entries);
     EXPECT_EQ(renderer.read_hdr().pixels, per_pass_image.pixels);
   }
+}
+
+struct Interval {
+  double timestamps_ms;  // between the two timestamps write_timestamp took
+  double host_ms;        // the submission's, measured on the host
+};
+
+// Two timestamps around a dispatch of busy_work.comp in `groups` workgroups, and the time the
+// host waited for the submission.
+Interval interval_around_busy_work(const Context& ctx, uint32_t groups) {
+  Buffer flag =
+      create_buffer(ctx, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryKind::upload);
+  VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                                       VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  set_info.bindingCount = 1;
+  set_info.pBindings = &binding;
+  VkDescriptorSetLayout set_layout;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &set_info, nullptr, &set_layout));
+  VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &set_layout;
+  VkPipelineLayout layout;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &layout_info, nullptr, &layout));
+  VkShaderModule module = create_shader_module(ctx, find_test_shader("busy_work"));
+  VkComputePipelineCreateInfo pipeline_info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  pipeline_info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipeline_info.stage.module = module;
+  pipeline_info.stage.pName = "main";
+  pipeline_info.layout = layout;
+  VkPipeline pipeline;
+  VK_CHECK(
+      vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline));
+  vkDestroyShaderModule(ctx.device, module, nullptr);
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = 1;
+  pool_info.pPoolSizes = &size;
+  VkDescriptorPool descriptor_pool;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &pool_info, nullptr, &descriptor_pool));
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = descriptor_pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &set_layout;
+  VkDescriptorSet set;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &alloc, &set));
+  const VkDescriptorBufferInfo buffer_info{flag.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  write.pBufferInfo = &buffer_info;
+  vkUpdateDescriptorSets(ctx.device, 1, &write, 0, nullptr);
+  VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  query_info.queryCount = timestamp_pool_size(ctx, 2);
+  VkQueryPool queries;
+  VK_CHECK(vkCreateQueryPool(ctx.device, &query_info, nullptr, &queries));
+
+  const auto start = std::chrono::steady_clock::now();
+  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+    vkCmdResetQueryPool(cmd, queries, 0, timestamp_pool_size(ctx, 2));
+    write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0, 2);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+    vkCmdDispatch(cmd, groups, 1, 1);
+    // As between the renderer's passes: lavapipe runs a dispatch on its own threads, and only
+    // a barrier waits for it.
+    memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1, 2);
+  });
+  const std::chrono::duration<double, std::milli> host = std::chrono::steady_clock::now() - start;
+  uint64_t ticks[2];
+  VK_CHECK(vkGetQueryPoolResults(ctx.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  vkDestroyQueryPool(ctx.device, queries, nullptr);
+  vkDestroyDescriptorPool(ctx.device, descriptor_pool, nullptr);
+  vkDestroyPipeline(ctx.device, pipeline, nullptr);
+  vkDestroyPipelineLayout(ctx.device, layout, nullptr);
+  vkDestroyDescriptorSetLayout(ctx.device, set_layout, nullptr);
+  destroy_buffer(ctx, flag);
+  return {timestamp_interval_ms(ctx, ticks[0], ticks[1]), host.count()};
+}
+
+// lavapipe takes a timestamp late once a render pass has bound a framebuffer on its queue
+// (compute/timestamps.h): compute frames measured after the hardware baseline reported setup as
+// nearly free. Here a dispatch that takes tens of milliseconds is most of its submission's
+// time, so the timestamps around it must measure most of what the host waited (a lower bound
+// that a slower machine only makes easier to pass; taken late, they measured 1-5 % of it).
+TEST_F(FrameTiming, TimestampsAreTakenWhenReachedAlsoAfterARenderPass) {
+  constexpr uint32_t groups = 64;
+  Context& ctx = context();
+  const Interval before = interval_around_busy_work(ctx, groups);
+  EXPECT_GE(before.timestamps_ms, 0.5 * before.host_ms) << "before any render pass";
+  Renderer renderer(ctx);
+  renderer.set_scene(make_builtin_scene("spheres"));
+  HardwareBaseline baseline(renderer);
+  baseline.render(FrameSettings{.width = 64, .height = 48});
+  const Interval after = interval_around_busy_work(ctx, groups);
+  EXPECT_GE(after.timestamps_ms, 0.5 * after.host_ms) << "after a render pass";
+  std::printf(
+      "TIMESTAMPS around busy work: %.1f of %.1f ms before a render pass, %.1f of %.1f after\n",
+      before.timestamps_ms, before.host_ms, after.timestamps_ms, after.host_ms);
 }
 
 }  // namespace

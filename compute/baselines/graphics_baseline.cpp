@@ -5,6 +5,7 @@
 
 #include "compute/baselines/graphics_util.h"
 #include "compute/gpu_memory.h"
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 
@@ -99,6 +100,7 @@ std::vector<uint32_t> hardware_triangle_ids(const Context& ctx,
   Buffer readback = create_buffer(ctx, VkDeviceSize(width) * height * 4,
                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
 
+  note_render_pass(ctx);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     memory_barrier(cmd, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_WRITE_BIT,
                    VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT);

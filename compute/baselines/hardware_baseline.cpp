@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compute/renderer_internal.h"
+#include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/check.h"
 #include "shaders/shared/gpu_types.h"
@@ -192,7 +193,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   if (timestamps && !queries_) {
     VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    info.queryCount = 3;
+    info.queryCount = timestamp_pool_size(ctx, 3);
     VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &queries_));
   }
 
@@ -222,6 +223,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
   BaselineStats stats;
   stats.draws = uint32_t(draws.size());
   const auto start = std::chrono::steady_clock::now();
+  note_render_pass(ctx);
   submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
     memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
@@ -230,8 +232,8 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
                             nullptr);
     RendererInternal::record_precomputation(renderer_, cmd, settings);
     if (timestamps) {
-      vkCmdResetQueryPool(cmd, queries_, 0, 3);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+      vkCmdResetQueryPool(cmd, queries_, 0, timestamp_pool_size(ctx, 3));
+      write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0, 3);
     }
     // Part of the timed frame, as the compute path's lod passes are.
     if (frame.lod) RendererInternal::record_lod(renderer_, cmd);
@@ -269,7 +271,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
       }
     }
     vkCmdEndRenderPass(cmd);
-    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+    if (timestamps) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1, 3);
     // Bit for bit into the image the resolve pass reads, which is back in GENERAL after.
     hdr_layout(cmd, frame.hdr_image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkImageCopy region{};
@@ -279,7 +281,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     hdr_layout(cmd, frame.hdr_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     RendererInternal::record_resolve(renderer_, cmd);
-    if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+    if (timestamps) write_timestamp(ctx, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2, 3);
     stats.cpu_record_submit_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   });
