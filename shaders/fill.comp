@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Tile fill: one thread per row of a bin entry's block (at most 8x8 tiles of one binned
-// triangle) writes the raster-triangle index into the list of every tile of the row it may
-// cover, at a slot taken from that tile's cursor. The order inside a list varies from run to
+// Tile fill: TS_BIN_CHUNK threads per bin entry (a block of at most 8x8 tiles of one binned
+// triangle), among which the block's tiles are dealt out (bin_block_tile), write the
+// raster-triangle index into the list of every tile of the block it may cover, at a slot taken
+// from that tile's cursor. The order inside a list varies from run to
 // run; the rasterizer's atomicMin makes the result independent of it.
 // With depth rejection, a triangle that covers every sample of a tile also lowers the tile's
 // bound (tile_far) to its farthest depth: no sample of the tile ends up farther.
@@ -24,17 +25,19 @@ void main() {
   uint e = gl_GlobalInvocationID.x / TS_BIN_CHUNK;
   if (e >= min(counters[batch.index].big_tris, frame.raster_capacity)) return;
   uvec2 entry = big_list[e];
-  ivec2 first;
-  int width;
-  if (!bin_entry_row(entry.y, gl_GlobalInvocationID.x % TS_BIN_CHUNK, first, width)) return;
+  ivec2 first, size;
+  bin_entry_block(entry.y, first, size);
+  uint tiles = uint(size.x * size.y);
+  uint k = gl_GlobalInvocationID.x % TS_BIN_CHUNK;
+  if (k >= tiles) return;
   RasterTri t = load_raster_tri(entry.x);
   uint stride = frame.tile_list_stride;
   uint appended = 0u;  // direct lists: entries this thread appended, and the longest list's length
   uint longest = 0u;
-  for (int tx = first.x; tx < first.x + width; ++tx) {
-    ivec2 tile_xy = ivec2(tx, first.y);
+  for (; k < tiles; k += TS_BIN_CHUNK) {
+    ivec2 tile_xy = bin_block_tile(first, size, k);
     if (!tile_may_overlap(t, tile_xy)) continue;
-    uint tile = uint(first.y) * frame.tiles.x + uint(tx);
+    uint tile = uint(tile_xy.y) * frame.tiles.x + uint(tile_xy.x);
     if (stride != 0u) {
       uint depth = atomicAdd(tile_counts[tile], 1u);
       if (depth < stride) tile_entries[tile * stride + depth] = entry.x;

@@ -183,12 +183,20 @@ uint farthest_key_high(vec3 depth) {
   return ~(bits > DEPTH_BOUND_ULPS ? bits - DEPTH_BOUND_ULPS : 0u);
 }
 
-// Row `row` (0 to TS_BIN_CHUNK - 1) of the block of tiles of a bin entry (setup_common.glsl's
-// bin_entry): its first tile and width; false if the block has fewer rows.
-bool bin_entry_row(uint packed, uint row, out ivec2 first, out int width) {
-  first = ivec2(packed & 0x3FFu, ((packed >> 10) & 0x3FFu) + row);
-  width = int((packed >> 20) & 0xFu) + 1;
-  return row <= ((packed >> 24) & 0xFu);
+// The block of tiles of a bin entry (setup_common.glsl's bin_entry): its first tile and its size
+// in tiles, each side 1 to TS_BIN_CHUNK.
+void bin_entry_block(uint packed, out ivec2 first, out ivec2 size) {
+  first = ivec2(packed & 0x3FFu, (packed >> 10) & 0x3FFu);
+  size = ivec2((packed >> 20) & 0xFu, (packed >> 24) & 0xFu) + 1;
+}
+
+// Tile `k` of a bin entry's block of `size` tiles from `first`, row by row. The count and fill
+// passes deal a block's tiles out among the entry's TS_BIN_CHUNK threads, thread j taking tiles
+// j, j + TS_BIN_CHUNK, ...: each tile's atomic is a round trip to memory that the next waits
+// for, and a block of w x h tiles then costs ceil(w h / 8) of them instead of w (a thread per
+// row). One grid sphere at 1920x1080 binned blocks of a few tiles each.
+ivec2 bin_block_tile(ivec2 first, ivec2 size, uint k) {
+  return first + ivec2(int(k) % size.x, int(k) / size.x);
 }
 
 // Walks of a small triangle (entries of the per-triangle rasterizer's list): the rows of its box

@@ -47,8 +47,8 @@ using glm::vec4;
 // A binned triangle is split into bin entries of at most this many tiles per side, so that no
 // thread loops over more than TS_BIN_CHUNK^2 tiles when counting or filling.
 #define TS_BIN_CHUNK 8
-// Counting and filling give each row of an entry's block its own thread, so that a large
-// triangle's tiles are visited by TS_BIN_CHUNK threads in parallel: entries per workgroup.
+// Counting and filling deal an entry's tiles out among TS_BIN_CHUNK threads (raster_common.glsl's
+// bin_block_tile), so that a triangle's tiles are visited in parallel: entries per workgroup.
 #define TS_BIN_ENTRIES_PER_GROUP (TS_GROUP_SIZE / TS_BIN_CHUNK)
 // An entry of the per-triangle rasterizer's list (TS_BINDING_SMALL_LIST) is a raster-triangle
 // index (below 2^31: the buffers hold fewer than 2^27 raster triangles), or, for the later walks
@@ -395,8 +395,8 @@ struct GpuRasterTri {
 // Counters of one batch, written by the GPU and read back by the host after the frame.
 struct GpuCounters {
   uvec4 small_dispatch;  // VkDispatchIndirectCommand for the per-triangle rasterizer (xyz)
-  // VkDispatchIndirectCommand (xyz) for the tile-count and tile-fill passes, a thread per row
-  // of each bin entry: x is raised by setup and clip as their appends reach into a new grain of
+  // VkDispatchIndirectCommand (xyz) for the tile-count and tile-fill passes, TS_BIN_CHUNK
+  // threads per bin entry: x is raised by setup and clip as their appends reach into a new grain of
   // entries (setup_common.glsl), y and z set by setup's first thread.
   uvec4 big_dispatch;
   uvec4 tiles_dispatch;  // VkDispatchIndirectCommand for the per-tile rasterizer (none if empty)
