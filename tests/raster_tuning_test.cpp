@@ -9,6 +9,8 @@
 
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "host/bench_measure.h"
+#include "host/cli.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -51,6 +53,19 @@ TEST_F(RasterTuningOnDevice, LavapipeTakesTheCpuTuningAndKeepsTheOtherOptions) {
   EXPECT_EQ(tuned.tile_lists, cpu.tile_lists);
   EXPECT_EQ(tuned.tile_size, 8u);
   EXPECT_FALSE(tuned.resolve);
+}
+
+// `tessera bench` renders as `render` does on the device: a CPU device walks every box whole
+// (raster_tuning), whatever area the command line gives; the options it has are its own.
+TEST_F(RasterTuningOnDevice, BenchWalksBoxesAsTheDeviceDoes) {
+  ASSERT_EQ(context().properties.deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU);
+  const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
+  BenchArgs args =
+      parse_command_line({"bench", "--small-triangle-area", "256", "--tile-size", "8"}).bench;
+  const RendererOptions options = bench_renderer_options(context(), args);
+  EXPECT_EQ(options.small_triangle_walk_area, cpu.small_triangle_walk_area);
+  EXPECT_EQ(options.small_triangle_max_area, 256u);
+  EXPECT_EQ(options.tile_size, 8u);
 }
 
 // Left unset, shading by tiles is the device's choice: on for lavapipe, whose frames then
