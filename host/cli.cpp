@@ -479,7 +479,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
-              "--small-triangle-area, --tile-size");
+              "--small-triangle-area (GPUs only: a CPU\n"
+              "device keeps its 4096), --tile-size");
   app.add_flag("--generic-shading", a.generic_shading,
                "shade with the generic pipeline instead of one\n"
                "specialized to the scene's light counts, to\n"
@@ -759,8 +760,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
-  b.small_triangle_area_given =
-      bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
+  b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
   b.tile_lists_given = bench->count("--tile-lists") > 0;
@@ -798,7 +798,6 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
                 &t.small_triangle_area);
   t.size_given = tradeoff->count("--size") > 0;
-  t.small_triangle_area_given = t.quality != Quality::none;
   t.brdf_given = t.quality != Quality::none;
   reject_extras(app, help_command);
   line.command = render->parsed()     ? Command::render
