@@ -576,8 +576,11 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   add_tile_size(app, a.tile_size);
   add_quality(app, a.quality,
               "the base every knob's settings start from:\n"
-              "BRDF, samples, level of detail, anisotropy,\n"
-              "environment sizes, HDR format, tile size");
+              "BRDF and energy compensation, samples, level\n"
+              "of detail and its error, anisotropy,\n"
+              "environment size and samples, HDR format,\n"
+              "small-triangle area (GPUs only: a CPU device\n"
+              "keeps its 4096), tile size");
   app.add_option("--repeat", a.repeat, "timed frames per setting and round, 1..1000\n(default 10)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
