@@ -485,7 +485,10 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
                "shade with the generic pipeline instead of one\n"
                "specialized to the scene's light counts, to\n"
                "measure what specialization saves");
-  app.add_option("--csv", a.csv, "write every measurement as CSV")->type_name("FILE");
+  app.add_option("--csv", a.csv,
+                 "write every measurement as CSV, each row with\n"
+                 "the settings it was measured with")
+      ->type_name("FILE");
   app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
       ->type_name("FILE");
   add_chart(app, a.chart,
