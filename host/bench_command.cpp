@@ -35,8 +35,11 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
     ctx = create_context(options);
     // The device's rasterizer settings where the command line gave none; the report and the
     // JSON say which were used.
-    const RasterTuning tuned = raster_tuning(ctx->properties.deviceType);
-    if (!a.small_triangle_area_given) a.small_triangle_area = tuned.small_triangle_max_area;
+    const VkPhysicalDeviceType type = ctx->properties.deviceType;
+    const RasterTuning tuned = raster_tuning(type);
+    const bool preset_area = a.quality != Quality::none && preset_sets_small_triangle_area(type);
+    if (!a.small_triangle_area_given && !preset_area)
+      a.small_triangle_area = tuned.small_triangle_max_area;
     if (!a.depth_rejection_given) a.depth_rejection = tuned.depth_rejection;
     if (!a.shade_tiles_given) a.shade_tiles = tuned.shade_tiles;
     if (!a.tile_lists_given) a.tile_lists = tuned.tile_lists;

@@ -57,6 +57,11 @@ struct BenchResults {
   std::string driver;
 };
 
+/// The renderer options of the compute backend: `args`' rasterizer settings (the device's
+/// already written where the command line gave none: run_bench), on `ctx`'s device's tuning
+/// for the rest (tuned_for_device: the small-triangle walk area).
+RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& args);
+
 /// Runs the sweep `args` describes, `args.runs` times over (whole sweeps, one after the other),
 /// and merges the runs per point. `ctx` is the device for the compute and hardware backends
 /// (null when only the reference runs; it must outlive the call). Throws Error for a scene or

@@ -6,6 +6,8 @@
 #include <ctime>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/check.h"
 #include "host/bench_compare.h"
@@ -35,6 +37,31 @@ std::string json_string(const std::string& s) {
     out += c;
   }
   return out + "\"";
+}
+
+// A CSV cell holding `s` whatever it holds: quoted, with its quotes doubled (RFC 4180).
+std::string csv_text(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// The settings every point was measured with, by the JSON's names: bench_settings (what
+// --compare checks; strings as JSON writes them, double-quoted, which CSV reads as the string),
+// then the rest of the JSON's. The CSV repeats them on every row, after the measured columns,
+// so that the older columns keep their places.
+std::vector<std::pair<std::string, std::string>> csv_settings(const BenchResults& results,
+                                                              const BenchArgs& a) {
+  std::vector<std::pair<std::string, std::string>> out = bench_settings(a);
+  char lod_error[32], warmup_ms[32];
+  std::snprintf(lod_error, sizeof(lod_error), "%g", a.lod_error_px);
+  std::snprintf(warmup_ms, sizeof(warmup_ms), "%g", a.warmup_ms);
+  out.insert(out.end(), {{"lod_error_px", lod_error},
+                         {"generic_shading", a.generic_shading ? "true" : "false"},
+                         {"warmup_min_frames", std::to_string(a.warmup)},
+                         {"warmup_min_ms", warmup_ms},
+                         {"driver", csv_text(results.driver)}});
+  return out;
 }
 
 }  // namespace
@@ -120,7 +147,10 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
        "total_ms,cpu_record_ms,triangles_per_s,min_ms,max_ms,runs,run_spread_pct,warmup_frames,"
        "warmup_ms,warmup_stable,per_pass_total_ms";
   for (size_t p = 0; p < kPassCount; ++p) f << "," << pass_name(Pass(p)) << "_ms";
-  f << ",batches,tile_entries,tile_list_stride,frames,device,note\n";
+  f << ",batches,tile_entries,tile_list_stride,frames,device,note";
+  const std::vector<std::pair<std::string, std::string>> settings = csv_settings(results, a);
+  for (const auto& [name, value] : settings) f << "," << name;
+  f << "\n";
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
     // The hardware baseline counts no rasterized triangles, and only the compute path is timed
@@ -142,7 +172,9 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
     f << ",";
     if (compute) f << r.batches << "," << r.tile_entries << "," << r.tile_list_stride;
     if (!compute) f << ",,";
-    f << "," << r.frames << ",\"" << results.device << "\",\"" << r.note << "\"\n";
+    f << "," << r.frames << "," << csv_text(results.device) << "," << csv_text(r.note);
+    for (const auto& [name, value] : settings) f << "," << value;
+    f << "\n";
   }
   if (!f) throw Error("cannot write CSV '" + path + "'");
 }
@@ -169,6 +201,7 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"shade_tiles\": " << (a.shade_tiles ? "true" : "false")
     << ",\n  \"tile_lists\": " << json_string(tile_lists_name(a.tile_lists))
     << ",\n  \"hdr_format\": " << json_string(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16")
+    << ",\n  \"generic_shading\": " << (a.generic_shading ? "true" : "false")
     << ",\n  \"frames\": " << a.repeat << ",\n  \"runs\": " << a.runs
     << ",\n  \"warmup\": {\"min_frames\": " << a.warmup << ", \"min_ms\": " << a.warmup_ms
     << "},\n  \"statistic\": \"median\",\n  \"results\": [";

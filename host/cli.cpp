@@ -479,12 +479,16 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
-              "--small-triangle-area, --tile-size");
+              "--small-triangle-area (GPUs only: a CPU\n"
+              "device keeps its 4096), --tile-size");
   app.add_flag("--generic-shading", a.generic_shading,
                "shade with the generic pipeline instead of one\n"
                "specialized to the scene's light counts, to\n"
                "measure what specialization saves");
-  app.add_option("--csv", a.csv, "write every measurement as CSV")->type_name("FILE");
+  app.add_option("--csv", a.csv,
+                 "write every measurement as CSV, each row with\n"
+                 "the settings it was measured with")
+      ->type_name("FILE");
   app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
       ->type_name("FILE");
   add_chart(app, a.chart,
@@ -575,8 +579,11 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   add_tile_size(app, a.tile_size);
   add_quality(app, a.quality,
               "the base every knob's settings start from:\n"
-              "BRDF, samples, level of detail, anisotropy,\n"
-              "environment sizes, HDR format, tile size");
+              "BRDF and energy compensation, samples, level\n"
+              "of detail and its error, anisotropy,\n"
+              "environment size and samples, HDR format,\n"
+              "small-triangle area (GPUs only: a CPU device\n"
+              "keeps its 4096), tile size");
   app.add_option("--repeat", a.repeat, "timed frames per setting and round, 1..1000\n(default 10)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
@@ -759,8 +766,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
-  b.small_triangle_area_given =
-      bench->count("--small-triangle-area") > 0 || b.quality != Quality::none;
+  b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
   b.tile_lists_given = bench->count("--tile-lists") > 0;
@@ -798,7 +804,6 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
                 &t.small_triangle_area);
   t.size_given = tradeoff->count("--size") > 0;
-  t.small_triangle_area_given = t.quality != Quality::none;
   t.brdf_given = t.quality != Quality::none;
   reject_extras(app, help_command);
   line.command = render->parsed()     ? Command::render

@@ -73,9 +73,9 @@ struct BenchArgs {
   bool shade_tiles = false;                      // RendererOptions::shade_tiles
   TileLists tile_lists = TileLists::automatic;   // RendererOptions::tile_lists
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
-  // --small-triangle-area (or --quality), --depth-rejection and --shade-tiles given: else the
-  // device's (raster_tuning, compute/renderer.h), written here by run_bench once the device is
-  // known.
+  // --small-triangle-area, --depth-rejection and --shade-tiles given: else the device's
+  // (raster_tuning, compute/renderer.h), written here by run_bench once the device is known;
+  // --quality's small-triangle area counts as given on GPUs (preset_sets_small_triangle_area).
   bool small_triangle_area_given = false, depth_rejection_given = false, shade_tiles_given = false,
        tile_lists_given = false;
   std::string csv, json, chart;
@@ -103,11 +103,11 @@ struct TradeoffArgs {
   std::vector<std::string> knobs;  // host/tradeoff.h, knobs()
   FrameSettings frame;             // --size, --hdr-format, --quality; the rest each knob's
   EnvironmentOptions env_options;  // the environment knobs' defaults
-  uint32_t tile_size = TS_TILE_SIZE;   // RendererOptions::tile_size of every setting but its knob's
-  uint32_t small_triangle_area = 128;  // RendererOptions::small_triangle_max_area, likewise
-  bool small_triangle_area_given = false;  // by --quality: else the device's (raster_tuning,
-                                           // compute/renderer.h)
-  Quality quality = Quality::none;         // --quality, applied by parse_command_line
+  uint32_t tile_size = TS_TILE_SIZE;  // RendererOptions::tile_size of every setting but its knob's
+  // RendererOptions::small_triangle_max_area, likewise: --quality's on GPUs, else the device's
+  // (tradeoff_base_options).
+  uint32_t small_triangle_area = 128;
+  Quality quality = Quality::none;  // --quality, applied by parse_command_line
   std::string device = "auto";
   uint32_t repeat = 10;               // timed frames per setting and round
   uint32_t warmup = 2;                // untimed frames per setting and round, at least

@@ -56,6 +56,10 @@ const QualityPreset& quality_preset(Quality quality) {
   return draft;
 }
 
+bool preset_sets_small_triangle_area(VkPhysicalDeviceType type) {
+  return type != VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
 void apply_quality(Quality quality, const std::function<bool(const std::string&)>& given,
                    FrameSettings* frame, EnvironmentOptions* env, uint32_t* tile_size,
                    uint32_t* small_triangle_area) {

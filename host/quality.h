@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 
+#include <vulkan/vulkan.h>
+
 #include "compute/environment_gpu.h"
 #include "core/frame_settings.h"
 
@@ -30,6 +32,13 @@ struct QualityPreset {
   uint32_t tile_size;            // RendererOptions::tile_size
 };
 
+/// Whether a preset's small-triangle area applies on a device of `type`: on GPUs, where the
+/// presets' value was measured. A CPU device (lavapipe) keeps its own (raster_tuning): the
+/// setting changes the speed and never the image, and the presets keep a speed-only knob at
+/// its default unless another setting was measured faster (docs/tradeoffs.md, "Presets"),
+/// which on a CPU device is that tuning.
+bool preset_sets_small_triangle_area(VkPhysicalDeviceType type);
+
 /// The settings of preset `quality` (not Quality::none).
 const QualityPreset& quality_preset(Quality quality);
 
@@ -37,9 +46,10 @@ const QualityPreset& quality_preset(Quality quality);
 /// small-triangle area into `tile_size` and `small_triangle_area` (either may be null), except
 /// what the command line gave: `given(name)` is true for an option given by name ("--brdf",
 /// "--energy-compensation", "--samples", "--lod", "--lod-error", "--anisotropy", "--env-size",
-/// "--env-samples", "--hdr-format", "--small-triangle-area", "--tile-size"). A given --brdf
-/// also keeps the preset's energy compensation off, since the tradeoff measures the two as one
-/// knob. Nothing for Quality::none.
+/// "--env-samples", "--hdr-format", "--small-triangle-area", "--tile-size"; the small-triangle
+/// area is the preset's on GPUs alone, which the caller decides once the device is known:
+/// preset_sets_small_triangle_area). A given --brdf also keeps the preset's energy compensation
+/// off, since the tradeoff measures the two as one knob. Nothing for Quality::none.
 void apply_quality(Quality quality, const std::function<bool(const std::string&)>& given,
                    FrameSettings* frame, EnvironmentOptions* env, uint32_t* tile_size,
                    uint32_t* small_triangle_area);

@@ -71,6 +71,11 @@ struct TradeoffResults {
   std::vector<TradeoffPoint> points;  // by knob in the order asked, then by setting
 };
 
+/// The renderer options every knob's settings start from: `ctx`'s device's (tuned_for_device)
+/// with the command line's tile size and environment sizes, and a --quality preset's
+/// small-triangle area where it applies (preset_sets_small_triangle_area).
+RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& args);
+
 /// Renders every setting of every knob of `args` on `ctx` (rounds interleave the settings so
 /// that a clock change affects them alike) and the ground truth on the CPU. Throws Error for
 /// a bad scene, knob or size.

@@ -91,6 +91,15 @@ struct Candidate {
 
 }  // namespace
 
+RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& args) {
+  RendererOptions options = tuned_for_device(ctx, {});
+  options.environment = args.env_options;
+  options.tile_size = args.tile_size;
+  if (args.quality != Quality::none && preset_sets_small_triangle_area(ctx.properties.deviceType))
+    options.small_triangle_max_area = args.small_triangle_area;
+  return options;
+}
+
 TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   TradeoffResults results;
   results.device = ctx.properties.deviceName;
@@ -98,10 +107,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   FrameSettings frame = args.frame;
   const Scene scene = load_scene(args, frame);
   validate_scene(scene);
-  RendererOptions options = tuned_for_device(ctx, {});
-  options.environment = args.env_options;
-  options.tile_size = args.tile_size;
-  if (args.small_triangle_area_given) options.small_triangle_max_area = args.small_triangle_area;
+  const RendererOptions options = tradeoff_base_options(ctx, args);
 
   std::vector<Candidate> candidates;
   for (const std::string& knob : args.knobs) {

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, then configures and builds Tessera (Release) in build/.
 # Incremental: a second run rebuilds only what changed. Uses ccache when it is installed.
+# Says on stderr what it is doing, one line a step, so that callers that hide the build's own
+# output (scripts/render.sh) do not look stuck during a first build of several minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # ccache caches the tests' precompiled-header compilations only with this (tests/CMakeLists.txt).
@@ -8,10 +10,17 @@ export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 if [[ ! -f build/CMakeCache.txt ]]; then
+  echo "build: configuring build/ (Release)" >&2
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
 elif (($# > 0)); then
   cmake -S . -B build "$@" >/dev/null
+fi
+if [[ -x build/host/tessera ]]; then
+  echo "build: updating build/ (rebuilds what changed, if anything)" >&2
+else
+  echo "build: building Tessera in build/ with $jobs jobs; the first build takes several" \
+    "minutes (about 4 on an idle 2-core machine)" >&2
 fi
 cmake --build build -j "$jobs"

@@ -24,7 +24,7 @@ if ((${#missing[@]} == 0)); then
   exit 0
 fi
 
-echo "setup: installing missing packages: ${missing[*]}" >&2
+echo "setup: installing missing packages with apt-get (a few minutes): ${missing[*]}" >&2
 sudo_cmd=()
 if [[ $(id -u) -ne 0 ]]; then
   if command -v sudo >/dev/null; then

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -68,9 +69,35 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
     std::string header;
     std::getline(rows, header);
     const std::vector<std::string> names = split_csv_row(header);
+    // Every row ends with the settings its points were measured with (lavapipe's rasterizer
+    // settings where none were given), after the measured columns, which keep their places.
+    EXPECT_TRUE(header.starts_with("scene,objects,backend,width,height,triangles_submitted,"))
+        << header;
+    const size_t note = std::find(names.begin(), names.end(), "note") - names.begin();
+    const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
+    const std::pair<const char*, std::string> settings[] = {
+        {"samples", "1"},
+        {"aa_coverage", "count"},
+        {"lod", "off"},
+        {"segments", "8"},
+        {"small_triangle_area", std::to_string(cpu.small_triangle_max_area)},
+        {"tile_size", "16"},
+        {"shade_tiles", cpu.shade_tiles ? "true" : "false"},
+        {"tile_lists", tile_lists_name(cpu.tile_lists)},
+        {"hdr_format", "fp16"},
+        {"generic_shading", "false"},
+        {"warmup_min_frames", "0"},
+        {"warmup_min_ms", "0"}};
     for (std::string row; std::getline(rows, row);) {
       const std::vector<std::string> cells = split_csv_row(row);
       ASSERT_EQ(cells.size(), names.size()) << row;
+      for (const auto& [column, value] : settings) {
+        const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
+        ASSERT_LT(i, names.size()) << column << " in " << header;
+        EXPECT_GT(i, note) << column << " comes after the measured columns";
+        EXPECT_EQ(cells[i], value) << column << " in " << row;
+      }
+      EXPECT_NE(cells.back(), "") << "the driver, last, in " << row;
       const bool hardware = cells[2] == "hardware", compute = cells[2] == "compute";
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
                                  "tile_entries", "tile_list_stride"}) {
@@ -519,7 +546,9 @@ constexpr const char* kBase = R"({
 })";
 
 // Without --small-triangle-area and --depth-rejection, bench takes the device's settings
-// (raster_tuning: lavapipe is a CPU device) and its JSON says which; given, they win.
+// (raster_tuning: lavapipe is a CPU device) and its JSON says which; given, they win. A
+// --quality preset's small-triangle area, the GPUs' setting, leaves a CPU device's as it is
+// (docs/tradeoffs.md, "Presets").
 TEST(BenchCli, RasterizerSettingsAreTheDevicesUnlessGiven) {
   const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
   const std::string base = std::string(TESSERA_BINARY) +
@@ -528,13 +557,16 @@ TEST(BenchCli, RasterizerSettingsAreTheDevicesUnlessGiven) {
                            "--warmup-ms 0 --quiet --json ";
   const std::string tuned = test::output_path("tuned.json");
   const std::string given = test::output_path("given.json");
+  const std::string preset = test::output_path("preset.json");
   std::string out;
   ASSERT_EQ(test::run_command(base + tuned, out), 0) << out;
+  ASSERT_EQ(test::run_command(base + preset + " --quality draft", out), 0) << out;
   ASSERT_EQ(
       test::run_command(base + given + " --small-triangle-area 64 --depth-rejection off", out), 0)
       << out;
-  const nlohmann::json t = read_json(tuned), g = read_json(given);
+  const nlohmann::json t = read_json(tuned), g = read_json(given), p = read_json(preset);
   EXPECT_EQ(t["small_triangle_area"], cpu.small_triangle_max_area);
+  EXPECT_EQ(p["small_triangle_area"], cpu.small_triangle_max_area);
   EXPECT_EQ(t["depth_rejection"], cpu.depth_rejection);
   EXPECT_EQ(g["small_triangle_area"], 64);
   EXPECT_EQ(g["depth_rejection"], false);

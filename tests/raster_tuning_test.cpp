@@ -9,6 +9,9 @@
 
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "host/bench_measure.h"
+#include "host/cli.h"
+#include "host/tradeoff.h"
 #include "tests/vulkan_fixture.h"
 
 namespace tessera {
@@ -51,6 +54,40 @@ TEST_F(RasterTuningOnDevice, LavapipeTakesTheCpuTuningAndKeepsTheOtherOptions) {
   EXPECT_EQ(tuned.tile_lists, cpu.tile_lists);
   EXPECT_EQ(tuned.tile_size, 8u);
   EXPECT_FALSE(tuned.resolve);
+}
+
+// `tessera bench` renders as `render` does on the device: a CPU device walks every box whole
+// (raster_tuning), whatever area the command line gives; the options it has are its own.
+TEST_F(RasterTuningOnDevice, BenchWalksBoxesAsTheDeviceDoes) {
+  ASSERT_EQ(context().properties.deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU);
+  const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
+  BenchArgs args =
+      parse_command_line({"bench", "--small-triangle-area", "256", "--tile-size", "8"}).bench;
+  const RendererOptions options = bench_renderer_options(context(), args);
+  EXPECT_EQ(options.small_triangle_walk_area, cpu.small_triangle_walk_area);
+  EXPECT_EQ(options.small_triangle_max_area, 256u);
+  EXPECT_EQ(options.tile_size, 8u);
+}
+
+// A --quality preset's small-triangle area is the GPUs' setting: `tradeoff` on a CPU device
+// keeps the device's own (docs/tradeoffs.md, "Presets"), and takes the rest of the preset.
+TEST_F(RasterTuningOnDevice, QualityPresetsKeepACpuDevicesSmallTriangleArea) {
+  ASSERT_EQ(context().properties.deviceType, VK_PHYSICAL_DEVICE_TYPE_CPU);
+  EXPECT_FALSE(preset_sets_small_triangle_area(VK_PHYSICAL_DEVICE_TYPE_CPU));
+  for (VkPhysicalDeviceType gpu :
+       {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU,
+        VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU, VK_PHYSICAL_DEVICE_TYPE_OTHER})
+    EXPECT_TRUE(preset_sets_small_triangle_area(gpu)) << gpu;
+  const RasterTuning cpu = raster_tuning(VK_PHYSICAL_DEVICE_TYPE_CPU);
+  for (const char* quality : {"draft", "balanced", "reference"}) {
+    const TradeoffArgs args =
+        parse_command_line({"tradeoff", "--quality", quality, "--knob", "small-triangle"}).tradeoff;
+    const RendererOptions options = tradeoff_base_options(context(), args);
+    EXPECT_EQ(options.small_triangle_max_area, cpu.small_triangle_max_area) << quality;
+    EXPECT_EQ(options.small_triangle_walk_area, cpu.small_triangle_walk_area) << quality;
+    EXPECT_EQ(options.environment.specular_size, args.env_options.specular_size) << quality;
+    EXPECT_EQ(options.tile_size, args.tile_size) << quality;
+  }
 }
 
 // Left unset, shading by tiles is the device's choice: on for lavapipe, whose frames then
