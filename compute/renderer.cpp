@@ -668,6 +668,7 @@ void ensure_scratch_buffers(Renderer::State& s, uint32_t batches) {
   }
   const Buffer& counters = s.buffer(TS_BINDING_COUNTERS);
   if (s.counters_readback.size != counters.size) {
+    s.last_counts.valid = false;
     destroy_buffer(ctx, s.counters_readback);
     s.counters_readback =
         create_buffer(ctx, counters.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryKind::readback);
@@ -826,6 +827,21 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
 // multiply-adds take ~0.3 us of its ALUs; ~0.2 ms at most on lavapipe (2 threads). Only setup has
 // the variant: the clip pass and analytic coverage (several samples) read the pass's transforms,
 // and level of detail keeps the pass (its frames already have three passes more).
+// Whether this frame dispatches the passes after setup directly (State::direct_dispatch). An
+// indirect dispatch must wait for the writes of the pass before it to reach the command
+// processor, and its barrier makes every pass in between wait the same way: on the H200, direct
+// dispatches sized by the last frame took 7 us off one sphere's 0.070 ms and 10 us off the
+// default scene's 0.095 (docs/performance.md, "Issue 13, eleventh round"). The sizes are a guess
+// (direct_groups): fill and raster_small loop over their lists however many workgroups run, so
+// a guess too small costs time, never the image. Only with direct tile lists (counted ones run
+// the count pass, dispatched by setup's count) and without the clip and level-of-detail passes
+// (dispatched by setup's and lod_scan's counts), and once the last frame's counts are of the same
+// batches and triangles (the scene's geometry or the batch size changed otherwise).
+bool dispatches_directly(const Renderer::State& s, bool lod, uint32_t batches) {
+  return s.tile_list_stride != 0 && s.skip_clip && !lod && s.last_counts.valid &&
+         s.last_counts.batches == batches && s.last_counts.triangles == s.uploaded.triangle_count;
+}
+
 bool forms_object_clip_in_setup(const Renderer::State& s, const FrameSettings& settings, bool lod) {
   constexpr uint64_t kObjectClipInlineTriangles = uint64_t(1) << 17;
   return !lod && s.skip_clip && settings.samples == 1 &&
@@ -900,6 +916,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     prepare_tile_lists(s);
     ensure_scratch_buffers(s, batches);
     s.object_clip_inline = forms_object_clip_in_setup(s, settings, lod);
+    s.direct_dispatch = dispatches_directly(s, lod, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = timestamps_needed(batches);
     if (timestamps && s.query_capacity < queries_needed) {
@@ -933,6 +950,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
 
     // Read the counters: did any batch need more room than it had?
     const auto* counters = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
+    s.last_counts = {true, batches, total};
     if (lod) {
       s.objects_hold_lod = true;
       if (counters[0].lod_total == 0xFFFFFFFFu) {
@@ -996,6 +1014,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
 
     stats.attempts = attempt;
     stats.batches = batches;
+    stats.dispatched_directly = s.direct_dispatch;
     stats.tile_list_stride = s.tile_list_stride;
     for (uint32_t b = 0; b < batches; ++b) {
       const gpu::GpuCounters& c = counters[b];
@@ -1164,6 +1183,24 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
   return s.pipelines[pass.pass];
 }
 
+// The workgroups of a direct dispatch of fill, raster_small or raster_tiles
+// (State::direct_dispatch) for batch `b`: raster_tiles a workgroup per tile, as setup writes into
+// tiles_dispatch; the others what the last frame's list needed, a quarter more and one more, so
+// that a list that grows a little takes no second turn of their loops. At least one workgroup,
+// which loops over this frame's list if the last one had none; at most what the indirect dispatch
+// could launch.
+glm::uvec3 direct_groups(const Renderer::State& s, Pass pass, uint32_t b) {
+  if (pass == Pass::raster_tiles) return {s.tiles_x, s.tiles_y, 1};
+  const auto& last = static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped)[b];
+  const bool fill = pass == Pass::fill;
+  const uint64_t per_group = fill ? TS_BIN_ENTRIES_PER_GROUP : TS_GROUP_SIZE;
+  const uint64_t entries =
+      std::min<uint64_t>(fill ? last.big_tris : last.small_counts.x, s.raster_capacity);
+  const uint64_t needed = div_up(entries, per_group);
+  const uint64_t most = std::max<uint64_t>(div_up(uint64_t(s.raster_capacity), per_group), 1);
+  return {uint32_t(std::min<uint64_t>(needed + needed / 4 + 1, most)), 1, 1};
+}
+
 // Binds and dispatches one pass of Stage::batch or Stage::frame (`batch`: the batch being
 // recorded; batch 0's counters for a frame pass).
 void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pass,
@@ -1209,6 +1246,12 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       vkCmdDispatch(cmd, div_up(uint64_t(s.tiles_x) * s.tiles_y, pass.group_size), 1, 1);
       break;
     case Dispatch::indirect:
+      if (s.direct_dispatch && (pass.pass == Pass::fill || pass.pass == Pass::raster_small ||
+                                pass.pass == Pass::raster_tiles)) {
+        const glm::uvec3 groups = direct_groups(s, pass.pass, batch.index);
+        vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
+        break;
+      }
       vkCmdDispatchIndirect(
           cmd, s.buffer(TS_BINDING_COUNTERS).buffer,
           VkDeviceSize(batch.index) * sizeof(gpu::GpuCounters) + pass.counter_offset);
@@ -1238,9 +1281,18 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
 static_assert(size_t(Pass::raster_tiles) == size_t(Pass::raster_small) + 1);
 // `outlines_next`: the outline pass follows, which reads its dispatch from the counters and
 // writes pixels again (the wider barrier cost the 1-sample frame's last pass 2 us on the H200).
-void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool outlines_next = false) {
+void barrier_after(VkCommandBuffer cmd, const PassInfo& pass, bool outlines_next = false,
+                   bool indirect_next = true) {
   // list_tiles writes the shading pass's indirect dispatches.
   if (pass.stage != Stage::frame || outlines_next || pass.pass == Pass::list_tiles) {
+    if (pass.stage == Stage::batch && !indirect_next) {
+      // No pass after it reads a dispatch from the counters (State::direct_dispatch).
+      memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+      return;
+    }
     compute_to_compute(cmd);
     return;
   }
@@ -1331,7 +1383,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
             if (s.skip_clip && pass == Pass::clip) continue;
             record_dispatch(s, cmd, kPasses[j], batch, settings);
             // None between the two rasterizers.
-            if (k != size_t(Pass::raster_small)) barrier_after(cmd, kPasses[j]);
+            if (k != size_t(Pass::raster_small))
+              barrier_after(cmd, kPasses[j], false, !s.direct_dispatch);
             mark(kPasses[j].pass);
           }
         }

@@ -163,6 +163,9 @@ struct FrameStats {
   uint64_t background_tiles = 0;
   uint32_t batches = 0;
   uint32_t attempts = 0;  // 1, plus one per re-render after growing a buffer or splitting
+  // The final attempt dispatched the passes after setup directly, sized by the frame before
+  // (direct tile lists, from a scene's second frame on; docs/architecture.md, "The frame").
+  bool dispatched_directly = false;
 };
 
 struct UploadStats {

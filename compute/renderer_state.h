@@ -86,6 +86,17 @@ struct Renderer::State {
   // The frame records no object_clip pass: its few triangles form their objects' clip-space
   // transforms themselves (TS_SPEC_OBJECT_CLIP_INLINE; renderer.cpp's forms_object_clip_in_setup).
   bool object_clip_inline = false;
+  // This frame dispatches fill, raster_small and raster_tiles directly, sized by the last frame's
+  // counts (renderer.cpp's dispatches_directly), and its batch passes' barriers wait for no
+  // indirect-command read.
+  bool direct_dispatch = false;
+  // What counters_readback holds: a frame of `batches` batches of `triangles` triangle
+  // instances (valid false before the first frame and once the counters buffer is replaced).
+  struct LastCounts {
+    bool valid = false;
+    uint32_t batches = 0;
+    uint64_t triangles = 0;
+  } last_counts;
   // The per-triangle rasterizer is recorded before the per-tile one (renderer.cpp's
   // barrier_after): on GPUs, where they overlap. A CPU device (lavapipe) runs dispatches one
   // after another, and raster_small recorded second can reject what lies behind the tile bounds

@@ -21,19 +21,15 @@
 
 layout(local_size_x = TS_GROUP_SIZE) in;
 
-void main() {
-  uint e = gl_GlobalInvocationID.x / TS_BIN_CHUNK;
-  if (e >= min(counters[batch.index].big_tris, frame.raster_capacity)) return;
+// Fills the lists with thread `k` (0 to TS_BIN_CHUNK - 1) of bin entry `e`'s tiles.
+void fill_entry(uint e, uint k, inout uint appended, inout uint longest) {
   uvec2 entry = big_list[e];
   ivec2 first, size;
   bin_entry_block(entry.y, first, size);
   uint tiles = uint(size.x * size.y);
-  uint k = gl_GlobalInvocationID.x % TS_BIN_CHUNK;
   if (k >= tiles) return;
   RasterTri t = load_raster_tri(entry.x);
   uint stride = frame.tile_list_stride;
-  uint appended = 0u;  // direct lists: entries this thread appended, and the longest list's length
-  uint longest = 0u;
   for (; k < tiles; k += TS_BIN_CHUNK) {
     ivec2 tile_xy = bin_block_tile(first, size, k);
     if (!tile_may_overlap(t, tile_xy)) continue;
@@ -61,7 +57,21 @@ void main() {
       if (tile_far[tile] > far_high) atomicMin(tile_far[tile], far_high);
     }
   }
-  if (stride != 0u) {
+}
+
+// TS_BIN_CHUNK threads per entry, in a loop over the entries: dispatched indirectly (big_dispatch)
+// the workgroups cover them all once; dispatched directly, sized by the last frame's entries
+// (renderer.cpp's direct_groups), the loop takes as many turns as this frame needs.
+void main() {
+  uint entries = min(counters[batch.index].big_tris, frame.raster_capacity);
+  uint step = gl_NumWorkGroups.x * (TS_GROUP_SIZE / TS_BIN_CHUNK);
+  uint k = gl_GlobalInvocationID.x % TS_BIN_CHUNK;
+  uint appended = 0u;  // direct lists: entries this thread appended, and the longest list's length
+  uint longest = 0u;
+  for (uint e = gl_GlobalInvocationID.x / TS_BIN_CHUNK; e < entries; e += step) {
+    fill_entry(e, k, appended, longest);
+  }
+  if (frame.tile_list_stride != 0u) {
     // One atomic per subgroup: per-thread atomics on one address would serialize.
     uint total = subgroupAdd(appended);
     uint deepest = subgroupMax(longest);

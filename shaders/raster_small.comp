@@ -186,9 +186,8 @@ void raster_box_int64(RasterTri t, uint walk, uint walks) {
   }
 }
 
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= min(counters[batch.index].small_counts.x, frame.raster_capacity)) return;
+// Rasterizes entry `i` of the list (a walk of a small triangle).
+void raster_entry(uint i) {
   uint entry = small_list[i];
   uint walk = (entry & TS_SMALL_WALK_BIT) != 0u ? entry & ~TS_SMALL_WALK_BIT : 0u;
   RasterTri t = load_raster_tri(walk == 0u ? entry : small_list[i - walk]);
@@ -222,5 +221,15 @@ void main() {
     raster_box_int32(t, walk, walks);
   } else {
     raster_box_int64(t, walk, walks);
+  }
+}
+
+// A loop over the list's entries, a thread each: dispatched indirectly (small_dispatch) the
+// workgroups cover them all once; dispatched directly, sized by the last frame's entries
+// (renderer.cpp's direct_groups), the loop takes as many turns as this frame needs.
+void main() {
+  uint entries = min(counters[batch.index].small_counts.x, frame.raster_capacity);
+  for (uint i = gl_GlobalInvocationID.x; i < entries; i += gl_NumWorkGroups.x * TS_GROUP_SIZE) {
+    raster_entry(i);
   }
 }

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "tests/support/image_assertions.h"
 #include "tests/vulkan_fixture.h"
@@ -133,6 +134,41 @@ TEST_F(TileLists, AutomaticListsTurnCountedWhenDirectOnesWouldTakeTooMuch) {
       render(renderer, stacked_squares(2, 0.015f, -0.05f, 0.035f, 0.001f), frame_of(512, 512));
   EXPECT_GT(next.stats.tile_list_stride, 0u);
   EXPECT_EQ(next.stats.tile_entries, 4u);
+}
+
+// From a scene's second frame on, direct lists dispatch fill, raster_small and raster_tiles
+// directly, sized by the frame before (renderer.cpp's dispatches_directly). Lists that outgrow
+// those sizes take more turns of the passes' loops. Either way the image is a fresh renderer's.
+TEST_F(TileLists, LaterFramesSizedByTheLastOneGiveTheSameImage) {
+  // Boxes over 16 px binned, so that both lists have entries.
+  const RendererOptions options{.small_triangle_max_area = 16,
+                                .tile_lists = tessera::TileLists::direct};
+  // Ten grid spheres of 960 triangles, the benchmark's family (core/bench_scenes.h).
+  Scene near = make_bench_scene("grid", 10, 32, 4.0f / 3.0f);
+  Scene far = near;
+  far.camera.position = near.camera.target + 40.0f * (near.camera.position - near.camera.target);
+  const FrameSettings settings = frame_of(320, 240);
+  Renderer renderer(context(), options);
+  const Frame first = render(renderer, far, settings);
+  EXPECT_FALSE(first.stats.dispatched_directly) << "no frame before it to size the dispatches";
+  const Frame again = render(renderer, far, settings);
+  EXPECT_TRUE(again.stats.dispatched_directly);
+  EXPECT_EQ(again.visibility, first.visibility);
+  EXPECT_TRUE(same_bits(again.hdr, first.hdr));
+
+  // The same triangles 40 times nearer: many more list entries than the far frame's sizes
+  // launch a thread for (a quarter more and a workgroup: 256 small-triangle walks or 32 bin
+  // entries), so the loops take several turns.
+  const Frame grown = render(renderer, near, settings);
+  EXPECT_TRUE(grown.stats.dispatched_directly);
+  EXPECT_GT(grown.stats.small_triangles, 2 * again.stats.small_triangles + 2 * 256);
+  EXPECT_GT(grown.stats.big_triangles, 2 * again.stats.big_triangles + 2 * 32);
+  Renderer fresh(context(), options);
+  const Frame reference = render(fresh, near, settings);
+  EXPECT_FALSE(reference.stats.dispatched_directly);
+  EXPECT_EQ(grown.visibility, reference.visibility);
+  EXPECT_TRUE(same_bits(grown.hdr, reference.hdr));
+  EXPECT_EQ(grown.ldr.pixels, reference.ldr.pixels);
 }
 
 }  // namespace
