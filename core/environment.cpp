@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 
@@ -58,7 +59,14 @@ Environment load_environment(const std::string& path) {
     int w = 0, h = 0, channels = 0;
     std::unique_ptr<float, void (*)(void*)> data(stbi_loadf(path.c_str(), &w, &h, &channels, 4),
                                                  stbi_image_free);
-    if (!data) throw Error("cannot read environment '" + path + "': " + stbi_failure_reason());
+    if (!data) {
+      // stb_image's own reasons ("can't fopen", "unknown image type") do not say which.
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec))
+        throw Error("cannot read environment '" + path + "': no such file");
+      throw Error("cannot read environment '" + path + "': not a Radiance .hdr image (" +
+                  stbi_failure_reason() + ")");
+    }
     env.radiance.width = uint32_t(w);
     env.radiance.height = uint32_t(h);
     const auto* texels = reinterpret_cast<const glm::vec4*>(data.get());

@@ -18,7 +18,8 @@ namespace {
 using nlohmann::json;
 
 std::string point_name(const SavedPoint& p) {
-  return p.scene + ", " + std::to_string(p.objects) + " objects, " + std::to_string(p.width) + "x" +
+  return p.scene + ", " + std::to_string(p.objects) +
+         (p.objects == 1 ? " object, " : " objects, ") + std::to_string(p.width) + "x" +
          std::to_string(p.height) + ", " + p.backend;
 }
 

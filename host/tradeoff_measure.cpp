@@ -6,6 +6,8 @@
 #include <map>
 #include <memory>
 
+#include <unistd.h>
+
 #include "core/bench_scenes.h"
 #include "core/check.h"
 #include "core/mesh.h"
@@ -121,6 +123,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
     }
   }
   const size_t total = candidates.size() * args.rounds;
+  const bool progress_in_place = !args.quiet && isatty(fileno(stderr));
   size_t done = 0;
   for (uint32_t round = 0; round < args.rounds; ++round) {
     for (Candidate& c : candidates) {
@@ -146,10 +149,16 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
         c.times.push_back(stats.gpu_total_ms);
         c.triangles = stats.raster_triangles;
       }
-      if (!args.quiet) std::fprintf(stderr, "\rmeasured %zu of %zu", ++done, total);
+      // Rewritten in place on a terminal; into a log, only the last count.
+      ++done;
+      if (progress_in_place) std::fprintf(stderr, "\rmeasured %zu of %zu", done, total);
     }
   }
-  if (!args.quiet) std::fprintf(stderr, "\n");
+  if (progress_in_place) {
+    std::fprintf(stderr, "\n");
+  } else if (!args.quiet) {
+    std::fprintf(stderr, "measured %zu of %zu\n", done, total);
+  }
 
   // The ground truths: exact spheres, N x N samples per pixel, the environment integrated by
   // Monte Carlo. The BRDF knob is measured against the most faithful shading model (filament
@@ -187,7 +196,13 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   for (const Candidate& c : candidates) {
     const auto key = truth_key(c.setting);
     if (truths.count(key)) continue;
-    if (!args.quiet) std::fprintf(stderr, "rendering a ground truth\n");
+    if (!args.quiet) {
+      const char* brdf = key.first == Brdf::classic    ? "classic"
+                         : key.first == Brdf::filament ? "filament"
+                                                       : "blinn-phong";
+      std::fprintf(stderr, "rendering the ground truth for the %s BRDF%s\n", brdf,
+                   key.second ? " with energy compensation" : "");
+    }
     ReferenceSettings settings = truth;
     settings.frame.brdf = key.first;
     settings.frame.energy_compensation = key.second;

@@ -28,10 +28,10 @@ void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& ar
   std::printf("truth: %s (%.1f s of CPU wall time)\n", results.truth.c_str(),
               results.truth_seconds);
   std::printf(
-      "GPU ms: median of %u rounds x %u frames (min..max); errors against the truth: mean and\n"
+      "GPU ms: median of %u round%s x %u frame%s (min..max); errors against the truth: mean and\n"
       "99th percentile relative error of linear radiance over all pixels and over the interior\n"
       "(pixels the truth shows one object in), PSNR of the 8-bit image, silhouette error\n",
-      args.rounds, args.repeat);
+      args.rounds, args.rounds == 1 ? "" : "s", args.repeat, args.repeat == 1 ? "" : "s");
   std::printf("%-15s %-13s %9s %17s %9s %9s %9s %8s %8s  %s\n", "knob", "setting", "GPU ms",
               "(min..max)", "mean rel", "interior", "p99 rel", "PSNR dB", "silh px", "");
   for (const TradeoffPoint& p : results.points) {

@@ -273,7 +273,7 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       // A bad script line is a bad command line too; it is read before any window opens.
       {"view --script " + bad_script, 2, bad_script + ":2: unknown event 'jump'"},
       {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 1,
-       "tessera: error: cannot read environment '/nonexistent/sky.hdr'"},
+       "tessera: error: cannot read environment '/nonexistent/sky.hdr': no such file"},
   };
   for (const ToolCase& c : cases) {
     std::string out;
