@@ -78,12 +78,15 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   const FrameStats& last = timed.back();
   print_written(args, ctx.properties.deviceName);
   std::printf(
-      "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned), %llu back-facing, "
-      "%llu outside, %llu empty, %llu clipped\n",
+      "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned in %llu bin entries), "
+      "%llu back-facing, %llu outside, %llu empty, %llu clipped\n",
       (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
-      (unsigned long long)last.small_triangles, (unsigned long long)last.big_triangles,
-      (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
-      (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+      (unsigned long long)last.small_triangles,
+      (unsigned long long)(last.raster_triangles -
+                           std::min(last.small_triangles, last.raster_triangles)),
+      (unsigned long long)last.big_triangles, (unsigned long long)last.culled_backface,
+      (unsigned long long)last.culled_frustum, (unsigned long long)last.culled_empty,
+      (unsigned long long)last.clipped);
   std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
               (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
               (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
