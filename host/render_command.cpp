@@ -1,5 +1,6 @@
 #include "host/render_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <vector>
