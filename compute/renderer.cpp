@@ -821,17 +821,11 @@ void check_frame(const Renderer::State& s, const FrameSettings& settings, const 
   }
 }
 
-// Whether setup forms each triangle's view_proj * model itself and the frame records no
-// object_clip pass. Up to kObjectClipInlineTriangles triangle instances that costs less than a
-// pass of its own and the barrier after it: ~5 us on the H200, where 2^17 triangles' 64
-// multiply-adds take ~0.3 us of its ALUs; ~0.2 ms at most on lavapipe (2 threads). Only setup has
-// the variant: the clip pass and analytic coverage (several samples) read the pass's transforms,
-// and level of detail keeps the pass (its frames already have three passes more).
 // Whether this frame dispatches the passes after setup directly (State::direct_dispatch). An
 // indirect dispatch must wait for the writes of the pass before it to reach the command
 // processor, and its barrier makes every pass in between wait the same way: on the H200, direct
-// dispatches sized by the last frame took 7 us off one sphere's 0.070 ms and 10 us off the
-// default scene's 0.095 (docs/performance.md, "Issue 13, eleventh round"). The sizes are a guess
+// dispatches sized by the last frame took 6 us off one sphere's 0.069 ms and 3.5 us off the
+// default scene's 0.094 (docs/performance.md, "Issue 13, eleventh round"). The sizes are a guess
 // (direct_groups): fill and raster_small loop over their lists however many workgroups run, so
 // a guess too small costs time, never the image. Only with direct tile lists (counted ones run
 // the count pass, dispatched by setup's count) and without the clip and level-of-detail passes
@@ -842,6 +836,12 @@ bool dispatches_directly(const Renderer::State& s, bool lod, uint32_t batches) {
          s.last_counts.batches == batches && s.last_counts.triangles == s.uploaded.triangle_count;
 }
 
+// Whether setup forms each triangle's view_proj * model itself and the frame records no
+// object_clip pass. Up to kObjectClipInlineTriangles triangle instances that costs less than a
+// pass of its own and the barrier after it: ~5 us on the H200, where 2^17 triangles' 64
+// multiply-adds take ~0.3 us of its ALUs; ~0.2 ms at most on lavapipe (2 threads). Only setup has
+// the variant: the clip pass and analytic coverage (several samples) read the pass's transforms,
+// and level of detail keeps the pass (its frames already have three passes more).
 bool forms_object_clip_in_setup(const Renderer::State& s, const FrameSettings& settings, bool lod) {
   constexpr uint64_t kObjectClipInlineTriangles = uint64_t(1) << 17;
   return !lod && s.skip_clip && settings.samples == 1 &&
