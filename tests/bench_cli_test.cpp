@@ -697,7 +697,7 @@ TEST(BenchCli, BadCompareFilesAreClearErrors) {
   EXPECT_NE(error_of("twice.json", R"({"scene": "grid", "width": 8, "height": 8,
       "results": [{"objects": 1, "backend": "compute", "total_ms": 1},
                   {"objects": 1, "backend": "compute", "total_ms": 2}]})")
-                .find("results[1] repeats the point grid, 1 objects, 8x8, compute"),
+                .find("results[1] repeats the point grid, 1 object, 8x8, compute"),
             std::string::npos);
   try {
     read_bench_json("/nonexistent/base.json");
