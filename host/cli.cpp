@@ -292,7 +292,10 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
       ->type_name("NAME|FILE")
       ->check(builtin_scene());
   add_size(app, a.frame.width, a.frame.height,
-           "image size in pixels, each side 1..16384\n(default 512x512)");
+           "image size in pixels, each side 1..16384 and\n"
+           "the whole within the device's buffers (on\n"
+           "lavapipe 16 M pixels at 1 sample); default\n"
+           "512x512");
   app.add_option("--out", a.out, "display image, sRGB (default tessera.png)")
       ->type_name("FILE.png")
       ->check(file_with_suffix({".png"}));
@@ -414,7 +417,10 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->delimiter(',')
       ->allow_extra_args(false)
       ->check(whole_number(1, 100'000'000));
-  add_size(app, a.width, a.height, "image size, each side 1..16384 (default\n512x512)");
+  add_size(app, a.width, a.height,
+           "image size, each side 1..16384 and the whole\n"
+           "within the device's buffers (on lavapipe 16 M\n"
+           "pixels at 1 sample); default 512x512");
   add_samples(app, a.samples,
               "anti-aliasing samples per pixel, 1 (default),\n"
               "4, 8 or 16; compute and reference backends\n"
@@ -574,7 +580,10 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
       ->type_name("D")
       ->check(device_choice(false));
   add_size(app, a.frame.width, a.frame.height,
-           "image size, each side 1..16384 (default: the\nscene's, else 512x512)");
+           "image size, each side 1..16384 and the whole\n"
+           "within the device's buffers (on lavapipe 16 M\n"
+           "pixels at 1 sample); default: the scene's,\n"
+           "else 512x512");
   add_hdr_format(app, a.frame.hdr_format);
   add_tile_size(app, a.tile_size);
   add_quality(app, a.quality,
