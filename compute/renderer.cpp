@@ -1252,6 +1252,10 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
         vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
         break;
       }
+      // A frame of direct dispatches records its batch passes' barriers without the
+      // indirect-command read (barrier_after): any other batch pass read from the counters
+      // there would race with the pass that writes them.
+      TESSERA_CHECK(!s.direct_dispatch || pass.stage != Stage::batch);
       vkCmdDispatchIndirect(
           cmd, s.buffer(TS_BINDING_COUNTERS).buffer,
           VkDeviceSize(batch.index) * sizeof(gpu::GpuCounters) + pass.counter_offset);
