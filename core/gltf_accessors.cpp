@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
+#include "core/memory_pages.h"
 
 namespace tessera::gltf {
 namespace {
@@ -190,6 +191,7 @@ bool read_stored_type(const Context& ctx, const tinygltf::Model& model, const ti
     r.floats.resize(n);
     copy_typed<float>(start, a.count, r.components, stride, r.floats.data());
   } else {
+    reserve_populated(r.uints, n);
     r.uints.resize(n);
     uint32_t* out = r.uints.data();
     if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {

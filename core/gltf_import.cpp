@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <span>
@@ -16,6 +15,7 @@
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
+#include "core/mapped_file.h"
 
 namespace tessera::gltf {
 
@@ -69,23 +69,15 @@ void check_file_size(const Context& ctx, uintmax_t size) {
   if (size > UINT32_MAX) ctx.fail("", "is over 4 GiB, more than glTF files may be");
 }
 
-// A file's bytes, not zero-filled before reading (the fill was a twentieth of a large glb's
-// import).
-struct FileBytes {
-  std::unique_ptr<unsigned char[]> data;
-  size_t size = 0;
-};
-
-FileBytes read_file(const Context& ctx, const std::string& path) {
+// The file's bytes, mapped (map_file): the size is checked first, so that the messages for a
+// missing or oversized file are the same as for bytes handed over (import_gltf_bytes).
+MappedFile read_file(const Context& ctx, const std::string& path) {
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
   if (error) ctx.fail("", "cannot read the file: " + error.message());
   check_file_size(ctx, size);
-  FileBytes bytes{std::make_unique_for_overwrite<unsigned char[]>(size), size_t(size)};
-  std::ifstream in(path, std::ios::binary);
-  if (!in.read(reinterpret_cast<char*>(bytes.data.get()), std::streamsize(size))) {
-    ctx.fail("", "cannot read the file");
-  }
+  MappedFile bytes = map_file(path, ctx.options.max_file_bytes);
+  check_file_size(ctx, bytes.size());  // a file that grew since
   return bytes;
 }
 
@@ -420,8 +412,10 @@ namespace tessera {
 
 namespace {
 
+// `file`, if given, holds `bytes` and is released once TinyGLTF has read them (it copies the
+// buffers), so that the file's pages and the meshes are not held at once.
 ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
-                               std::span<const unsigned char> bytes) {
+                               std::span<const unsigned char> bytes, MappedFile* file) {
   using namespace gltf;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const std::string_view text =
@@ -454,6 +448,7 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     while (!error.empty() && error.back() == '\n') error.pop_back();
     ctx.fail("", "TinyGLTF cannot read it: " + error);
   }
+  if (file) *file = MappedFile();
   instantiate_nodes(ctx, doc, model, out);
   return std::move(out);
 }
@@ -464,8 +459,8 @@ ImportedModel import_gltf(const std::string& path, const ImportOptions& options)
   ImportedModel out;
   gltf::Context ctx{path, std::filesystem::path(path).parent_path().string(), options,
                     out.warnings};
-  const gltf::FileBytes bytes = gltf::read_file(ctx, path);
-  return import_gltf_from(ctx, out, {bytes.data.get(), bytes.size});
+  MappedFile file = gltf::read_file(ctx, path);
+  return import_gltf_from(ctx, out, {file.data(), file.size()}, &file);
 }
 
 ImportedModel import_gltf_bytes(const std::vector<unsigned char>& bytes, const std::string& name,
@@ -473,7 +468,7 @@ ImportedModel import_gltf_bytes(const std::vector<unsigned char>& bytes, const s
   ImportedModel out;
   gltf::Context ctx{name, base_dir, options, out.warnings};
   gltf::check_file_size(ctx, bytes.size());
-  return import_gltf_from(ctx, out, bytes);
+  return import_gltf_from(ctx, out, bytes, nullptr);
 }
 
 }  // namespace tessera

@@ -9,6 +9,7 @@
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
+#include "core/memory_pages.h"
 #include "core/texture.h"
 
 namespace tessera::gltf {
@@ -80,7 +81,7 @@ struct Vec3Reader {
 std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
   if (mode == TINYGLTF_MODE_TRIANGLES) return v;
   std::vector<uint32_t> out;
-  out.reserve(v.size() > 2 ? 3 * (v.size() - 2) : 0);
+  reserve_populated(out, v.size() > 2 ? 3 * (v.size() - 2) : 0);
   for (size_t i = 0; i + 2 < v.size(); ++i) {
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
       const size_t odd = i % 2;
@@ -97,11 +98,11 @@ std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
 void make_flat(Mesh& mesh) {
   Mesh flat;
   const size_t corners = mesh.indices.size();
-  flat.indices.reserve(corners);
-  flat.positions.reserve(corners);
-  flat.normals.reserve(corners);
-  flat.uvs.reserve(corners);
-  if (!mesh.uvs1.empty()) flat.uvs1.reserve(corners);
+  reserve_populated(flat.indices, corners);
+  reserve_populated(flat.positions, corners);
+  reserve_populated(flat.normals, corners);
+  reserve_populated(flat.uvs, corners);
+  if (!mesh.uvs1.empty()) reserve_populated(flat.uvs1, corners);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
     const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]),
@@ -148,7 +149,8 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   Mesh mesh;
   visit(positions, [&](auto values) {
     using Reader = Vec3Reader<decltype(values)>;
-    mesh.positions = std::vector<glm::vec3>(Reader{values, 0}, Reader{values, n});
+    reserve_populated(mesh.positions, n);
+    mesh.positions.assign(Reader{values, 0}, Reader{values, n});
   });
   // Checked after the copy: a float is non-finite where its exponent bits are all ones, and only
   // where the value it was converted from is (accessor values fit in a float); require_finite
@@ -180,7 +182,9 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
 
   // TEXCOORD_n (zero where absent) through set n's texture transform.
   auto read_uvs = [&](int set) {
-    std::vector<glm::vec2> out(n, glm::vec2(0.0f));
+    std::vector<glm::vec2> out;
+    reserve_populated(out, n);
+    out.resize(n, glm::vec2(0.0f));
     const std::string name = "TEXCOORD_" + std::to_string(set);
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
@@ -238,7 +242,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     if (!indices.uints.empty()) {
       vertices = std::move(indices.uints);
     } else {
-      vertices.reserve(indices.count);
+      reserve_populated(vertices, indices.count);
       visit(indices, [&](auto values) {
         for (size_t i = 0; i < indices.count; ++i) vertices.push_back(uint32_t(values[i]));
       });
@@ -259,6 +263,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // The specification says to ignore given tangents when normals are generated.
   } else {
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3, false);
+    reserve_populated(mesh.normals, n);
     mesh.normals.resize(n);
     bool renormalized = false, finite_normals = true;
     size_t zero = n;  // the first zero normal

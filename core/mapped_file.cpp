@@ -1,0 +1,104 @@
+#include "core/mapped_file.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include "core/check.h"
+
+namespace tessera {
+namespace {
+
+[[noreturn]] void cannot_read(const std::string& path, int error) {
+  throw Error(path + ": cannot read the file: " + std::strerror(error));
+}
+
+// Closes a file descriptor on every way out of map_file.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+MappedFile::MappedFile(MappedFile&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)),
+      size_(std::exchange(other.size_, 0)),
+      mapped_(std::exchange(other.mapped_, false)) {}
+
+MappedFile& MappedFile::operator=(MappedFile&& other) noexcept {
+  if (this != &other) {
+    release();
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, false);
+  }
+  return *this;
+}
+
+MappedFile::~MappedFile() {
+  release();
+}
+
+void MappedFile::release() {
+  if (mapped_) {
+    ::munmap(data_, size_);
+  } else {
+    delete[] data_;
+  }
+  data_ = nullptr;
+  size_ = 0;
+  mapped_ = false;
+}
+
+MappedFile map_file(const std::string& path, uint64_t max_bytes) {
+  const Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (file.fd < 0) cannot_read(path, errno);
+  struct stat status {};
+  if (::fstat(file.fd, &status) != 0) cannot_read(path, errno);
+  if (S_ISDIR(status.st_mode)) cannot_read(path, EISDIR);
+  MappedFile out;
+  if (S_ISREG(status.st_mode) && status.st_size > 0) {
+    if (uint64_t(status.st_size) > max_bytes) {
+      throw Error(path + ": is " + std::to_string(status.st_size) + " bytes, over the limit of " +
+                  std::to_string(max_bytes));
+    }
+    void* p =
+        ::mmap(nullptr, size_t(status.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, file.fd, 0);
+    if (p != MAP_FAILED) {
+      out.data_ = static_cast<unsigned char*>(p);
+      out.size_ = size_t(status.st_size);
+      out.mapped_ = true;
+      return out;
+    }
+  }
+  // Not mappable: read to the end, whatever the size fstat gave (a pipe's is 0).
+  std::vector<unsigned char> bytes;
+  unsigned char chunk[1 << 16];
+  for (;;) {
+    const ssize_t got = ::read(file.fd, chunk, sizeof chunk);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) cannot_read(path, errno);
+    if (got == 0) break;
+    if (bytes.size() + size_t(got) > max_bytes) {
+      throw Error(path + ": is over the limit of " + std::to_string(max_bytes) + " bytes");
+    }
+    bytes.insert(bytes.end(), chunk, chunk + got);
+  }
+  if (!bytes.empty()) {
+    out.data_ = new unsigned char[bytes.size()];
+    std::memcpy(out.data_, bytes.data(), bytes.size());
+    out.size_ = bytes.size();
+  }
+  return out;
+}
+
+}  // namespace tessera
