@@ -16,7 +16,6 @@
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/mapped_file.h"
-#include "core/parallel.h"
 
 namespace tessera::gltf {
 
@@ -309,50 +308,6 @@ std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
   return cameras;
 }
 
-// A primitive the node walk met first, converted after it (convert_pending).
-struct PendingPrimitive {
-  int mesh;
-  int primitive;
-  PrimitiveOptions options;
-  uint32_t scene_mesh;     // its index in Scene::meshes
-  size_t warnings_before;  // the walk's warnings when it was met
-};
-
-// Converts the walk's primitives on every core (parallel_for) into out.scene.meshes, with the
-// messages a conversion in the walk's order would give: each primitive's warnings are put among
-// the walk's where it was met (each message once, as Context::warn keeps them), and the failure
-// of the first primitive in that order that fails is thrown. Each primitive writes only its own
-// mesh and warnings, so the result does not depend on the number of threads.
-void convert_pending(const Context& ctx, const tinygltf::Model& model,
-                     const std::vector<PendingPrimitive>& pending, ImportedModel& out) {
-  std::vector<std::vector<std::string>> warnings(pending.size());
-  std::vector<std::exception_ptr> errors(pending.size());
-  parallel_for(pending.size(), [&](size_t i) {
-    const PendingPrimitive& p = pending[i];
-    const Context own{ctx.file, ctx.base_dir, ctx.options, warnings[i]};
-    try {
-      out.scene.meshes[p.scene_mesh] =
-          convert_primitive(own, model, p.mesh, p.primitive, p.options);
-    } catch (const Error&) {
-      errors[i] = std::current_exception();
-    }
-  });
-  std::vector<std::string> walk = std::move(out.warnings);
-  out.warnings.clear();
-  auto add = [&](const std::string& message) {
-    if (std::find(out.warnings.begin(), out.warnings.end(), message) == out.warnings.end()) {
-      out.warnings.push_back(message);
-    }
-  };
-  size_t next = 0;  // the walk's first warning not yet added
-  for (size_t i = 0; i < pending.size(); ++i) {
-    for (; next < pending[i].warnings_before; ++next) add(walk[next]);
-    for (const std::string& w : warnings[i]) add(w);
-    if (errors[i]) std::rethrow_exception(errors[i]);
-  }
-  for (; next < walk.size(); ++next) add(walk[next]);
-}
-
 // The scene's node trees, depth first with an explicit stack (no recursion limit on deep
 // hierarchies), placing mesh instances, lights and cameras by their world transforms. Nodes are
 // read from `doc` when it has them, else (scan_document's partial document) from `model`.
@@ -372,10 +327,6 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
   std::map<std::pair<int, int>, uint32_t> meshes;  // (mesh, primitive)
   std::map<int, glm::dmat4> camera_placements;
   std::vector<bool> on_path(node_count, false);
-  std::vector<PendingPrimitive> pending;
-  // The walk's first failure, raised after the primitives met before it are converted, whose
-  // failures came first.
-  std::exception_ptr walk_error;
   struct Visit {
     int node;
     glm::dmat4 parent;
@@ -383,81 +334,74 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     std::string from;  // where the reference to this node is, for messages
   };
   std::vector<Visit> stack;
-  try {
-    const json& roots = member(scenes[scene_index], "nodes");
-    for (size_t i = roots.size(); i-- > 0;) {
-      stack.push_back({roots[i].get<int>(), glm::dmat4(1.0), false,
-                       at("scenes", scene_index) + ".nodes[" + std::to_string(i) + "]"});
-    }
-    while (!stack.empty()) {
-      Visit v = std::move(stack.back());
-      stack.pop_back();
-      if (v.leave) {
-        on_path[v.node] = false;
-        continue;
-      }
-      check_index(ctx, v.from, v.node, node_count, "nodes");
-      const std::string where = at("nodes", v.node);
-      if (on_path[v.node]) {
-        ctx.fail(v.from, "refers to node " + std::to_string(v.node) +
-                             ", its own ancestor: the node graph has a cycle");
-      }
-      on_path[v.node] = true;
-      const NodeInfo node =
-          json_nodes ? node_info((*json_nodes)[v.node]) : node_info(model.nodes[v.node]);
-      const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
-      if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
-      stack.push_back({v.node, {}, true, {}});
-      for (size_t c = node.children.size(); c-- > 0;) {
-        stack.push_back(
-            {node.children[c], world, false, where + ".children[" + std::to_string(c) + "]"});
-      }
-
-      if (node.mesh) {
-        const int mesh = *node.mesh;
-        check_index(ctx, where + ".mesh", mesh, model.meshes.size(), "meshes");
-        // A mirroring transform turns counter-clockwise triangles clockwise (specification
-        // 3.7.4); the renderers handle it per object (is_mirroring), so the mesh is shared.
-        for (size_t p = 0; p < model.meshes[mesh].primitives.size(); ++p) {
-          const int material = model.meshes[mesh].primitives[p].material;
-          if (material >= 0) {
-            check_index(ctx, at("meshes", mesh) + ".primitives[" + std::to_string(p) + "].material",
-                        material, model.materials.size(), "materials");
-          }
-          Object object;
-          object.material = material_index(ctx, doc, model, material, table, out.scene);
-          object.transform = glm::mat4(world);
-          const auto key = std::make_pair(mesh, int(p));
-          if (auto it = meshes.find(key); it != meshes.end()) {
-            object.mesh = it->second;
-          } else {
-            object.mesh = meshes[key] = uint32_t(out.scene.meshes.size());
-            out.scene.meshes.emplace_back();  // converted after the walk (convert_pending)
-            pending.push_back(
-                {mesh, int(p), table.uv_options[material], object.mesh, out.warnings.size()});
-          }
-          out.scene.objects.push_back(object);
-        }
-      }
-      if (node.camera) {
-        const int camera = *node.camera;
-        check_index(ctx, where + ".camera", camera, member(doc, "cameras").size(), "cameras");
-        camera_placements.try_emplace(camera, world);
-      }
-      if (node.light_extension) {
-        if (!node.light) ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
-        const int light = *node.light;
-        check_index(ctx, where + ".extensions.KHR_lights_punctual.light", light, lights.size(),
-                    "KHR_lights_punctual lights");
-        out.scene.lights.push_back(make_light(ctx, lights, light, world));
-      }
-      if (node.skin) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
-    }
-  } catch (const Error&) {
-    walk_error = std::current_exception();
+  const json& roots = member(scenes[scene_index], "nodes");
+  for (size_t i = roots.size(); i-- > 0;) {
+    stack.push_back({roots[i].get<int>(), glm::dmat4(1.0), false,
+                     at("scenes", scene_index) + ".nodes[" + std::to_string(i) + "]"});
   }
-  convert_pending(ctx, model, pending, out);
-  if (walk_error) std::rethrow_exception(walk_error);
+  while (!stack.empty()) {
+    Visit v = std::move(stack.back());
+    stack.pop_back();
+    if (v.leave) {
+      on_path[v.node] = false;
+      continue;
+    }
+    check_index(ctx, v.from, v.node, node_count, "nodes");
+    const std::string where = at("nodes", v.node);
+    if (on_path[v.node]) {
+      ctx.fail(v.from, "refers to node " + std::to_string(v.node) +
+                           ", its own ancestor: the node graph has a cycle");
+    }
+    on_path[v.node] = true;
+    const NodeInfo node =
+        json_nodes ? node_info((*json_nodes)[v.node]) : node_info(model.nodes[v.node]);
+    const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
+    if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
+    stack.push_back({v.node, {}, true, {}});
+    for (size_t c = node.children.size(); c-- > 0;) {
+      stack.push_back(
+          {node.children[c], world, false, where + ".children[" + std::to_string(c) + "]"});
+    }
+
+    if (node.mesh) {
+      const int mesh = *node.mesh;
+      check_index(ctx, where + ".mesh", mesh, model.meshes.size(), "meshes");
+      // A mirroring transform turns counter-clockwise triangles clockwise (specification
+      // 3.7.4); the renderers handle it per object (is_mirroring), so the mesh is shared.
+      for (size_t p = 0; p < model.meshes[mesh].primitives.size(); ++p) {
+        const int material = model.meshes[mesh].primitives[p].material;
+        if (material >= 0) {
+          check_index(ctx, at("meshes", mesh) + ".primitives[" + std::to_string(p) + "].material",
+                      material, model.materials.size(), "materials");
+        }
+        Object object;
+        object.material = material_index(ctx, doc, model, material, table, out.scene);
+        object.transform = glm::mat4(world);
+        const auto key = std::make_pair(mesh, int(p));
+        if (auto it = meshes.find(key); it != meshes.end()) {
+          object.mesh = it->second;
+        } else {
+          out.scene.meshes.push_back(
+              convert_primitive(ctx, model, mesh, int(p), table.uv_options[material]));
+          object.mesh = meshes[key] = uint32_t(out.scene.meshes.size() - 1);
+        }
+        out.scene.objects.push_back(object);
+      }
+    }
+    if (node.camera) {
+      const int camera = *node.camera;
+      check_index(ctx, where + ".camera", camera, member(doc, "cameras").size(), "cameras");
+      camera_placements.try_emplace(camera, world);
+    }
+    if (node.light_extension) {
+      if (!node.light) ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
+      const int light = *node.light;
+      check_index(ctx, where + ".extensions.KHR_lights_punctual.light", light, lights.size(),
+                  "KHR_lights_punctual lights");
+      out.scene.lights.push_back(make_light(ctx, lights, light, world));
+    }
+    if (node.skin) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
+  }
   out.cameras = make_cameras(ctx, doc, camera_placements);
 }
 
