@@ -7,7 +7,8 @@
 # and texture decoding and mip building on every core against one thread (wall time).
 # Writes each case's JSON and printed table packed in $OUT/import.tar.gz; prints them too.
 #
-#   device run: scripts/device-bench-import.sh        (OBJ_TRIANGLES=N to change 10^7)
+#   device run: scripts/device-bench-import.sh        (OBJ_TRIANGLES=N to change 10^7;
+#                                                      PARTS="gltf obj textures" the default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:?OUT must name the output folder (the device tool sets it)}
@@ -32,13 +33,22 @@ run() {  # run VERSION TAG FILTER [ARGS...]: one process
     --benchmark_out="$work/${version}_$tag.json" --benchmark_out_format=json "$@" 2>&1 |
     tee "$work/${version}_$tag.txt" | grep -v '^\*\*\*' || true
 }
+parts=" ${PARTS:-gltf obj textures} "
 for round in 1 2 3; do
+  [[ $parts == *" gltf "* ]] || break
   for v in "${versions[@]}"; do
-    run "$v" "gltf_$round" 'BM_(TinyGltfAlone|ImportGltf)/' --benchmark_repetitions=10 \
-      --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
+    run "$v" "gltf_$round" 'BM_(TinyGltfAlone|TinyGltfOnMappedFile|ImportGltf)/' \
+      --benchmark_repetitions=10 --benchmark_enable_random_interleaving=true \
+      --benchmark_report_aggregates_only=true
   done
 done
+# Peak memory, one case per process (the high-water mark is the process's).
+for f in TinyGltfAlone TinyGltfOnMappedFile ImportGltf; do
+  [[ $parts == *" gltf "* ]] || break
+  for v in "${versions[@]}"; do run "$v" "memory_$f" "^BM_$f/" --benchmark_repetitions=3; done
+done
 for round in 1 2 3; do
+  [[ $parts == *" obj "* ]] || break
   for v in "${versions[@]}"; do
     b=$bin
     [[ $v == before ]] && b=$PWD/.device-before
@@ -48,5 +58,7 @@ for round in 1 2 3; do
     done
   done
 done
-run after textures 'Textures|Mip' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+if [[ $parts == *" textures "* ]]; then
+  run after textures 'Textures|Mip' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+fi
 rm -rf "$TMPDIR"

@@ -146,6 +146,76 @@ size_t triangles(const Scene& s) {
 
 // import_gltf_bytes (the fuzzer's entry point): a .gltf's text and a .glb from memory, external
 // files found through base_dir, give the file's scene; messages name the given name.
+// Warnings and the first error come in the order of the node walk, whether the walk or a
+// primitive's conversion gives them. A file of three nodes:
+// a triangle with COLOR_0 (a conversion warns), a node with a skin (the walk warns), another
+// triangle with COLOR_0; `first` and `last` replace the first and last node's mesh.
+std::vector<unsigned char> ordered_messages_file(const std::string& first,
+                                                 const std::string& last) {
+  // Two buffers of a triangle's POSITION then COLOR_0 (9 floats each, base64): the second's
+  // first coordinate is NaN.
+  const std::string good =
+      "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAA"
+      "AIA/";
+  const std::string nan =
+      "AADAfwAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAA"
+      "AIA/";
+  const std::string text = R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0, 1, 2]}],
+    "nodes": [{"mesh": )" + first +
+                           R"(}, {"skin": 0}, {"mesh": )" + last + R"(}],
+    "skins": [{"joints": [1]}],
+    "meshes": [
+      {"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 1}}]},
+      {"primitives": [{"attributes": {"POSITION": 2, "COLOR_0": 3}}]},
+      {"primitives": [{"attributes": {"POSITION": 4, "COLOR_0": 5}}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+       "min": [0, 0, 0], "max": [1, 1, 0]},
+      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+       "min": [0, 0, 0], "max": [1, 1, 0]},
+      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+      {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"},
+      {"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+      {"buffer": 1, "byteLength": 36}, {"buffer": 1, "byteOffset": 36, "byteLength": 36}],
+    "buffers": [
+      {"byteLength": 72, "uri": "data:application/octet-stream;base64,)" +
+                           good + R"("},
+      {"byteLength": 72, "uri": "data:application/octet-stream;base64,)" +
+                           nan + R"("}]})";
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+TEST(GltfImport, MessagesComeInTheWalksOrder) {
+  const auto error_of = [](const std::vector<unsigned char>& bytes) -> std::string {
+    try {
+      import_gltf_bytes(bytes, "ordered.gltf", "/nonexistent");
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const ImportedModel m =
+      import_gltf_bytes(ordered_messages_file("0", "1"), "ordered.gltf", "/nonexistent");
+  EXPECT_EQ(m.scene.meshes.size(), 2u);
+  EXPECT_EQ(m.warnings,
+            (std::vector<std::string>{
+                "ordered.gltf: meshes[0].primitives[0].attributes.COLOR_0: is ignored (no "
+                "vertex colours or skinning in Tessera)",
+                "ordered.gltf: nodes[1].skin: skins are ignored (bind pose)",
+                "ordered.gltf: meshes[1].primitives[0].attributes.COLOR_0: is ignored (no "
+                "vertex colours or skinning in Tessera)"}));
+  // The NaN triangle first: its error, although the walk fails later at the last node.
+  EXPECT_EQ(error_of(ordered_messages_file("2", "7")),
+            "ordered.gltf: meshes[2].primitives[0].attributes.POSITION: element 0 has a NaN or "
+            "infinite component");
+  // The walk failing first: its error, although the NaN triangle comes later.
+  EXPECT_EQ(error_of(ordered_messages_file("7", "2")),
+            "ordered.gltf: nodes[0].mesh: refers to meshes[7], but the file has 3 meshes");
+}
+
 TEST(GltfImport, FromMemoryGivesTheFilesScene) {
   const auto bytes_of = [](const std::string& path) {
     std::ifstream in(path, std::ios::binary);
