@@ -184,7 +184,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   auto read_uvs = [&](int set) {
     std::vector<glm::vec2> out;
     reserve_populated(out, n);
-    out.resize(n, glm::vec2(0.0f));
+    out.resize(n);  // zeros (value-initialized), written by memset
     const std::string name = "TEXCOORD_" + std::to_string(set);
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
