@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/image.h"
+#include "host/label_layout.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -35,6 +36,8 @@ struct Canvas {
   // anchor: 0 left, 1 centre, 2 right; `size` is the text height in pixels.
   virtual void text(double x, double y, const std::string& s, double size, Colour c, int anchor,
                     bool vertical = false) = 0;
+  // The width `text` gives `s`, in pixels (an estimate where the viewer picks the font).
+  virtual double text_width(const std::string& s, double size) const = 0;
 };
 
 std::string hex(Colour c) {
@@ -75,6 +78,10 @@ struct SvgCanvas : Canvas {
          << "' fill='" << hex(c) << "' text-anchor='" << a << "' dominant-baseline='middle'";
     if (vertical) body << " transform='rotate(-90 " << x << " " << y << ")'";
     body << ">" << escape(s) << "</text>\n";
+  }
+  // Sans-serif glyphs average about 0.55 em; 0.6 leaves room for wide ones.
+  double text_width(const std::string& s, double size) const override {
+    return 0.6 * size * double(s.size());
   }
 };
 
@@ -121,6 +128,10 @@ struct PngCanvas : Canvas {
         rect(x + qy, y - qx - qw, qh, qw, c);
       }
     }
+  }
+  double text_width(const std::string& s, double size) const override {
+    const double scale = std::max(1.0, std::round(size / 9.0));
+    return stb_easy_font_width(const_cast<char*>(s.c_str())) * scale;
   }
 };
 
@@ -278,6 +289,14 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
   if (xmax == 0) return;
   const Box b{90, 60, width - 330, height - 130};
   const LogAxes a = draw_log_axes(c, b, xmin, xmax, ymin, ymax, chart.x_label, chart.y_label);
+  // Labels of every series, placed together so that no two overlap (place_labels): the
+  // Pareto fronts' first, as they matter most.
+  struct Label {
+    LabelRequest request;
+    const std::string* text;
+    Colour colour;
+  };
+  std::vector<Label> labels;
   for (size_t k = 0; k < chart.series.size(); ++k) {
     const ScatterSeries& s = chart.series[k];
     const Colour col = kPalette[k % std::size(kPalette)];
@@ -287,7 +306,8 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
       if (p.on_front) front.push_back(&p);
       const double r = p.on_front ? 5 : 3;
       c.rect(a.px(p.x) - r, a.py(p.y) - r, 2 * r, 2 * r, col);
-      c.text(a.px(p.x) + 7, a.py(p.y) - 8, p.label, 10, col, 0);
+      const LabelRequest request{a.px(p.x), a.py(p.y), r, c.text_width(p.label, 10), 10};
+      labels.push_back({request, &p.label, col});
     }
     std::sort(front.begin(), front.end(),
               [](const ScatterPoint* p, const ScatterPoint* q) { return p->x < q->x; });
@@ -297,6 +317,21 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
     }
     c.rect(b.x + b.w + 20, b.y + 18 * k, 14, 10, col);
     c.text(b.x + b.w + 40, b.y + 5 + 18 * k, s.name, 12, kInk, 0);
+  }
+  std::stable_sort(labels.begin(), labels.end(), [](const Label& p, const Label& q) {
+    return p.request.mark > q.request.mark;  // front points have the larger marks
+  });
+  std::vector<LabelRequest> requests;
+  for (const Label& l : labels) requests.push_back(l.request);
+  const std::vector<LabelSpot> spots = place_labels(requests, {b.x, b.y - 20, b.w + 10, b.h + 20});
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const LabelRect& box = spots[i].box;
+    if (spots[i].leader) {
+      const double to_x = std::clamp(labels[i].request.x, box.x, box.x + box.w);
+      const double to_y = std::clamp(labels[i].request.y, box.y, box.y + box.h);
+      c.line(labels[i].request.x, labels[i].request.y, to_x, to_y, labels[i].colour, 0.6);
+    }
+    c.text(box.x, box.y + box.h / 2, *labels[i].text, 10, labels[i].colour, 0);
   }
   const double note_y = b.y + 18 * chart.series.size() + 20;
   c.text(b.x + b.w + 20, note_y, "large marks, joined:", 11, kInk, 0);
