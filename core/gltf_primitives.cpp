@@ -282,8 +282,9 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
         zero_ = !(length > 0.0) ? std::min(zero_, i) : zero_;
         renormalized_ |= std::abs(length - 1.0) > 1e-3;
         // One division, not three: x * (1 / length) is within an ulp of x / length in double,
-        // which rounds to the same float but where the double lies within 2^-29 ulp of a float
-        // rounding boundary.
+        // so the two round to different floats only where a float rounding boundary falls in
+        // that ulp (a chance of about 2^-29 a value): no stored normal of the 79 glTF files of
+        // assimp-testmodels and tests/data changed.
         const double inverse = 1.0 / length;
         out[3 * i] = float(x * inverse);
         out[3 * i + 1] = float(y * inverse);
