@@ -418,6 +418,11 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
                                std::span<const unsigned char> bytes, MappedFile* file) {
   using namespace gltf;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  // Said plainly, rather than as the JSON parser's complaint about the first byte.
+  if (bytes.empty()) ctx.fail("", "is empty");
+  if (!binary && std::filesystem::path(ctx.file).extension() == ".glb") {
+    ctx.fail("", "is not a binary glTF: a .glb starts with the bytes 'glTF' (glTF 2.0, 4.4)");
+  }
   const std::string_view text =
       binary ? glb_json(ctx, bytes)
              : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());

@@ -82,6 +82,10 @@ TEST(GltfImport, HandMadeBadFilesGiveTheirExpectedErrors) {
   EXPECT_GE(testing::expect_bad_corpus(kData + "/bad", "", ".gltf",
                                        [](const std::string& path) { return import_error(path); }),
             20);
+  // .glb files that are not binary glTF: said so, not reported as JSON (a fresh user's trial).
+  EXPECT_GE(testing::expect_bad_corpus(kData + "/bad", "", ".glb",
+                                       [](const std::string& path) { return import_error(path); }),
+            2);
 }
 
 TEST(GltfImport, PointsAndLinesAreRefusedByName) {

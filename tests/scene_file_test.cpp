@@ -315,6 +315,15 @@ TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
                      "\"models\""),
             std::string::npos)
       << out;
+  // Named without a folder, from the folder it is in: the same message, not "unknown scene"
+  // (from a fresh user's trial).
+  EXPECT_EQ(test::run_command("cd " + kData + " && " + TESSERA_BINARY +
+                                  " render --scene features.gltf --out " + png,
+                              out),
+            1);
+  EXPECT_NE(out.find("features.gltf: a model file (glTF or OBJ), not a scene file"),
+            std::string::npos)
+      << out;
 }
 
 class SceneFileRender : public test::VulkanTest {};
