@@ -111,8 +111,11 @@ struct PngCanvas : Canvas {
             bool vertical) override {
     // stb_easy_font draws 7 px tall glyphs as quads; scale them to `size`.
     static char buffer[200000];
-    const double scale = std::max(1.0, std::round(size / 9.0));
-    const double w = stb_easy_font_width(const_cast<char*>(s.c_str())) * scale;
+    double scale = std::max(1.0, std::round(size / 9.0));
+    // A line wider than the image (a long title) at the smallest scale rather than cut off.
+    const double unscaled = stb_easy_font_width(const_cast<char*>(s.c_str()));
+    while (scale > 1 && unscaled * scale > image.width) scale -= 1;
+    const double w = unscaled * scale;
     const double h = 7 * scale;
     const double ox = anchor == 0 ? 0 : anchor == 1 ? -w / 2 : -w;
     const int quads =

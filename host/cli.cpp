@@ -38,7 +38,9 @@ void check_file_exists(const std::string& path) {
 // them).
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    if (is_scene_path(name))
+    // A model's file name, even without a folder, is a file (the command then says to place it
+    // in a scene file), not an unknown scene.
+    if (is_scene_path(name) || is_model_path(name))
       check_file_exists(name);
     else
       check_scene_name(name);
