@@ -414,7 +414,11 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
                  "grid")
       ->type_name("NAME")
       ->check(bench_scene());
-  app.add_option("--objects", a.objects, "object counts, e.g. 1,10,100,1000 (default\n1,10,100)")
+  app.add_option(
+         "--objects", a.objects,
+         "object counts, e.g. 1,10,100,1000 (default\n1,10,100); with a scene file or model, how\n"
+         "many times its content is placed (the table\ncounts objects: 19 parts placed 4 times\n"
+         "are 76)")
       ->type_name("LIST")
       ->delimiter(',')
       ->allow_extra_args(false)
