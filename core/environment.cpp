@@ -62,6 +62,8 @@ Environment load_environment(const std::string& path) {
     if (!data) {
       // stb_image's own reasons ("can't fopen", "unknown image type") do not say which.
       std::error_code ec;
+      if (std::filesystem::is_directory(path, ec))
+        throw Error("cannot read environment '" + path + "': it is a folder, not a file");
       if (!std::filesystem::is_regular_file(path, ec))
         throw Error("cannot read environment '" + path + "': no such file");
       throw Error("cannot read environment '" + path + "': not a Radiance .hdr image (" +

@@ -337,7 +337,11 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "sky); none (the scene's lights only). Default:\n"
                  "the scene's own (only `environment` has one)")
       ->type_name("E")
-      ->check(file_with_suffix({".hdr", ".pfm"}, {"sky", "none"}));
+      ->check(file_with_suffix({".hdr", ".pfm"}, {"sky", "none"}))
+      // A missing file is a bad command line, as a missing scene or script is.
+      ->check(checked_by([](const std::string& text) {
+        if (text != "sky" && text != "none") check_file_exists(text);
+      }));
   app.add_option("--env-size", a.env_options.specular_size,
                  "side of the prefiltered specular cube, a\npower of two 1..512 (default 128)")
       ->type_name("N")

@@ -1,6 +1,7 @@
 // The command-line tool: parsing, --help, and bad arguments giving a message that names the
 // option and the exit statuses of host/cli.h (2 for a bad command line, 1 for a failure while
 // running).
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -241,6 +242,8 @@ struct ToolCase {
 // One error style for both kinds: usage errors (2) and failures while running (1).
 TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
   const std::string bad_script = test::output_path("bad_script.txt");
+  const std::string folder_env = test::output_path("folder.hdr");  // a folder named like a file
+  std::filesystem::create_directories(folder_env);
   std::ofstream(bad_script) << "1 key A\n2 jump\n";
   const ToolCase cases[] = {
       {"render --size 0x10", 2, "tessera: error: --size: width"},
@@ -272,8 +275,10 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
        "tessera: error: --script: script file '/nonexistent/s.txt' not found"},
       // A bad script line is a bad command line too; it is read before any window opens.
       {"view --script " + bad_script, 2, bad_script + ":2: unknown event 'jump'"},
-      {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 1,
-       "tessera: error: cannot read environment '/nonexistent/sky.hdr': no such file"},
+      {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 2,
+       "tessera: error: --env: no file '/nonexistent/sky.hdr'"},
+      {"render --env " + folder_env + " --out /tmp/x.png", 1,
+       "tessera: error: cannot read environment '" + folder_env + "': it is a folder, not a file"},
   };
   for (const ToolCase& c : cases) {
     std::string out;
