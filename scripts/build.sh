@@ -17,10 +17,24 @@ if [[ ! -f build/CMakeCache.txt ]]; then
 elif (($# > 0)); then
   cmake -S . -B build "$@" >/dev/null
 fi
+progress=0
 if [[ -x build/host/tessera ]]; then
   echo "build: updating build/ (rebuilds what changed, if anything)" >&2
 else
+  progress=1
   echo "build: building Tessera in build/ with $jobs jobs; the first build takes several" \
     "minutes (about 4 on an idle 2-core machine)" >&2
 fi
-cmake --build build -j "$jobs"
+# In a first build whose own output is hidden (stdout not a terminal, as in scripts/render.sh),
+# its progress also goes to stderr every tenth, so that the build does not look stuck.
+last=0
+cmake --build build -j "$jobs" | while IFS= read -r line; do
+  printf '%s\n' "$line"
+  if ((progress)) && [[ ! -t 1 && $line =~ ^\[\ *([0-9]+)%\] ]]; then
+    step=$((BASH_REMATCH[1] / 10 * 10))
+    if ((step > last)); then
+      last=$step
+      echo "build: $step %" >&2
+    fi
+  fi
+done
