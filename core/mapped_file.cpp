@@ -32,7 +32,8 @@ struct Descriptor {
 MappedFile::MappedFile(MappedFile&& other) noexcept
     : data_(std::exchange(other.data_, nullptr)),
       size_(std::exchange(other.size_, 0)),
-      mapped_(std::exchange(other.mapped_, false)) {}
+      mapped_(std::exchange(other.mapped_, false)),
+      read_(std::move(other.read_)) {}  // a vector's move keeps its bytes where data_ points
 
 MappedFile& MappedFile::operator=(MappedFile&& other) noexcept {
   if (this != &other) {
@@ -40,6 +41,7 @@ MappedFile& MappedFile::operator=(MappedFile&& other) noexcept {
     data_ = std::exchange(other.data_, nullptr);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, false);
+    read_ = std::move(other.read_);
   }
   return *this;
 }
@@ -49,11 +51,8 @@ MappedFile::~MappedFile() {
 }
 
 void MappedFile::release() {
-  if (mapped_) {
-    ::munmap(data_, size_);
-  } else {
-    delete[] data_;
-  }
+  if (mapped_) ::munmap(data_, size_);
+  read_ = {};
   data_ = nullptr;
   size_ = 0;
   mapped_ = false;
@@ -81,23 +80,19 @@ MappedFile map_file(const std::string& path, uint64_t max_bytes) {
     }
   }
   // Not mappable: read to the end, whatever the size fstat gave (a pipe's is 0).
-  std::vector<unsigned char> bytes;
   unsigned char chunk[1 << 16];
   for (;;) {
     const ssize_t got = ::read(file.fd, chunk, sizeof chunk);
     if (got < 0 && errno == EINTR) continue;
     if (got < 0) cannot_read(path, errno);
     if (got == 0) break;
-    if (bytes.size() + size_t(got) > max_bytes) {
+    if (out.read_.size() + size_t(got) > max_bytes) {
       throw Error(path + ": is over the limit of " + std::to_string(max_bytes) + " bytes");
     }
-    bytes.insert(bytes.end(), chunk, chunk + got);
+    out.read_.insert(out.read_.end(), chunk, chunk + got);
   }
-  if (!bytes.empty()) {
-    out.data_ = new unsigned char[bytes.size()];
-    std::memcpy(out.data_, bytes.data(), bytes.size());
-    out.size_ = bytes.size();
-  }
+  out.data_ = out.read_.empty() ? nullptr : out.read_.data();
+  out.size_ = out.read_.size();
   return out;
 }
 

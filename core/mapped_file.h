@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tessera {
 
@@ -11,7 +12,7 @@ namespace tessera {
 /// pages, mapped in one call, where reading into a buffer costs fresh pages (a page fault each
 /// 4 KiB) and a copy of every byte. That was a fifth of a 1.8 MB glb's import
 /// (docs/performance.md, "Loading speed"). Files that cannot be mapped (empty ones, pipes,
-/// special files) are read into memory instead. Move-only; unmaps or frees on destruction.
+/// special files) are read into memory instead. Move-only; unmaps on destruction.
 /// A mapped file that another process truncates while it is mapped raises SIGBUS on reading
 /// past its new end, as with any mapped file; importers read their files for milliseconds.
 class MappedFile {
@@ -29,9 +30,10 @@ class MappedFile {
  private:
   friend MappedFile map_file(const std::string& path, uint64_t max_bytes);
   void release();
-  unsigned char* data_ = nullptr;
+  unsigned char* data_ = nullptr;  // the mapping, or read_'s bytes
   size_t size_ = 0;
-  bool mapped_ = false;  // else data_ is from new[] (or null for an empty file)
+  bool mapped_ = false;
+  std::vector<unsigned char> read_;  // a file that could not be mapped
 };
 
 /// Maps (or reads) the file at `path`. Throws tessera::Error "PATH: cannot read the file: REASON"

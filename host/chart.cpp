@@ -298,6 +298,7 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
     LabelRequest request;
     const std::string* text;
     Colour colour;
+    bool front;
   };
   std::vector<Label> labels;
   for (size_t k = 0; k < chart.series.size(); ++k) {
@@ -310,7 +311,7 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
       const double r = p.on_front ? 5 : 3;
       c.rect(a.px(p.x) - r, a.py(p.y) - r, 2 * r, 2 * r, col);
       const LabelRequest request{a.px(p.x), a.py(p.y), r, c.text_width(p.label, 10), 10};
-      labels.push_back({request, &p.label, col});
+      labels.push_back({request, &p.label, col, p.on_front});
     }
     std::sort(front.begin(), front.end(),
               [](const ScatterPoint* p, const ScatterPoint* q) { return p->x < q->x; });
@@ -321,9 +322,8 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
     c.rect(b.x + b.w + 20, b.y + 18 * k, 14, 10, col);
     c.text(b.x + b.w + 40, b.y + 5 + 18 * k, s.name, 12, kInk, 0);
   }
-  std::stable_sort(labels.begin(), labels.end(), [](const Label& p, const Label& q) {
-    return p.request.mark > q.request.mark;  // front points have the larger marks
-  });
+  std::stable_sort(labels.begin(), labels.end(),
+                   [](const Label& p, const Label& q) { return p.front && !q.front; });
   std::vector<LabelRequest> requests;
   for (const Label& l : labels) requests.push_back(l.request);
   const std::vector<LabelSpot> spots = place_labels(requests, {b.x, b.y - 20, b.w + 10, b.h + 20});

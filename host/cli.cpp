@@ -19,11 +19,17 @@ namespace {
 const std::vector<std::string> kCommands = {"render",   "bench",   "view",
                                             "tradeoff", "devices", "scenes"};
 
-// A scene or model file named on the command line that is not there is a bad command line,
-// as a mistyped scene name is; one written as a built-in scene's file name (metals.json, from
-// a folder without it) points to the built-in scene. What is in a file that exists is read when
-// the command runs, where its errors name file and place.
+// A file named on the command line that is not there is a bad command line, as a mistyped
+// scene name is. What is in a file that exists is read when the command runs, where its errors
+// name file and place.
 void check_file_exists(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("no file '" + path + "'");
+}
+
+// The same for a scene or model file; one written as a built-in scene's file name (metals.json,
+// from a folder without it) points to the built-in scene.
+void check_scene_file_exists(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) return;
   std::string message = "no file '" + path + "'";
@@ -41,7 +47,7 @@ CLI::Validator builtin_scene() {
     // A model's file name, even without a folder, is a file (the command then says to place it
     // in a scene file), not an unknown scene.
     if (is_scene_path(name) || is_model_path(name))
-      check_file_exists(name);
+      check_scene_file_exists(name);
     else
       check_scene_name(name);
   });
@@ -51,7 +57,7 @@ CLI::Validator builtin_scene() {
 CLI::Validator bench_scene() {
   return checked_by([](const std::string& name) {
     if (is_scene_path(name) || is_model_path(name)) {
-      check_file_exists(name);
+      check_scene_file_exists(name);
     } else if (!is_builtin_scene(name) && !is_named_scene(name)) {
       try {
         make_bench_scene(name, 1, 8, 1.0f);
