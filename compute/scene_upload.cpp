@@ -144,8 +144,9 @@ void append_adjacency(const Mesh& mesh, GpuSceneArrays& out) {
 void append_vertices(const Mesh& mesh, const std::vector<glm::vec4>& tangents, bool uv1,
                      GpuSceneArrays& out) {
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], mesh.uvs[v].x),
-                            .normal_v = glm::vec4(mesh.normals[v], mesh.uvs[v].y),
+    const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
+    out.vertices.push_back({.position_u = glm::vec4(mesh.positions[v], uv.x),
+                            .normal_v = glm::vec4(mesh.normals[v], uv.y),
                             .tangent = tangents.empty() ? glm::vec4(0.0f) : tangents[v]});
   }
   if (uv1) {

@@ -214,7 +214,9 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
   const tinygltf::BufferView& view = model.bufferViews[index];
   const std::string name = at("bufferViews", index);
   check_index(ctx, name + ".buffer", view.buffer, model.buffers.size(), "buffers");
-  const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
+  const std::span<const unsigned char> data = view.buffer == 0 && !ctx.glb_buffer.empty()
+                                                  ? ctx.glb_buffer
+                                                  : std::span(model.buffers[view.buffer].data);
   const uint64_t end = checked_span(ctx, name, 1, view.byteOffset, view.byteLength);
   if (end > data.size()) {
     ctx.fail(name, "bytes " + std::to_string(view.byteOffset) + ".." + std::to_string(end) +

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -23,6 +24,9 @@ struct Context {
   std::string base_dir;  // folder that relative uris are resolved against
   const ImportOptions& options;
   std::vector<std::string>& warnings;
+  /// buffers[0]'s bytes where they are read in place from the .glb's BIN chunk, which TinyGLTF
+  /// was not given (its model then holds one byte of that buffer); empty otherwise.
+  std::span<const unsigned char> glb_buffer;
 
   /// Throws Error "FILE: WHERE: WHAT"; `where` is a glTF JSON path such as
   /// meshes[2].primitives[0].mode (empty for the file as a whole).
@@ -51,8 +55,11 @@ void check_index(const Context& ctx, const std::string& where, int64_t index, si
 /// meshes, the bulk of a large file, are read from TinyGLTF's model). Empty when the text has an
 /// error or anything the scan does not vouch for: the caller then parses the whole text with
 /// nlohmann::json and check_document, which name the error. Given a document, check_document
-/// gives the same result on it as on the whole text's.
-std::optional<nlohmann::json> scan_document(std::string_view text);
+/// gives the same result on it as on the whole text's. With a document, *glb_buffer_length
+/// (when given) is set to the text of buffers[0].byteLength's value, a view into `text`, where
+/// buffers[0] has one byteLength and no uri (the buffer of a .glb's BIN chunk), else to empty.
+std::optional<nlohmann::json> scan_document(std::string_view text,
+                                            std::string_view* glb_buffer_length = nullptr);
 
 /// Checks the JSON document before TinyGLTF reads it (TinyGLTF ignores properties of the wrong
 /// type): the type of every property Tessera reads, extensionsRequired, and that each external
@@ -123,8 +130,8 @@ struct PrimitiveOptions {
 
 /// Converts meshes[mesh].primitives[primitive] (TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN,
 /// indexed or not) into a Mesh with unit normals (flat ones generated when NORMAL is absent),
-/// uvs (TEXCOORD_0, and TEXCOORD_1 as uvs1 where options.uv1) and tangents (TANGENT, or
-/// generated where options.tangents).
+/// uvs (TEXCOORD_0, none where absent; TEXCOORD_1 as uvs1 where options.uv1) and tangents (TANGENT,
+/// or generated where options.tangents).
 Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mesh, int primitive,
                        const PrimitiveOptions& options);
 

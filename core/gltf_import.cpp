@@ -107,6 +107,47 @@ std::string_view glb_json(const Context& ctx, std::span<const unsigned char> byt
   return std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, length);
 }
 
+// The payload of a binary glTF's BIN chunk (specification 4.4.3.3), which follows the JSON
+// chunk of `json_length` bytes; empty when the file has none or its chunk header is not what
+// TinyGLTF accepts (TinyGLTF, given the whole file, then names the fault).
+std::span<const unsigned char> glb_bin(std::span<const unsigned char> bytes, size_t json_length) {
+  const size_t start = 20 + json_length;
+  if (start % 4 != 0 || bytes.size() < start + 12) return {};
+  const uint32_t length = load_u32(&bytes[start]);
+  if (length < 4 || length % 4 != 0 || length > bytes.size() - start - 8) return {};
+  if (load_u32(&bytes[start + 4]) != 0x004E4942u) return {};  // "BIN\0"
+  return bytes.subspan(start + 8, length);
+}
+
+// A .glb for TinyGLTF that leaves buffers[0] in `bytes`: the same header and JSON chunk, with
+// the text of buffers[0].byteLength (`length_text`, a view into `json`) rewritten to 1 and
+// padded with spaces, so that every later place in the text keeps its line and column, and a
+// BIN chunk of 4 zero bytes. TinyGLTF copies a GLB-stored buffer out of the file into fresh
+// pages; from this one it copies one byte, and buffer_view_bytes reads the buffer where it lies
+// instead (Context::glb_buffer).
+std::vector<unsigned char> glb_without_buffer(std::span<const unsigned char> bytes,
+                                              std::string_view json, std::string_view length_text) {
+  const uint32_t total = uint32_t(20 + json.size() + 12);
+  std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 20 + json.size());
+  std::memcpy(&out[8], &total, 4);
+  const size_t at = size_t(length_text.data() - json.data()) + 20;
+  out[at] = '1';
+  std::fill(out.begin() + at + 1, out.begin() + at + length_text.size(), ' ');
+  const uint32_t bin[3] = {4, 0x004E4942u, 0};  // length, "BIN\0", the one buffer byte and padding
+  out.insert(out.end(), reinterpret_cast<const unsigned char*>(bin),
+             reinterpret_cast<const unsigned char*>(bin) + sizeof bin);
+  return out;
+}
+
+// Whether an image of the checked document `doc` reads a buffer view: TinyGLTF then indexes
+// the view's buffer at the view's offset, which must stay inside the buffer it holds.
+bool images_in_buffer_views(const json& doc) {
+  for (const json& image : member(doc, "images")) {
+    if (image.contains("bufferView")) return true;
+  }
+  return false;
+}
+
 // Keeps an image's encoded bytes (a file's or a data uri's); material_index decodes them, after
 // its own size checks. Images in buffer views are left alone: TinyGLTF has not range-checked
 // their view, so their bytes are read only after buffer_view_bytes has.
@@ -412,8 +453,10 @@ namespace tessera {
 
 namespace {
 
-// `file`, if given, holds `bytes` and is released once TinyGLTF has read them (it copies the
-// buffers), so that the file's pages and the meshes are not held at once.
+// `file`, if given, holds `bytes`. Where TinyGLTF copies the buffers (a .gltf's external or
+// data-uri buffers, or a .glb whose buffer TinyGLTF must be given, below) the file is released
+// once it has read them, so that the file's pages and the meshes are not held at once; a .glb's
+// buffer read in place holds the file to the end.
 ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
                                std::span<const unsigned char> bytes, MappedFile* file) {
   using namespace gltf;
@@ -428,7 +471,8 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
              : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   // The scan's partial document on the common path (building the whole one was a seventh of
   // the import's time), the whole one when the scan finds something for check_document to name.
-  std::optional<json> scanned = scan_document(text);
+  std::string_view glb_buffer_length;
+  std::optional<json> scanned = scan_document(text, binary ? &glb_buffer_length : nullptr);
   json doc;
   if (scanned) {
     doc = std::move(*scanned);
@@ -445,15 +489,30 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
   loader.SetImageLoader(keep_encoded_image, nullptr);
   tinygltf::Model model;
   std::string error, warning;
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(),
-                                                       unsigned(bytes.size()), ctx.base_dir)
+  // buffers[0] is read in place when it is valid as TinyGLTF would check it (in the BIN chunk,
+  // 1 to the chunk's size bytes) and no image could index it; otherwise TinyGLTF is given the
+  // file and copies it, naming any fault. The scan (glb_buffer_length) is the one reading of
+  // the text that knows where the number lies.
+  std::vector<unsigned char> stand_in;
+  if (!glb_buffer_length.empty() && !images_in_buffer_views(doc)) {
+    const std::span<const unsigned char> bin = glb_bin(bytes, text.size());
+    const uint64_t length = doc["buffers"][0]["byteLength"].get<uint64_t>();
+    if (length >= 1 && length <= bin.size()) {
+      stand_in = glb_without_buffer(bytes, text, glb_buffer_length);
+      ctx.glb_buffer = bin.first(length);
+    }
+  }
+  const std::span<const unsigned char> glb = stand_in.empty() ? bytes : stand_in;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, glb.data(),
+                                                       unsigned(glb.size()), ctx.base_dir)
                          : loader.LoadASCIIFromString(&model, &error, &warning, text.data(),
                                                       unsigned(text.size()), ctx.base_dir);
   if (!ok) {
     while (!error.empty() && error.back() == '\n') error.pop_back();
     ctx.fail("", "TinyGLTF cannot read it: " + error);
   }
-  if (file) *file = MappedFile();
+  stand_in = {};
+  if (file && ctx.glb_buffer.empty()) *file = MappedFile();
   instantiate_nodes(ctx, doc, model, out);
   return std::move(out);
 }

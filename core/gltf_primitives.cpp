@@ -101,7 +101,7 @@ void make_flat(Mesh& mesh) {
   reserve_populated(flat.indices, corners);
   reserve_populated(flat.positions, corners);
   reserve_populated(flat.normals, corners);
-  reserve_populated(flat.uvs, corners);
+  if (!mesh.uvs.empty()) reserve_populated(flat.uvs, corners);
   if (!mesh.uvs1.empty()) reserve_populated(flat.uvs1, corners);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
@@ -116,7 +116,7 @@ void make_flat(Mesh& mesh) {
       flat.indices.push_back(uint32_t(flat.positions.size()));
       flat.positions.push_back(mesh.positions[tri[k]]);
       flat.normals.push_back(normal);
-      flat.uvs.push_back(mesh.uvs[tri[k]]);
+      if (!mesh.uvs.empty()) flat.uvs.push_back(mesh.uvs[tri[k]]);
       if (!mesh.uvs1.empty()) flat.uvs1.push_back(mesh.uvs1[tri[k]]);
     }
   }
@@ -181,12 +181,14 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     return v;
   };
 
-  // TEXCOORD_n (zero where absent) through set n's texture transform.
+  // TEXCOORD_n through set n's texture transform. Where absent: set 0 empty (Mesh::uvs: all
+  // zero, not stored), set 1 zeros (a material reads it).
   auto read_uvs = [&](int set) {
     std::vector<glm::vec2> out;
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    if (attribute(name.c_str()) < 0 && set == 0) return out;
     reserve_populated(out, n);
     out.resize(n);  // zeros (value-initialized), written by memset
-    const std::string name = "TEXCOORD_" + std::to_string(set);
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
     if (options.uv_transform[set] == glm::mat3(1.0f)) {

@@ -367,6 +367,31 @@ class Scan {
  public:
   explicit Scan(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {}
 
+  // The text of the document's "buffers" array: true with `length_text` = the text of
+  // buffers[0].byteLength's value, when buffers[0] has exactly one byteLength, an integer, and
+  // no uri (the buffer a .glb stores in its BIN chunk).
+  bool first_buffer_length(std::string_view& length_text) {
+    size_t index = 0;
+    int lengths = 0;
+    bool uri = false;
+    const bool ok = array(
+        [&] {
+          if (index != 0) return any();
+          return object([&](std::string_view key) {
+            uri |= key == "uri";
+            if (key != "byteLength") return any();
+            ++lengths;
+            const char* begin = p_;
+            Number kind;
+            if (!number(kind)) return false;
+            length_text = std::string_view(begin, size_t(p_ - begin));
+            return kind == Number::count;
+          });
+        },
+        index);
+    return ok && at_end() && lengths == 1 && !uri;
+  }
+
   // The top-level object: true with members[key] = its value's text for every member.
   bool document(std::map<std::string, std::string_view, std::less<>>& members) {
     space();
@@ -594,9 +619,17 @@ class Scan {
 
 }  // namespace
 
-std::optional<json> scan_document(std::string_view text) {
+std::optional<json> scan_document(std::string_view text, std::string_view* glb_buffer_length) {
   std::map<std::string, std::string_view, std::less<>> members;
   if (!Scan(text).document(members)) return std::nullopt;
+  if (glb_buffer_length) {
+    *glb_buffer_length = {};
+    const auto buffers = members.find("buffers");
+    std::string_view number;
+    if (buffers != members.end() && Scan(buffers->second).first_buffer_length(number)) {
+      *glb_buffer_length = number;
+    }
+  }
   json doc = json::object();
   try {
     for (const auto& [key, value] : members) {

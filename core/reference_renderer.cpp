@@ -437,12 +437,12 @@ Surface surface_at(const Instance& inst, uint64_t id, dvec3 origin, dvec3 dir, d
   const auto idx = corner_indices(inst, id);
   dvec3 p[3], n[3];
   dvec2 uv[3], uv1[3];
-  const bool has_uv1 = !inst.mesh->uvs1.empty();
+  const bool has_uv1 = !inst.mesh->uvs1.empty(), has_uv = !inst.mesh->uvs.empty();
   for (int k = 0; k < 3; ++k) {
     uv1[k] = has_uv1 ? dvec2(inst.mesh->uvs1[idx[k]]) : dvec2(0.0);
     p[k] = dvec3(inst.model * dvec4(dvec3(inst.mesh->positions[idx[k]]), 1.0));
     n[k] = inst.normal_matrix * dvec3(inst.mesh->normals[idx[k]]);
-    uv[k] = dvec2(inst.mesh->uvs[idx[k]]);
+    uv[k] = has_uv ? dvec2(inst.mesh->uvs[idx[k]]) : dvec2(0.0);
   }
   const dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0], s = origin - p[0];
   const dvec3 q = glm::cross(dir, e2);

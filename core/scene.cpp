@@ -46,9 +46,9 @@ void validate_mesh(const Mesh& mesh, size_t m) {
   require(mesh.normals.size() == mesh.positions.size(),
           name + " has " + std::to_string(mesh.normals.size()) + " normals for " +
               std::to_string(mesh.positions.size()) + " positions");
-  require(mesh.uvs.size() == mesh.positions.size(),
+  require(mesh.uvs.empty() || mesh.uvs.size() == mesh.positions.size(),
           name + " has " + std::to_string(mesh.uvs.size()) + " uvs for " +
-              std::to_string(mesh.positions.size()) + " positions");
+              std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
   require(mesh.uvs1.empty() || mesh.uvs1.size() == mesh.positions.size(),
           name + " has " + std::to_string(mesh.uvs1.size()) + " uvs of set 1 for " +
               std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
@@ -66,7 +66,8 @@ void validate_mesh(const Mesh& mesh, size_t m) {
             name + " tangent " + std::to_string(v) + " has a NaN or infinite component");
   }
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    require(finite(mesh.positions[v]) && finite(mesh.normals[v]) && finite(mesh.uvs[v]),
+    require(finite(mesh.positions[v]) && finite(mesh.normals[v]) &&
+                (mesh.uvs.empty() || finite(mesh.uvs[v])),
             name + " vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
   }
   for (size_t i = 0; i < mesh.indices.size(); ++i) {

@@ -42,8 +42,10 @@ struct AnalyticSphere {
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length, same count as positions
-  std::vector<glm::vec2> uvs;      // same count as positions (uv set 0)
-  std::vector<uint32_t> indices;   // 3 per triangle, each < positions.size()
+  /// uv set 0: the same count as positions, or empty where every uv is (0, 0) (a glTF
+  /// primitive without TEXCOORD_0), which saves 8 bytes a vertex.
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> indices;  // 3 per triangle, each < positions.size()
   /// Optional second uv set (glTF TEXCOORD_1), read by the maps of Material::uv1_maps: empty,
   /// or the same count as positions. Costs nothing in a scene whose materials read only set 0.
   std::vector<glm::vec2> uvs1;

@@ -94,8 +94,9 @@ Json mesh_json(const Mesh& mesh, const std::string& name) {
         p.push_back(num(mesh.positions[i][k]));
         n.push_back(num(normal[k]));
       }
-      uv.push_back(num(mesh.uvs[i].x));
-      uv.push_back(num(mesh.uvs[i].y));
+      const glm::vec2 texcoord = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];  // none: zero
+      uv.push_back(num(texcoord.x));
+      uv.push_back(num(texcoord.y));
     }
     for (const glm::vec4& tangent : mesh.tangents)
       for (int k = 0; k < 4; ++k) t.push_back(num(tangent[k]));

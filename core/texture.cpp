@@ -157,7 +157,8 @@ std::vector<glm::vec4> generate_tangents(const std::vector<glm::vec3>& positions
                                          const std::vector<uint32_t>& indices) {
   std::vector<glm::dvec3> tan(positions.size(), glm::dvec3(0.0)),
       bit(positions.size(), glm::dvec3(0.0));
-  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+  // Without uvs (all zero) no triangle has a uv gradient.
+  for (size_t t = 0; !uvs.empty() && t + 2 < indices.size(); t += 3) {
     const uint32_t i[3] = {indices[t], indices[t + 1], indices[t + 2]};
     const glm::dvec3 e1 = glm::dvec3(positions[i[1]]) - glm::dvec3(positions[i[0]]);
     const glm::dvec3 e2 = glm::dvec3(positions[i[2]]) - glm::dvec3(positions[i[0]]);

@@ -3,6 +3,7 @@
 // from their JSON; BoxTextured, 2CylinderEngine and the asset generator's triangle modes render
 // the same with the compute path and the reference renderer, and are kept as golden images.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -253,6 +254,108 @@ TEST(GltfImport, FromMemoryGivesTheFilesScene) {
           << m;
     }
   }
+}
+
+// A binary glTF (specification 4.4) of `json` and a BIN chunk of `bin`, each padded to 4 bytes.
+std::vector<unsigned char> glb_of(std::string json, std::vector<unsigned char> bin) {
+  while (json.size() % 4 != 0) json += ' ';
+  while (bin.size() % 4 != 0) bin.push_back(0);
+  std::vector<unsigned char> out;
+  const auto u32 = [&](uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
+  };
+  u32(0x46546C67u);  // "glTF"
+  u32(2);
+  u32(uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+  u32(uint32_t(json.size()));
+  u32(0x4E4F534Au);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  u32(uint32_t(bin.size()));
+  u32(0x004E4942u);  // "BIN\0"
+  out.insert(out.end(), bin.begin(), bin.end());
+  return out;
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) v |= bytes[i + 2];
+    for (size_t k = 0; k < 4; ++k)
+      out += i + k <= bytes.size() ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// One triangle: POSITION (36 bytes) then 16-bit indices (6 bytes) in buffers[0], whose
+// `buffer` text (byteLength, and uri if any) is given; `views` are the two buffer views.
+std::string triangle_document(const std::string& buffer, const std::string& views) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "buffers": [)" +
+         buffer + R"(],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+       "min": [0, 0, 0], "max": [1, 1, 0]},
+      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    "bufferViews": [)" +
+         views + "]}";
+}
+
+std::vector<unsigned char> triangle_bytes() {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const uint16_t indices[3] = {0, 1, 2};
+  std::vector<unsigned char> bin(42);
+  std::memcpy(bin.data(), positions, 36);
+  std::memcpy(bin.data() + 36, indices, 6);
+  return bin;
+}
+
+// A .glb's buffers[0] is read where it lies in the BIN chunk, not copied by TinyGLTF (which is
+// given a stand-in of one byte): the scene is that of the same buffer as a data uri, and range
+// checks and messages use the buffer's real size.
+TEST(GltfImport, GlbBufferReadInTheFileGivesTheEmbeddedScene) {
+  const std::string views =
+      R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6})";
+  const std::vector<unsigned char> bin = triangle_bytes();
+  const ImportedModel embedded = import_gltf_bytes(
+      [&] {
+        const std::string text = triangle_document(
+            R"({"byteLength": 42, "uri": "data:application/octet-stream;base64,)" + base64(bin) +
+                R"("})",
+            views);
+        return std::vector<unsigned char>(text.begin(), text.end());
+      }(),
+      "embedded.gltf", "/nonexistent");
+  // The byteLength's text as writers give it, with space around it, and members after it.
+  for (const char* buffer : {R"({"byteLength": 42})", R"({ "byteLength" :   42 , "name": "b" })",
+                             R"({"name": "b", "byteLength":42})"}) {
+    const ImportedModel glb =
+        import_gltf_bytes(glb_of(triangle_document(buffer, views), bin), "t.glb", "/nonexistent");
+    ASSERT_EQ(glb.scene.meshes.size(), 1u) << buffer;
+    EXPECT_EQ(glb.scene.meshes[0], embedded.scene.meshes[0]) << buffer;
+    EXPECT_EQ(glb.scene.meshes[0].positions[1], glm::vec3(1, 0, 0));
+  }
+  const auto error_of = [&](const std::string& buffer, const std::string& views) {
+    try {
+      import_gltf_bytes(glb_of(triangle_document(buffer, views), bin), "t.glb", "/nonexistent");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // A view past the buffer's end: measured against its 42 bytes, not the stand-in's one.
+  EXPECT_EQ(error_of(R"({"byteLength": 42})",
+                     R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, )"
+                     R"("byteLength": 12})"),
+            "t.glb: bufferViews[1]: bytes 36..48 are past the end of buffers[0] (42 bytes): the "
+            "buffer is truncated or the view is wrong");
+  // A byteLength past the BIN chunk (44 bytes, padded): TinyGLTF is given the file and says so.
+  const std::string longer = error_of(R"({"byteLength": 100})", views);
+  EXPECT_EQ(longer.rfind("t.glb: TinyGLTF cannot read it: Invalid `byteLength'", 0), 0u) << longer;
 }
 
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
