@@ -141,6 +141,7 @@ std::pair<const unsigned char*, uint64_t> element_bytes(const Context& ctx,
                         ", end at byte " + std::to_string(end) + ", past the " +
                         std::to_string(length) + " bytes of " + at("bufferViews", view));
   }
+  if (ctx.read_pages) ctx.reads.emplace_back(bytes + offset, size_t(end - offset));
   return {bytes + offset, stride};
 }
 

@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
 
+#include "core/mapped_file.h"
 #include "core/model_import.h"
 
 namespace tessera::gltf {
@@ -27,6 +28,11 @@ struct Context {
   /// buffers[0]'s bytes where they are read in place from the .glb's BIN chunk, which TinyGLTF
   /// was not given (its model then holds one byte of that buffer); empty otherwise.
   std::span<const unsigned char> glb_buffer;
+  /// Where set (a .glb mapped, its buffer read in place), the byte ranges that reading accessors
+  /// covers are collected in `reads`, for the node walk to hand to read_pages once a primitive
+  /// is converted (its conversion reads some of them in place until it ends).
+  ReadPages* read_pages = nullptr;
+  mutable std::vector<std::pair<const unsigned char*, size_t>> reads;
 
   /// Throws Error "FILE: WHERE: WHAT"; `where` is a glTF JSON path such as
   /// meshes[2].primitives[0].mode (empty for the file as a whole).

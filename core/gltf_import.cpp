@@ -413,7 +413,7 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
         const int material = model.meshes[mesh].primitives[p].material;
         if (material >= 0) {
           check_index(ctx, at("meshes", mesh) + ".primitives[" + std::to_string(p) + "].material",
-                      material, model.materials.size(), "materials");
+                      material, member(doc, "materials").size(), "materials");
         }
         Object object;
         object.material = material_index(ctx, doc, model, material, table, out.scene);
@@ -424,6 +424,10 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
         } else {
           out.scene.meshes.push_back(
               convert_primitive(ctx, model, mesh, int(p), table.uv_options[material]));
+          if (ctx.read_pages) {
+            for (const auto& [begin, size] : ctx.reads) ctx.read_pages->mark_read(begin, size);
+            ctx.reads.clear();
+          }
           object.mesh = meshes[key] = uint32_t(out.scene.meshes.size() - 1);
         }
         out.scene.objects.push_back(object);
@@ -512,6 +516,17 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     ctx.fail("", "TinyGLTF cannot read it: " + error);
   }
   stand_in = {};
+  // Materials are read from `doc` (material_index): TinyGLTF's copies, 2 KiB each before
+  // their strings and maps (160 KiB of a 1.8 MB glb's 34 materials), are dropped at once.
+  std::vector<tinygltf::Material>().swap(model.materials);
+  // The file is released as the primitives are converted (ReadPages), its header and JSON
+  // chunk at once: the document is parsed.
+  std::optional<ReadPages> read_pages;
+  if (file && file->mapped() && !ctx.glb_buffer.empty()) {
+    read_pages.emplace(*file);
+    ctx.read_pages = &*read_pages;
+    read_pages->mark_read(bytes.data(), size_t(ctx.glb_buffer.data() - bytes.data()));
+  }
   if (file && ctx.glb_buffer.empty()) *file = MappedFile();
   instantiate_nodes(ctx, doc, model, out);
   return std::move(out);

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -48,6 +49,52 @@ MappedFile& MappedFile::operator=(MappedFile&& other) noexcept {
 
 MappedFile::~MappedFile() {
   release();
+}
+
+void MappedFile::release_pages(size_t offset, size_t size) {
+  TESSERA_CHECK(offset <= size_ && size <= size_ - offset);
+  if (!mapped_) return;
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  const size_t first = (offset + page - 1) / page * page, end = (offset + size) / page * page;
+  // A hint: where the kernel refuses, the pages stay resident, which costs memory, not bytes.
+  if (first < end) ::madvise(data_ + first, end - first, MADV_DONTNEED);
+}
+
+void ReadPages::mark_read(const unsigned char* begin, size_t size) {
+  // Compared as addresses: `begin` may point into another object.
+  const uintptr_t data = reinterpret_cast<uintptr_t>(file_.data()),
+                  at = reinterpret_cast<uintptr_t>(begin);
+  if (!file_.mapped() || size == 0 || at < data || at - data > file_.size() ||
+      size > file_.size() - (at - data)) {
+    return;
+  }
+  size_t first = at - data, end = first + size;
+  // The ranges that touch this one merge into it; their whole pages were released before.
+  std::vector<std::pair<size_t, size_t>> merged;
+  auto it = read_.upper_bound(first);
+  if (it != read_.begin() && std::prev(it)->second >= first) --it;
+  while (it != read_.end() && it->first <= end) {
+    merged.push_back(*it);
+    first = std::min(first, it->first);
+    end = std::max(end, it->second);
+    it = read_.erase(it);
+  }
+  read_.emplace(first, end);
+  // The whole pages of the merged range, less those of the ranges merged into it.
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  const auto whole = [page](size_t a, size_t b) {
+    const size_t low = (a + page - 1) / page * page, high = b / page * page;
+    return std::pair(low, std::max(low, high));
+  };
+  size_t cursor = whole(first, end).first;
+  const size_t last = whole(first, end).second;
+  for (const auto& [a, b] : merged) {
+    const auto [done_first, done_end] = whole(a, b);
+    if (done_first >= done_end) continue;
+    if (done_first > cursor) file_.release_pages(cursor, std::min(done_first, last) - cursor);
+    cursor = std::max(cursor, done_end);
+  }
+  if (cursor < last) file_.release_pages(cursor, last - cursor);
 }
 
 void MappedFile::release() {

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,15 @@ class MappedFile {
 
   const unsigned char* data() const { return data_; }
   size_t size() const { return size_; }
+  /// Whether the bytes are the file's mapping (not a copy read into memory).
+  bool mapped() const { return mapped_; }
+
+  /// Gives back the pages that lie wholly inside bytes [offset, offset + size) of a mapped file
+  /// (madvise MADV_DONTNEED, POSIX_MADV_DONTNEED's Linux form): they leave the process's
+  /// resident memory, and reading them again maps them again from the page cache, the same
+  /// bytes (the mapping is private and never written). Does nothing for a file that was read.
+  /// Requires offset + size <= size().
+  void release_pages(size_t offset, size_t size);
 
  private:
   friend MappedFile map_file(const std::string& path, uint64_t max_bytes);
@@ -34,6 +44,24 @@ class MappedFile {
   size_t size_ = 0;
   bool mapped_ = false;
   std::vector<unsigned char> read_;  // a file that could not be mapped
+};
+
+/// Releases a mapped file's pages once every byte on them has been read, so that a file read
+/// once, front to back or in any order, is not all resident at the end of the reading (an
+/// importer's meshes and the file they came from, held at once, were more than twice the file's
+/// vertex data). mark_read records a range as read and releases (MappedFile::release_pages) the
+/// pages that the ranges read so far now cover wholly; a page is released once. Reading a
+/// released page again is correct, and costs a page fault. Does nothing for a file that was
+/// read into memory. Holds `file` by reference: it must outlive this.
+class ReadPages {
+ public:
+  explicit ReadPages(MappedFile& file) : file_(file) {}
+  /// Records bytes [begin, begin + size) as read; a range outside the file is ignored.
+  void mark_read(const unsigned char* begin, size_t size);
+
+ private:
+  MappedFile& file_;
+  std::map<size_t, size_t> read_;  // the ranges read, merged: first byte -> one past the last
 };
 
 /// Maps (or reads) the file at `path`. Throws tessera::Error "PATH: cannot read the file: REASON"

@@ -1,6 +1,8 @@
 // map_file (core/mapped_file.h): a file's bytes mapped, or read where it cannot be mapped, and
-// the errors for files that cannot be read.
+// the errors for files that cannot be read; ReadPages, which gives back the pages read.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,6 +63,66 @@ TEST(MappedFile, MovedFromHoldsNothing) {
   EXPECT_EQ(text(b), "glTF bytes");
   b = map_file(temp_file("moved2", "other").string(), 100);
   EXPECT_EQ(text(b), "other");
+}
+
+// Whether each page of `file` is mapped in this process: bit 63 of its /proc/self/pagemap entry
+// (Linux's documented page map, readable for one's own process).
+std::vector<bool> present_pages(const MappedFile& file) {
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  const int fd = open("/proc/self/pagemap", O_RDONLY);
+  std::vector<bool> present;
+  for (size_t offset = 0; offset < file.size(); offset += page) {
+    uint64_t entry = 0;
+    const off_t at = off_t((reinterpret_cast<uintptr_t>(file.data()) + offset) / page * 8);
+    EXPECT_EQ(pread(fd, &entry, 8, at), 8);
+    present.push_back((entry >> 63) & 1);
+  }
+  close(fd);
+  return present;
+}
+
+// Pages leave the process once the ranges read cover them wholly, in whatever order and
+// pieces they were read; what is read again afterwards is the same bytes.
+TEST(ReadPages, ReleasesThePagesThatReadRangesCoverWholly) {
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  std::string content(8 * page + 100, '\0');
+  for (size_t i = 0; i < content.size(); ++i) content[i] = char(i * 13 + i / 4093);
+  const auto path = temp_file("pages", content);
+  MappedFile file = map_file(path.string(), content.size());
+  ASSERT_TRUE(file.mapped());
+  EXPECT_EQ(present_pages(file), std::vector<bool>(9, true));  // MAP_POPULATE
+  ReadPages pages(file);
+  const unsigned char* d = file.data();
+  pages.mark_read(d + 100, 2 * page);  // bytes 100 .. 2 pages + 100: only page 1 is whole
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{true, false, true, true, true, true, true, true, true}));
+  pages.mark_read(d + 5 * page, page + 1);  // page 5 whole, page 6 only begun
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{true, false, true, true, true, false, true, true, true}));
+  // The first 100 bytes complete page 0; the range between the two read ones completes pages
+  // 2 to 4 (the one read range that merges them all).
+  pages.mark_read(d, 100);
+  pages.mark_read(d + 2 * page + 100, 3 * page - 100);
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{false, false, false, false, false, false, true, true, true}));
+  // The rest, read again from its start: the last page (100 bytes of it in the file) stays.
+  pages.mark_read(d + 6 * page - 10, 2 * page + 110);
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{false, false, false, false, false, false, false, false, true}));
+  // A range outside the file is ignored; released pages read back as the file's bytes.
+  const unsigned char elsewhere[2] = {};
+  pages.mark_read(elsewhere, 2);
+  EXPECT_EQ(text(file), content);
+}
+
+// A file that was read, not mapped, keeps its bytes.
+TEST(ReadPages, LeavesAFileReadIntoMemoryAlone) {
+  MappedFile file = map_file("/proc/self/status", 1 << 20);
+  ASSERT_FALSE(file.mapped());
+  const std::string before = text(file);
+  ReadPages pages(file);
+  pages.mark_read(file.data(), file.size());
+  EXPECT_EQ(text(file), before);
 }
 
 TEST(MappedFile, ErrorsNameTheFileAndTheProblem) {
