@@ -91,10 +91,29 @@ void ReadPages::mark_read(const unsigned char* begin, size_t size) {
   for (const auto& [a, b] : merged) {
     const auto [done_first, done_end] = whole(a, b);
     if (done_first >= done_end) continue;
-    if (done_first > cursor) file_.release_pages(cursor, std::min(done_first, last) - cursor);
+    if (done_first > cursor) release(cursor, std::min(done_first, last) - cursor);
     cursor = std::max(cursor, done_end);
   }
-  if (cursor < last) file_.release_pages(cursor, last - cursor);
+  if (cursor < last) release(cursor, last - cursor);
+}
+
+void ReadPages::release(size_t offset, size_t size) {
+  // Pages are queued once each (mark_read), so the queued ranges never overlap; touching
+  // ones merge, so that a batch of adjacent pages is one call.
+  size_t first = offset, end = offset + size;
+  auto it = pending_.upper_bound(first);
+  if (it != pending_.begin() && std::prev(it)->second == first) --it;
+  while (it != pending_.end() && it->first <= end) {
+    first = std::min(first, it->first);
+    end = std::max(end, it->second);
+    it = pending_.erase(it);
+  }
+  pending_.emplace(first, end);
+  pending_bytes_ += size;
+  if (pending_bytes_ < batch_bytes_) return;
+  for (const auto& [a, b] : pending_) file_.release_pages(a, b - a);
+  pending_.clear();
+  pending_bytes_ = 0;
 }
 
 void MappedFile::release() {

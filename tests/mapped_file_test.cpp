@@ -91,7 +91,7 @@ TEST(ReadPages, ReleasesThePagesThatReadRangesCoverWholly) {
   MappedFile file = map_file(path.string(), content.size());
   ASSERT_TRUE(file.mapped());
   EXPECT_EQ(present_pages(file), std::vector<bool>(9, true));  // MAP_POPULATE
-  ReadPages pages(file);
+  ReadPages pages(file, 0);                                    // each release at once
   const unsigned char* d = file.data();
   pages.mark_read(d + 100, 2 * page);  // bytes 100 .. 2 pages + 100: only page 1 is whole
   EXPECT_EQ(present_pages(file),
@@ -113,6 +113,24 @@ TEST(ReadPages, ReleasesThePagesThatReadRangesCoverWholly) {
   const unsigned char elsewhere[2] = {};
   pages.mark_read(elsewhere, 2);
   EXPECT_EQ(text(file), content);
+}
+
+// Releases wait until a batch's worth of pages is read, then go out together.
+TEST(ReadPages, ReleasesInBatches) {
+  const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  const auto path = temp_file("batches", std::string(8 * page, 'b'));
+  MappedFile file = map_file(path.string(), 8 * page);
+  ReadPages pages(file, 3 * page);
+  const unsigned char* d = file.data();
+  pages.mark_read(d + 4 * page, 2 * page);  // pages 4 and 5, queued
+  EXPECT_EQ(present_pages(file), std::vector<bool>(8, true));
+  pages.mark_read(d, page);  // a third page: the batch goes out
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{false, true, true, true, false, false, true, true}));
+  pages.mark_read(d + page, 3 * page);  // pages 1 to 3: a batch at once
+  EXPECT_EQ(present_pages(file),
+            (std::vector<bool>{false, false, false, false, false, false, true, true}));
+  EXPECT_EQ(text(file), std::string(8 * page, 'b'));
 }
 
 // A file that was read, not mapped, keeps its bytes.
