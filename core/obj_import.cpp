@@ -31,6 +31,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
@@ -99,11 +100,33 @@ class Tokens {
     while (pos_ < line_.size() && line_[pos_] != ' ' && line_[pos_] != '\t') ++pos_;
     return Token{line_.substr(start, pos_ - start), start + 1};
   }
+  /// What is left of the line, without the spaces and tabs around it.
+  std::string_view rest() const {
+    const size_t start = std::min(line_.find_first_not_of(" \t", pos_), line_.size());
+    const size_t end = line_.find_last_not_of(" \t");
+    return end == std::string_view::npos || end < start ? std::string_view()
+                                                        : line_.substr(start, end + 1 - start);
+  }
 
  private:
   std::string_view line_;
   size_t pos_ = 0;
 };
+
+/// The material a `usemtl` line's `rest` names among `materials` (a map or a set of names): the
+/// whole rest of the line where a material has that name (`newmtl` names run to the end of
+/// their line, so they may hold spaces: "usemtl My Red"), else its first word, as LoadObj reads
+/// it.
+template <typename Names>
+std::string material_name(std::string_view rest, const Names& materials) {
+  const size_t start = std::min(rest.find_first_not_of(" \t"), rest.size());
+  const size_t end = rest.find_last_not_of(" \t\r");
+  const std::string whole(end == std::string_view::npos || end < start
+                              ? std::string_view()
+                              : rest.substr(start, end + 1 - start));
+  if (materials.count(whole)) return whole;
+  return std::string(rest.substr(start, rest.find_first_of(" \t\r", start) - start));
+}
 
 /// Calls f(line_number, line) for each complete line of `text`, numbering on from `line`, and
 /// returns how many bytes those lines took. Lines end as tinyobjloader ends them (its
@@ -302,8 +325,7 @@ void scan_obj_line(const std::string& file, size_t line, std::string_view s, Obj
     if (corners > 3) scan.polygon_lines.push_back(line);
     ++scan.faces;
   } else if (k == "usemtl") {
-    const std::optional<Token> name = tokens.next();
-    scan.usemtl.emplace_back(line, name ? std::string(name->text) : std::string());
+    scan.usemtl.emplace_back(line, std::string(tokens.rest()));
   } else if (k == "mtllib") {
     while (const std::optional<Token> t = tokens.next()) {
       scan.mtllib_line.emplace(std::string(t->text), line);
@@ -1196,10 +1218,9 @@ class ObjBuilder {
   // tinyobjloader names the material by the rest of the line; LoadObj (which import_obj used
   // before, and tests pin) by its first word, looked up when the line is read.
   void use_material(std::string_view rest) {
-    const size_t start = std::min(rest.find_first_not_of(" \t"), rest.size());
-    const std::string name(rest.substr(start, rest.find_first_of(" \t\r", start) - start));
     const std::map<std::string, int>* map = reader_.material_map;
-    const auto it = map ? map->find(name) : std::map<std::string, int>::const_iterator();
+    const auto it =
+        map ? map->find(material_name(rest, *map)) : std::map<std::string, int>::const_iterator();
     material_ = map && it != map->end() ? it->second : -1;
   }
 
@@ -1445,12 +1466,12 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
     TESSERA_CHECK(it != reader.info.end());
     scene.materials.push_back(im.convert(m, it->second));
   }
-  for (const auto& [line, name] : scan.usemtl) {
-    // Captures by name, not the structured binding: clang 14 (the fuzz build) cannot.
-    const std::string& wanted = name;
-    if (std::none_of(materials.begin(), materials.end(),
-                     [&](const tinyobj::material_t& m) { return m.name == wanted; })) {
-      im.warn(place(path, line) + ": material '" + name +
+  std::set<std::string> names, warned;
+  for (const tinyobj::material_t& m : materials) names.insert(m.name);
+  for (const auto& [line, rest] : scan.usemtl) {
+    // Once per name, at its first use: a file without its library names each material often.
+    if (!names.count(material_name(rest, names)) && warned.insert(rest).second) {
+      im.warn(place(path, line) + ": material '" + rest +
               "' is not defined in any material library; the default material is used");
     }
   }

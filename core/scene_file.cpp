@@ -686,6 +686,10 @@ void Reader::read_objects(const Node& list) {
     };
     const uint64_t per_instance = is_model ? std::max<size_t>(1, models[model].objects.size()) : 1;
     if (has(n, "grid") && has(n, "random")) fail(n, "give either grid or random, not both");
+    if (has(n, "tile_columns") && (is_model || !has(n, "grid")))
+      fail(child(n, "tile_columns"),
+           is_model ? "lays out a grid's materials, and a model brings its own"
+                    : "lays out a grid's materials, and this object has no \"grid\"");
     if (has(n, "grid")) {
       const Node g = child(n, "grid");
       object(g, {"count", "spacing", "limit", "instance_scale"});
@@ -731,7 +735,11 @@ void Reader::read_objects(const Node& list) {
         glm::mat4 local = glm::translate(glm::mat4(1.0f), p);
         if (scaled) local = glm::scale(local, glm::vec3(instance_scale));
         const uint64_t rows = tile ? materials.size() / tile : 1;
-        add(local, uint32_t(tile ? (iy % rows) * tile + ix % tile : i % materials.size()));
+        // A model's instances take no palette entry (it brings its own materials).
+        if (materials.empty())
+          add(local, 0);
+        else
+          add(local, uint32_t(tile ? (iy % rows) * tile + ix % tile : i % materials.size()));
       }
     } else if (has(n, "random")) {
       const Node r = child(n, "random");

@@ -411,6 +411,27 @@ TEST(ObjImportMaterials, UnnamedAndSpacedMaterialNames) {
   EXPECT_NO_THROW(validate_scene(spaced.scene));
 }
 
+// A `usemtl` names a material with spaces whole, as `newmtl` declares it ("My Red"); a name no
+// library has falls back to its first word (LoadObj's reading), and a missing one is warned
+// about once, quoted whole (a fresh user's trial: "usemtl My Red" took 'My' and drew grey).
+TEST(ObjImportMaterials, UsemtlNamesWithSpaces) {
+  write_file("spaces.mtl", "newmtl My Red\nKd 1 0 0\nnewmtl green\nKd 0 1 0\n");
+  const ImportedModel m = import_text(
+      "spaces.obj",
+      "mtllib spaces.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl My Red \nf 1 2 3\n"
+      "usemtl green with a comment\nf 1 3 2\nusemtl No Such\nf 2 1 3\nusemtl No Such\nf 2 3 1\n");
+  ASSERT_EQ(m.scene.objects.size(), 3u);
+  const auto colour_of = [&](size_t i) {
+    return m.scene.materials.at(m.scene.objects[i].material).base_color;
+  };
+  EXPECT_EQ(colour_of(0), glm::vec3(1, 0, 0));
+  EXPECT_EQ(colour_of(1), glm::vec3(0, 1, 0));
+  EXPECT_EQ(colour_of(2), Material{}.base_color);
+  EXPECT_EQ(m.warnings.size(), 1u) << all_warnings(m);
+  EXPECT_NE(all_warnings(m).find("material 'No Such' is not defined"), std::string::npos)
+      << all_warnings(m);
+}
+
 TEST(ObjImportMaterials, TextureMaps) {
   const auto gray = [](std::initializer_list<uint8_t> values) {
     std::vector<glm::u8vec4> texels;

@@ -202,6 +202,33 @@ TEST(SceneFile, ModelFilesArePlacedAsAUnit) {
   }
 }
 
+// A generator over a model places the whole model at each cell or draw (a fresh user's trial:
+// the grid divided by the model's empty material list).
+TEST(SceneFile, GeneratorsPlaceModels) {
+  const ImportedModel model = import_gltf(kData + "/features.gltf");
+  const SceneFile grid = load(R"({
+    "models": [{"name": "features", "file": "features.gltf"}],
+    "objects": [{"model": "features", "grid": {"count": [3, 2, 1], "spacing": 10}}]
+  })");
+  ASSERT_EQ(grid.scene.objects.size(), 6 * model.scene.objects.size());
+  for (size_t cell = 0; cell < 6; ++cell) {
+    for (size_t i = 0; i < model.scene.objects.size(); ++i) {
+      const Object& o = grid.scene.objects[cell * model.scene.objects.size() + i];
+      EXPECT_EQ(o.material, model.scene.objects[i].material);
+      // Cell (ix, iy) of a 3 x 2 grid 10 apart, centred: x = (ix - 1) 10, y = (iy - 0.5) 10.
+      const glm::vec4 origin = model.scene.objects[i].transform * glm::vec4(0, 0, 0, 1);
+      const glm::vec4 moved = o.transform * glm::vec4(0, 0, 0, 1);
+      EXPECT_NEAR(moved.x - origin.x, (float(cell % 3) - 1.0f) * 10.0f, 1e-4f);
+      EXPECT_NEAR(moved.y - origin.y, (float(cell / 3) - 0.5f) * 10.0f, 1e-4f);
+    }
+  }
+  const SceneFile random = load(R"({
+    "models": [{"name": "features", "file": "features.gltf"}],
+    "objects": [{"model": "features", "random": {"count": 4, "min": [0, 0, 0], "max": [1, 1, 1]}}]
+  })");
+  EXPECT_EQ(random.scene.objects.size(), 4 * model.scene.objects.size());
+}
+
 // The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
 // unknown key and place something: they are kept working. Their models' own warnings (the
 // BoxTextured sampler's wrap modes) are allowed.
