@@ -217,6 +217,15 @@ glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::
   glm::dmat4 m(1.0);
   if (!node.matrix.empty()) {
     m = glm::make_mat4(node.matrix.data());  // column-major, as glTF stores it
+    // The specification (3.5.3) requires a matrix that decomposes into TRS; a
+    // projective last row (a row-major matrix, say) would smear the mesh.
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0) {
+      ctx.fail(where + ".matrix", "is not affine: its last row is (" + std::to_string(m[0][3]) +
+                                      ", " + std::to_string(m[1][3]) + ", " +
+                                      std::to_string(m[2][3]) + ", " + std::to_string(m[3][3]) +
+                                      "), not (0, 0, 0, 1), so it is no translation, rotation " +
+                                      "and scale (glTF 2.0, 3.5.3)");
+    }
     if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty()) {
       ctx.warn(where, "has both a matrix and TRS properties; the matrix is used");
     }
@@ -232,6 +241,11 @@ glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::
     if (!(length > 0.0) || !std::isfinite(length)) {
       ctx.fail(where + ".rotation",
                "is not a unit quaternion (its length is " + std::to_string(length) + ")");
+    }
+    // Writers round a unit quaternion's floats; a length further from 1 is the file's error.
+    if (std::abs(length - 1.0) > 1e-3) {
+      ctx.warn(where + ".rotation", "is not a unit quaternion (its length is " +
+                                        std::to_string(length) + "); it is normalized");
     }
     q /= length;
     m = glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2])) * glm::mat4_cast(q) *
@@ -467,7 +481,7 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   // Said plainly, rather than as the JSON parser's complaint about the first byte.
   if (bytes.empty()) ctx.fail("", "is empty");
-  if (!binary && std::filesystem::path(ctx.file).extension() == ".glb") {
+  if (!binary && model_extension(ctx.file) == ".glb") {
     ctx.fail("", "is not a binary glTF: a .glb starts with the bytes 'glTF' (glTF 2.0, 4.4)");
   }
   const std::string_view text =

@@ -29,4 +29,14 @@ ImportedModel import_gltf_bytes(const std::vector<unsigned char>& bytes, const s
                                 const std::string& base_dir, const ImportOptions& options = {});
 ImportedModel import_obj_text(const std::string& text, const std::string& name,
                               const std::string& base_dir, const ImportOptions& options = {});
+
+/// The extension of `path` in lower case (".GLB" as ".glb": files from Windows tools often
+/// carry upper-case ones), which is how the importers above are chosen: ".gltf" and ".glb" for
+/// import_gltf, ".obj" for import_obj.
+inline std::string model_extension(const std::string& path) {
+  const size_t dot = path.find_last_of("./");
+  std::string ext = dot == std::string::npos || path[dot] == '/' ? "" : path.substr(dot);
+  for (char& c : ext) c = char(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return ext;
+}
 }  // namespace tessera

@@ -576,7 +576,7 @@ void Reader::read_model(const Node& n) {
   if (!has(n, "file")) fail(n, "a model needs a \"file\" (.gltf, .glb or .obj)");
   const Node f = child(n, "file");
   const std::string path = resolve(f);
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = model_extension(path);
   ImportOptions io;
   io.strict = options.strict;
   io.max_file_bytes = options.max_model_bytes;
@@ -584,7 +584,9 @@ void Reader::read_model(const Node& n) {
   ImportedModel model = loading(f, [&] {
     if (ext == ".gltf" || ext == ".glb") return import_gltf(path, io);
     if (ext == ".obj") return import_obj(path, io);
-    throw Error(path + ": unknown model format '" + ext + "' (.gltf, .glb or .obj)");
+    throw Error(path + ": unknown model format '" +
+                std::filesystem::path(path).extension().string() +
+                "' (.gltf, .glb or .obj, in either case)");
   });
   for (const std::string& w : model.warnings) out.warnings.push_back(where(f) + w);
   Scene& s = out.scene;
@@ -618,6 +620,16 @@ glm::mat4 Reader::read_transform(const Node& n) const {
     expect(m, m.json->is_array() && m.json->size() == 16, "an array of 16 numbers (column-major)");
     glm::mat4 t;
     for (int i = 0; i < 16; ++i) glm::value_ptr(t)[i] = real(element(m, i));
+    // glm's t[column][row]: the last row is each column's fourth number.
+    if (t[0][3] != 0.0f || t[1][3] != 0.0f || t[2][3] != 0.0f || t[3][3] != 1.0f) {
+      fail(m, "is not affine: its last row is (" + std::to_string(t[0][3]) + ", " +
+                  std::to_string(t[1][3]) + ", " + std::to_string(t[2][3]) + ", " +
+                  std::to_string(t[3][3]) +
+                  "), not (0, 0, 0, 1) (the 16 numbers go column by column: is it row-major?)");
+    }
+    // As a scale of 0 (below), in double: a float determinant of a tiny scale underflows.
+    if (glm::determinant(glm::dmat3(glm::mat3(t))) == 0.0)
+      fail(m, "flattens the object (its upper 3x3 part has determinant 0)");
     return t;
   }
   glm::mat4 t(1.0f);

@@ -58,7 +58,7 @@ void check_scene_name(const std::string& name) {
 }
 
 bool is_model_path(const std::string& argument) {
-  const std::string ext = fs::path(argument).extension().string();
+  const std::string ext = model_extension(argument);
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
 }
 
@@ -67,7 +67,7 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
   ImportOptions options;
   options.strict = strict;
   ImportedModel model =
-      fs::path(path).extension() == ".obj" ? import_obj(path, options) : import_gltf(path, options);
+      model_extension(path) == ".obj" ? import_obj(path, options) : import_gltf(path, options);
   if (!quiet)
     for (const std::string& w : model.warnings)
       std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());

@@ -256,6 +256,27 @@ TEST(GltfImport, FromMemoryGivesTheFilesScene) {
   }
 }
 
+// A rotation far from unit length is normalized with a warning (an error when strict); glTF
+// asks for unit quaternions (5.25, node.rotation), and writers' rounding stays within 1e-3.
+TEST(GltfImport, NonUnitQuaternionIsNormalizedWithAWarning) {
+  std::ifstream in(kData + "/bad/zero_quaternion.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string last = "0,\n    0\n   ]";  // the rotation's last two numbers
+  const size_t at = text.find(last);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, last.size(), "0,\n    2\n   ]");  // (0, 0, 0, 2): the identity, too long
+  const std::vector<unsigned char> bytes(text.begin(), text.end());
+  const ImportedModel m = import_gltf_bytes(bytes, "q.gltf", "/nonexistent");
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_EQ(m.warnings[0],
+            "q.gltf: nodes[0].rotation: is not a unit quaternion (its length is 2.000000); it is "
+            "normalized");
+  EXPECT_EQ(m.scene.objects.at(0).transform, glm::mat4(1.0f));
+  ImportOptions strict;
+  strict.strict = true;
+  EXPECT_THROW(import_gltf_bytes(bytes, "q.gltf", "/nonexistent", strict), Error);
+}
+
 // A binary glTF (specification 4.4) of `json` and a BIN chunk of `bin`, each padded to 4 bytes.
 std::vector<unsigned char> glb_of(std::string json, std::vector<unsigned char> bin) {
   while (json.size() % 4 != 0) json += ' ';

@@ -229,6 +229,23 @@ TEST(SceneFile, GeneratorsPlaceModels) {
   EXPECT_EQ(random.scene.objects.size(), 4 * model.scene.objects.size());
 }
 
+// Model files are told apart by their extension in either case: "BOX.GLB" from a Windows tool
+// is a binary glTF (a fresh user's trial found it refused).
+TEST(SceneFile, ModelExtensionsInUpperCase) {
+  EXPECT_EQ(model_extension("dir.v2/BOX.GLB"), ".glb");
+  EXPECT_EQ(model_extension("a/Spider.Obj"), ".obj");
+  EXPECT_EQ(model_extension("dir.v2/noext"), "");
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "upper_case";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(
+      "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", dir / "BOX.GLB",
+      std::filesystem::copy_options::overwrite_existing);
+  const std::string scene = (dir / "scene.json").string();
+  std::ofstream(scene) << R"({"models": [{"name": "box", "file": "BOX.GLB"}],
+                             "objects": [{"model": "box"}]})";
+  EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);
+}
+
 // The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
 // unknown key and place something: they are kept working. Their models' own warnings (the
 // BoxTextured sampler's wrap modes) are allowed.
