@@ -16,6 +16,9 @@
 //   same position; faces with `s off` (the default) are flat.
 // - OBJ puts v = 0 at the bottom of an image; Tessera's v = 0 is the top row (core/texture.h),
 //   so v becomes 1 - v.
+// - `usemtl` names the material of the whole rest of its line where a library declares one of
+//   that name (`newmtl` names run to the end of the line: "newmtl My Red"), else of its first
+//   word, as LoadObj reads it; a name no library declares is warned about once.
 // - `Ns` (a Blinn-Phong exponent) becomes roughness by matching Beckmann's alpha, alpha^2 =
 //   2 / (Ns + 2) (Walter et al. 2007, "Microfacet Models for Refraction through Rough
 //   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
