@@ -90,6 +90,9 @@ struct TextureDecl {
 // A model file's content, placed as a unit by each object that names it.
 struct Model {
   std::vector<Object> objects;  // mesh and material indices already offset into the scene
+  std::vector<Camera> cameras;  // the file's (glTF), in the model's frame
+  std::string name;
+  std::optional<glm::mat4> first_placement;  // of its first instance, once an object places it
 };
 
 struct Reader {
@@ -602,6 +605,8 @@ void Reader::read_model(const Node& n) {
   for (Texture& t : model.scene.textures) s.textures.push_back(std::move(t));
   for (const Light& l : model.scene.lights) s.lights.push_back(l);
   Model placed;
+  placed.cameras = model.cameras;
+  placed.name = string(child(n, "name"));
   for (Object o : model.scene.objects) {
     o.mesh += meshes;
     o.material += materials;
@@ -688,6 +693,7 @@ void Reader::read_objects(const Node& list) {
     auto add = [&](const glm::mat4& local, uint32_t pick) {
       const glm::mat4 world = moved ? placement * local : local;
       if (is_model) {
+        if (!models[model].first_placement) models[model].first_placement = world;
         for (Object o : models[model].objects) {
           o.transform = world * o.transform;
           out.scene.objects.push_back(o);
@@ -853,6 +859,17 @@ void Reader::read(const Node& root) {
   if (has(root, "models"))
     for (const Node& m : array(child(root, "models"))) read_model(m);
   if (has(root, "objects")) read_objects(child(root, "objects"));
+  for (const Model& m : models) {
+    const glm::mat4 world = m.first_placement.value_or(glm::mat4(1.0f));
+    for (size_t i = 0; i < m.cameras.size(); ++i) {
+      Camera c = m.cameras[i];
+      c.position = glm::vec3(world * glm::vec4(c.position, 1.0f));
+      c.target = glm::vec3(world * glm::vec4(c.target, 1.0f));
+      c.up = glm::normalize(glm::mat3(world) * c.up);
+      out.model_cameras.push_back(c);
+      out.model_camera_names.push_back("model '" + m.name + "' camera " + std::to_string(i));
+    }
+  }
   if (has(root, "lights"))
     for (const Node& l : array(child(root, "lights"))) read_light(l);
   if (has(root, "camera")) read_camera(child(root, "camera"));

@@ -37,6 +37,13 @@ struct SceneFile {
   RenderDefaults render;
   std::string description;            // the file's "description", or ""
   std::vector<std::string> warnings;  // each "FILE:LINE:COLUMN: PATH: what"
+  /// The cameras the file's models bring (glTF's perspective cameras), in "models" order and
+  /// each model's file order, placed as the model's first instance is (as the model file has
+  /// them where no object places it); model_camera_names says whose each is ("model 'engine'
+  /// camera 0"). scene.camera is the file's "camera" block; commands pick one of these
+  /// instead with --camera N.
+  std::vector<Camera> model_cameras;
+  std::vector<std::string> model_camera_names;
 };
 
 /// Reads the scene file at `path`. Files it names (textures, models, environments) are found

@@ -290,6 +290,15 @@ void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
       ->check(file_with_suffix({".svg", ".png"}));
 }
 
+// --camera N, for the commands that show a scene file's view.
+void add_camera_option(CLI::App& app, uint32_t& camera) {
+  app.add_option("--camera", camera,
+                 "view through camera N (from 0) of the scene\n"
+                 "file's models (glTF cameras, placed as their\n"
+                 "model's first instance) instead of its own")
+      ->type_name("N");
+}
+
 void add_render_options(CLI::App& app, RenderArgs& a) {
   app.add_option("--scene", a.scene,
                  "built-in scene (default spheres; see\n"
@@ -413,6 +422,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                "reports anything");
   app.add_flag("--quiet", a.quiet, "print nothing but errors");
   app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
+  add_camera_option(app, a.camera);
 }
 
 void add_bench_options(CLI::App& app, BenchArgs& a) {
@@ -567,6 +577,7 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);
   app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
+  add_camera_option(app, a.camera);
 }
 
 void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
@@ -766,6 +777,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     reject_extras(*sub, help_command);
   RenderArgs& r = line.render;
   r.size_given = render->count("--size") > 0;
+  r.camera_given = render->count("--camera") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
   apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
@@ -777,6 +789,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);
   line.view.size_given = view->count("--size") > 0;
+  line.view.camera_given = view->count("--camera") > 0;
   BenchArgs& b = line.bench;
   {
     FrameSettings preset;

@@ -37,6 +37,8 @@ struct RenderArgs {
   bool validate = false;
   bool quiet = false;
   bool strict = false;  // --strict: unknown keys in a scene file are errors
+  uint32_t camera = 0;  // --camera N: the scene file's model camera N (use_model_camera)
+  bool camera_given = false;
   // Which frame options the command line gave: the others come from the scene file's
   // "render" block when it has them.
   bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
@@ -92,6 +94,8 @@ struct ViewArgs {
   bool overlay = true;
   bool validate = false;
   bool strict = false;  // --strict: unknown keys in a scene file are errors
+  uint32_t camera = 0;  // --camera N: the scene file's model camera N (use_model_camera)
+  bool camera_given = false;
   bool size_given = false;
   PresentPath present = PresentPath::automatic;             // --present
   SurfaceFormat surface_format = SurfaceFormat::automatic;  // --surface-format

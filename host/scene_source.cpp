@@ -74,6 +74,21 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
   return std::move(model.scene);
 }
 
+void use_model_camera(SceneFile& file, uint32_t index) {
+  const size_t count = file.model_cameras.size();
+  if (index < count) {
+    file.scene.camera = file.model_cameras[index];
+    return;
+  }
+  std::string listed;
+  for (size_t i = 0; i < count; ++i)
+    listed += (i ? ", " : "") + std::to_string(i) + ": " + file.model_camera_names[i];
+  throw Error("--camera " + std::to_string(index) + ": " +
+              (count == 0 ? std::string("the scene's models bring no cameras (glTF files can)")
+                          : "the scene's models bring " + std::to_string(count) + " camera" +
+                                (count == 1 ? "" : "s") + " (" + listed + ")"));
+}
+
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
   if (is_model_path(name_or_file)) {
     throw Error(name_or_file +

@@ -246,6 +246,32 @@ TEST(SceneFile, ModelExtensionsInUpperCase) {
   EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);
 }
 
+// A model's glTF cameras come with the scene file, placed as the model's first instance
+// (Cameras.gltf: a perspective camera with yfov 0.7 at node translation (0.5, 0.5, 3), looking
+// down its -z; an orthographic one, which the importer gives as a 45-degree perspective
+// camera), for `--camera N`.
+TEST(SceneFile, ModelCamerasArePlacedWithTheirModel) {
+  const std::string cameras = "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf";
+  const SceneFile placed = load(R"({"models": [{"name": "cams", "file": ")" + cameras + R"("}],
+    "objects": [{"model": "cams", "translation": [10, 0, 0]},
+                {"model": "cams", "translation": [-5, 0, 0]}]})");
+  ASSERT_EQ(placed.model_cameras.size(), 2u);
+  EXPECT_EQ(placed.model_camera_names,
+            (std::vector<std::string>{"model 'cams' camera 0", "model 'cams' camera 1"}));
+  const Camera& c = placed.model_cameras[0];
+  EXPECT_EQ(c.position, glm::vec3(10.5f, 0.5f, 3.0f));
+  EXPECT_EQ(c.target, glm::vec3(10.5f, 0.5f, 2.0f));
+  EXPECT_EQ(c.up, glm::vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(c.vertical_fov, 0.7f);
+  EXPECT_FLOAT_EQ(placed.model_cameras[1].vertical_fov, glm::radians(45.0f));
+  // A model no object places keeps the file's placement; the scene's own camera is unchanged.
+  const SceneFile unplaced =
+      load(R"({"models": [{"name": "cams", "file": ")" + cameras + R"("}]})");
+  ASSERT_EQ(unplaced.model_cameras.size(), 2u);
+  EXPECT_EQ(unplaced.model_cameras[0].position, glm::vec3(0.5f, 0.5f, 3.0f));
+  EXPECT_EQ(unplaced.scene.camera, Camera{});
+}
+
 // The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
 // unknown key and place something: they are kept working. Their models' own warnings (the
 // BoxTextured sampler's wrap modes) are allowed.
@@ -338,6 +364,29 @@ TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
   ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " scenes", out), 0);
   for (const BuiltinSceneInfo& info : builtin_scenes())
     EXPECT_NE(out.find(std::string(info.name) + " "), std::string::npos) << out;
+}
+
+// `--camera N` views a scene file through its models' camera N; past the last one, or for a
+// scene whose models bring none, it says which cameras there are.
+TEST(SceneFileCli, CameraPicksAModelCamera) {
+  const std::string scene = test::output_path("cameras.json");
+  std::ofstream(scene) << R"({"models": [{"name": "cams", "file":
+    "/usr/share/assimp/models/glTF2/cameras/Cameras.gltf"}], "objects": [{"model": "cams"}],
+    "ambient": [1, 1, 1]})";
+  const std::string own = test::output_path("camera_own.png"),
+                    picked = test::output_path("camera_0.png");
+  const std::string render = std::string(TESSERA_BINARY) + " render --quiet --size 48x48 --scene ";
+  std::string out;
+  ASSERT_EQ(test::run_command(render + scene + " --out " + own, out), 0) << out;
+  ASSERT_EQ(test::run_command(render + scene + " --camera 0 --out " + picked, out), 0) << out;
+  EXPECT_NE(read_png(own).pixels, read_png(picked).pixels);
+  EXPECT_EQ(test::run_command(render + scene + " --camera 2 --out " + picked, out), 1);
+  EXPECT_NE(out.find("--camera 2: the scene's models bring 2 cameras (0: model 'cams' camera 0, "
+                     "1: model 'cams' camera 1)"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(test::run_command(render + "spheres --camera 0 --out " + picked, out), 1);
+  EXPECT_NE(out.find("--camera 0: the scene's models bring no cameras"), std::string::npos) << out;
 }
 
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
