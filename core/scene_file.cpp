@@ -89,8 +89,9 @@ struct TextureDecl {
 
 // A model file's content, placed as a unit by each object that names it.
 struct Model {
-  std::vector<Object> objects;  // mesh and material indices already offset into the scene
-  std::vector<Camera> cameras;  // the file's (glTF), in the model's frame
+  std::vector<Object> objects;         // mesh and material indices already offset into the scene
+  std::vector<Camera> cameras;         // the file's (glTF), in the model's frame
+  size_t first_light = 0, lights = 0;  // its lights in out.scene.lights, in the model's frame
   std::string name;
   std::optional<glm::mat4> first_placement;  // of its first instance, once an object places it
 };
@@ -603,8 +604,10 @@ void Reader::read_model(const Node& n) {
   }
   for (Mesh& m : model.scene.meshes) s.meshes.push_back(std::move(m));
   for (Texture& t : model.scene.textures) s.textures.push_back(std::move(t));
-  for (const Light& l : model.scene.lights) s.lights.push_back(l);
   Model placed;
+  placed.first_light = s.lights.size();
+  placed.lights = model.scene.lights.size();
+  for (const Light& l : model.scene.lights) s.lights.push_back(l);
   placed.cameras = model.cameras;
   placed.name = string(child(n, "name"));
   for (Object o : model.scene.objects) {
@@ -859,8 +862,15 @@ void Reader::read(const Node& root) {
   if (has(root, "models"))
     for (const Node& m : array(child(root, "models"))) read_model(m);
   if (has(root, "objects")) read_objects(child(root, "objects"));
+  // A model's lights and cameras go where its first instance puts the model (a model placed
+  // many times still brings them once).
   for (const Model& m : models) {
     const glm::mat4 world = m.first_placement.value_or(glm::mat4(1.0f));
+    for (size_t i = m.first_light; i < m.first_light + m.lights; ++i) {
+      Light& l = out.scene.lights[i];
+      l.position = glm::vec3(world * glm::vec4(l.position, 1.0f));
+      l.direction = glm::normalize(glm::mat3(world) * l.direction);
+    }
     for (size_t i = 0; i < m.cameras.size(); ++i) {
       Camera c = m.cameras[i];
       c.position = glm::vec3(world * glm::vec4(c.position, 1.0f));

@@ -200,6 +200,13 @@ TEST(SceneFile, ModelFilesArePlacedAsAUnit) {
     EXPECT_NEAR(moved.x, origin.x + 10.0f, 1e-4f);
     EXPECT_EQ(moved.y, origin.y);
   }
+  // The model's lights come once, where its first instance puts it.
+  ASSERT_FALSE(model.scene.lights.empty());
+  ASSERT_EQ(f.scene.lights.size(), model.scene.lights.size());
+  for (size_t i = 0; i < model.scene.lights.size(); ++i) {
+    EXPECT_EQ(f.scene.lights[i].position, model.scene.lights[i].position + glm::vec3(10, 0, 0));
+    EXPECT_EQ(f.scene.lights[i].direction, model.scene.lights[i].direction);
+  }
 }
 
 // A generator over a model places the whole model at each cell or draw (a fresh user's trial:
