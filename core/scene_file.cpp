@@ -137,7 +137,13 @@ struct Reader {
   bool has(const Node& n, const char* key) const { return n.json->contains(key); }
 
   void expect(const Node& n, bool ok, const char* what) const {
-    if (!ok) fail(n, std::string("must be ") + what + ", found " + type_name(*n.json));
+    if (ok) return;
+    // An array's length, which is what is wrong when the types are right ([0, 2] for [x, y, z]).
+    const std::string found = n.json->is_array()
+                                  ? "an array of " + std::to_string(n.json->size()) +
+                                        (n.json->size() == 1 ? " element" : " elements")
+                                  : type_name(*n.json);
+    fail(n, std::string("must be ") + what + ", found " + found);
   }
   // Checks that `n` is an object and reports members not in `known` (warning; error if strict).
   void object(const Node& n, std::initializer_list<const char*> known) {
@@ -668,7 +674,12 @@ void Reader::read_objects(const Node& list) {
     object(n, {"name", "mesh", "model", "material", "materials", "tile_columns", "translation",
                "rotation", "scale", "matrix", "grid", "random"});
     const bool is_model = has(n, "model");
-    if (is_model == has(n, "mesh")) fail(n, "an object needs either a \"mesh\" or a \"model\"");
+    if (is_model && has(n, "mesh")) fail(n, "give either a \"mesh\" or a \"model\", not both");
+    if (!is_model && !has(n, "mesh")) fail(n, "an object needs either a \"mesh\" or a \"model\"");
+    // Said before any material is looked up: a model's object names none.
+    if (is_model && (has(n, "material") || has(n, "materials")))
+      fail(child(n, has(n, "material") ? "material" : "materials"),
+           "a model brings its own materials");
     uint32_t mesh = 0, model = 0;
     if (is_model)
       model = lookup(child(n, "model"), model_names, "model");
