@@ -100,6 +100,13 @@ std::string_view glb_json(const Context& ctx, std::span<const unsigned char> byt
   }
   const uint64_t length = load_u32(&bytes[12]);
   if (load_u32(&bytes[16]) != 0x4E4F534Au) ctx.fail("", "its first chunk is not JSON");
+  // Chunks end on 4-byte boundaries (specification 4.4.3.1); a length that does not is wrong,
+  // and TinyGLTF would then look for the BIN chunk in the wrong place and complain of that.
+  if (length % 4 != 0) {
+    ctx.fail("", "its JSON chunk's length, " + std::to_string(length) +
+                     " bytes, is not a multiple of 4 as glTF 2.0 requires (4.4.3.1): the length "
+                     "is wrong or the file is damaged");
+  }
   if (20 + length > bytes.size()) {
     ctx.fail("", "is truncated: its JSON chunk of " + std::to_string(length) +
                      " bytes runs past the end of the file");

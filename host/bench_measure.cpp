@@ -166,8 +166,8 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
   const bool file = is_scene_path(a.scene) || is_model_path(a.scene);
   // A scene by name (built in, or NAME.json of the scenes folder) is one point of the sweep.
   const bool builtin = !file && (is_builtin_scene(a.scene) || is_named_scene(a.scene));
-  const Scene fixed = builtin ? load_scene_argument(a.scene, false, a.quiet).scene
-                      : file  ? load_bench_content(a.scene, false, a.quiet)
+  const Scene fixed = builtin ? load_scene_argument(a.scene, a.strict, a.quiet).scene
+                      : file  ? load_bench_content(a.scene, a.strict, a.quiet)
                               : Scene{};
   const std::vector<uint32_t> counts =
       builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;

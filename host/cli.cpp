@@ -530,6 +530,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet,
                "no progress bar or results table (--compare's\ntable still prints)");
+  app.add_flag("--strict", a.strict,
+               "unknown keys in a scene file, and a model's\nwarnings, are errors");
 }
 
 void add_view_options(CLI::App& app, ViewArgs& a) {

@@ -82,6 +82,7 @@ struct BenchArgs {
        tile_lists_given = false;
   std::string csv, json, chart;
   bool quiet = false;
+  bool strict = false;    // --strict: unknown keys in a scene file (and model warnings) are errors
   bool validate = false;  // Khronos validation layer; exit status 3 if it reports anything
 };
 

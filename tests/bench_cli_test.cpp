@@ -159,6 +159,16 @@ TEST(BenchCli, ModelFileIsPlacedNTimesOnTheGrid) {
   EXPECT_NE(csv.find(",2,compute,32,32,4,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",6,compute,32,32,12,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",6,reference,32,32,12,"), std::string::npos) << csv;
+  // --strict, as for render: a scene file's unknown key is an error, not a warning.
+  const std::string scene = test::output_path("unknown_key.json");
+  std::ofstream(scene) << R"({"models": [{"name": "m", "file": "two_objects.obj"}],
+                             "objects": [{"model": "m"}], "colour": 1})";
+  const std::string bench = std::string(TESSERA_BINARY) + " bench --device lavapipe --scene " +
+                            scene + " --objects 1 --size 16x16 --backends reference --repeat 1 " +
+                            "--warmup 0 --warmup-ms 0 --quiet";
+  ASSERT_EQ(test::run_command(bench, out), 0) << out;
+  ASSERT_EQ(test::run_command(bench + " --strict", out), 1) << out;
+  EXPECT_NE(out.find("colour: unknown key 'colour'"), std::string::npos) << out;
 }
 
 TEST(BenchCli, InstancedCopiesFillGridCells) {

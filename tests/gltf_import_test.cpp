@@ -377,6 +377,18 @@ TEST(GltfImport, GlbBufferReadInTheFileGivesTheEmbeddedScene) {
   // A byteLength past the BIN chunk (44 bytes, padded): TinyGLTF is given the file and says so.
   const std::string longer = error_of(R"({"byteLength": 100})", views);
   EXPECT_EQ(longer.rfind("t.glb: TinyGLTF cannot read it: Invalid `byteLength'", 0), 0u) << longer;
+  // A JSON chunk length off by 3 (a fresh user's trial got TinyGLTF's "BIN Chunk data length
+  // exceeds the GLB size"): said to be misaligned.
+  std::vector<unsigned char> off = glb_of(triangle_document(R"({"byteLength": 42})", views), bin);
+  off[12] -= 3;
+  try {
+    import_gltf_bytes(off, "off.glb", "/nonexistent");
+    ADD_FAILURE() << "a misaligned JSON chunk was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("off.glb: its JSON chunk's length, "), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("is not a multiple of 4"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
