@@ -668,10 +668,22 @@ struct Importer {
                   std::to_string(w) + "x" + std::to_string(h) + ", over the largest side of " +
                   std::to_string(options.max_texture_side) + " (ImportOptions::max_texture_side)");
     }
-    if (option.scale[0] != 1 || option.scale[1] != 1 || option.origin_offset[0] != 0 ||
-        option.origin_offset[1] != 0 || option.clamp) {
-      warn(where(info, keyword, material) +
-           ": texture options -s, -o and -clamp are not supported and were ignored");
+    // Names only the options the statement gives (a fresh user's trial: -clamp was named
+    // where only -s and -o were given).
+    std::string ignored;
+    const auto ignore = [&](bool given, const char* name) {
+      if (given) ignored += std::string(ignored.empty() ? "" : ", ") + name;
+    };
+    ignore(option.scale[0] != 1 || option.scale[1] != 1 || option.scale[2] != 1, "-s");
+    ignore(option.origin_offset[0] != 0 || option.origin_offset[1] != 0 ||
+               option.origin_offset[2] != 0,
+           "-o");
+    ignore(option.clamp, "-clamp");
+    if (!ignored.empty()) {
+      warn(where(info, keyword, material) + ": texture option" +
+           (ignored.find(',') == std::string::npos ? " " : "s ") + ignored +
+           (ignored.find(',') == std::string::npos ? " is" : " are") +
+           " not supported and ignored");
     }
     try {
       // Taken, not copied: a second use of the file decodes it again.

@@ -411,6 +411,22 @@ TEST(ObjImportMaterials, UnnamedAndSpacedMaterialNames) {
   EXPECT_NO_THROW(validate_scene(spaced.scene));
 }
 
+// Texture options Tessera does not apply are named in the warning, only those given.
+TEST(ObjImportMaterials, UnsupportedTextureOptionsAreNamed) {
+  write_png(test::output_path("option.png"), Image8{1, 1, {{255, 0, 0, 255}}});
+  write_png(test::output_path("option2.png"), Image8{1, 1, {{0, 255, 0, 255}}});
+  write_file("options.mtl",
+             "newmtl a\nmap_Kd -s 2 2 1 -o 0.5 0 0 option.png\n"
+             "newmtl b\nmap_Kd -clamp on option2.png\n");
+  const ImportedModel m = import_text(
+      "options.obj",
+      "mtllib options.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n");
+  const std::string w = all_warnings(m);
+  EXPECT_NE(w.find("texture options -s, -o are not supported and ignored"), std::string::npos) << w;
+  EXPECT_NE(w.find("texture option -clamp is not supported and ignored"), std::string::npos) << w;
+  EXPECT_EQ(m.warnings.size(), 2u) << w;
+}
+
 // A `usemtl` names a material with spaces whole, as `newmtl` declares it ("My Red"); a name no
 // library has falls back to its first word (LoadObj's reading), and a missing one is warned
 // about once, quoted whole (a fresh user's trial: "usemtl My Red" took 'My' and drew grey).
