@@ -93,6 +93,7 @@ struct Model {
   std::vector<Camera> cameras;         // the file's (glTF), in the model's frame
   size_t first_light = 0, lights = 0;  // its lights in out.scene.lights, in the model's frame
   std::string name;
+  std::string where;                         // its place in the file, for messages
   std::optional<glm::mat4> first_placement;  // of its first instance, once an object places it
 };
 
@@ -616,6 +617,7 @@ void Reader::read_model(const Node& n) {
   for (const Light& l : model.scene.lights) s.lights.push_back(l);
   placed.cameras = model.cameras;
   placed.name = string(child(n, "name"));
+  placed.where = where(n);
   for (Object o : model.scene.objects) {
     o.mesh += meshes;
     o.material += materials;
@@ -876,6 +878,14 @@ void Reader::read(const Node& root) {
   // A model's lights and cameras go where its first instance puts the model (a model placed
   // many times still brings them once).
   for (const Model& m : models) {
+    // A model no object places adds its lights and cameras only: said, since its meshes are
+    // what a file usually declares it for (a fresh user's trial got an empty image).
+    if (!m.first_placement && !m.objects.empty()) {
+      const std::string message =
+          m.where + "no object places model '" + m.name + "', so its meshes are not drawn";
+      if (options.strict) throw Error(message + " (an error with --strict)");
+      out.warnings.push_back(message);
+    }
     const glm::mat4 world = m.first_placement.value_or(glm::mat4(1.0f));
     for (size_t i = m.first_light; i < m.first_light + m.lights; ++i) {
       Light& l = out.scene.lights[i];

@@ -277,6 +277,16 @@ TEST(SceneFile, ModelCamerasArePlacedWithTheirModel) {
   ASSERT_EQ(unplaced.model_cameras.size(), 2u);
   EXPECT_EQ(unplaced.model_cameras[0].position, glm::vec3(0.5f, 0.5f, 3.0f));
   EXPECT_EQ(unplaced.scene.camera, Camera{});
+  // Its meshes are not drawn, which is said (an error when strict).
+  const std::string warnings = [&] {
+    std::string all;
+    for (const std::string& w : unplaced.warnings) all += w + "\n";
+    return all;
+  }();
+  EXPECT_NE(warnings.find("models.cams: no object places model 'cams', so its meshes are not "
+                          "drawn"),
+            std::string::npos)
+      << warnings;
 }
 
 // The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
