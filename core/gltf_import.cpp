@@ -146,6 +146,30 @@ std::vector<unsigned char> glb_without_buffer(std::span<const unsigned char> byt
   return out;
 }
 
+// The deepest nesting of arrays and objects in JSON `text` (brackets inside strings left out),
+// counted without recursion.
+size_t nesting_depth(std::string_view text) {
+  size_t depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 // Whether an image of the checked document `doc` reads a buffer view: TinyGLTF then indexes
 // the view's buffer at the view's offset, which must stay inside the buffer it holds.
 bool images_in_buffer_views(const json& doc) {
@@ -502,6 +526,12 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
   if (scanned) {
     doc = std::move(*scanned);
   } else {
+    // The scan gives up past 256 levels; TinyGLTF's parser recurses through `extras` and
+    // overflowed its stack at 15,000 (a fresh user's trial), so nothing deeper reaches it.
+    if (const size_t depth = nesting_depth(text); depth > 256) {
+      ctx.fail("", "its JSON nests arrays and objects " + std::to_string(depth) +
+                       " levels deep, more than the 256 Tessera reads");
+    }
     try {
       doc = json::parse(text.begin(), text.end());
     } catch (const json::exception& e) {

@@ -421,7 +421,8 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                "(synchronization too); exit status 3 if it\n"
                "reports anything");
   app.add_flag("--quiet", a.quiet, "print nothing but errors");
-  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
+  app.add_flag("--strict", a.strict,
+               "unknown keys in a scene file, and a model's\nwarnings, are errors");
   add_camera_option(app, a.camera);
 }
 
@@ -578,7 +579,8 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);
-  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors, not\nwarnings");
+  app.add_flag("--strict", a.strict,
+               "unknown keys in a scene file, and a model's\nwarnings, are errors");
   add_camera_option(app, a.camera);
 }
 
@@ -657,7 +659,8 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
             "each knob's Pareto front joined, SVG or PNG");
   add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet, "no progress or table");
-  app.add_flag("--strict", a.strict, "unknown keys in a scene file are errors");
+  app.add_flag("--strict", a.strict,
+               "unknown keys in a scene file, and a model's\nwarnings, are errors");
 }
 
 // CLI11's message, reworded where it is unclear: a missing value, an option given twice.
