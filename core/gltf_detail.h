@@ -73,6 +73,13 @@ std::optional<nlohmann::json> scan_document(std::string_view text,
 /// byteLength bytes. Warns for extensions used but ignored.
 void check_document(const Context& ctx, const nlohmann::json& doc);
 
+/// After TinyGLTF has refused `text`: fails with the glTF path of what TinyGLTF most likely
+/// refused, where it finds one of the faults TinyGLTF checks before Tessera can (an index past
+/// the accessors, a camera or spot light without its block, a byteStride or componentType glTF
+/// does not allow, a data uri that is not base64); returns where it finds none, and the caller
+/// passes TinyGLTF's own message on.
+void explain_tinygltf_failure(const Context& ctx, std::string_view text);
+
 /// An accessor's elements, count * components values, in one of three arrays. Float
 /// accessors and unsigned integer ones that are not normalized, without sparse values, keep
 /// their stored type (floats, uints; copied, not converted, which was a fifth of the import of a

@@ -563,6 +563,7 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
                          : loader.LoadASCIIFromString(&model, &error, &warning, text.data(),
                                                       unsigned(text.size()), ctx.base_dir);
   if (!ok) {
+    explain_tinygltf_failure(ctx, text);
     while (!error.empty() && error.back() == '\n') error.pop_back();
     ctx.fail("", "TinyGLTF cannot read it: " + error);
   }

@@ -1,6 +1,7 @@
 // The JSON checks that come before TinyGLTF: property types, required extensions, and the
 // files that buffers and images name.
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <filesystem>
@@ -639,6 +640,86 @@ std::optional<json> scan_document(std::string_view text, std::string_view* glb_b
     return std::nullopt;  // not expected (the scan is stricter); the full parse names it
   }
   return doc;
+}
+
+void explain_tinygltf_failure(const Context& ctx, std::string_view text) {
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::exception&) {
+    return;
+  }
+  if (!doc.is_object()) return;
+  const auto integer = [](const json& j, const char* key) -> std::optional<int64_t> {
+    const auto it = j.find(key);
+    if (it == j.end() || !it->is_number_integer()) return std::nullopt;
+    return it->get<int64_t>();
+  };
+  const json& accessors = member(doc, "accessors");
+  const json& meshes = member(doc, "meshes");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const json& primitives = member(meshes[m], "primitives");
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      const std::string where = at("meshes", m) + ".primitives[" + std::to_string(p) + "]";
+      if (const auto i = integer(primitives[p], "indices"))
+        check_index(ctx, where + ".indices", *i, accessors.size(), "accessors");
+      for (const auto& [name, value] : member_object(primitives[p], "attributes").items()) {
+        if (value.is_number_integer())
+          check_index(ctx, where + ".attributes." + name, value.get<int64_t>(), accessors.size(),
+                      "accessors");
+      }
+    }
+  }
+  for (size_t i = 0; i < accessors.size(); ++i) {
+    const auto type = integer(accessors[i], "componentType");
+    if (type && !(*type >= 5120 && *type <= 5123) && *type != 5125 && *type != 5126) {
+      ctx.fail(at("accessors", i) + ".componentType",
+               "is " + std::to_string(*type) + "; glTF allows 5120 to 5123, 5125 and 5126 (5.1)");
+    }
+  }
+  const json& views = member(doc, "bufferViews");
+  for (size_t i = 0; i < views.size(); ++i) {
+    const auto stride = integer(views[i], "byteStride");
+    if (stride && (*stride < 4 || *stride > 252 || *stride % 4 != 0)) {
+      ctx.fail(at("bufferViews", i) + ".byteStride",
+               "is " + std::to_string(*stride) + "; glTF allows 4 to 252, a multiple of 4 (5.11)");
+    }
+  }
+  const json& cameras = member(doc, "cameras");
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    if (!cameras[i].is_object()) continue;
+    const std::string type = cameras[i].value("type", std::string());
+    if (type != "perspective" && type != "orthographic") {
+      ctx.fail(at("cameras", i) + ".type",
+               "is '" + type + "'; glTF cameras are \"perspective\" or \"orthographic\"");
+    }
+    if (!cameras[i].contains(type))
+      ctx.fail(at("cameras", i), "a " + type + " camera needs \"" + type + "\"");
+  }
+  const json& lights =
+      member(member_object(member_object(doc, "extensions"), "KHR_lights_punctual"), "lights");
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].is_object() && lights[i].value("type", std::string()) == "spot" &&
+        !lights[i].contains("spot")) {
+      ctx.fail("extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]",
+               "a spot light needs \"spot\"");
+    }
+  }
+  const json& buffers = member(doc, "buffers");
+  for (size_t i = 0; i < buffers.size(); ++i) {
+    if (!buffers[i].is_object()) continue;
+    const std::string uri = buffers[i].value("uri", std::string());
+    const size_t data = uri.find(";base64,");
+    if (uri.rfind("data:", 0) != 0 || data == std::string::npos) continue;
+    const std::string_view digits = std::string_view(uri).substr(data + 8);
+    const bool base64 = std::all_of(digits.begin(), digits.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/' || c == '=';
+    });
+    if (!base64) {
+      ctx.fail(at("buffers", i) + ".uri",
+               "is a data uri whose data is not base64 (A-Z, a-z, 0-9, +, / and =)");
+    }
+  }
 }
 
 void check_document(const Context& ctx, const json& doc) {
