@@ -646,6 +646,21 @@ void explain_tinygltf_failure(const Context& ctx, std::string_view text) {
   json doc;
   try {
     doc = json::parse(text.begin(), text.end());
+  } catch (const json::out_of_range& e) {
+    // "number overflow parsing '1e999'" (id 406) says what but not where: the number's first
+    // place in the text, by line and column.
+    const std::string what = e.what();
+    const size_t open = what.find('\''), close = what.rfind('\'');
+    if (e.id != 406 || open == std::string::npos || close <= open) return;
+    const std::string number = what.substr(open + 1, close - open - 1);
+    const size_t at = text.find(number);
+    if (at == std::string_view::npos) return;
+    const size_t line = 1 + size_t(std::count(text.begin(), text.begin() + at, '\n'));
+    const size_t line_start =
+        text.rfind('\n', at) == std::string_view::npos ? 0 : text.rfind('\n', at) + 1;
+    ctx.fail("", "line " + std::to_string(line) + ", column " +
+                     std::to_string(at - line_start + 1) + ": the number " + number +
+                     " is out of the range of a double");
   } catch (const json::exception&) {
     return;
   }

@@ -106,6 +106,9 @@ struct Reader {
   std::map<std::string, uint32_t> texture_names, material_names, mesh_names, model_names;
   std::vector<TextureDecl> texture_decls;
   std::vector<Model> models;
+  // Each "objects" entry's first object in out.scene.objects and its place, so that
+  // validate_scene's "object K" can be traced to the entry that made it.
+  std::vector<std::pair<size_t, std::string>> object_sources;
 
   std::string where(const Node& n, bool at_key = false) const {
     const auto& index = at_key ? places.keys : places.values;
@@ -673,6 +676,7 @@ glm::mat4 Reader::read_transform(const Node& n) const {
 
 void Reader::read_objects(const Node& list) {
   for (const Node& n : array(list)) {
+    object_sources.emplace_back(out.scene.objects.size(), where(n));
     object(n, {"name", "mesh", "model", "material", "materials", "tile_columns", "translation",
                "rotation", "scale", "matrix", "grid", "random"});
     const bool is_model = has(n, "model");
@@ -958,7 +962,16 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   try {
     validate_scene(out.scene);
   } catch (const Error& e) {
-    throw Error(name + ": " + e.what());
+    // "invalid scene: object K: ..." is placed at the objects entry that made object K.
+    const std::string message = e.what(), prefix = "invalid scene: object ";
+    if (message.rfind(prefix, 0) == 0) {
+      const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
+      const auto& sources = reader.object_sources;
+      const auto it = std::upper_bound(sources.begin(), sources.end(), k,
+                                       [](size_t v, const auto& s) { return v < s.first; });
+      if (it != sources.begin()) throw Error(std::prev(it)->second + message);
+    }
+    throw Error(name + ": " + message);
   }
   return out;
 }
