@@ -16,6 +16,8 @@
 //   same position; faces with `s off` (the default) are flat.
 // - OBJ puts v = 0 at the bottom of an image; Tessera's v = 0 is the top row (core/texture.h),
 //   so v becomes 1 - v.
+// - A face has at most 255 corners: tinyobjloader counts them in an unsigned char, so a longer
+//   one is an error naming its line (it would be cut silently).
 // - `usemtl` names the material of the whole rest of its line where a library declares one of
 //   that name (`newmtl` names run to the end of the line: "newmtl My Red"), else of its first
 //   word, as LoadObj reads it; a name no library declares is warned about once.
