@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "core/gltf_detail.h"
+#include "core/json_places.h"
 
 namespace tessera::gltf {
 namespace {
@@ -655,12 +656,9 @@ void explain_tinygltf_failure(const Context& ctx, std::string_view text) {
     const std::string number = what.substr(open + 1, close - open - 1);
     const size_t at = text.find(number);
     if (at == std::string_view::npos) return;
-    const size_t line = 1 + size_t(std::count(text.begin(), text.begin() + at, '\n'));
-    const size_t line_start =
-        text.rfind('\n', at) == std::string_view::npos ? 0 : text.rfind('\n', at) + 1;
-    ctx.fail("", "line " + std::to_string(line) + ", column " +
-                     std::to_string(at - line_start + 1) + ": the number " + number +
-                     " is out of the range of a double");
+    const JsonPlace place = place_of_offset(text, at);
+    ctx.fail("", "line " + std::to_string(place.line) + ", column " + std::to_string(place.column) +
+                     ": the number " + number + " is out of the range of a double");
   } catch (const json::exception&) {
     return;
   }
