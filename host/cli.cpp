@@ -283,6 +283,12 @@ void add_validate(CLI::App& app, bool& validate) {
                "enable the Khronos validation layer (exit\nstatus 3 on reports)");
 }
 
+// --strict of the commands that load scene files.
+void add_strict(CLI::App& app, bool& strict) {
+  app.add_flag("--strict", strict,
+               "unknown keys in a scene file, and a model's\nwarnings, are errors");
+}
+
 // --chart of bench and tradeoff.
 void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
   app.add_option("--chart", chart, help)
@@ -421,8 +427,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                "(synchronization too); exit status 3 if it\n"
                "reports anything");
   app.add_flag("--quiet", a.quiet, "print nothing but errors");
-  app.add_flag("--strict", a.strict,
-               "unknown keys in a scene file, and a model's\nwarnings, are errors");
+  add_strict(app, a.strict);
   add_camera_option(app, a.camera);
 }
 
@@ -531,8 +536,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet,
                "no progress bar or results table (--compare's\ntable still prints)");
-  app.add_flag("--strict", a.strict,
-               "unknown keys in a scene file, and a model's\nwarnings, are errors");
+  add_strict(app, a.strict);
 }
 
 void add_view_options(CLI::App& app, ViewArgs& a) {
@@ -579,8 +583,7 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   add_choice(app, "--overlay", a.overlay, {{"on", true}, {"off", false}},
              "the Dear ImGui panel (default on; F1 toggles\nit)");
   add_validate(app, a.validate);
-  app.add_flag("--strict", a.strict,
-               "unknown keys in a scene file, and a model's\nwarnings, are errors");
+  add_strict(app, a.strict);
   add_camera_option(app, a.camera);
 }
 
@@ -659,8 +662,7 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
             "each knob's Pareto front joined, SVG or PNG");
   add_validate(app, a.validate);
   app.add_flag("--quiet", a.quiet, "no progress or table");
-  app.add_flag("--strict", a.strict,
-               "unknown keys in a scene file, and a model's\nwarnings, are errors");
+  add_strict(app, a.strict);
 }
 
 // CLI11's message, reworded where it is unclear: a missing value, an option given twice.
