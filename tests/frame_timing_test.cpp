@@ -139,6 +139,24 @@ Interval interval_around_busy_work(const Context& ctx, uint32_t groups) {
   return {timestamp_interval_ms(ctx, ticks[0], ticks[1]), host.count()};
 }
 
+// The best of up to `tries` intervals around busy work, by the share of the host's wait that
+// the timestamps measured. Load on the machine (other tests beside this one, sanitizers) only
+// lengthens the host's wait and lowers a share; timestamps taken late measure almost nothing
+// every time. So one share over the bar shows the timestamps were taken when reached, and a
+// retry keeps a busy machine from failing the test (CI under ASan once measured under 50 %).
+Interval best_interval_around_busy_work(const Context& ctx, uint32_t groups, int tries,
+                                        double enough) {
+  Interval best{0.0, 1.0};
+  for (int t = 0; t < tries; ++t) {
+    const Interval i = interval_around_busy_work(ctx, groups);
+    std::printf("TIMESTAMPS around busy work, try %d: %.1f of %.1f ms\n", t + 1, i.timestamps_ms,
+                i.host_ms);
+    if (i.timestamps_ms * best.host_ms > best.timestamps_ms * i.host_ms) best = i;
+    if (best.timestamps_ms >= enough * best.host_ms) break;
+  }
+  return best;
+}
+
 // lavapipe takes a timestamp late once a render pass has bound a framebuffer on its queue
 // (compute/timestamps.h): compute frames measured after the hardware baseline reported setup as
 // nearly free. Here a dispatch that takes tens of milliseconds is most of its submission's
@@ -146,18 +164,17 @@ Interval interval_around_busy_work(const Context& ctx, uint32_t groups) {
 // that a slower machine only makes easier to pass; taken late, they measured 1-5 % of it).
 TEST_F(FrameTiming, TimestampsAreTakenWhenReachedAlsoAfterARenderPass) {
   constexpr uint32_t groups = 64;
+  constexpr int tries = 5;
+  constexpr double enough = 0.5;
   Context& ctx = context();
-  const Interval before = interval_around_busy_work(ctx, groups);
-  EXPECT_GE(before.timestamps_ms, 0.5 * before.host_ms) << "before any render pass";
+  const Interval before = best_interval_around_busy_work(ctx, groups, tries, enough);
+  EXPECT_GE(before.timestamps_ms, enough * before.host_ms) << "before any render pass";
   Renderer renderer(ctx);
   renderer.set_scene(make_builtin_scene("spheres"));
   HardwareBaseline baseline(renderer);
   baseline.render(FrameSettings{.width = 64, .height = 48});
-  const Interval after = interval_around_busy_work(ctx, groups);
-  EXPECT_GE(after.timestamps_ms, 0.5 * after.host_ms) << "after a render pass";
-  std::printf(
-      "TIMESTAMPS around busy work: %.1f of %.1f ms before a render pass, %.1f of %.1f after\n",
-      before.timestamps_ms, before.host_ms, after.timestamps_ms, after.host_ms);
+  const Interval after = best_interval_around_busy_work(ctx, groups, tries, enough);
+  EXPECT_GE(after.timestamps_ms, enough * after.host_ms) << "after a render pass";
 }
 
 }  // namespace
