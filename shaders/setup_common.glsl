@@ -23,9 +23,7 @@ const uint OUTCOME_BIG = 7u;           // bin into tiles
 uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool double_sided,
                       out RasterTri t) {
   float near_plane = frame.near_plane;
-  vec4 c[3] = vec4[3](c0, c1, c2);
-  ivec2 v[3];
-  for (int k = 0; k < 3; ++k) v[k] = snap_to_subpixels(c[k]);
+  const ivec2 v[3] = ivec2[3](snap_to_subpixels(c0), snap_to_subpixels(c1), snap_to_subpixels(c2));
   int64_t area = edge_function(v[0], v[1], v[2]);
   if (area == 0) return OUTCOME_EMPTY;
   // Front faces wind counter-clockwise in world space; the y-down screen mirrors them, so
@@ -38,14 +36,15 @@ uint prepare_triangle(vec4 c0, vec4 c1, vec4 c2, uint id, bool mirrored, bool do
     return OUTCOME_FACING;
   }
   // Order the vertices so the area is positive: every edge function is then >= 0 inside.
-  int second = clockwise ? 2 : 1;
-  int third = clockwise ? 1 : 2;
+  // Selects rather than arrays indexed by a variable: the H200's compiler kept such arrays in
+  // local memory (80 bytes a thread of setup, TESSERA_PIPELINE_STATISTICS).
   t.v0 = v[0];
-  t.v1 = v[second];
-  t.v2 = v[third];
+  t.v1 = clockwise ? v[2] : v[1];
+  t.v2 = clockwise ? v[1] : v[2];
   // The depths are divided only for triangles that pass the facing test: at 10^6 grid objects
   // most do not, and a division is several instructions on a GPU.
-  t.depth = vec3(near_plane / c[0].w, near_plane / c[second].w, near_plane / c[third].w);
+  t.depth = vec3(near_plane / c0.w, near_plane / (clockwise ? c2.w : c1.w),
+                 near_plane / (clockwise ? c1.w : c2.w));
   t.id = id;
 
   ivec2 lo = min(min(t.v0, t.v1), t.v2);
