@@ -228,12 +228,9 @@ struct PendingCopy {
   VkDeviceSize size;
 };
 
-// Reallocates `buffer` and queues a copy of all of `next` if the buffer is too small for it.
-// Returns true if it did.
-template <typename T>
-bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>& next,
-                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
-  const VkDeviceSize bytes = next.size() * sizeof(T);
+// Makes `buffer` a new one of at least `bytes` if it is smaller (or none); returns whether it did.
+bool reallocate_if_smaller(const Context& ctx, Buffer& buffer, VkDeviceSize bytes,
+                           UploadStats& stats, bool& dirty) {
   if (buffer.buffer && buffer.size >= bytes) return false;
   destroy_buffer(ctx, buffer);
   // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
@@ -241,6 +238,16 @@ bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>
                          MemoryKind::device);
   stats.buffers_created++;
   dirty = true;
+  return true;
+}
+
+// Reallocates `buffer` and queues a copy of all of `next` if the buffer is too small for it.
+// Returns true if it did.
+template <typename T>
+bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>& next,
+                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
+  const VkDeviceSize bytes = next.size() * sizeof(T);
+  if (!reallocate_if_smaller(ctx, buffer, bytes, stats, dirty)) return false;
   if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
   return true;
 }
@@ -254,13 +261,11 @@ void queue_tail_upload(const Context& ctx, Buffer& buffer, const std::vector<T>&
       {buffer.buffer, from * sizeof(T), &array[from], (array.size() - from) * sizeof(T)});
 }
 
-// Makes `buffer` hold `next`, given that it holds `previous`: reallocates if it is too small,
-// else queues a copy of the range of elements that differ (nothing if none does).
+// Queues a copy of the range of elements of `next` that differ from `previous`, which `buffer`
+// holds from byte `offset` on (nothing if none does).
 template <typename T>
-void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
-                        const std::vector<T>& next, std::vector<PendingCopy>& copies,
-                        UploadStats& stats, bool& dirty) {
-  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty)) return;
+void queue_changed_range(const Buffer& buffer, VkDeviceSize offset, const std::vector<T>& previous,
+                         const std::vector<T>& next, std::vector<PendingCopy>& copies) {
   size_t first = 0;
   size_t common = std::min(previous.size(), next.size());
   while (first < common && std::memcmp(&previous[first], &next[first], sizeof(T)) == 0) ++first;
@@ -270,7 +275,39 @@ void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>
          std::memcmp(&previous[last - 1], &next[last - 1], sizeof(T)) == 0) {
     --last;
   }
-  copies.push_back({buffer.buffer, first * sizeof(T), &next[first], (last - first) * sizeof(T)});
+  copies.push_back(
+      {buffer.buffer, offset + first * sizeof(T), &next[first], (last - first) * sizeof(T)});
+}
+
+// Makes `buffer` hold `next`, given that it holds `previous`: reallocates if it is too small,
+// else queues a copy of the range of elements that differ (nothing if none does).
+template <typename T>
+void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
+                        const std::vector<T>& next, std::vector<PendingCopy>& copies,
+                        UploadStats& stats, bool& dirty) {
+  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty)) return;
+  queue_changed_range(buffer, 0, previous, next, copies);
+}
+
+// Makes the objects' buffer hold next.objects and after them next.group_objects (the group
+// table, TS_TRIANGLE_GROUP_BITS), given that it holds prev's: as queue_array_upload, the table
+// copied whole when the objects' count moved it.
+void queue_objects_upload(const Context& ctx, Buffer& buffer, const GpuSceneArrays& prev,
+                          const GpuSceneArrays& next, std::vector<PendingCopy>& copies,
+                          UploadStats& stats, bool& dirty) {
+  const VkDeviceSize object_bytes = next.objects.size() * sizeof(gpu::GpuObject);
+  const VkDeviceSize table_bytes = next.group_objects.size() * sizeof(uint32_t);
+  const bool reallocated =
+      reallocate_if_smaller(ctx, buffer, object_bytes + table_bytes, stats, dirty);
+  if (reallocated || prev.objects.size() != next.objects.size()) {
+    if (object_bytes) copies.push_back({buffer.buffer, 0, next.objects.data(), object_bytes});
+    if (table_bytes) {
+      copies.push_back({buffer.buffer, object_bytes, next.group_objects.data(), table_bytes});
+    }
+    return;
+  }
+  queue_changed_range(buffer, 0, prev.objects, next.objects, copies);
+  queue_changed_range(buffer, object_bytes, prev.group_objects, next.group_objects, copies);
 }
 
 // Copies `copies` to the GPU (through one staging buffer) and waits. Returns the bytes copied.
@@ -363,8 +400,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_ADJACENCY), prev.adjacency, next.adjacency, copies,
                      stats, s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.buffer(TS_BINDING_OBJECTS), prev.objects, next.objects, copies, stats,
-                     s.descriptors_dirty);
+  queue_objects_upload(s.ctx, s.buffer(TS_BINDING_OBJECTS), prev, next, copies, stats,
+                       s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_MATERIALS), prev.materials, next.materials, copies,
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_LIGHTS), prev.lights, next.lights, copies, stats,

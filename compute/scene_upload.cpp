@@ -229,6 +229,7 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
   }
   out.numbering = numbering;
   out.triangle_count = numbering.triangle_count;
+  out.group_objects = group_objects(numbering);
   for (size_t slot = 0; slot < numbering.objects.size(); ++slot) {
     const Object& o = scene.objects[numbering.objects[slot]];
     const gpu::GpuObject g{
@@ -279,6 +280,19 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
 }  // namespace tessera
 
 namespace tessera {
+
+std::vector<uint32_t> group_objects(const ObjectNumbering& numbering) {
+  const uint64_t groups = (numbering.triangle_count + TS_TRIANGLE_GROUP - 1) / TS_TRIANGLE_GROUP;
+  std::vector<uint32_t> out(groups);
+  size_t slot = 0;
+  const size_t objects = numbering.first_triangle.size();
+  for (uint64_t k = 0; k < groups; ++k) {
+    const uint64_t id = k * TS_TRIANGLE_GROUP;
+    while (slot + 1 < objects && numbering.first_triangle[slot + 1] <= id) ++slot;
+    out[k] = uint32_t(slot);
+  }
+  return out;
+}
 
 void append_lod_chains(const std::vector<LodChain>& chains, GpuSceneArrays& out) {
   TESSERA_CHECK(chains.size() == out.mesh_first_index.size());

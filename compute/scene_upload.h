@@ -19,6 +19,9 @@ struct GpuSceneArrays {
   /// (triangle_adjacency, core/mesh_adjacency.h), for silhouette coverage.
   std::vector<uint32_t> adjacency;
   std::vector<gpu::GpuObject> objects;  // canonical order (see flatten_scene)
+  /// Per TS_TRIANGLE_GROUP triangle-instance ids: the object holding the group's first
+  /// (group_objects); empty for a scene without triangles.
+  std::vector<uint32_t> group_objects;
   std::vector<gpu::GpuMaterial> materials;
   std::vector<gpu::GpuLight> lights;                         // sorted by kind (TS_LIGHT_* order)
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // lights of each kind, by TS_LIGHT_*
@@ -65,6 +68,14 @@ uint64_t texture_hash(const Texture& texture);
 /// is left holding exactly the textures of `scene`; the arrays are the same either way.
 /// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels.
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache = nullptr);
+
+/// The object slot of `numbering` that holds id k * TS_TRIANGLE_GROUP, for every k with
+/// k * TS_TRIANGLE_GROUP < numbering.triangle_count: as object_of_triangle (core/pick.h), the
+/// last slot whose first id is <= it, so an object without triangles is never the answer.
+/// Setup searches only between the entries around a subgroup's first id (two adjacent words)
+/// instead of over every object: at 10^6 grid objects the search's scattered loads cost a
+/// fifth of setup's time on the H200 (docs/performance.md). O(objects + groups).
+std::vector<uint32_t> group_objects(const ObjectNumbering& numbering);
 
 /// Appends the level-of-detail chains of the flattened scene's meshes (`chains`, one per
 /// Scene::meshes entry, as build_lod_chains makes them) to `arrays`: the levels other than the

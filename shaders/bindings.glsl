@@ -17,6 +17,14 @@ layout(set = 0, binding = TS_BINDING_OBJECTS, std430) buffer Objects { GpuObject
 #else
 layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer Objects { GpuObject objects[]; };
 #endif
+// The same buffer as words: the group table after the objects (TS_TRIANGLE_GROUP_BITS).
+layout(set = 0, binding = TS_BINDING_OBJECTS, std430) readonly buffer ObjectWords { uint object_words[]; };
+// Entry `group` of the group table: the object slot that holds triangle-instance id
+// group * TS_TRIANGLE_GROUP. The words' index stays below 2^32: the renderer holds fewer than
+// 2^32 / TS_OBJECT_WORDS objects, as the buffer's size does.
+uint group_object(uint group) {
+  return object_words[frame.object_count * TS_OBJECT_WORDS + group];
+}
 // Written by the object_clip pass (which defines TS_OBJECT_CLIP_PASS), read by setup and after.
 #ifdef TS_OBJECT_CLIP_PASS
 layout(set = 0, binding = TS_BINDING_OBJECT_CLIP, std430) writeonly buffer ObjectClip { mat4 object_clip[]; };

@@ -67,7 +67,8 @@ uint classify(uint slot, uint id, out RasterTri t) {
     slot = subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot); \
   }
 
-// find_object(tri) for a `tri` the same in every lane, searched by all of them at once: each
+// find_object(tri) for a `tri` the same in every lane, given that the answer lies in [lo, hi),
+// searched by all of them at once: each
 // step every lane loads one object and the ballot of their answers keeps one of
 // (gl_SubgroupSize + 1) parts of the range, where a binary search keeps one of 2. With 32 lanes a
 // million objects take 4 steps of dependent loads instead of 20: setup ran at a quarter of its
@@ -78,12 +79,10 @@ uint classify(uint slot, uint id, out RasterTri t) {
 // number of subgroups): an inactive lane would vote "no" in the middle of the "yes" lanes.
 // gl_SubgroupSize rather than a count of the active lanes lets the compiler turn the division
 // into a shift (the subgroup size is a power of two, and a constant of the device).
-uint find_object_in_subgroup(uint tri) {
+uint find_object_in_subgroup(uint tri, uint lo, uint hi) {
   uint lanes = gl_SubgroupSize;
   uint lane = gl_SubgroupInvocationID;
   // Invariant: the answer is in [lo, hi), and lo is it unless a later object starts <= tri.
-  uint lo = 0u;
-  uint hi = frame.object_count;
   while (hi - lo > 1u) {
     // Lane k probes lo + 1 + k * stride (clamped to the last candidate, hi - 1): non-decreasing
     // in k, so the lanes whose object starts <= tri are the first `below` ones.
@@ -104,7 +103,22 @@ void main() {
   uint id = batch.first_triangle + local;
   // The subgroup's triangles are consecutive ids, so one search finds the object of the first
   // and each lane walks forward from it (at most a step for meshes of many triangles).
-  uint slot = find_object_in_subgroup(subgroupBroadcastFirst(id));
+  uint first = subgroupBroadcastFirst(id);
+  uint lo = 0u;
+  uint hi = frame.object_count;
+  if (!LOD && first < frame.triangle_count) {
+    // The objects that hold the first ids of this id's group and of the next bound the search
+    // (group_object, two adjacent words the whole subgroup loads): over at most 2 objects for
+    // meshes of TS_TRIANGLE_GROUP triangles or more, where a search over 10^6 objects took 4
+    // steps of 32 scattered loads. Level of detail numbers the triangles anew each frame, on
+    // the GPU, so its frames search them all.
+    uint group = first >> TS_TRIANGLE_GROUP_BITS;
+    lo = group_object(group);
+    if (group + 1u <= (frame.triangle_count - 1u) >> TS_TRIANGLE_GROUP_BITS) {
+      hi = group_object(group + 1u) + 1u;
+    }
+  }
+  uint slot = find_object_in_subgroup(first, lo, hi);
   while (slot + 1u < frame.object_count && objects[slot + 1u].first_triangle <= id) ++slot;
   RasterTri t;
   uint count = LOD ? counters[batch.index].lod_triangles : batch.triangle_count;

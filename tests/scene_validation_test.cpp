@@ -142,6 +142,10 @@ TEST_F(SceneUpload, UploadsOnlyWhatChanged) {
     all_bytes += m.positions.size() * sizeof(tessera::gpu::GpuVertex) +
                  m.indices.size() * 2 * sizeof(uint32_t);
   }
+  // After the objects, a word per TS_TRIANGLE_GROUP triangle instances (the group table).
+  uint64_t instances = 0;
+  for (const Object& o : scene.objects) instances += scene.meshes[o.mesh].triangle_count();
+  all_bytes += (instances + TS_TRIANGLE_GROUP - 1) / TS_TRIANGLE_GROUP * sizeof(uint32_t);
   EXPECT_EQ(first.bytes, all_bytes) << "the first upload copies everything";
   EXPECT_EQ(renderer.set_scene(scene).bytes, 0u) << "an unchanged scene uploads nothing";
 

@@ -125,6 +125,14 @@ using glm::vec4;
 #define TS_BINDING_SHADE_TILES 37
 #define TS_BINDING_COUNT 38
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
+// The objects' buffer (TS_BINDING_OBJECTS) holds, after its GpuObject array, a word per
+// TS_TRIANGLE_GROUP triangle-instance ids (group k: ids from k * TS_TRIANGLE_GROUP on): the
+// object slot that holds the group's first id (group_objects, compute/scene_upload.h), where
+// setup's object search starts. After the objects rather than a buffer of its own: lavapipe
+// allows 32 storage buffers a stage, and the passes' one descriptor set has them all.
+#define TS_TRIANGLE_GROUP_BITS 8u
+#define TS_TRIANGLE_GROUP (1u << TS_TRIANGLE_GROUP_BITS)
+#define TS_OBJECT_WORDS 40u  // sizeof(GpuObject) / 4
 
 // GpuBatch.flags
 #define TS_BATCH_LOD_DRAWS 1u  // the lod pass also writes each object's indexed draw
@@ -451,6 +459,7 @@ static_assert(sizeof(GpuVertex) == 48);
 static_assert(offsetof(GpuVertex, normal_v) == 16);
 static_assert(offsetof(GpuVertex, tangent) == 32);
 static_assert(sizeof(GpuObject) == 160);
+static_assert(sizeof(GpuObject) == TS_OBJECT_WORDS * 4);
 static_assert(offsetof(GpuObject, normal_matrix) == 64);
 static_assert(offsetof(GpuObject, first_index) == 128);
 static_assert(offsetof(GpuObject, first_triangle) == 144);
