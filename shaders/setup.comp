@@ -104,22 +104,28 @@ void main() {
   // The subgroup's triangles are consecutive ids, so one search finds the object of the first
   // and each lane walks forward from it (at most a step for meshes of many triangles).
   uint first = subgroupBroadcastFirst(id);
+  // Every lane's object lies in [lo, hi).
   uint lo = 0u;
   uint hi = frame.object_count;
   if (!LOD && first < frame.triangle_count) {
-    // The objects that hold the first ids of this id's group and of the next bound the search
-    // (group_object, two adjacent words the whole subgroup loads): over at most 2 objects for
-    // meshes of TS_TRIANGLE_GROUP triangles or more, where a search over 10^6 objects took 4
-    // steps of 32 scattered loads. Level of detail numbers the triangles anew each frame, on
+    // The objects that hold the first ids of the lanes' groups and of the group after bound it
+    // (group_object, adjacent words the whole subgroup loads): for meshes of TS_TRIANGLE_GROUP
+    // triangles or more, one or two objects, where a search over 10^6 objects took 4 steps of
+    // 32 scattered loads. The lanes' ids reach into the next group if the first lies within a
+    // subgroup of its group's end. Level of detail numbers the triangles anew each frame, on
     // the GPU, so its frames search them all.
     uint group = first >> TS_TRIANGLE_GROUP_BITS;
+    uint offset = first & (TS_TRIANGLE_GROUP - 1u);
+    uint last_group = group + (offset + gl_SubgroupSize - 1u >= TS_TRIANGLE_GROUP ? 1u : 0u);
     lo = group_object(group);
-    if (group + 1u <= (frame.triangle_count - 1u) >> TS_TRIANGLE_GROUP_BITS) {
-      hi = group_object(group + 1u) + 1u;
+    if (last_group + 1u <= (frame.triangle_count - 1u) >> TS_TRIANGLE_GROUP_BITS) {
+      hi = group_object(last_group + 1u) + 1u;
     }
   }
-  uint slot = find_object_in_subgroup(first, lo, hi);
-  while (slot + 1u < frame.object_count && objects[slot + 1u].first_triangle <= id) ++slot;
+  // Over one or two objects the lanes walk at once, a load at most, where the search would
+  // take a step of loads and a ballot before the walk's load.
+  uint slot = hi - lo > 2u ? find_object_in_subgroup(first, lo, hi) : lo;
+  while (slot + 1u < hi && objects[slot + 1u].first_triangle <= id) ++slot;
   RasterTri t;
   uint count = LOD ? counters[batch.index].lod_triangles : batch.triangle_count;
   uint outcome = local < count ? classify(slot, id, t) : OUTCOME_NONE;

@@ -4,6 +4,7 @@
 // larger than a group, and through the compute path against the reference renderer on a scene
 // of many 12-triangle cubes (a group spans about 21 of them) among larger spheres.
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -61,8 +62,9 @@ TEST(GroupObjects, AgreeWithObjectOfTriangleOnRandomNumberings) {
 class GroupObjectsOnDevice : public test::VulkanTest {};
 
 // 600 cubes and 30 spheres of 224 and 960 triangles on an interleaved grid: setup finds every
-// triangle's object through the table, so a wrong bound would draw a triangle of another
-// object or in the wrong place, which the reference's ownership would show.
+// triangle's object through the table (searching among the cubes, walking among the spheres),
+// so a wrong bound would draw a triangle of another object or in the wrong place, which the
+// reference's ownership would show.
 TEST_F(GroupObjectsOnDevice, ManySmallObjectsAmongLargeOnesMatchTheReference) {
   Scene s;
   s.camera.position = {0.0f, 0.0f, 14.0f};
@@ -84,10 +86,16 @@ TEST_F(GroupObjectsOnDevice, ManySmallObjectsAmongLargeOnesMatchTheReference) {
   l.position = {2.0f, 3.0f, 10.0f};
   l.intensity = 300.0f;
   s.lights.push_back(l);
-  const test::AccuracyReport r =
-      test::compare_with_reference(context(), s, 320, 240, "group_objects_many_small");
-  EXPECT_GT(r.covered, 320u * 240u / 4u) << "the objects should cover much of the image";
-  test::expect_meets_bars(r);
+  // Batches of 1001 triangles start off the groups' bounds and off every subgroup size's
+  // multiples, so that subgroups' ids reach into the next group.
+  for (uint32_t batch : {0u, 1001u}) {
+    SCOPED_TRACE("batches of " + std::to_string(batch) + " triangles (0: one batch)");
+    const test::AccuracyReport r = test::compare_with_reference(
+        context(), s, 320, 240, "group_objects_many_small_" + std::to_string(batch),
+        {.max_batch_triangles = batch});
+    EXPECT_GT(r.covered, 320u * 240u / 4u) << "the objects should cover much of the image";
+    test::expect_meets_bars(r);
+  }
 }
 
 }  // namespace
