@@ -742,7 +742,13 @@ void Reader::read_objects(const Node& list) {
           fail(c, "the cell count overflows 64 bits");
       }
       uint64_t total = cells;
-      if (has(g, "limit")) total = std::min(cells, integer(child(g, "limit"), 1, UINT64_MAX));
+      if (has(g, "limit")) {
+        const Node l = child(g, "limit");
+        total = integer(l, 1, UINT64_MAX);
+        if (total > cells)
+          fail(l, "keeps the first " + std::to_string(total) + " cells, more than the grid's " +
+                      std::to_string(cells));
+      }
       uint64_t objects = 0;
       if (__builtin_mul_overflow(total, per_instance, &objects))
         fail(c, "the object count overflows 64 bits");
@@ -792,6 +798,12 @@ void Reader::read_objects(const Node& list) {
       add_objects(c, objects);
       std::mt19937 rng(uint32_t(has(r, "seed") ? integer(child(r, "seed"), 0, UINT32_MAX) : 0));
       const glm::vec3 lo = vector<3>(child(r, "min")), hi = vector<3>(child(r, "max"));
+      for (int k = 0; k < 3; ++k) {
+        if (lo[k] > hi[k]) {
+          fail(child(r, "max"), std::string("is below \"min\" on ") + "xyz"[k] + " (min " +
+                                    format_number(lo[k]) + ", max " + format_number(hi[k]) + ")");
+        }
+      }
       glm::vec2 scale(1.0f);
       bool scaled = false;
       if (has(r, "scale")) {
