@@ -699,6 +699,10 @@ void Reader::read_objects(const Node& list) {
       for (const Node& m : array(child(n, "materials")))
         materials.push_back(lookup(m, material_names, "material"));
       if (materials.empty()) fail(child(n, "materials"), "the list is empty");
+      if (materials.size() > 1 && !has(n, "grid") && !has(n, "random") && !has(n, "tile_columns"))
+        fail(child(n, "materials"), "lists " + std::to_string(materials.size()) +
+                                        " materials for a generator's instances, and this "
+                                        "object has no \"grid\" or \"random\"");
     }
     if (!is_model && materials.empty())
       fail(n, "an object with a mesh needs a \"material\" (or \"materials\" for a generator)");
