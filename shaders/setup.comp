@@ -18,9 +18,11 @@ layout(local_size_x = TS_SETUP_GROUP_SIZE) in;
 // Under level of detail the batch's triangle count is the lod_scan pass's, on the GPU.
 layout(constant_id = TS_SPEC_LOD) const bool LOD = false;
 
-// Cull counts of the workgroup: a million-object frame culls ~10^9 triangles, and even one
-// atomic per subgroup on the same four addresses limited setup's throughput.
-shared uint group_culled[4];
+// Cull counts of the workgroup, a word per subgroup (at most one per thread): a byte per kind,
+// the subgroup's count of it (a subgroup has at most 128 lanes). A million-object frame culls
+// ~10^9 triangles, and even one atomic per subgroup on the same four addresses limited
+// setup's throughput.
+shared uint subgroup_culled[TS_SETUP_GROUP_SIZE];
 
 #include "setup_common.glsl"
 
@@ -49,13 +51,6 @@ uint classify(uint slot, uint id, out RasterTri t) {
   return prepare_triangle(c[0], c[1], c[2], id, objects[slot].mirrored != 0u,
                           objects[slot].double_sided != 0u, t);
 }
-
-// Adds the number of this subgroup's threads for which `mine` holds to `counter`, once.
-#define COUNT_ONCE(counter, mine)                                      \
-  {                                                                    \
-    uint n = subgroupBallotBitCount(subgroupBallot(mine));             \
-    if (n > 0u && subgroupElect()) atomicAdd(counter, n);              \
-  }
 
 // Slot of this thread in an append list whose length is `counter`, one atomic per subgroup.
 #define APPEND_SLOT(counter, mine, slot)                               \
@@ -130,18 +125,27 @@ void main() {
   uint count = LOD ? counters[batch.index].lod_triangles : batch.triangle_count;
   uint outcome = local < count ? classify(slot, id, t) : OUTCOME_NONE;
 
-  if (gl_LocalInvocationIndex < 4u) group_culled[gl_LocalInvocationIndex] = 0u;
+  // Each subgroup sums its counts in one reduction and stores them in its own word, so that
+  // one barrier, and no shared atomics, suffice; a thread per kind then adds the words up and
+  // makes the workgroup's one atomic for it. Counting with a ballot and a shared atomic per
+  // kind and subgroup, between two barriers, took 1.9 ms of setup's 21.3 at 10^6 grid objects
+  // on the H200.
+  uint culled = outcome >= OUTCOME_NONFINITE && outcome <= OUTCOME_EMPTY
+                    ? 1u << (8u * (outcome - OUTCOME_NONFINITE))
+                    : 0u;
+  uint subgroup_counts = subgroupAdd(culled);
+  if (subgroupElect()) subgroup_culled[gl_SubgroupID] = subgroup_counts;
   barrier();
-  COUNT_ONCE(group_culled[0], outcome == OUTCOME_NONFINITE);
-  COUNT_ONCE(group_culled[1], outcome == OUTCOME_OUTSIDE);
-  COUNT_ONCE(group_culled[2], outcome == OUTCOME_FACING);
-  COUNT_ONCE(group_culled[3], outcome == OUTCOME_EMPTY);
-  barrier();
-  if (gl_LocalInvocationIndex == 0u) {
-    if (group_culled[0] > 0u) atomicAdd(counters[batch.index].culled_nonfinite, group_culled[0]);
-    if (group_culled[1] > 0u) atomicAdd(counters[batch.index].culled_frustum, group_culled[1]);
-    if (group_culled[2] > 0u) atomicAdd(counters[batch.index].culled_backface, group_culled[2]);
-    if (group_culled[3] > 0u) atomicAdd(counters[batch.index].culled_empty, group_culled[3]);
+  if (gl_LocalInvocationIndex < 4u) {
+    uint kind = gl_LocalInvocationIndex;
+    uint n = 0u;
+    for (uint sg = 0u; sg < gl_NumSubgroups; ++sg) n += (subgroup_culled[sg] >> (8u * kind)) & 0xFFu;
+    if (n > 0u) {
+      if (kind == 0u) atomicAdd(counters[batch.index].culled_nonfinite, n);
+      if (kind == 1u) atomicAdd(counters[batch.index].culled_frustum, n);
+      if (kind == 2u) atomicAdd(counters[batch.index].culled_backface, n);
+      if (kind == 3u) atomicAdd(counters[batch.index].culled_empty, n);
+    }
   }
 
   // The passes after setup are dispatched indirectly, sized by what setup and clip append, so
