@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/bench_scenes.h"
 #include "core/check.h"
 #include "host/bench_compare.h"
 #include "host/chart.h"
@@ -106,16 +107,25 @@ std::string coverage_phrase(const BenchArgs& a) {
   return out;
 }
 
+// ", N segments" for a benchmark family, whose spheres --segments sets; "" for a scene by name
+// or file, whose meshes are its own.
+std::string segments_phrase(const BenchArgs& a) {
+  for (const BenchFamilyInfo& f : bench_families()) {
+    if (f.name == a.scene) return ", " + std::to_string(a.segments) + " segments";
+  }
+  return "";
+}
+
 }  // namespace
 
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
-      "scene %s, %ux%u, %u sample%s per pixel%s, %u segments, small-triangle area %u, shading by "
+      "scene %s, %ux%u, %u sample%s per pixel%s%s, small-triangle area %u, shading by "
       "tiles %s, %s tile lists, device '%s' (%s),\n%s\n",
       a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
-      coverage_phrase(a).c_str(), a.segments, a.small_triangle_area, a.shade_tiles ? "on" : "off",
-      tile_lists_name(a.tile_lists), results.device.c_str(), results.driver.c_str(),
-      method_phrase(a).c_str());
+      coverage_phrase(a).c_str(), segments_phrase(a).c_str(), a.small_triangle_area,
+      a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists), results.device.c_str(),
+      results.driver.c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");
