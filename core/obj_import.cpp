@@ -24,6 +24,8 @@
 // - `Ns` (a Blinn-Phong exponent) becomes roughness by matching Beckmann's alpha, alpha^2 =
 //   2 / (Ns + 2) (Walter et al. 2007, "Microfacet Models for Refraction through Rough
 //   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
+// - Vertex colours (`v x y z r g b`, an extension some exporters write) are not read: materials
+//   have no vertex-colour input. They are warned about once, with their count.
 
 #include <algorithm>
 #include <bit>
@@ -235,6 +237,8 @@ struct ObjScan {
   uint64_t faces = 0;
   uint64_t zero_normals = 0;  // `vn 0 0 0` (exporters write them for degenerate faces)
   size_t first_zero_normal_line = 0;
+  uint64_t coloured_vertices = 0;  // `v x y z r g b`: the colours are not read
+  size_t first_coloured_line = 0;
   std::map<std::string, size_t> ignored;  // unsupported keyword -> first line
 };
 
@@ -310,6 +314,9 @@ void scan_obj_line(const std::string& file, size_t line, std::string_view s, Obj
     }
     if (a == kNormal && zero[0] && zero[1] && zero[2]) {
       if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
+    }
+    if (a == kPosition && n == 6) {
+      if (scan.coloured_vertices++ == 0) scan.first_coloured_line = line;
     }
     ++scan.count[a];
   } else if (k == "f") {
@@ -400,6 +407,9 @@ bool scan_obj_line_fast(size_t line, std::string_view s, ObjScan& scan) {
     if (a == kNormal && zero[0] && zero[1] && zero[2]) {
       if (scan.zero_normals++ == 0) scan.first_zero_normal_line = line;
     }
+    if (a == kPosition && n == 6) {
+      if (scan.coloured_vertices++ == 0) scan.first_coloured_line = line;
+    }
     ++scan.count[a];
     return true;
   }
@@ -468,6 +478,11 @@ void finish_obj_scan(const std::string& file, const ObjScan& scan,
     warnings.push_back(place(file, scan.first_zero_normal_line) + ": normal (0, 0, 0) has no " +
                        "direction (" + std::to_string(scan.zero_normals) +
                        " such in the file); corners using it get generated normals");
+  }
+  if (scan.coloured_vertices > 0) {
+    warnings.push_back(place(file, scan.first_coloured_line) + ": vertex colours (" +
+                       std::to_string(scan.coloured_vertices) +
+                       " vertices with r g b) are ignored: Tessera's materials do not read them");
   }
   for (const auto& [keyword, line] : scan.ignored) {
     warnings.push_back(place(file, line) + ": '" + keyword +

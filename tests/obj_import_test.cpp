@@ -189,6 +189,21 @@ TEST(ObjImportGeometry, QuadBecomesTwoTriangles) {
   EXPECT_NO_THROW(validate_scene(model.scene));
 }
 
+// `v x y z r g b` is read for its position; the colours are said to be ignored, once.
+TEST(ObjImportGeometry, VertexColoursAreIgnoredWithAWarning) {
+  const ImportedModel model = import_text("coloured.obj",
+                                          "v 0 0 0\nv 1 0 0 1 0 0\nv 1 1 0 0 1 0\n"
+                                          "f 1 2 3\n");
+  ASSERT_EQ(model.scene.meshes.size(), 1u);
+  EXPECT_EQ(model.scene.meshes[0].positions,
+            (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}));
+  ASSERT_EQ(model.warnings.size(), 1u) << all_warnings(model);
+  EXPECT_NE(model.warnings[0].find("coloured.obj' line 2: vertex colours (2 vertices with r g b) "
+                                   "are ignored"),
+            std::string::npos)
+      << model.warnings[0];
+}
+
 TEST(ObjImportGeometry, ConvexPentagonIsAFan) {
   const Mesh m = only_mesh("pentagon.obj",
                            "v 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0\nv -0.8 -0.6 0\nv 0.3 -0.95 0\n"
