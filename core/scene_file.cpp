@@ -344,11 +344,24 @@ void Reader::read_light(const Node& n) {
     l.attenuation = vector<3>(a, 0.0);
     if (l.attenuation == glm::vec3(0.0f)) fail(a, "Kc, Kl and Kq are all 0");
   }
-  if (has(n, "inner_angle_degrees"))
-    l.inner_angle = glm::radians(real(child(n, "inner_angle_degrees"), 0.0, 89.9));
-  if (has(n, "outer_angle_degrees"))
-    l.outer_angle = glm::radians(real(child(n, "outer_angle_degrees"), 0.0, 89.9));
-  if (l.inner_angle > l.outer_angle) fail(n, "the inner angle is larger than the outer angle");
+  // In degrees as the file gives them (the defaults' for those it does not), for the message.
+  double inner_degrees = std::round(glm::degrees(double(l.inner_angle)) * 1e4) / 1e4;
+  double outer_degrees = std::round(glm::degrees(double(l.outer_angle)) * 1e4) / 1e4;
+  if (has(n, "inner_angle_degrees")) {
+    inner_degrees = real(child(n, "inner_angle_degrees"), 0.0, 89.9);
+    l.inner_angle = glm::radians(float(inner_degrees));
+  }
+  if (has(n, "outer_angle_degrees")) {
+    outer_degrees = real(child(n, "outer_angle_degrees"), 0.0, 89.9);
+    l.outer_angle = glm::radians(float(outer_degrees));
+  }
+  if (l.inner_angle > l.outer_angle) {
+    // Placed at the angle the file gives (the inner one if both).
+    fail(child(n, has(n, "inner_angle_degrees") ? "inner_angle_degrees" : "outer_angle_degrees"),
+         "the inner angle (" + format_number(inner_degrees) +
+             " degrees) is larger than the outer angle (" + format_number(outer_degrees) +
+             " degrees)");
+  }
   out.scene.lights.push_back(l);
 }
 
