@@ -70,8 +70,9 @@ uint classify(uint slot, uint id, out RasterTri t) {
 // ALU rate on the H200 whichever lane searched (docs/performance.md, "What limits each pass"), so
 // the chain's latency, not its loads, was the cost. The answer, the last object whose first
 // triangle-instance id is <= tri (objects are sorted by it), is unique, so it is find_object's.
-// Every lane of the subgroup must be active (main calls it first, and a workgroup is a whole
-// number of subgroups): an inactive lane would vote "no" in the middle of the "yes" lanes.
+// Every lane of the subgroup must be active (main calls it before any branch, under a condition
+// the same in every lane, and a workgroup is a whole number of subgroups): an inactive lane
+// would vote "no" in the middle of the "yes" lanes.
 // gl_SubgroupSize rather than a count of the active lanes lets the compiler turn the division
 // into a shift (the subgroup size is a power of two, and a constant of the device).
 uint find_object_in_subgroup(uint tri, uint lo, uint hi) {
