@@ -34,6 +34,8 @@ enum class Pass {
   fill,
   raster_small,  // on GPUs recorded first: its threads' long walks start before the per-tile
   raster_tiles,  // pass's thousands of workgroups take the GPU (renderer.cpp's barrier_after)
+  raster_shade,  // small frames (RendererOptions::raster_shade): both rasterizers and shading in
+                 // one pass, in place of fill, raster_small, raster_tiles, list_tiles and shade
   list_tiles,    // shading by tiles (RendererOptions::shade_tiles): the drawn tiles and the others
   shade,
   outline,  // silhouette coverage (several samples): the outline pixels' exact coverage
@@ -86,6 +88,7 @@ enum class Dispatch {
   per_tile,            // one thread per screen tile (RendererOptions::tile_size), `group_size`
                        // per workgroup
   indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
+  tile_workgroups,     // a workgroup per screen tile (RendererOptions::tile_size), tiles_x x tiles_y
 };
 
 /// Which pipeline a pass binds.
@@ -96,6 +99,8 @@ enum class Variants {
   lod,         // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
                // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
   silhouette,  // only at several samples per pixel under AaCoverage::silhouette, built then
+  raster_shade,  // specialized to the scene as the shading pass is (renderer.cpp's
+                 // raster_shade_pipeline), built on first use
 };
 
 struct PassInfo {
@@ -133,6 +138,8 @@ constexpr PassInfo kPasses[] = {
      offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
     {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
+    {Pass::raster_shade, "raster_shade", "raster_shade", Stage::frame, Dispatch::tile_workgroups,
+     0, 0, 0, Variants::raster_shade},
     {Pass::list_tiles, "list_tiles", "list_tiles", Stage::frame, Dispatch::per_tile, 0,
      TS_GROUP_SIZE},
     {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},
@@ -164,6 +171,7 @@ constexpr bool pass_row_is_filled(const PassInfo& p) {
       return p.counter_offset % 4 == 0 &&
              p.counter_offset + 3 * sizeof(uint32_t) <= sizeof(gpu::GpuCounters);
     case Dispatch::none:
+    case Dispatch::tile_workgroups:
       return true;
   }
   return false;

@@ -71,6 +71,7 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .uv1_maps = v.uv1_maps,
           .samples = v.samples,
           .tile_size = v.tile_size,
+          .depth_rejection = v.depth_rejection ? VK_TRUE : VK_FALSE,
           .aa_coverage = v.aa_coverage,
           .shade_tiles = v.shade_tiles,
           .light_counts = v.light_counts};
@@ -204,7 +205,8 @@ VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
 }
 
 VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& v) {
-  return create_compute_pipeline(ctx, "shade", shade_specialization(v));
+  return create_compute_pipeline(ctx, v.rasterizes ? "raster_shade" : "shade",
+                                 shade_specialization(v));
 }
 
 void destroy_pipeline_cache(Context& ctx) {
@@ -233,7 +235,7 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
   for (const PassInfo& row : kPasses) {
     // The outline pass runs only at several samples per pixel: sampled_pipeline builds it.
     if (row.shader == nullptr || row.variants == Variants::shading ||
-        row.variants == Variants::silhouette)
+        row.variants == Variants::silhouette || row.variants == Variants::raster_shade)
       continue;
     // Every pass gets the tile size and the rejection and tile-shading switches; only those
     // that bin, rasterize or list by tiles read them.

@@ -45,7 +45,7 @@ struct Pipelines {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   std::array<VkPipeline, kPassCount> passes{};    // per pass that dispatches (all but
-                                                  // Variants::shading)
+                                                  // Variants::shading and ::raster_shade)
   std::array<VkPipeline, kPassCount> coverage{};  // TS_SPEC_DEBUG_COVERAGE on (::debug_coverage)
   std::array<VkPipeline, kPassCount> lod{};       // TS_SPEC_LOD on (Variants::lod)
   VkPipeline setup_object_clip_inline = VK_NULL_HANDLE;         // TS_SPEC_OBJECT_CLIP_INLINE on
@@ -75,6 +75,10 @@ struct ShadeVariant {
   uint32_t aa_coverage = TS_AA_COVERAGE_COUNT;  // FrameSettings::aa_coverage, with samples > 1
   uint32_t shade_tiles = TS_SHADE_TILES_OFF;    // which dispatch (RendererOptions::shade_tiles)
   uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size, for shade_tiles
+  // The pass that rasterizes and shades small frames (raster_shade.comp) rather than the
+  // shading pass, with or without depth rejection (RendererOptions::depth_rejection).
+  bool rasterizes = false;
+  bool depth_rejection = true;
   auto operator<=>(const ShadeVariant&) const = default;
 };
 

@@ -135,7 +135,7 @@ RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
     return {gpu.small_triangle_max_area, gpu.small_triangle_walk_area, gpu.depth_rejection, false,
-            gpu.tile_lists};
+            gpu.tile_lists, true};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
@@ -144,7 +144,7 @@ RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   // Each box is walked whole by one thread (its walk area is the small-triangle area), as in
   // the measurements that chose these settings; shorter walks were not measured apart there.
   return {kCpuSmallTriangleArea, kCpuSmallTriangleArea, gpu.depth_rejection, true,
-          TileLists::counted};
+          TileLists::counted, false};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
@@ -154,6 +154,7 @@ RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
   options.depth_rejection = t.depth_rejection;
   options.shade_tiles = t.shade_tiles;
   options.tile_lists = t.tile_lists;
+  options.raster_shade = t.raster_shade;
   return options;
 }
 
@@ -163,6 +164,9 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   // The generic shading pipelines shade every pixel (RendererOptions::shade_tiles).
   s_->shade_tiles =
       options.shade_tiles.value_or(raster_tuning(ctx.properties.deviceType).shade_tiles) &&
+      options.specialize_lights;
+  s_->raster_shade =
+      options.raster_shade.value_or(raster_tuning(ctx.properties.deviceType).raster_shade) &&
       options.specialize_lights;
   s_->small_first = ctx.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
   check_tile_size(ctx, options.tile_size);
@@ -741,6 +745,20 @@ ShadeVariant shade_variant(const Renderer::State& s, const FrameSettings& settin
 
 }  // namespace
 
+// The pipeline of the pass that rasterizes and shades small frames (Pass::raster_shade),
+// specialized to the scene as the shading pass is (RendererOptions::raster_shade needs
+// specialize_lights).
+VkPipeline raster_shade_pipeline(Renderer::State& s, const FrameSettings& settings) {
+  TESSERA_CHECK(s.options.specialize_lights && settings.samples == 1);
+  ShadeVariant v = shade_variant(s, settings);
+  v.tile_size = s.options.tile_size;
+  v.rasterizes = true;
+  v.depth_rejection = s.options.depth_rejection;
+  auto [it, inserted] = s.shade_variants.try_emplace(v, VK_NULL_HANDLE);
+  if (inserted) it->second = create_shade_pipeline(s.ctx, v);
+  return it->second;
+}
+
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings, uint32_t tiles) {
   const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {
@@ -873,6 +891,23 @@ bool dispatches_directly(const Renderer::State& s, bool lod, uint32_t batches) {
          s.last_counts.batches == batches && s.last_counts.triangles == s.uploaded.triangle_count;
 }
 
+// Whether this frame rasterizes and shades in one pass (RendererOptions::raster_shade): a frame
+// of one batch at one sample with nothing to clip, without level of detail, debug coverage or
+// shading by tiles, after a frame of the same scene that set up at most kRasterShadeMaxTriangles
+// raster triangles. On the H200 each dependent pass of a small frame costs about 8 us of waiting
+// for the one before, for a few microseconds of work (docs/performance.md, "Issue 13, thirteenth
+// round"). The last frame's count only chooses the speed: a frame of more triangles is rendered
+// the same, each tile testing them all.
+bool rasterizes_and_shades_in_one_pass(const Renderer::State& s, const FrameSettings& settings,
+                                       bool lod, uint32_t batches) {
+  if (!s.raster_shade || lod || batches != 1 || settings.samples != 1 || !s.skip_clip ||
+      s.shade_tiles || s.options.debug_coverage || !s.last_counts.valid ||
+      s.last_counts.batches != batches || s.last_counts.triangles != s.uploaded.triangle_count)
+    return false;
+  const auto& last = *static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
+  return last.raster_tris <= kRasterShadeMaxTriangles;
+}
+
 // Whether setup forms each triangle's view_proj * model itself and the frame records no
 // object_clip pass. Up to kObjectClipInlineTriangles triangle instances that costs less than a
 // pass of its own and the barrier after it: ~5 us on the H200, where 2^17 triangles' 64
@@ -954,6 +989,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     ensure_scratch_buffers(s, batches);
     s.object_clip_inline = forms_object_clip_in_setup(s, settings, lod);
     s.direct_dispatch = dispatches_directly(s, lod, batches);
+    s.raster_shade_frame = rasterizes_and_shades_in_one_pass(s, settings, lod, batches);
     const bool timestamps = ctx.timestamp_valid_bits > 0;
     const uint32_t queries_needed = timestamps_needed(batches);
     if (timestamps && s.query_capacity < queries_needed) {
@@ -1052,6 +1088,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
     stats.attempts = attempt;
     stats.batches = batches;
     stats.dispatched_directly = s.direct_dispatch;
+    stats.rasterized_and_shaded = s.raster_shade_frame;
     stats.tile_list_stride = s.tile_list_stride;
     for (uint32_t b = 0; b < batches; ++b) {
       const gpu::GpuCounters& c = counters[b];
@@ -1210,6 +1247,8 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
       break;
     case Variants::shading:
       return shade_pipeline(s, settings, s.shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF);
+    case Variants::raster_shade:
+      return raster_shade_pipeline(s, settings);
     case Variants::lod:
       if (settings.lod == Lod::automatic) return s.pipelines.lod[size_t(pass.pass)];
       break;
@@ -1281,6 +1320,9 @@ void record_dispatch(Renderer::State& s, VkCommandBuffer cmd, const PassInfo& pa
       break;
     case Dispatch::per_tile:
       vkCmdDispatch(cmd, div_up(uint64_t(s.tiles_x) * s.tiles_y, pass.group_size), 1, 1);
+      break;
+    case Dispatch::tile_workgroups:
+      vkCmdDispatch(cmd, s.tiles_x, s.tiles_y, 1);
       break;
     case Dispatch::indirect:
       if (s.direct_dispatch && (pass.pass == Pass::fill || pass.pass == Pass::raster_small ||
@@ -1422,6 +1464,8 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
             if (s.tile_list_stride != 0 && (pass == Pass::bin_count || pass == Pass::scan))
               continue;
             if (s.skip_clip && pass == Pass::clip) continue;
+            // raster_shade takes every pass after setup (and clip, which it runs without).
+            if (s.raster_shade_frame && pass != Pass::setup) continue;
             record_dispatch(s, cmd, kPasses[j], batch, settings);
             // None between the two rasterizers.
             if (k != size_t(Pass::raster_small))
@@ -1434,7 +1478,9 @@ void Renderer::record_frame(VkCommandBuffer cmd, uint32_t batches, bool timestam
       }
       case Stage::frame:
         if ((pass.pass == Pass::outline && !lists_outlines(settings)) ||
-            (pass.pass == Pass::list_tiles && !s.shade_tiles)) {
+            (pass.pass == Pass::list_tiles && !s.shade_tiles) ||
+            (pass.pass == Pass::raster_shade && !s.raster_shade_frame) ||
+            (pass.pass == Pass::shade && s.raster_shade_frame)) {
           ++i;
           break;
         }

@@ -69,6 +69,14 @@ struct RendererOptions {
   /// choice, raster_tuning's. Only with specialize_lights: the generic shading pipelines shade
   /// every pixel.
   std::optional<bool> shade_tiles;
+  /// Small frames rasterized and shaded in one pass (Pass::raster_shade): every screen tile's
+  /// workgroup tests every raster triangle whose pixel box meets the tile, then shades its
+  /// pixels, in place of the bin, fill, rasterizer and shading passes and the barriers between
+  /// them. Taken by a frame of one batch at one sample, with no clip pass, no level of detail,
+  /// no debug coverage and no shading by tiles, whose last frame (of the same scene) set up at
+  /// most kRasterShadeMaxTriangles raster triangles. Either setting gives the same image. Unset:
+  /// the device's choice, raster_tuning's (on for GPUs). Only with specialize_lights.
+  std::optional<bool> raster_shade;
   /// How the tile lists of binned triangles are laid out (TileLists). Every choice gives the
   /// same image; direct lists skip two passes of every batch.
   TileLists tile_lists = TileLists::automatic;
@@ -112,6 +120,7 @@ struct RasterTuning {
   bool depth_rejection;
   bool shade_tiles;
   TileLists tile_lists;
+  bool raster_shade;
 };
 
 /// The settings measured fastest on a device of `type` (docs/performance.md, "Device-tuned
@@ -124,6 +133,13 @@ struct RasterTuning {
 /// empty ones in 1.45 ms instead of 0.96).
 RasterTuning raster_tuning(VkPhysicalDeviceType type);
 constexpr uint32_t kCpuSmallTriangleArea = 4096;
+/// Most raster triangles (FrameStats::raster_triangles) of the last frame for which a frame
+/// rasterizes and shades in one pass (RendererOptions::raster_shade): each tile's workgroup
+/// tests them all, so the pass's work grows with tiles times triangles. On the H200 one grid
+/// sphere (328 raster triangles) took 0.050 ms instead of 0.064 at 1920x1080 and 0.029 instead
+/// of 0.038 at 512x512, ten (4,200) 0.149 instead of 0.089 and 0.050 instead of 0.033; the
+/// lines cross near 800 and 1,700 triangles (docs/performance.md, "Issue 13, thirteenth round").
+constexpr uint32_t kRasterShadeMaxTriangles = 512;
 
 /// `options` with raster_tuning's settings for `ctx`'s device: what the command-line tool
 /// starts from, before the options its user gives.
@@ -166,6 +182,8 @@ struct FrameStats {
   // The final attempt dispatched the passes after setup directly, sized by the frame before
   // (direct tile lists, from a scene's second frame on; docs/architecture.md, "The frame").
   bool dispatched_directly = false;
+  // The final attempt rasterized and shaded in one pass (RendererOptions::raster_shade).
+  bool rasterized_and_shaded = false;
 };
 
 struct UploadStats {

@@ -90,6 +90,10 @@ struct Renderer::State {
   // counts (renderer.cpp's dispatches_directly), and its batch passes' barriers wait for no
   // indirect-command read.
   bool direct_dispatch = false;
+  // RendererOptions::raster_shade as the device resolves it, and whether this frame takes it
+  // (renderer.cpp's rasterizes_and_shades_in_one_pass).
+  bool raster_shade = false;
+  bool raster_shade_frame = false;
   // What counters_readback holds: a frame of `batches` batches of `triangles` triangle
   // instances (valid false before the first frame and once the counters buffer is replaced).
   struct LastCounts {

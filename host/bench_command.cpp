@@ -42,6 +42,7 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
       a.small_triangle_area = tuned.small_triangle_max_area;
     if (!a.depth_rejection_given) a.depth_rejection = tuned.depth_rejection;
     if (!a.shade_tiles_given) a.shade_tiles = tuned.shade_tiles;
+    if (!a.raster_shade_given) a.raster_shade = tuned.raster_shade;
     if (!a.tile_lists_given) a.tile_lists = tuned.tile_lists;
   }
   const BenchResults results = measure_bench(ctx.get(), a);

@@ -274,6 +274,7 @@ RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& a) {
   options.tile_size = a.tile_size;
   options.depth_rejection = a.depth_rejection;
   options.shade_tiles = a.shade_tiles;
+  options.raster_shade = a.raster_shade;
   options.tile_lists = a.tile_lists;
   options.specialize_lights = !a.generic_shading;
   return options;

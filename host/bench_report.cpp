@@ -121,10 +121,11 @@ std::string segments_phrase(const BenchArgs& a) {
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
       "scene %s, %ux%u, %u sample%s per pixel%s%s, small-triangle area %u, shading by "
-      "tiles %s, %s tile lists, device '%s' (%s),\n%s\n",
+      "tiles %s, %s tile lists, raster and shade in one pass %s, device '%s' (%s),\n%s\n",
       a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
       coverage_phrase(a).c_str(), segments_phrase(a).c_str(), a.small_triangle_area,
-      a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists), results.device.c_str(),
+      a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists),
+      a.raster_shade ? "for small frames" : "off", results.device.c_str(),
       results.driver.c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
@@ -209,6 +210,7 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"tile_size\": " << a.tile_size
     << ",\n  \"depth_rejection\": " << (a.depth_rejection ? "true" : "false")
     << ",\n  \"shade_tiles\": " << (a.shade_tiles ? "true" : "false")
+    << ",\n  \"raster_shade\": " << (a.raster_shade ? "true" : "false")
     << ",\n  \"tile_lists\": " << json_string(tile_lists_name(a.tile_lists))
     << ",\n  \"hdr_format\": " << json_string(a.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16")
     << ",\n  \"generic_shading\": " << (a.generic_shading ? "true" : "false")

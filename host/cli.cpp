@@ -154,6 +154,16 @@ void add_depth_rejection(CLI::App& app, bool& on) {
              "drew; off rasterizes all. The image is the same");
 }
 
+// --raster-shade, for render and bench.
+void add_raster_shade(CLI::App& app, bool& on) {
+  add_choice(app, "--raster-shade", on, {{"on", true}, {"off", false}},
+             "small frames (up to 512 raster triangles the\n"
+             "frame before, one sample) rasterized and shaded\n"
+             "in one pass: on, or off for the separate passes.\n"
+             "The image is the same. Default: the device's\n"
+             "(on for GPUs)");
+}
+
 // --shade-tiles, for render and bench.
 void add_shade_tiles(CLI::App& app, bool& on) {
   add_choice(app, "--shade-tiles", on, {{"on", true}, {"off", false}},
@@ -401,6 +411,7 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
   add_shade_tiles(app, a.shade_tiles);
+  add_raster_shade(app, a.raster_shade);
   add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--brdf, --energy-compensation, --samples,\n"
@@ -514,6 +525,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   add_tile_size(app, a.tile_size);
   add_depth_rejection(app, a.depth_rejection);
   add_shade_tiles(app, a.shade_tiles);
+  add_raster_shade(app, a.raster_shade);
   add_tile_lists(app, a.tile_lists);
   add_quality(app, a.quality,
               "--samples, --lod, --lod-error, --hdr-format,\n"
@@ -792,6 +804,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.view_given = render->count("--view") > 0;
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
   r.shade_tiles_given = render->count("--shade-tiles") > 0;
+  r.raster_shade_given = render->count("--raster-shade") > 0;
   r.tile_lists_given = render->count("--tile-lists") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);
@@ -814,6 +827,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
+  b.raster_shade_given = bench->count("--raster-shade") > 0;
   b.tile_lists_given = bench->count("--tile-lists") > 0;
   // A count twice would be two points of one name: --compare matches points by count.
   for (size_t i = 0; i < b.objects.size(); ++i) {

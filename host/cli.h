@@ -29,6 +29,7 @@ struct RenderArgs {
   uint32_t tile_size = TS_TILE_SIZE;            // RendererOptions::tile_size
   bool depth_rejection = true;                  // RendererOptions::depth_rejection
   bool shade_tiles = false;                     // RendererOptions::shade_tiles
+  bool raster_shade = false;                    // RendererOptions::raster_shade
   TileLists tile_lists = TileLists::automatic;  // RendererOptions::tile_lists
   Quality quality = Quality::none;              // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
@@ -45,7 +46,8 @@ struct RenderArgs {
        view_given = false;
   // --depth-rejection and --shade-tiles given: else the device's (raster_tuning,
   // compute/renderer.h).
-  bool depth_rejection_given = false, shade_tiles_given = false, tile_lists_given = false;
+  bool depth_rejection_given = false, shade_tiles_given = false, tile_lists_given = false,
+       raster_shade_given = false;
 };
 
 struct BenchArgs {
@@ -73,13 +75,15 @@ struct BenchArgs {
   uint32_t tile_size = TS_TILE_SIZE;             // RendererOptions::tile_size
   bool depth_rejection = true;                   // RendererOptions::depth_rejection
   bool shade_tiles = false;                      // RendererOptions::shade_tiles
+  bool raster_shade = false;                     // RendererOptions::raster_shade
   TileLists tile_lists = TileLists::automatic;   // RendererOptions::tile_lists
   Quality quality = Quality::none;               // --quality, applied by parse_command_line
-  // --small-triangle-area, --depth-rejection and --shade-tiles given: else the device's
+  // --small-triangle-area, --depth-rejection, --shade-tiles, --tile-lists and --raster-shade
+  // given: else the device's
   // (raster_tuning, compute/renderer.h), written here by run_bench once the device is known;
   // --quality's small-triangle area counts as given on GPUs (preset_sets_small_triangle_area).
   bool small_triangle_area_given = false, depth_rejection_given = false, shade_tiles_given = false,
-       tile_lists_given = false;
+       tile_lists_given = false, raster_shade_given = false;
   std::string csv, json, chart;
   bool quiet = false;
   bool strict = false;    // --strict: unknown keys in a scene file (and model warnings) are errors

@@ -144,6 +144,7 @@ int run_render(const RenderArgs& given) {
   renderer_options.tile_size = args.tile_size;
   if (args.depth_rejection_given) renderer_options.depth_rejection = args.depth_rejection;
   if (args.shade_tiles_given) renderer_options.shade_tiles = args.shade_tiles;
+  if (args.raster_shade_given) renderer_options.raster_shade = args.raster_shade;
   if (args.tile_lists_given) renderer_options.tile_lists = args.tile_lists;
   Renderer renderer(*ctx, renderer_options);
   renderer.set_scene(scene);
