@@ -28,6 +28,8 @@ TEST(RasterTuning, GpusKeepTheRendererDefaults) {
     // Measured slower on the H200 (docs/performance.md, "Shading by tiles").
     EXPECT_FALSE(t.shade_tiles) << type;
     EXPECT_EQ(t.tile_lists, defaults.tile_lists) << type;
+    // Measured faster on the H200 (docs/performance.md, "Issue 13, thirteenth round").
+    EXPECT_TRUE(t.raster_shade) << type;
   }
 }
 
@@ -38,6 +40,9 @@ TEST(RasterTuning, CpuDevicesRasterizeBoxesUpTo4096PixelsPerTriangle) {
   EXPECT_TRUE(t.depth_rejection);
   EXPECT_TRUE(t.shade_tiles);
   EXPECT_EQ(t.tile_lists, TileLists::counted);
+  // One workgroup per tile runs the whole shading code for all its pixels there, and shading by
+  // tiles, which saves that for the background, cannot go with it.
+  EXPECT_FALSE(t.raster_shade);
 }
 
 class RasterTuningOnDevice : public test::VulkanTest {};
@@ -52,6 +57,7 @@ TEST_F(RasterTuningOnDevice, LavapipeTakesTheCpuTuningAndKeepsTheOtherOptions) {
   EXPECT_EQ(tuned.depth_rejection, cpu.depth_rejection);
   EXPECT_EQ(tuned.shade_tiles, cpu.shade_tiles);
   EXPECT_EQ(tuned.tile_lists, cpu.tile_lists);
+  EXPECT_EQ(tuned.raster_shade, cpu.raster_shade);
   EXPECT_EQ(tuned.tile_size, 8u);
   EXPECT_FALSE(tuned.resolve);
 }
