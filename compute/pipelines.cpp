@@ -45,7 +45,8 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_AA_COVERAGE, offsetof(Specialization, aa_coverage), sizeof(uint32_t)},
       {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)},
       {TS_SPEC_SHADE_TILES, offsetof(Specialization, shade_tiles), sizeof(uint32_t)},
-      {TS_SPEC_OBJECT_CLIP_INLINE, offsetof(Specialization, object_clip_inline), sizeof(VkBool32)}};
+      {TS_SPEC_OBJECT_CLIP_INLINE, offsetof(Specialization, object_clip_inline), sizeof(VkBool32)},
+      {TS_SPEC_RASTER_ONLY, offsetof(Specialization, raster_only), sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -258,6 +259,9 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
       Specialization inline_clip = pass.spec;
       inline_clip.object_clip_inline = VK_TRUE;
       p.setup_object_clip_inline = create_compute_pipeline(ctx, pass.shader, inline_clip);
+      Specialization raster_only = inline_clip;
+      raster_only.raster_only = VK_TRUE;
+      p.setup_raster_only = create_compute_pipeline(ctx, pass.shader, raster_only);
     }
   }
   for (const PipelineInfo& info : kPipelines) {

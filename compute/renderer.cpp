@@ -1238,7 +1238,8 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     if (pass.variants == Variants::silhouette) spec.silhouette_steps = settings.silhouette_steps;
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
-  if (pass.pass == Pass::setup && s.object_clip_inline) return s.pipelines.setup_object_clip_inline;
+  if (pass.pass == Pass::setup && s.object_clip_inline)
+    return s.raster_shade_frame ? s.pipelines.setup_raster_only : s.pipelines.setup_object_clip_inline;
   switch (pass.variants) {
     case Variants::plain:
       break;

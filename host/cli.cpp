@@ -614,7 +614,7 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
                  "brdf, tessellation, lod, anisotropy, env-size,\n"
                  "env-samples, samples, aa-coverage,\n"
                  "aa-walk-steps, hdr, small-triangle, tile-size,\n"
-                 "depth-rejection, shade-tiles\n"
+                 "depth-rejection, shade-tiles, raster-shade\n"
                  "(docs/tradeoffs.md)")
       ->type_name("K[,K...]")
       ->delimiter(',')

@@ -24,6 +24,7 @@ const std::vector<KnobInfo>& knobs() {
       {"tile-size", "side of the binned rasterizer's tiles: 8, 16 px (speed only)"},
       {"depth-rejection", "hierarchical depth rejection: off, on (speed only)"},
       {"shade-tiles", "shading by tiles: off, on (speed only)"},
+      {"raster-shade", "small frames rasterized and shaded in one pass: off, on (speed only)"},
   };
   return list;
 }
@@ -172,16 +173,19 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       s.speed_only = true;
       out.push_back(s);
     }
-  } else if (knob == "depth-rejection" || knob == "shade-tiles") {
-    const bool rejection = knob == "depth-rejection";
+  } else if (knob == "depth-rejection" || knob == "shade-tiles" || knob == "raster-shade") {
     for (bool on : {false, true}) {
       KnobSetting s = base(knob, on ? "on" : "off", frame, options);
-      if (rejection) {
+      if (knob == "depth-rejection") {
         s.renderer.depth_rejection = on;
-      } else {
+        s.is_default = on == options.depth_rejection;
+      } else if (knob == "shade-tiles") {
         s.renderer.shade_tiles = on;
+        s.is_default = on == options.shade_tiles;
+      } else {
+        s.renderer.raster_shade = on;
+        s.is_default = on == options.raster_shade;
       }
-      s.is_default = rejection ? on == options.depth_rejection : on == options.shade_tiles;
       s.speed_only = true;
       out.push_back(s);
     }

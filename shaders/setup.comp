@@ -17,6 +17,10 @@ layout(local_size_x = TS_SETUP_GROUP_SIZE) in;
 
 // Under level of detail the batch's triangle count is the lod_scan pass's, on the GPU.
 layout(constant_id = TS_SPEC_LOD) const bool LOD = false;
+// Raster triangles only (frames that rasterize and shade in one pass read no walks or bin
+// entries): the walks' and bin entries' atomics, each a round trip a subgroup waits for, are
+// left out.
+layout(constant_id = TS_SPEC_RASTER_ONLY) const bool RASTER_ONLY = false;
 
 // Cull counts of the workgroup, a word per subgroup (at most one per thread): a byte per kind,
 // the subgroup's count of it (a subgroup has at most 128 lanes). A million-object frame culls
@@ -179,6 +183,7 @@ void main() {
   APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
   bool stored = emits && index < frame.raster_capacity;
   if (stored) store_raster_tri(index, t);
+  if (RASTER_ONLY) return;
   // Small triangles: a variable number of walks per thread, taken with a prefix sum.
   uint walks = stored && outcome == OUTCOME_SMALL ? small_walks(t) : 0u;
   uint small_slot;

@@ -77,13 +77,14 @@ bool box_meets_tile(uint index, ivec2 tile) {
 
 // Rasterizes this thread's pixel (`p` its fixed-point centre) against every raster triangle of
 // [first, end) whose box meets the tile (raster_shade.comp), from best[] as the caller set it:
-// a workgroup's worth of triangles at a time, those that meet the tile listed in shared memory
-// and rasterized. No depth rejection: the frames that take this are small
-// (RendererOptions::raster_shade). Every thread of the workgroup must call it (barriers).
-// Double-buffered by round parity, so that one barrier a round suffices: round r lists into
-// scan_chunk[r & 1] while no thread reads it (they read it in round r - 2, before barrier
-// r - 1).
-shared uint scan_chunk[2][TS_TILE_SIZE * TS_TILE_SIZE];
+// SCAN_ROUND triangles at a time (each thread tests SCAN_ROUND / workgroup size of them), those
+// that meet the tile listed in shared memory and rasterized. No depth rejection: the frames that
+// take this are small (RendererOptions::raster_shade, at most 512 triangles: one round).
+// Every thread of the workgroup must call it (barriers). Double-buffered by round parity, so
+// that one barrier a round suffices: round r lists into scan_list[r & 1] while no thread reads
+// it (they read it in round r - 2, before barrier r - 1).
+const uint SCAN_ROUND = 512u;
+shared uint scan_list[2][SCAN_ROUND];
 shared uint scan_count[3];
 void scan_tile(ivec2 tile, uint first, uint end, ivec2 pixel, ivec2 p) {
   uint group = TILE_SIZE * TILE_SIZE;
@@ -91,18 +92,17 @@ void scan_tile(ivec2 tile, uint first, uint end, ivec2 pixel, ivec2 p) {
   if (local == 0u) scan_count[0] = 0u;
   barrier();
   uint round = 0u;
-  for (uint base = first; base < end; base += group, ++round) {
+  for (uint base = first; base < end; base += SCAN_ROUND, ++round) {
     uint now = round & 1u;
     // The count round r + 1 lists into, which no thread reads during round r (round r - 1's
     // count is read before barrier r; the three slots turn by round modulo 3).
     if (local == 0u) scan_count[(round + 1u) % 3u] = 0u;
-    uint k = base + local;
-    if (k < end) {
-      if (box_meets_tile(k, tile)) scan_chunk[now][atomicAdd(scan_count[round % 3u], 1u)] = k;
+    for (uint k = base + local; k < min(base + SCAN_ROUND, end); k += group) {
+      if (box_meets_tile(k, tile)) scan_list[now][atomicAdd(scan_count[round % 3u], 1u)] = k;
     }
     barrier();
     uint kept = scan_count[round % 3u];
-    for (uint j = 0u; j < kept; ++j) rasterize(scan_chunk[now][j], pixel, p);
+    for (uint j = 0u; j < kept; ++j) rasterize(scan_list[now][j], pixel, p);
   }
 }
 

@@ -31,7 +31,7 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   FrameSettings frame;
   frame.brdf = Brdf::filament;
   // Every choice made, as tuned_for_device leaves the options the tool gives knob_settings.
-  RendererOptions options{.shade_tiles = false};
+  RendererOptions options{.shade_tiles = false, .raster_shade = false};
   for (const KnobInfo& k : knobs()) {
     const std::vector<KnobSetting> settings = knob_settings(k.name, frame, options);
     EXPECT_GE(settings.size(), 2u) << k.name;
@@ -88,6 +88,16 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   EXPECT_EQ(shading[1].renderer.shade_tiles, true);
   EXPECT_FALSE(shading[0].is_default);
   EXPECT_TRUE(shading[1].is_default);
+  // And small frames in one pass: off, then on (a GPU's default).
+  RendererOptions one_pass = options;
+  one_pass.raster_shade = true;
+  const std::vector<KnobSetting> raster = knob_settings("raster-shade", frame, one_pass);
+  ASSERT_EQ(raster.size(), 2u);
+  for (const KnobSetting& r : raster) EXPECT_TRUE(r.speed_only) << r.label;
+  EXPECT_EQ(raster[0].renderer.raster_shade, false);
+  EXPECT_EQ(raster[1].renderer.raster_shade, true);
+  EXPECT_FALSE(raster[0].is_default);
+  EXPECT_TRUE(raster[1].is_default);
   try {
     knob_settings("msaa", frame, options);
     FAIL() << "an unknown knob must throw";

@@ -162,9 +162,12 @@ using glm::vec4;
 // (view_clip.glsl), in frames that record no object_clip pass (renderer.cpp's
 // forms_object_clip_in_setup).
 #define TS_SPEC_OBJECT_CLIP_INLINE 15
+// Setup appends raster triangles only, no small-triangle walks or bin entries: in frames that
+// rasterize and shade in one pass (RendererOptions::raster_shade), which read neither.
+#define TS_SPEC_RASTER_ONLY 16
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 16
+#define TS_SPEC_LIGHT_COUNT_BASE 17
 
 // How the shading pass is dispatched (TS_SPEC_SHADE_TILES).
 #define TS_SHADE_TILES_OFF 0u    // a workgroup per 8x8 pixels of the whole image
