@@ -182,7 +182,9 @@ struct FrameStats {
   // The final attempt dispatched the passes after setup directly, sized by the frame before
   // (direct tile lists, from a scene's second frame on; docs/architecture.md, "The frame").
   bool dispatched_directly = false;
-  // The final attempt rasterized and shaded in one pass (RendererOptions::raster_shade).
+  // The final attempt rasterized and shaded in one pass (RendererOptions::raster_shade). Such
+  // a frame sorts nothing into small and binned triangles: small_triangles, big_triangles,
+  // tile_entries and the rejected counts are 0.
   bool rasterized_and_shaded = false;
 };
 

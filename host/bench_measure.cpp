@@ -87,6 +87,7 @@ BenchRow measure_compute(Renderer& r, const FrameSettings& settings, const Bench
   row.rejected_entries = last.rejected_entries;
   row.rejected_small = last.rejected_small;
   row.tile_list_stride = last.tile_list_stride;
+  row.rasterized_and_shaded = last.rasterized_and_shaded;
   row.batches = last.batches;
   row.frames = a.repeat;
   if (!last.has_timestamps) row.note = "no timestamps";

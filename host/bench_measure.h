@@ -29,6 +29,9 @@ struct BenchRow {
   uint64_t rejected_entries = 0;  // compute: of those, skipped by depth rejection
   uint64_t rejected_small = 0;    // compute: small triangles skipped by depth rejection
   uint32_t tile_list_stride = 0;  // compute: slots per tile list (direct lists), 0 if counted
+  // compute: the frames were rasterized and shaded in one pass (small frames; the small,
+  // binned and tile-entry counts are then 0)
+  bool rasterized_and_shaded = false;
   double total_ms = 0.0;          // GPU time (compute, hardware) or wall time (reference)
   // compute: the frames pass_ms comes from, timed with a timestamp after every pass, which
   // adds to the frame (Timing::frame); total_ms is of as many frames timed without them.

@@ -79,19 +79,30 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
                   const std::vector<FrameStats>& timed) {
   const FrameStats& last = timed.back();
   print_written(args, ctx.properties.deviceName);
-  std::printf(
-      "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned in %llu bin entries), "
-      "%llu back-facing, %llu outside, %llu empty, %llu clipped\n",
-      (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
-      (unsigned long long)last.small_triangles,
-      (unsigned long long)(last.raster_triangles -
-                           std::min(last.small_triangles, last.raster_triangles)),
-      (unsigned long long)last.big_triangles, (unsigned long long)last.culled_backface,
-      (unsigned long long)last.culled_frustum, (unsigned long long)last.culled_empty,
-      (unsigned long long)last.clipped);
-  std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
-              (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
-              (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
+  // A frame rasterized and shaded in one pass sorts nothing into small and binned triangles
+  // (RendererOptions::raster_shade).
+  if (last.rasterized_and_shaded) {
+    std::printf(
+        "triangles: %llu submitted, %llu rasterized and shaded in one pass (a small frame), "
+        "%llu back-facing, %llu outside, %llu empty, %llu clipped\n",
+        (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
+        (unsigned long long)last.culled_backface, (unsigned long long)last.culled_frustum,
+        (unsigned long long)last.culled_empty, (unsigned long long)last.clipped);
+  } else {
+    std::printf(
+        "triangles: %llu submitted, %llu rasterized (%llu small, %llu binned in %llu bin entries), "
+        "%llu back-facing, %llu outside, %llu empty, %llu clipped\n",
+        (unsigned long long)last.triangles_submitted, (unsigned long long)last.raster_triangles,
+        (unsigned long long)last.small_triangles,
+        (unsigned long long)(last.raster_triangles -
+                             std::min(last.small_triangles, last.raster_triangles)),
+        (unsigned long long)last.big_triangles, (unsigned long long)last.culled_backface,
+        (unsigned long long)last.culled_frustum, (unsigned long long)last.culled_empty,
+        (unsigned long long)last.clipped);
+    std::printf("depth rejection: %llu of %llu tile entries, %llu of %llu small triangles\n",
+                (unsigned long long)last.rejected_entries, (unsigned long long)last.tile_entries,
+                (unsigned long long)last.rejected_small, (unsigned long long)last.small_triangles);
+  }
   if (last.tile_list_stride > 0) {
     std::printf("tile lists: direct, room for %u entries a tile\n", last.tile_list_stride);
   } else {

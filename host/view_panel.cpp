@@ -37,16 +37,25 @@ void draw_timings(const PanelInput& in) {
 void draw_counts(const FrameStats& s) {
   ImGui::Text("triangles: %llu submitted, %llu rasterized",
               (unsigned long long)s.triangles_submitted, (unsigned long long)s.raster_triangles);
-  ImGui::Text(
-      "%llu small, %llu binned to tiles", (unsigned long long)s.small_triangles,
-      (unsigned long long)(s.raster_triangles - std::min(s.small_triangles, s.raster_triangles)));
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "small: a pixel box of at most the small-triangle area (128 pixels on GPUs, 4096 on\n"
-        "CPU devices), rasterized by a thread per walk of its rows\n"
-        "binned to tiles: larger, sorted into the screen tiles they touch (%llu bin entries of\n"
-        "up to 8x8 tiles) and rasterized one workgroup per tile (docs/architecture.md)",
-        (unsigned long long)s.big_triangles);
+  if (s.rasterized_and_shaded) {
+    ImGui::TextUnformatted("rasterized and shaded in one pass");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "a small frame: every tile's workgroup tests every triangle and shades its pixels\n"
+          "(--raster-shade, docs/architecture.md, \"Small frames in one pass\")");
+    }
+  } else {
+    ImGui::Text(
+        "%llu small, %llu binned to tiles", (unsigned long long)s.small_triangles,
+        (unsigned long long)(s.raster_triangles - std::min(s.small_triangles, s.raster_triangles)));
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "small: a pixel box of at most the small-triangle area (128 pixels on GPUs, 4096 on\n"
+          "CPU devices), rasterized by a thread per walk of its rows\n"
+          "binned to tiles: larger, sorted into the screen tiles they touch (%llu bin entries of\n"
+          "up to 8x8 tiles) and rasterized one workgroup per tile (docs/architecture.md)",
+          (unsigned long long)s.big_triangles);
+    }
   }
   ImGui::Text("culled: %llu back-facing, %llu outside the view",
               (unsigned long long)s.culled_backface, (unsigned long long)s.culled_frustum);
