@@ -89,17 +89,17 @@ enum class Dispatch {
   per_tile,            // one thread per screen tile (RendererOptions::tile_size), `group_size`
                        // per workgroup
   indirect,            // VkDispatchIndirectCommand at `counter_offset` of the batch's GpuCounters
-  tile_workgroups,     // a workgroup per screen tile (RendererOptions::tile_size), tiles_x x tiles_y
+  tile_workgroups,     // a workgroup per screen tile (RendererOptions::tile_size)
 };
 
 /// Which pipeline a pass binds.
 enum class Variants {
   plain,           // the one built from `shader` and `spec`
   debug_coverage,  // that, or with TS_SPEC_DEBUG_COVERAGE on under RendererOptions::debug_coverage
-  shading,     // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
-  lod,         // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
-               // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
-  silhouette,  // only at several samples per pixel under AaCoverage::silhouette, built then
+  shading,       // chosen per frame by the scene and FrameSettings (renderer.cpp's shade_pipeline)
+  lod,           // that, or under FrameSettings::lod automatic with TS_SPEC_LOD on and dispatched
+                 // indirectly from the GpuCounters field at `counter_offset` (which lod_scan wrote)
+  silhouette,    // only at several samples per pixel under AaCoverage::silhouette, built then
   raster_shade,  // specialized to the scene as the shading pass is (renderer.cpp's
                  // raster_shade_pipeline), built on first use
 };
@@ -139,8 +139,8 @@ constexpr PassInfo kPasses[] = {
      offsetof(gpu::GpuCounters, small_dispatch), Variants::debug_coverage},
     {Pass::raster_tiles, "raster_tiles", "raster_tiles", Stage::batch, Dispatch::indirect, 0, 0,
      offsetof(gpu::GpuCounters, tiles_dispatch), Variants::debug_coverage},
-    {Pass::raster_shade, "raster_shade", "raster_shade", Stage::frame, Dispatch::tile_workgroups,
-     0, 0, 0, Variants::raster_shade},
+    {Pass::raster_shade, "raster_shade", "raster_shade", Stage::frame, Dispatch::tile_workgroups, 0,
+     0, 0, Variants::raster_shade},
     {Pass::list_tiles, "list_tiles", "list_tiles", Stage::frame, Dispatch::per_tile, 0,
      TS_GROUP_SIZE},
     {Pass::shade, "shade", "shade", Stage::frame, Dispatch::per_pixel, 0, 8, 0, Variants::shading},

@@ -49,7 +49,7 @@ struct Pipelines {
   std::array<VkPipeline, kPassCount> coverage{};  // TS_SPEC_DEBUG_COVERAGE on (::debug_coverage)
   std::array<VkPipeline, kPassCount> lod{};       // TS_SPEC_LOD on (Variants::lod)
   VkPipeline setup_object_clip_inline = VK_NULL_HANDLE;         // TS_SPEC_OBJECT_CLIP_INLINE on
-  VkPipeline setup_raster_only = VK_NULL_HANDLE;  // that and TS_SPEC_RASTER_ONLY on
+  VkPipeline setup_raster_only = VK_NULL_HANDLE;                // that and TS_SPEC_RASTER_ONLY on
   std::array<VkPipeline, size_t(Pipeline::count)> pipelines{};  // kPipelines
   VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
   VkPipeline operator[](Pass p) const { return passes[size_t(p)]; }

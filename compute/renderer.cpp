@@ -134,8 +134,12 @@ void validate_tile_size(uint32_t tile_size) {
 RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
-    return {gpu.small_triangle_max_area, gpu.small_triangle_walk_area, gpu.depth_rejection, false,
-            gpu.tile_lists, true};
+    return {gpu.small_triangle_max_area,
+            gpu.small_triangle_walk_area,
+            gpu.depth_rejection,
+            false,
+            gpu.tile_lists,
+            true};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
@@ -143,8 +147,9 @@ RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   // they are not dispatched to it.
   // Each box is walked whole by one thread (its walk area is the small-triangle area), as in
   // the measurements that chose these settings; shorter walks were not measured apart there.
-  return {kCpuSmallTriangleArea, kCpuSmallTriangleArea, gpu.depth_rejection, true,
-          TileLists::counted, false};
+  return {kCpuSmallTriangleArea, kCpuSmallTriangleArea,
+          gpu.depth_rejection,   true,
+          TileLists::counted,    false};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
@@ -1239,7 +1244,8 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
   if (pass.pass == Pass::setup && s.object_clip_inline)
-    return s.raster_shade_frame ? s.pipelines.setup_raster_only : s.pipelines.setup_object_clip_inline;
+    return s.raster_shade_frame ? s.pipelines.setup_raster_only
+                                : s.pipelines.setup_object_clip_inline;
   switch (pass.variants) {
     case Variants::plain:
       break;

@@ -32,7 +32,7 @@ struct BenchRow {
   // compute: the frames were rasterized and shaded in one pass (small frames; the small,
   // binned and tile-entry counts are then 0)
   bool rasterized_and_shaded = false;
-  double total_ms = 0.0;          // GPU time (compute, hardware) or wall time (reference)
+  double total_ms = 0.0;  // GPU time (compute, hardware) or wall time (reference)
   // compute: the frames pass_ms comes from, timed with a timestamp after every pass, which
   // adds to the frame (Timing::frame); total_ms is of as many frames timed without them.
   double per_pass_total_ms = 0.0;

@@ -81,7 +81,8 @@ TEST_F(RasterShade, OverlappingTrianglesKeepTheNearestKey) {
   red.base_color = {0.8f, 0.1f, 0.1f};
   blue.base_color = {0.1f, 0.2f, 0.9f};
   scene.materials = {red, blue};
-  scene.objects = {{0, 0, glm::mat4(1.0f)}, {0, 1, glm::translate(glm::mat4(1.0f), {0.2f, 0.1f, -0.5f})}};
+  scene.objects = {{0, 0, glm::mat4(1.0f)},
+                   {0, 1, glm::translate(glm::mat4(1.0f), {0.2f, 0.1f, -0.5f})}};
   Light light;
   light.position = {0.0f, 1.0f, 3.0f};
   light.intensity = 20.0f;
@@ -137,8 +138,7 @@ TEST_F(RasterShade, FramesOutsideItsConditionsTakeTheSeparatePasses) {
   EXPECT_TRUE(second_frame(one, {}, frame_of(64, 64)).rasterized_and_shaded);
   EXPECT_FALSE(second_frame(one, {.raster_shade = false}, frame_of(64, 64)).rasterized_and_shaded);
   EXPECT_FALSE(second_frame(one, {}, frame_of(64, 64, 4)).rasterized_and_shaded);
-  EXPECT_FALSE(
-      second_frame(one, {.debug_coverage = true}, frame_of(64, 64)).rasterized_and_shaded);
+  EXPECT_FALSE(second_frame(one, {.debug_coverage = true}, frame_of(64, 64)).rasterized_and_shaded);
   EXPECT_FALSE(second_frame(one, {.shade_tiles = true}, frame_of(64, 64)).rasterized_and_shaded);
   EXPECT_FALSE(
       second_frame(one, {.specialize_lights = false}, frame_of(64, 64)).rasterized_and_shaded);
