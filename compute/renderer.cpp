@@ -910,7 +910,8 @@ bool rasterizes_and_shades_in_one_pass(const Renderer::State& s, const FrameSett
       s.last_counts.batches != batches || s.last_counts.triangles != s.uploaded.triangle_count)
     return false;
   const auto& last = *static_cast<const gpu::GpuCounters*>(s.counters_readback.mapped);
-  return last.raster_tris <= kRasterShadeMaxTriangles;
+  return last.raster_tris <= kRasterShadeMaxTriangles &&
+         last.large_box_tiles <= uint64_t(kRasterShadeMaxTrianglesPerTile) * s.tiles_x * s.tiles_y;
 }
 
 // Whether setup forms each triangle's view_proj * model itself and the frame records no
@@ -1101,6 +1102,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
       stats.small_triangles += c.small_counts.y;
       stats.big_triangles += c.big_tris;
       stats.tile_entries += c.tile_entries;
+      stats.large_box_tiles += c.large_box_tiles;
       stats.culled_backface += c.culled_backface;
       stats.culled_frustum += c.culled_frustum;
       stats.culled_empty += c.culled_empty;

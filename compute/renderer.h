@@ -74,8 +74,9 @@ struct RendererOptions {
   /// pixels, in place of the bin, fill, rasterizer and shading passes and the barriers between
   /// them. Taken by a frame of one batch at one sample, with no clip pass, no level of detail,
   /// no debug coverage and no shading by tiles, whose last frame (of the same scene) set up at
-  /// most kRasterShadeMaxTriangles raster triangles. Either setting gives the same image. Unset:
-  /// the device's choice, raster_tuning's (on for GPUs). Only with specialize_lights.
+  /// most kRasterShadeMaxTriangles raster triangles, of which at most
+  /// kRasterShadeMaxTrianglesPerTile large ones per tile on average. Either setting gives the same
+  /// image. Unset: the device's choice, raster_tuning's (on for GPUs). Only with specialize_lights.
   std::optional<bool> raster_shade;
   /// How the tile lists of binned triangles are laid out (TileLists). Every choice gives the
   /// same image; direct lists skip two passes of every batch.
@@ -140,6 +141,13 @@ constexpr uint32_t kCpuSmallTriangleArea = 4096;
 /// of 0.038 at 512x512, ten (4,200) 0.149 instead of 0.089 and 0.050 instead of 0.033; the
 /// lines cross near 800 and 1,700 triangles (docs/performance.md, "Issue 13, thirteenth round").
 constexpr uint32_t kRasterShadeMaxTriangles = 512;
+/// And at most this many large triangles (pixel boxes over the small-triangle area) per tile on
+/// average, counting each in every tile its box meets (FrameStats::large_box_tiles): the pass
+/// tests every pixel of a tile against each, without the depth rejection of the separate
+/// passes. On the H200 at 1920x1080 four triangles each covering the image (the huge family)
+/// took 0.146 ms in one pass against 0.166 in the separate passes, eight 0.192 against 0.168
+/// (docs/performance.md, "Issue 13, thirteenth round").
+constexpr uint32_t kRasterShadeMaxTrianglesPerTile = 4;
 
 /// `options` with raster_tuning's settings for `ctx`'s device: what the command-line tool
 /// starts from, before the options its user gives.
@@ -165,6 +173,10 @@ struct FrameStats {
   uint64_t small_triangles = 0;
   uint64_t big_triangles = 0;
   uint64_t tile_entries = 0;
+  // The (tile, triangle) pairs of the pixel boxes of triangles larger than the small-triangle
+  // area (at least tile_entries, which leaves out tiles a triangle's edges miss): what
+  // RendererOptions::raster_shade's choice goes by.
+  uint64_t large_box_tiles = 0;
   uint32_t tile_list_stride = 0;  // slots per tile list (TileLists::direct), 0 if counted
   uint64_t culled_backface = 0;   // culled by facing (RendererOptions::cull)
   uint64_t culled_frustum = 0;
@@ -183,8 +195,8 @@ struct FrameStats {
   // (direct tile lists, from a scene's second frame on; docs/architecture.md, "The frame").
   bool dispatched_directly = false;
   // The final attempt rasterized and shaded in one pass (RendererOptions::raster_shade). Such
-  // a frame sorts nothing into small and binned triangles: small_triangles, big_triangles,
-  // tile_entries and the rejected counts are 0.
+  // a frame fills no lists: small_triangles, big_triangles, tile_entries and the rejected
+  // counts are 0.
   bool rasterized_and_shaded = false;
 };
 

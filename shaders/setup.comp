@@ -183,6 +183,20 @@ void main() {
   APPEND_SLOT(counters[batch.index].raster_tris, emits, index);
   bool stored = emits && index < frame.raster_capacity;
   if (stored) store_raster_tri(index, t);
+  // The (tile, triangle) pairs of the large triangles' pixel boxes (those binned, or in frames
+  // that rasterize and shade in one pass, tested by every pixel of every tile they meet), for
+  // the next frame's choice of that pass: counted alike in both kinds of frame.
+  uint box_tiles = 0u;
+  if (stored && outcome == OUTCOME_BIG) {
+    ivec2 first_tile, last_tile;
+    tile_range(t, first_tile, last_tile);
+    ivec2 tiles = last_tile - first_tile + 1;
+    box_tiles = uint(tiles.x * tiles.y);
+  }
+  uint box_tiles_total = subgroupAdd(box_tiles);
+  if (box_tiles_total > 0u && subgroupElect()) {
+    atomicAdd(counters[batch.index].large_box_tiles, box_tiles_total);
+  }
   if (RASTER_ONLY) return;
   // Small triangles: a variable number of walks per thread, taken with a prefix sum.
   uint walks = stored && outcome == OUTCOME_SMALL ? small_walks(t) : 0u;

@@ -41,6 +41,10 @@ class RasterShade : public test::VulkanTest {
     const Frame on = render(on_renderer, scene, settings);
     EXPECT_FALSE(off.stats.rasterized_and_shaded);
     EXPECT_EQ(on.stats.raster_triangles, off.stats.raster_triangles);
+    // Setup counts the large triangles' box tiles alike in both kinds of frame (the next
+    // frame's choice goes by them), which hold the tile lists' entries.
+    EXPECT_EQ(on.stats.large_box_tiles, off.stats.large_box_tiles);
+    EXPECT_GE(off.stats.large_box_tiles, off.stats.tile_entries);
     EXPECT_EQ(on.visibility, off.visibility);
     EXPECT_TRUE(same_bits(on.hdr, off.hdr));
     EXPECT_EQ(on.ldr.pixels, off.ldr.pixels);
@@ -59,6 +63,7 @@ TEST_F(RasterShade, OneSphereGivesTheSameKeysAndImage) {
   EXPECT_LE(on.stats.raster_triangles, kRasterShadeMaxTriangles);
   EXPECT_GT(on.stats.pass_ms[size_t(Pass::raster_shade)], 0.0);
   EXPECT_EQ(on.stats.pass_ms[size_t(Pass::shade)], 0.0);
+  EXPECT_EQ(on.stats.small_triangles, 0u);
   // At tiles of 8 px, and with depth rejection off (which the pass does not use either way).
   expect_same_image(scene, frame_of(100, 75), {.tile_size = 8}, "tiles of 8");
   expect_same_image(scene, frame_of(100, 75), {.depth_rejection = false}, "rejection off");
@@ -144,6 +149,17 @@ TEST_F(RasterShade, FramesOutsideItsConditionsTakeTheSeparatePasses) {
       second_frame(one, {.specialize_lights = false}, frame_of(64, 64)).rasterized_and_shaded);
   EXPECT_FALSE(second_frame(one, {.max_batch_triangles = 500}, frame_of(64, 64))
                    .rasterized_and_shaded);  // two batches
+  // Triangles covering the whole image: four meet each tile, as many as
+  // kRasterShadeMaxTrianglesPerTile allows; five are more.
+  const FrameStats four_huge =
+      second_frame(make_bench_scene("huge", 4, 32, 1.0f), {}, frame_of(64, 64));
+  EXPECT_TRUE(four_huge.rasterized_and_shaded);
+  // Each box holds the whole image: 4 triangles in each of the 16 tiles of 16 px.
+  EXPECT_EQ(four_huge.raster_triangles, 4u);
+  EXPECT_EQ(four_huge.large_box_tiles, 64u);
+  const FrameStats five = second_frame(make_bench_scene("huge", 5, 32, 1.0f), {}, frame_of(64, 64));
+  EXPECT_EQ(five.large_box_tiles, 80u);
+  EXPECT_FALSE(five.rasterized_and_shaded);
   // Four spheres set up more raster triangles than kRasterShadeMaxTriangles.
   const FrameStats four = second_frame(make_bench_scene("grid", 4, 32, 1.0f), {}, frame_of(64, 64));
   EXPECT_GT(four.raster_triangles, kRasterShadeMaxTriangles);

@@ -444,7 +444,11 @@ struct GpuCounters {
   // outline pixels it listed (TS_BINDING_OUTLINE).
   uvec4 outline_dispatch;
   uint outline_pixels;
-  uint pad_outline0;
+  // The (tile, triangle) pairs of the pixel boxes of the large triangles (boxes over the
+  // small-triangle area), counted by setup: what the pass that rasterizes and shades small
+  // frames in one tests every pixel of a tile against, without depth rejection. The next frame
+  // takes that pass only while they are few (renderer.cpp's rasterizes_and_shades_in_one_pass).
+  uint large_box_tiles;
   uvec2 pad_outline1;  // std430 rounds the array stride to 16 bytes
   // Shading by tiles, batch 0's slot (list_tiles.comp): VkDispatchIndirectCommand (xyz) of the
   // shading pass over the drawn tiles and of its background dispatch over the others, x a row
