@@ -134,22 +134,26 @@ void validate_tile_size(uint32_t tile_size) {
 RasterTuning raster_tuning(VkPhysicalDeviceType type) {
   const RendererOptions gpu;
   if (type != VK_PHYSICAL_DEVICE_TYPE_CPU)
-    return {gpu.small_triangle_max_area,
-            gpu.small_triangle_walk_area,
-            gpu.depth_rejection,
-            false,
-            gpu.tile_lists,
-            true};
+    return {.small_triangle_max_area = gpu.small_triangle_max_area,
+            .small_triangle_walk_area = gpu.small_triangle_walk_area,
+            .depth_rejection = gpu.depth_rejection,
+            .shade_tiles = false,
+            .tile_lists = gpu.tile_lists,
+            .raster_shade = true};
   // A CPU device runs both sides of every branch and at least one iteration of every loop for
   // each group of 8 lanes: one workgroup of 256 threads per tile pays that for all of its
   // subgroups however little the tile holds, where one thread per triangle pays it once for 8
   // triangles; and the shading pass pays the whole shading code for background pixels unless
-  // they are not dispatched to it.
+  // they are not dispatched to it, as rasterizing and shading in one pass would for every pixel
+  // (one grid sphere at 512x512: 32.7 ms, against 14.0 with these settings).
   // Each box is walked whole by one thread (its walk area is the small-triangle area), as in
   // the measurements that chose these settings; shorter walks were not measured apart there.
-  return {kCpuSmallTriangleArea, kCpuSmallTriangleArea,
-          gpu.depth_rejection,   true,
-          TileLists::counted,    false};
+  return {.small_triangle_max_area = kCpuSmallTriangleArea,
+          .small_triangle_walk_area = kCpuSmallTriangleArea,
+          .depth_rejection = gpu.depth_rejection,
+          .shade_tiles = true,
+          .tile_lists = TileLists::counted,
+          .raster_shade = false};
 }
 
 RendererOptions tuned_for_device(const Context& ctx, RendererOptions options) {
@@ -899,10 +903,11 @@ bool dispatches_directly(const Renderer::State& s, bool lod, uint32_t batches) {
 // Whether this frame rasterizes and shades in one pass (RendererOptions::raster_shade): a frame
 // of one batch at one sample with nothing to clip, without level of detail, debug coverage or
 // shading by tiles, after a frame of the same scene that set up at most kRasterShadeMaxTriangles
-// raster triangles. On the H200 each dependent pass of a small frame costs about 8 us of waiting
-// for the one before, for a few microseconds of work (docs/performance.md, "Issue 13, thirteenth
-// round"). The last frame's count only chooses the speed: a frame of more triangles is rendered
-// the same, each tile testing them all.
+// raster triangles, of which at most kRasterShadeMaxTrianglesPerTile large ones per tile on
+// average (GpuCounters::large_box_tiles). On the H200 each dependent pass of a small frame costs
+// about 8 us of waiting for the one before, for a few microseconds of work (docs/performance.md,
+// "Issue 13, thirteenth round"). The last frame's counts only choose the speed: a frame of more
+// triangles is rendered the same, each tile testing them all.
 bool rasterizes_and_shades_in_one_pass(const Renderer::State& s, const FrameSettings& settings,
                                        bool lod, uint32_t batches) {
   if (!s.raster_shade || lod || batches != 1 || settings.samples != 1 || !s.skip_clip ||
