@@ -125,8 +125,10 @@ void print_bench_table(const BenchResults& results, const BenchArgs& a) {
       a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
       coverage_phrase(a).c_str(), segments_phrase(a).c_str(), a.small_triangle_area,
       a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists),
-      a.raster_shade ? "for small frames" : "off", results.device.c_str(), results.driver.c_str(),
-      method_phrase(a).c_str());
+      !a.raster_shade ? "off"
+      : a.shade_tiles ? "off (not with shading by tiles)"
+                      : "for small frames",
+      results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");

@@ -183,8 +183,13 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
         s.renderer.shade_tiles = on;
         s.is_default = on == options.shade_tiles;
       } else {
+        // The one pass does not go with shading by tiles (a CPU device's default): "on" turns
+        // that off, so that the setting measures the one pass.
         s.renderer.raster_shade = on;
-        s.is_default = on == options.raster_shade;
+        if (on) s.renderer.shade_tiles = false;
+        const bool one_pass =
+            options.raster_shade.value_or(false) && !options.shade_tiles.value_or(false);
+        s.is_default = on == one_pass;
       }
       s.speed_only = true;
       out.push_back(s);

@@ -98,6 +98,15 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   EXPECT_EQ(raster[1].renderer.raster_shade, true);
   EXPECT_FALSE(raster[0].is_default);
   EXPECT_TRUE(raster[1].is_default);
+  // From a CPU device's options (shading by tiles on, which the one pass does not go with),
+  // "on" turns shading by tiles off, so that it measures the one pass; "off" is the default.
+  RendererOptions cpu = options;
+  cpu.shade_tiles = true;
+  const std::vector<KnobSetting> from_cpu = knob_settings("raster-shade", frame, cpu);
+  EXPECT_EQ(from_cpu[1].renderer.shade_tiles, false);
+  EXPECT_EQ(from_cpu[0].renderer.shade_tiles, true);
+  EXPECT_TRUE(from_cpu[0].is_default);
+  EXPECT_FALSE(from_cpu[1].is_default);
   try {
     knob_settings("msaa", frame, options);
     FAIL() << "an unknown knob must throw";
