@@ -158,8 +158,10 @@ void validate_scene(const Scene& scene) {
   require(glm::length(c.target - c.position) > 0.0f, "the camera's target equals its position");
   require(glm::length(glm::cross(c.target - c.position, c.up)) > 0.0f,
           "the camera's up vector is zero or parallel to its view direction");
-  require(finite(c.vertical_fov) && c.vertical_fov > 0.0f && c.vertical_fov < 3.1f,
-          "the camera's vertical field of view must be in (0, 3.1) radians");
+  // Up to 179 degrees, as scene files allow (docs/scene-format.md), with room for the rounding
+  // of their degrees to radians in float: 3.1242 rad is 179.004 degrees.
+  require(finite(c.vertical_fov) && c.vertical_fov > 0.0f && c.vertical_fov < 3.1242f,
+          "the camera's vertical field of view must be in (0, 179] degrees");
   require(finite(c.near_plane) && c.near_plane > 0.0f, "the camera's near plane must be > 0");
   require(finite(scene.background) && finite(scene.ambient),
           "the background or ambient colour has a NaN or infinite component");

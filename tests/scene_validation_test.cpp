@@ -40,6 +40,16 @@ TEST(SceneValidation, AcceptsBuiltinScenes) {
   for (const auto& info : builtin_scenes()) EXPECT_EQ(error_of(make_builtin_scene(info.name)), "");
 }
 
+// The field of view a scene file allows, (0, 179] degrees (docs/scene-format.md), as it arrives
+// after the file's conversion to radians.
+TEST(SceneValidation, AcceptsTheFieldOfViewScenesFilesAllow) {
+  Scene s = one_triangle_scene();
+  s.camera.vertical_fov = float(179.0 * 3.14159265358979323846 / 180.0);
+  EXPECT_EQ(error_of(s), "");
+  s.camera.vertical_fov = float(179.5 * 3.14159265358979323846 / 180.0);
+  EXPECT_NE(error_of(s).find("must be in (0, 179] degrees"), std::string::npos) << error_of(s);
+}
+
 TEST(SceneValidation, NamesNonFiniteVertex) {
   Scene s = one_triangle_scene();
   s.meshes[0].positions[1].y = std::numeric_limits<float>::quiet_NaN();
