@@ -61,7 +61,8 @@ std::vector<std::pair<std::string, std::string>> csv_settings(const BenchResults
                          {"generic_shading", a.generic_shading ? "true" : "false"},
                          {"warmup_min_frames", std::to_string(a.warmup)},
                          {"warmup_min_ms", warmup_ms},
-                         {"driver", csv_text(results.driver)}});
+                         {"driver", csv_text(results.driver)},
+                         {"raster_shade", a.raster_shade ? "true" : "false"}});
   return out;
 }
 
@@ -163,7 +164,8 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
   f << ",batches,tile_entries,tile_list_stride,frames,device,note";
   const std::vector<std::pair<std::string, std::string>> settings = csv_settings(results, a);
   for (const auto& [name, value] : settings) f << "," << name;
-  f << "\n";
+  // Measured, but added after the settings: new columns go at the end (docs/performance.md).
+  f << ",rasterized_and_shaded\n";
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
     // The hardware baseline counts no rasterized triangles, and only the compute path is timed
@@ -187,6 +189,8 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
     if (!compute) f << ",,";
     f << "," << r.frames << "," << csv_text(results.device) << "," << csv_text(r.note);
     for (const auto& [name, value] : settings) f << "," << value;
+    f << ",";
+    if (compute) f << (r.rasterized_and_shaded ? "true" : "false");
     f << "\n";
   }
   if (!f) throw Error("cannot write CSV '" + path + "'");

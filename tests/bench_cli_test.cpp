@@ -87,7 +87,8 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
         {"hdr_format", "fp16"},
         {"generic_shading", "false"},
         {"warmup_min_frames", "0"},
-        {"warmup_min_ms", "0"}};
+        {"warmup_min_ms", "0"},
+        {"raster_shade", cpu.raster_shade ? "true" : "false"}};
     for (std::string row; std::getline(rows, row);) {
       const std::vector<std::string> cells = split_csv_row(row);
       ASSERT_EQ(cells.size(), names.size()) << row;
@@ -97,8 +98,13 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
         EXPECT_GT(i, note) << column << " comes after the measured columns";
         EXPECT_EQ(cells[i], value) << column << " in " << row;
       }
-      EXPECT_NE(cells.back(), "") << "the driver, last, in " << row;
+      const size_t driver = std::find(names.begin(), names.end(), "driver") - names.begin();
+      ASSERT_LT(driver, names.size()) << header;
+      EXPECT_NE(cells[driver], "") << row;
       const bool hardware = cells[2] == "hardware", compute = cells[2] == "compute";
+      // Measured per point, but new: at the end, after the settings.
+      EXPECT_EQ(names.back(), "rasterized_and_shaded") << header;
+      EXPECT_EQ(cells.back(), compute ? "false" : "") << row;
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
                                  "tile_entries", "tile_list_stride"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
@@ -580,6 +586,40 @@ TEST(BenchCli, RasterizerSettingsAreTheDevicesUnlessGiven) {
   EXPECT_EQ(t["depth_rejection"], cpu.depth_rejection);
   EXPECT_EQ(g["small_triangle_area"], 64);
   EXPECT_EQ(g["depth_rejection"], false);
+}
+
+// The CSV and JSON say, point by point, whether the compute path's timed frames were rasterized
+// and shaded in one pass: on lavapipe only when asked for and with shading by tiles off (one
+// sphere at 32x32 is far below the pass's limits), never for the other backends.
+TEST(BenchCli, CsvAndJsonSayWhichPointsTookTheOnePass) {
+  const std::string base = test::output_path("one_pass");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --validate --objects 1 --size 32x32 "
+                                  "--segments 6 --backends compute,hardware --repeat 2 "
+                                  "--warmup 1 --warmup-ms 0 --quiet --raster-shade on "
+                                  "--shade-tiles off --tile-lists direct --csv " +
+                                  base + ".csv --json " + base + ".json",
+                              out),
+            0)
+      << out;
+  std::istringstream rows(read_text(base + ".csv"));
+  std::string header, compute, hardware;
+  std::getline(rows, header);
+  std::getline(rows, compute);
+  std::getline(rows, hardware);
+  const std::vector<std::string> names = split_csv_row(header);
+  const size_t setting = std::find(names.begin(), names.end(), "raster_shade") - names.begin();
+  ASSERT_LT(setting, names.size()) << header;
+  EXPECT_EQ(split_csv_row(compute)[setting], "true") << compute;
+  EXPECT_EQ(names.back(), "rasterized_and_shaded") << header;
+  EXPECT_TRUE(compute.starts_with("grid,1,compute,")) << compute;
+  EXPECT_EQ(split_csv_row(compute).back(), "true") << compute;
+  EXPECT_TRUE(hardware.starts_with("grid,1,hardware,")) << hardware;
+  EXPECT_EQ(split_csv_row(hardware).back(), "") << hardware;
+  const nlohmann::json j = read_json(base + ".json");
+  EXPECT_EQ(j["raster_shade"], true);
+  EXPECT_EQ(j["results"][0]["rasterized_and_shaded"], true) << j["results"][0];
 }
 
 TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {
