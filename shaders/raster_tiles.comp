@@ -16,12 +16,19 @@ layout(local_size_x_id = TS_SPEC_TILE_SIZE, local_size_y_id = TS_SPEC_TILE_SIZE)
 #include "tile_raster.glsl"
 
 void main() {
-  ivec2 tile = ivec2(gl_WorkGroupID.xy);
+  ivec2 tile = ivec2(gl_WorkGroupID.xy);  // direct lists: a workgroup per tile of the image
   uint tile_index = uint(tile.y) * frame.tiles.x + uint(tile.x);
+  if (frame.tile_list_stride == 0u) {
+    // Counted lists: rows of frame.tiles.x workgroups over the tiles the scan pass listed.
+    if (tile_index >= counters[batch.index].tiles_dispatch.w) return;  // the last row's rest
+    tile_index = shade_tiles[tile_index];
+    tile = ivec2(tile_index % frame.tiles.x, tile_index / frame.tiles.x);
+  }
   uint count = tile_counts[tile_index];
-  // The next batch's (or frame's) count pass adds to zeroed counts: every tile's count is read
-  // here (a binned batch dispatches every tile) and nowhere after, so zeroing it here replaces
-  // a fill of the buffer and two barriers before each batch.
+  // The next batch's (or frame's) count pass adds to zeroed counts: every tile with a count is
+  // read here (direct lists dispatch every tile, counted lists every tile that holds entries)
+  // and nowhere after, so zeroing it here replaces a fill of the buffer and two barriers before
+  // each batch.
   barrier();
   if (gl_LocalInvocationIndex == 0u && count != 0u) {
     tile_counts[tile_index] = 0u;
