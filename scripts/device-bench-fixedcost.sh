@@ -9,7 +9,8 @@
 # that itself, docs/performance.md). With HARDWARE set, the base binary's grid (HW_GRID) against
 # the hardware baseline in one run. Then renders IMAGES (scene files or names) with each
 # binary and hashes the HDR and display images: a variant that should change no bit must give
-# the base's.
+# the base's. RENDER_ARGS are added to every render (e.g. "--tile-lists counted"), and ROUNDS
+# repeats the scatter points, the binaries in turn.
 # Every result is appended to $OUT/log.txt and $OUT/points.jsonl as it is made, and every
 # command has a time limit, so that a run cut short still returns what it measured.
 # Pass carry [".gl", ".device-build", ".device-variants"].
@@ -83,8 +84,10 @@ if [[ -n ${HARDWARE:-} ]]; then
     --backends compute,hardware --runs 3 --repeat "$repeat" --warmup-ms 500 --quiet \
     --json "$out/hardware_grid.json" && say "hardware: $(python3 -c "import json,sys; print(' '.join('%s:%.2fx' % (r['objects'], 1/r['ratio']) for r in json.load(open(sys.argv[1]))['compute_over_hardware']))" "$out/hardware_grid.json")"
 fi
-for b in "${binaries[@]}"; do
-  point "${b%%:*}_scatter" "${b#*:}" --scene scatter --objects "$scatter" --repeat 10 --backends compute
+for r in $(seq "${ROUNDS:-1}"); do
+  for b in "${binaries[@]}"; do
+    point "${b%%:*}_scatter_r$r" "${b#*:}" --scene scatter --objects "$scatter" --repeat 10 --backends compute
+  done
 done
 for b in "${binaries[@]}"; do
   name=${b%%:*} exe=${b#*:}
@@ -93,7 +96,7 @@ for b in "${binaries[@]}"; do
     for s in 1 4; do
       f=$work/img_${name}_${tag}_s$s
       if timeout "$limit" "$exe" render --device "$device" --scene "$scene" --size "$size" \
-          --samples $s --out "$f.png" --hdr-out "$f.pfm" > /dev/null; then
+          --samples $s --out "$f.png" --hdr-out "$f.pfm" ${RENDER_ARGS:-} > /dev/null; then
         say "image ${name}_${tag}_s$s hdr $(sha256sum < "$f.pfm" | cut -c1-16) display $(sha256sum < "$f.png" | cut -c1-16)"
       else
         say "image ${name}_${tag}_s$s FAILED or timed out"
