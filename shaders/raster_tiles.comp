@@ -16,17 +16,18 @@ layout(local_size_x_id = TS_SPEC_TILE_SIZE, local_size_y_id = TS_SPEC_TILE_SIZE)
 #include "tile_raster.glsl"
 
 void main() {
-  ivec2 tile = ivec2(gl_WorkGroupID.xy);  // direct lists: a workgroup per tile of the image
+  ivec2 tile = ivec2(gl_WorkGroupID.xy);  // a workgroup per tile of the image
   uint tile_index = uint(tile.y) * frame.tiles.x + uint(tile.x);
-  if (frame.tile_list_stride == 0u) {
-    // Counted lists: rows of frame.tiles.x workgroups over the tiles the scan pass listed.
+  if (SHADE_TILES != TS_SHADE_TILES_OFF && frame.tile_list_stride == 0u) {
+    // Counted lists with shading by tiles: rows of frame.tiles.x workgroups over the tiles the
+    // scan pass listed (scan.comp's LIST_TILES says why).
     if (tile_index >= counters[batch.index].tiles_dispatch.w) return;  // the last row's rest
     tile_index = shade_tiles[tile_index];
     tile = ivec2(tile_index % frame.tiles.x, tile_index / frame.tiles.x);
   }
   uint count = tile_counts[tile_index];
   // The next batch's (or frame's) count pass adds to zeroed counts: every tile with a count is
-  // read here (direct lists dispatch every tile, counted lists every tile that holds entries)
+  // read here (every tile is dispatched, or every tile that holds entries)
   // and nowhere after, so zeroing it here replaces a fill of the buffer and two barriers before
   // each batch.
   barrier();

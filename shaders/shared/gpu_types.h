@@ -121,8 +121,8 @@ using glm::vec4;
 // Shading by tiles (RendererOptions::shade_tiles, shaders/list_tiles.comp): per screen tile,
 // nonzero once a rasterizer may have written a sample of it this frame; then the tiles the
 // shading pass shades (from the front) and those its background dispatch fills (from the back).
-// Before that, in every frame with counted tile lists, each batch's scan pass lists there the
-// tiles that hold entries for the per-tile rasterizer (GpuCounters::tiles_dispatch).
+// Before that, in a frame with counted tile lists and shading by tiles, each batch's scan pass
+// lists there the tiles that hold entries for the per-tile rasterizer (GpuCounters::tiles_dispatch).
 #define TS_BINDING_TILE_DRAWN 36
 #define TS_BINDING_SHADE_TILES 37
 #define TS_BINDING_COUNT 38
@@ -413,8 +413,8 @@ struct GpuCounters {
   // entries (setup_common.glsl), y and z set by setup's first thread.
   uvec4 big_dispatch;
   // VkDispatchIndirectCommand (xyz) for the per-tile rasterizer (none if empty). With counted
-  // tile lists, rows of x workgroups over the w tiles that hold entries, which the scan pass
-  // lists in shade_tiles (TS_BINDING_SHADE_TILES) and counts in w.
+  // tile lists and shading by tiles, rows of x workgroups over the w tiles that hold entries,
+  // which the scan pass lists in shade_tiles (TS_BINDING_SHADE_TILES) and counts in w.
   uvec4 tiles_dispatch;
   uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
   uint big_tris;         // bin entries (a binned triangle makes one per 8x8 block of tiles)
