@@ -27,9 +27,8 @@ void main() {
   }
   uint count = tile_counts[tile_index];
   // The next batch's (or frame's) count pass adds to zeroed counts: every tile with a count is
-  // read here (every tile is dispatched, or every tile that holds entries)
-  // and nowhere after, so zeroing it here replaces a fill of the buffer and two barriers before
-  // each batch.
+  // read here (every tile is dispatched, or every tile that holds entries) and nowhere after,
+  // so zeroing it here replaces a fill of the buffer and two barriers before each batch.
   barrier();
   if (gl_LocalInvocationIndex == 0u && count != 0u) {
     tile_counts[tile_index] = 0u;
