@@ -92,6 +92,19 @@ std::span<const BenchFamilyInfo> bench_families() {
   return kFamilies;
 }
 
+bool is_bench_family(std::string_view name) {
+  for (const BenchFamilyInfo& f : kFamilies)
+    if (f.name == name) return true;
+  return false;
+}
+
+std::string bench_family_names() {
+  std::string names;
+  for (const BenchFamilyInfo& f : kFamilies)
+    names += (names.empty() ? "" : ", ") + std::string(f.name);
+  return names;
+}
+
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect) {
   if (objects == 0) throw Error("a benchmark scene needs at least one object");
   if (segments < 4)

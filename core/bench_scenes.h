@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "core/scene.h"
@@ -16,6 +17,12 @@ struct BenchFamilyInfo {
 
 /// The families: "grid", "scatter", "huge", "yardstick".
 std::span<const BenchFamilyInfo> bench_families();
+
+/// True if `name` is one of bench_families().
+bool is_bench_family(std::string_view name);
+
+/// The families' names, comma-separated ("grid, scatter, huge, yardstick"), for messages.
+std::string bench_family_names();
 
 /// Builds family `family` with `objects` objects (>= 1) for an image of aspect `aspect`
 /// (width / height). Spheres are uv spheres of `segments` slices and segments / 2 stacks

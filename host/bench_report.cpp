@@ -242,7 +242,10 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
       << ", \"rejected_entries\": " << counted(compute, r.rejected_entries)
       << ", \"rejected_small\": " << counted(compute, r.rejected_small)
       << ", \"tile_list_stride\": " << counted(compute, r.tile_list_stride)
-      << ", \"rasterized_and_shaded\": " << (r.rasterized_and_shaded ? "true" : "false")
+      << ", \"rasterized_and_shaded\": "
+      << (!compute                  ? "null"
+          : r.rasterized_and_shaded ? "true"
+                                    : "false")
       << ", \"pixels_shaded\": " << r.pixels_shaded << ", \"total_ms\": " << r.total_ms;
     if (r.backend == "compute") f << ", \"per_pass_total_ms\": " << r.per_pass_total_ms;
     f << ", \"min_ms\": " << r.min_ms << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";

@@ -459,7 +459,7 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->type_name("LIST")
       ->delimiter(',')
       ->allow_extra_args(false)
-      ->check(whole_number(1, 100'000'000));
+      ->check(whole_number(1, 1u << 24));  // as many as a scene file may hold (SceneFileOptions)
   add_size(app, a.width, a.height,
            "image size, each side 1..16384 and the whole\n"
            "within the device's buffers (on lavapipe 16 M\n"
@@ -484,7 +484,9 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
       ->delimiter(',')
       ->allow_extra_args(false)
       ->check(one_of({"compute", "hardware", "reference"}));
-  app.add_option("--repeat", a.repeat, "timed frames per point, 1..1000 (default 10)")
+  app.add_option("--repeat", a.repeat,
+                 "timed frames per point, 1..1000 (default 10;\n"
+                 "the reference backend: at most 3)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
   app.add_option("--warmup", a.warmup, "untimed frames first, at least, 0..100\n(default 2)")
@@ -829,6 +831,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
   b.raster_shade_given = bench->count("--raster-shade") > 0;
   b.tile_lists_given = bench->count("--tile-lists") > 0;
+  // A built-in scene, or a scene by name, is one point of its own objects: a count given for it
+  // would be measured as something else without a word.
+  if (bench->count("--objects") > 0 && !is_scene_path(b.scene) && !is_model_path(b.scene) &&
+      !is_bench_family(b.scene))
+    throw UsageError("--objects: '" + b.scene +
+                         "' is a scene with objects of its own, measured as one point; "
+                         "--objects applies to the benchmark families (" +
+                         bench_family_names() + ") and to scene or model files",
+                     help_command);
   // A count twice would be two points of one name: --compare matches points by count.
   for (size_t i = 0; i < b.objects.size(); ++i) {
     if (std::find(b.objects.begin(), b.objects.begin() + i, b.objects[i]) != b.objects.begin() + i)
@@ -860,6 +871,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.backends = {"compute"};
   }
   TradeoffArgs& t = line.tradeoff;
+  if (tradeoff->count("--objects") > 0 && !is_bench_family(t.scene))
+    throw UsageError("--objects applies to the benchmark families (" + bench_family_names() +
+                         "), not to '" + t.scene + "'",
+                     help_command);
+  // A knob twice would be measured twice, its settings' points and Pareto front doubled.
+  for (size_t i = 0; i < t.knobs.size(); ++i) {
+    if (std::find(t.knobs.begin(), t.knobs.begin() + i, t.knobs[i]) != t.knobs.begin() + i)
+      throw UsageError("--knob: '" + t.knobs[i] + "' is given twice", help_command);
+  }
   apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
                 &t.small_triangle_area);
   t.size_given = tradeoff->count("--size") > 0;

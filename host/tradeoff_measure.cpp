@@ -21,21 +21,16 @@
 namespace tessera {
 namespace {
 
-bool is_bench_family(const std::string& name) {
-  for (const BenchFamilyInfo& f : bench_families())
-    if (f.name == name) return true;
-  return false;
-}
-
 // The scene to measure, with the file's render defaults filling in what the command left unset.
 Scene load_scene(const TradeoffArgs& args, FrameSettings& frame) {
   if (is_bench_family(args.scene)) {
     return make_bench_scene(args.scene, args.objects ? args.objects : 100, 32,
                             float(frame.width) / float(frame.height));
   }
+  // The command line refuses --objects here (cli.cpp); a caller that sets it gets the same.
   if (args.objects) {
-    throw Error("--objects applies to the benchmark families (grid, scatter, huge), not to '" +
-                args.scene + "'");
+    throw Error("--objects applies to the benchmark families (" + bench_family_names() +
+                "), not to '" + args.scene + "'");
   }
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
   apply_render_defaults(file.render, frame, args.size_given, false, false, args.brdf_given, true);

@@ -64,12 +64,16 @@ void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& ar
       ++count;
     }
   }
-  if (count > 0) {
+  if (count > 0 && args.warmup_ms > 0) {
     std::printf(
         "warm-up per setting and round (at least %u frames and %g ms, then until the median of\n"
         "5 frames is within 2 %% of the 5 before): %u..%u frames, %.0f..%.0f ms; %u of %u "
         "unsettled\n",
         args.warmup, args.warmup_ms, frames_min, frames_max, ms_min, ms_max, unsettled, count);
+  } else if (count > 0) {
+    // --warmup-ms 0: the --warmup frames alone, with no settling rule.
+    std::printf("warm-up per setting and round: %u frames, %.0f..%.0f ms\n", args.warmup, ms_min,
+                ms_max);
   }
 }
 

@@ -414,6 +414,18 @@ TEST(BenchCli, BadArgumentsNameTheOption) {
             std::string::npos);
   EXPECT_NE(error({"--objects", "0"}).find("--objects: expects a whole number from 1"),
             std::string::npos);
+  // As many as a scene file may hold, 2^24: 10^8 spheres took minutes and 9 GB to be refused.
+  EXPECT_NE(
+      error({"--objects", "16777217"}).find("--objects: expects a whole number from 1 to 16777216"),
+      std::string::npos);
+  // A scene of its own is one point: a count for it would be measured as something else.
+  EXPECT_NE(error({"--scene", "spheres", "--objects", "5"})
+                .find("--objects: 'spheres' is a scene with objects of its own, measured as one "
+                      "point; --objects applies to the benchmark families (grid, scatter, huge, "
+                      "yardstick) and to scene or model files"),
+            std::string::npos);
+  EXPECT_EQ(error({"--scene", "spheres"}), "");
+  EXPECT_EQ(error({"--scene", "huge", "--objects", "5"}), "");
   EXPECT_NE(error({"--objects", "1", "2"}).find("unexpected argument '2'"), std::string::npos);
   EXPECT_NE(error({"--backends", "compute,magic"})
                 .find("--backends: expects compute, hardware or "
@@ -620,6 +632,26 @@ TEST(BenchCli, CsvAndJsonSayWhichPointsTookTheOnePass) {
   const nlohmann::json j = read_json(base + ".json");
   EXPECT_EQ(j["raster_shade"], true);
   EXPECT_EQ(j["results"][0]["rasterized_and_shaded"], true) << j["results"][0];
+  EXPECT_TRUE(j["results"][1]["rasterized_and_shaded"].is_null()) << j["results"][1];
+}
+
+// Counts whose triangle instances the renderer could not number are refused before any scene
+// is built, naming the most objects that fit: 4,473,924 spheres of 960 triangles
+// (floor((2^32 - 1) / 960)), where 2^24 spheres were refused only after a minute of building.
+TEST(BenchCli, CountsPastTheTriangleNumberingAreRefusedFirst) {
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --objects 1,4473925 --size 32x32 "
+                                  "--backends compute --repeat 1 --warmup 0 --warmup-ms 0",
+                              out),
+            1)
+      << out;
+  EXPECT_NE(out.find("--objects 4473925: 960 triangles per object make 4294968000 triangle "
+                     "instances, more than the 2^32 - 1 Tessera can number (at most 4473924 "
+                     "objects)"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("median ms"), std::string::npos) << "refused before measuring: " << out;
 }
 
 TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {

@@ -146,6 +146,19 @@ TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
             std::string::npos);
   EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--chart", "c.jpg"}).find("--chart"),
             std::string::npos);
+  // A knob twice would be measured twice; objects for a scene of its own would be ignored.
+  EXPECT_NE(
+      message({"tradeoff", "--knob", "brdf,tile-size,brdf"}).find("--knob: 'brdf' is given twice"),
+      std::string::npos);
+  EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--knob", "brdf"})
+                .find("--knob: 'brdf' is given twice"),
+            std::string::npos);
+  EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--scene", "spheres", "--objects", "10"})
+                .find("--objects applies to the benchmark families (grid, scatter, huge, "
+                      "yardstick), not to 'spheres'"),
+            std::string::npos);
+  EXPECT_EQ(message({"tradeoff", "--knob", "brdf", "--scene", "yardstick", "--objects", "10"}),
+            "no error");
 }
 
 TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
@@ -207,8 +220,10 @@ TEST(Tradeoff, ObjectsNeedABenchFamily) {
   std::string out;
   const std::string command = std::string(TESSERA_BINARY) +
                               " tradeoff --device lavapipe --scene spheres --objects 5 --knob brdf";
-  EXPECT_EQ(test::run_command(command, out), 1) << out;
+  // A bad command line: status 2 and the pointer to --help, as every other.
+  EXPECT_EQ(test::run_command(command, out), 2) << out;
   EXPECT_NE(out.find("--objects applies to the benchmark families"), std::string::npos) << out;
+  EXPECT_NE(out.find("tessera tradeoff --help"), std::string::npos) << out;
 }
 
 }  // namespace
