@@ -142,12 +142,16 @@ void print_bench_table(const BenchResults& results, const BenchArgs& a) {
     char spread[16] = "-";
     if (r.run_ms.size() > 1)
       std::snprintf(spread, sizeof(spread), "%.1f %%", r.run_spread_percent());
-    std::printf("%9u %9s %10s %10s %10.3f %10.3f %10.3f %8s %11s %8.3f  %s\n", r.objects,
+    // The reference records no command buffer and has no warm-up.
+    const bool reference = r.backend == "reference";
+    char cpu[32] = "-";
+    if (!reference) std::snprintf(cpu, sizeof(cpu), "%.3f", r.cpu_record_ms);
+    std::printf("%9u %9s %10s %10s %10.3f %10.3f %10.3f %8s %11s %8s  %s\n", r.objects,
                 r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str(),
                 r.triangles_rasterized ? human_count(double(r.triangles_rasterized)).c_str() : "-",
                 r.total_ms, r.min_ms, r.max_ms, spread,
-                human_count(r.triangles_per_second()).c_str(), r.cpu_record_ms,
-                r.backend == "reference" ? "-" : warmup_text(r, a).c_str());
+                human_count(r.triangles_per_second()).c_str(), cpu,
+                reference ? "-" : warmup_text(r, a).c_str());
   }
   for (const auto& [n, ratio] : results.compute_over_hardware) {
     std::printf("objects %u: compute / hardware = %.3f (compute %.2fx %s)\n", n, ratio,
@@ -175,10 +179,19 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
     f << a.scene << "," << r.objects << "," << r.backend << "," << a.width << "," << a.height << ","
       << r.triangles_submitted << ",";
     if (r.backend != "hardware") f << r.triangles_rasterized;
-    f << "," << r.pixels_shaded << "," << r.total_ms << "," << r.cpu_record_ms << ","
-      << r.triangles_per_second() << "," << r.min_ms << "," << r.max_ms << "," << r.run_ms.size()
-      << "," << r.run_spread_percent() << "," << r.warmup.frames << "," << r.warmup.ms << ","
-      << (r.warmup.stable ? 1 : 0) << ",";
+    // A spread needs two runs; the reference has no warm-up and records no command buffer.
+    const bool timed_on_device = r.backend != "reference";
+    f << "," << r.pixels_shaded << "," << r.total_ms << ",";
+    if (timed_on_device) f << r.cpu_record_ms;
+    f << "," << r.triangles_per_second() << "," << r.min_ms << "," << r.max_ms << ","
+      << r.run_ms.size() << ",";
+    if (r.run_ms.size() > 1) f << r.run_spread_percent();
+    f << ",";
+    if (timed_on_device)
+      f << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0);
+    else
+      f << ",,";
+    f << ",";
     if (compute) f << r.per_pass_total_ms;
     for (double ms : r.pass_ms) {
       f << ",";
@@ -250,11 +263,22 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     if (r.backend == "compute") f << ", \"per_pass_total_ms\": " << r.per_pass_total_ms;
     f << ", \"min_ms\": " << r.min_ms << ", \"max_ms\": " << r.max_ms << ", \"run_ms\": [";
     for (size_t i = 0; i < r.run_ms.size(); ++i) f << (i ? ", " : "") << r.run_ms[i];
-    f << "], \"run_spread_pct\": " << r.run_spread_percent()
-      << ", \"warmup_frames\": " << r.warmup.frames << ", \"warmup_ms\": " << r.warmup.ms
-      << ", \"warmup_stable\": " << (r.warmup.stable ? "true" : "false")
-      << ", \"cpu_record_ms\": " << r.cpu_record_ms
-      << ", \"triangles_per_s\": " << r.triangles_per_second()
+    // A spread needs two runs; the reference has no warm-up and records no command buffer.
+    const bool timed_on_device = r.backend != "reference";
+    f << "], \"run_spread_pct\": ";
+    if (r.run_ms.size() > 1)
+      f << r.run_spread_percent();
+    else
+      f << "null";
+    if (timed_on_device) {
+      f << ", \"warmup_frames\": " << r.warmup.frames << ", \"warmup_ms\": " << r.warmup.ms
+        << ", \"warmup_stable\": " << (r.warmup.stable ? "true" : "false")
+        << ", \"cpu_record_ms\": " << r.cpu_record_ms;
+    } else {
+      f << ", \"warmup_frames\": null, \"warmup_ms\": null, \"warmup_stable\": null"
+        << ", \"cpu_record_ms\": null";
+    }
+    f << ", \"triangles_per_s\": " << r.triangles_per_second()
       << ", \"batches\": " << counted(compute, r.batches) << ", \"frames\": " << r.frames
       << ", \"passes_ms\": ";
     if (compute) {

@@ -105,6 +105,20 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
       // Measured per point, but new: at the end, after the settings.
       EXPECT_EQ(names.back(), "rasterized_and_shaded") << header;
       EXPECT_EQ(cells.back(), compute ? "false" : "") << row;
+      // One run has no spread; the reference has no warm-up and records no command buffer.
+      const auto cell = [&](const char* column) {
+        const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
+        return i < cells.size() ? cells[i] : std::string("(no column)");
+      };
+      EXPECT_EQ(cell("runs"), "1") << row;
+      EXPECT_EQ(cell("run_spread_pct"), "") << row;
+      for (const char* column : {"warmup_frames", "warmup_ms", "warmup_stable", "cpu_record_ms"}) {
+        if (cells[2] == "reference") {
+          EXPECT_EQ(cell(column), "") << column << " in " << row;
+        } else {
+          EXPECT_NE(cell(column), "") << column << " in " << row;
+        }
+      }
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
                                  "tile_entries", "tile_list_stride"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
@@ -122,6 +136,8 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
     EXPECT_NE(json.find("\"triangles_rasterized\": null"), std::string::npos) << json;
     EXPECT_NE(json.find("\"batches\": null"), std::string::npos) << json;
     EXPECT_NE(json.find("\"passes_ms\": null"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"run_spread_pct\": null"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"warmup_frames\": null"), std::string::npos) << json;
     EXPECT_NE(json.find("\"statistic\": \"median\""), std::string::npos);
     EXPECT_NE(json.find("\"compute_over_hardware\": [{\"objects\": 1"), std::string::npos) << json;
     const std::string svg = read_text(base + ".svg");
