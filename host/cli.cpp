@@ -31,6 +31,9 @@ void check_file_exists(const std::string& path) {
 // from a folder without it) points to the built-in scene.
 void check_scene_file_exists(const std::string& path) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("'" + path +
+                "' is a folder, not a scene file (.json) or model (.gltf, .glb, .obj)");
   if (std::filesystem::exists(path, ec)) return;
   std::string message = "no file '" + path + "'";
   const std::string stem = std::filesystem::path(path).stem().string();

@@ -434,6 +434,13 @@ TEST(Cli, MissingSceneFileIsABadCommandLine) {
         << command;
   }
   EXPECT_EQ(usage_error({"bench", "--scene", "nosuch.glb"}), "--scene: no file 'nosuch.glb'");
+  const std::string folder = test::output_path("");
+  for (const std::string command : {"render", "bench", "view"}) {
+    EXPECT_EQ(usage_error({command, "--scene", folder}),
+              "--scene: '" + folder +
+                  "' is a folder, not a scene file (.json) or model (.gltf, .glb, .obj)")
+        << command;
+  }
   std::string out;
   EXPECT_EQ(test::run_command(tool() + " render --scene nosuch.json", out), 2) << out;
 }

@@ -122,7 +122,8 @@ using glm::vec4;
 // nonzero once a rasterizer may have written a sample of it this frame; then the tiles the
 // shading pass shades (from the front) and those its background dispatch fills (from the back).
 // Before that, in a frame with counted tile lists and shading by tiles, each batch's scan pass
-// lists there the tiles that hold entries for the per-tile rasterizer (GpuCounters::tiles_dispatch).
+// lists there the tiles that hold entries for the per-tile rasterizer
+// (GpuCounters::tiles_dispatch).
 #define TS_BINDING_TILE_DRAWN 36
 #define TS_BINDING_SHADE_TILES 37
 #define TS_BINDING_COUNT 38
@@ -416,8 +417,8 @@ struct GpuCounters {
   // tile lists and shading by tiles, rows of x workgroups over the w tiles that hold entries,
   // which the scan pass lists in shade_tiles (TS_BINDING_SHADE_TILES) and counts in w.
   uvec4 tiles_dispatch;
-  uint raster_tris;      // triangles set up (may exceed capacity: then the frame is redone)
-  uint big_tris;         // bin entries (a binned triangle makes one per 8x8 block of tiles)
+  uint raster_tris;  // triangles set up (may exceed capacity: then the frame is redone)
+  uint big_tris;     // bin entries (a binned triangle makes one per 8x8 block of tiles)
   // x: entries of the per-triangle rasterizer's list (a walk each, small_walks; may exceed
   // capacity, likewise); y: the small triangles that take them. Setup and clip append to both
   // with one 64-bit atomic on the pair (word TS_SMALL_COUNTS_WORD of the batch's counters, x
