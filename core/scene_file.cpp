@@ -109,6 +109,10 @@ struct Reader {
   // Each "objects" entry's first object in out.scene.objects and its place, so that
   // validate_scene's "object K" can be traced to the entry that made it.
   std::vector<std::pair<size_t, std::string>> object_sources;
+  // The same for each "lights" entry's light, and the camera's place: validate_scene names
+  // "light K" and "the camera".
+  std::vector<std::pair<size_t, std::string>> light_sources;
+  std::string camera_source;
 
   std::string where(const Node& n, bool at_key = false) const {
     const auto& index = at_key ? places.keys : places.values;
@@ -304,6 +308,7 @@ struct Reader {
 };
 
 void Reader::read_camera(const Node& n) {
+  camera_source = where(n);
   object(n, {"position", "target", "up", "vertical_fov_degrees", "near"});
   Camera& c = out.scene.camera;
   c.position = vec3_or(n, "position", c.position);
@@ -318,6 +323,7 @@ void Reader::read_camera(const Node& n) {
 }
 
 void Reader::read_light(const Node& n) {
+  light_sources.emplace_back(out.scene.lights.size(), where(n));
   object(n, {"name", "type", "position", "direction", "color", "intensity", "falloff", "range",
              "attenuation", "inner_angle_degrees", "outer_angle_degrees"});
   Light l;
@@ -991,15 +997,21 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   try {
     validate_scene(out.scene);
   } catch (const Error& e) {
-    // "invalid scene: object K: ..." is placed at the objects entry that made object K.
-    const std::string message = e.what(), prefix = "invalid scene: object ";
-    if (message.rfind(prefix, 0) == 0) {
+    // "invalid scene: object K: ..." is placed at the objects entry that made object K, "light
+    // K" at the lights entry, "the camera" at the camera.
+    const std::string message = e.what();
+    const auto placed = [&](const std::string& prefix,
+                            const std::vector<std::pair<size_t, std::string>>& sources) {
+      if (message.rfind(prefix, 0) != 0) return;
       const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
-      const auto& sources = reader.object_sources;
       const auto it = std::upper_bound(sources.begin(), sources.end(), k,
                                        [](size_t v, const auto& s) { return v < s.first; });
       if (it != sources.begin()) throw Error(std::prev(it)->second + message);
-    }
+    };
+    placed("invalid scene: object ", reader.object_sources);
+    placed("invalid scene: light ", reader.light_sources);
+    if (message.rfind("invalid scene: the camera", 0) == 0 && !reader.camera_source.empty())
+      throw Error(reader.camera_source + message);
     throw Error(name + ": " + message);
   }
   return out;
