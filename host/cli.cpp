@@ -729,6 +729,15 @@ void reject_empty_list_entries(const std::vector<std::string>& args,
   }
 }
 
+// The first entry of `list` that an earlier one equals, or null.
+template <typename T>
+const T* first_repeated(const std::vector<T>& list) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (std::find(list.begin(), list.begin() + i, list[i]) != list.begin() + i) return &list[i];
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
@@ -844,11 +853,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                          bench_family_names() + ") and to scene or model files",
                      help_command);
   // A count twice would be two points of one name: --compare matches points by count.
-  for (size_t i = 0; i < b.objects.size(); ++i) {
-    if (std::find(b.objects.begin(), b.objects.begin() + i, b.objects[i]) != b.objects.begin() + i)
-      throw UsageError("--objects: " + std::to_string(b.objects[i]) + " is given twice",
-                       help_command);
-  }
+  if (const uint32_t* n = first_repeated(b.objects))
+    throw UsageError("--objects: " + std::to_string(*n) + " is given twice", help_command);
   if (!b.compare.empty()) {
     std::error_code ec;
     if (!std::filesystem::exists(b.compare, ec))
@@ -879,10 +885,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                          "), not to '" + t.scene + "'",
                      help_command);
   // A knob twice would be measured twice, its settings' points and Pareto front doubled.
-  for (size_t i = 0; i < t.knobs.size(); ++i) {
-    if (std::find(t.knobs.begin(), t.knobs.begin() + i, t.knobs[i]) != t.knobs.begin() + i)
-      throw UsageError("--knob: '" + t.knobs[i] + "' is given twice", help_command);
-  }
+  if (const std::string* knob = first_repeated(t.knobs))
+    throw UsageError("--knob: '" + *knob + "' is given twice", help_command);
   apply_quality(t.quality, given_in(*tradeoff), &t.frame, &t.env_options, &t.tile_size,
                 &t.small_triangle_area);
   t.size_given = tradeoff->count("--size") > 0;
