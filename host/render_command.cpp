@@ -22,7 +22,7 @@ namespace {
 // command line left unset.
 Scene scene_of(RenderArgs& args) {
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  if (args.camera_given) use_model_camera(file, args.camera);
+  if (args.camera_given) use_model_camera(file, args.camera, "tessera render --help");
   apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
                         args.tonemap_given, args.brdf_given, args.view_given);
   Scene scene = std::move(file.scene);

@@ -210,7 +210,7 @@ int run_view(const ViewArgs& args) {
     }
   }
   SceneFile file = load_scene_argument(args.scene, args.strict, false);
-  if (args.camera_given) use_model_camera(file, args.camera);
+  if (args.camera_given) use_model_camera(file, args.camera, "tessera view --help");
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
   v.scene = std::move(file.scene);
   v.render_defaults = file.render;

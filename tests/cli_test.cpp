@@ -220,6 +220,11 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
       {{"view", "--scene", "nowhere"}, "--scene: unknown scene 'nowhere'"},
+      // CLI11's own text was "Could not convert: --camera = -1".
+      {{"render", "--camera", "-1"},
+       "--camera: expects a camera number (0 for the first camera of the scene file's models, 1 "
+       "for the next, ...), got '-1'"},
+      {{"view", "--camera", "one"}, "--camera: expects a camera number (0 for the first"},
       // CLI11 alone would drop empty entries of a list and run the rest.
       {{"bench", "--objects", "1,,2"}, "--objects: an empty entry in '1,,2'"},
       {{"bench", "--objects=1,10,"}, "--objects: an empty entry in '1,10,'"},
@@ -255,6 +260,7 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --env sky.exr", 2, "tessera: error: --env: expects a .hdr file"},
       {"render --env-size 3", 2, "not a power of two"},
       {"render --anisotropy 17", 2, "--anisotropy: expects a whole number from 1 to 16"},
+      {"render --camera -1", 2, "tessera: error: --camera: expects a camera number"},
       {"render --out /nonexistent-dir/x.png", 1,
        "tessera: error: cannot write output file '/nonexistent-dir/x.png': folder "
        "'/nonexistent-dir' does not exist"},

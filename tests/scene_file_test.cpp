@@ -384,7 +384,8 @@ TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
 }
 
 // `--camera N` views a scene file through its models' camera N; past the last one, or for a
-// scene whose models bring none, it says which cameras there are.
+// scene whose models bring none, it says which cameras there are, as a bad command line (exit
+// status 2 and where the usage is, though found only once the scene is loaded).
 TEST(SceneFileCli, CameraPicksAModelCamera) {
   const std::string scene = test::output_path("cameras.json");
   std::ofstream(scene) << R"({"models": [{"name": "cams", "file":
@@ -397,13 +398,15 @@ TEST(SceneFileCli, CameraPicksAModelCamera) {
   ASSERT_EQ(test::run_command(render + scene + " --out " + own, out), 0) << out;
   ASSERT_EQ(test::run_command(render + scene + " --camera 0 --out " + picked, out), 0) << out;
   EXPECT_NE(read_png(own).pixels, read_png(picked).pixels);
-  EXPECT_EQ(test::run_command(render + scene + " --camera 2 --out " + picked, out), 1);
-  EXPECT_NE(out.find("--camera 2: the scene's models bring 2 cameras (0: model 'cams' camera 0, "
-                     "1: model 'cams' camera 1)"),
+  EXPECT_EQ(test::run_command(render + scene + " --camera 2 --out " + picked, out), 2);
+  EXPECT_NE(out.find("tessera: error: --camera 2: the scene's models bring 2 cameras (0: model "
+                     "'cams' camera 0, 1: model 'cams' camera 1)\nRun 'tessera render --help' "
+                     "for the options."),
             std::string::npos)
       << out;
-  EXPECT_EQ(test::run_command(render + "spheres --camera 0 --out " + picked, out), 1);
+  EXPECT_EQ(test::run_command(render + "spheres --camera 0 --out " + picked, out), 2);
   EXPECT_NE(out.find("--camera 0: the scene's models bring no cameras"), std::string::npos) << out;
+  EXPECT_NE(out.find("Run 'tessera render --help' for the options."), std::string::npos) << out;
 }
 
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
