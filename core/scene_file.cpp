@@ -143,6 +143,20 @@ struct Reader {
     return {&e, n.pointer + "/" + std::to_string(i), shown};
   }
   bool has(const Node& n, const char* key) const { return n.json->contains(key); }
+  // The node at RFC 6901 JSON `pointer` below `n`, which holds it ("/objects/0/translation/1").
+  Node node_at(Node n, const std::string& pointer) const {
+    for (size_t at = 1; at <= pointer.size();) {
+      const size_t end = std::min(pointer.find('/', at), pointer.size());
+      std::string token;
+      for (size_t i = at; i < end; ++i) {
+        const bool escaped = pointer[i] == '~' && i + 1 < end;
+        token += !escaped ? pointer[i] : pointer[++i] == '1' ? '/' : '~';
+      }
+      n = n.json->is_array() ? element(n, std::stoul(token)) : child(n, token);
+      at = end + 1;
+    }
+    return n;
+  }
 
   void expect(const Node& n, bool ok, const char* what) const {
     if (ok) return;
@@ -989,6 +1003,17 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   Reader reader{name, base_dir, options, {}, out};
   try {
     reader.places = index_json_places(text);
+  } catch (const JsonNumberOverflow& e) {
+    // nlohmann-json stopped at this number and left no document to name the value's path by
+    // (objects[0].translation[1]), as other errors name it: the text is parsed again with the
+    // number written as 0, which changes no other value and no place. If the rest of the file
+    // does not parse either (another such number, a syntax error), the place alone is given.
+    std::string patched = text;
+    patched.replace(e.offset, e.length, "0" + std::string(e.length - 1, ' '));
+    const Json whole = Json::parse(patched, nullptr, false);
+    if (whole.is_discarded()) throw Error(name + ":" + e.what());
+    reader.places.values[e.pointer] = e.place;
+    throw Error(reader.where(reader.node_at({&whole, "", ""}, e.pointer)) + e.reason);
   } catch (const Error& e) {
     throw Error(name + ":" + e.what());
   }

@@ -308,6 +308,20 @@ TEST(SceneFile, ExampleScenesLoad) {
   EXPECT_GE(files, 4);
 }
 
+// A number beyond double's range is named by its path, as other errors name their values
+// (tests/data/bad/scene_inf*.json), where the rest of the file parses; with a second such
+// number after it, by its place alone.
+TEST(SceneFile, NumberOutOfRangeIsNamedByItsPath) {
+  EXPECT_EQ(load_error("1e999"),
+            "test.json:1:1: (top level): 1e999 is out of the range of a number (NaN and infinity "
+            "are refused)");
+  EXPECT_EQ(load_error(R"({"a/b~": 1e999})"),
+            "test.json:1:10: a/b~: 1e999 is out of the range of a number (NaN and infinity are "
+            "refused)");
+  EXPECT_EQ(load_error(R"({"x": [1e999, 2e999]})"),
+            "test.json:1:8: 1e999 is out of the range of a number (NaN and infinity are refused)");
+}
+
 TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {
   const std::string text = R"({
   "camera": {"position": [0, 0, 5]},
