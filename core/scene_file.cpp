@@ -109,8 +109,9 @@ struct Reader {
   // Each "objects" entry's first object in out.scene.objects and its place, so that
   // validate_scene's "object K" can be traced to the entry that made it.
   std::vector<std::pair<size_t, std::string>> object_sources;
-  // The same for each "lights" entry's light, and the camera's place: validate_scene names
-  // "light K" and "the camera".
+  // The same for each "lights" entry's light and each model's lights (the model's place: its
+  // file says how bright they are, its first object where they go), and the camera's place:
+  // validate_scene names "light K" and "the camera".
   std::vector<std::pair<size_t, std::string>> light_sources;
   std::string camera_source;
 
@@ -423,7 +424,8 @@ void Reader::read_texture(const Node& n) {
         size, cells, vec3_or(n, "color_a", {1, 1, 1}, 0.0), vec3_or(n, "color_b", {0, 0, 0}, 0.0)));
     texture_decls.push_back({n, "", true});
   } else {
-    const uint32_t size = integer_or(n, "size", 512, 1, side);
+    // make_tile_maps' smallest side: refused here, at its place, rather than by it, unplaced.
+    const uint32_t size = integer_or(n, "size", 512, 4, side);
     TileMaps maps = make_tile_maps(size, integer_or(n, "tiles", 8, 1, size),
                                    vec3_or(n, "color", {0.75f, 0.45f, 0.3f}, 0.0),
                                    real_or(n, "strength", 1.0f, 0.0, 100.0));
@@ -650,6 +652,7 @@ void Reader::read_model(const Node& n) {
   Model placed;
   placed.first_light = s.lights.size();
   placed.lights = model.scene.lights.size();
+  if (placed.lights > 0) light_sources.emplace_back(placed.first_light, where(n));
   for (const Light& l : model.scene.lights) s.lights.push_back(l);
   placed.cameras = model.cameras;
   placed.name = string(child(n, "name"));
