@@ -204,6 +204,10 @@ struct Scene {
 /// object, vertex or field).
 void validate_scene(const Scene& scene);
 
+/// The camera part of validate_scene, with its messages ("invalid scene: the camera's ..."),
+/// for cameras that are not yet a scene's (a scene file's model cameras, core/scene_file.h).
+void validate_camera(const Camera& camera);
+
 /// How objects are numbered for rendering. Objects are sorted by their content (mesh,
 /// material, transform), not by their position in Scene::objects, and their triangles numbered
 /// consecutively in that order, so that the triangle-instance ids that break depth ties, and

@@ -953,6 +953,13 @@ void Reader::read(const Node& root) {
       c.position = glm::vec3(world * glm::vec4(c.position, 1.0f));
       c.target = glm::vec3(world * glm::vec4(c.target, 1.0f));
       c.up = glm::normalize(glm::mat3(world) * c.up);
+      // Checked here, where the model is, rather than by the renderer once --camera picks it
+      // (whose message named neither file nor camera): an object can place it out of range.
+      try {
+        validate_camera(c);
+      } catch (const Error& e) {
+        throw Error(m.where + "camera " + std::to_string(i) + ": " + e.what());
+      }
       out.model_cameras.push_back(c);
       out.model_camera_names.push_back("model '" + m.name + "' camera " + std::to_string(i));
     }
