@@ -896,6 +896,7 @@ void Reader::read_render(const Node& n) {
   RenderDefaults& r = out.render;
   if (has(n, "width")) r.width = uint32_t(integer(child(n, "width"), 1, 16384));
   if (has(n, "height")) r.height = uint32_t(integer(child(n, "height"), 1, 16384));
+  if (r.width || r.height) r.size_place = where(n);
   if (has(n, "exposure_ev")) r.exposure_ev = real(child(n, "exposure_ev"), -64.0, 64.0);
   if (has(n, "tonemap"))
     r.tonemap = choice(child(n, "tonemap"), {std::pair{"aces", ToneMap::aces},

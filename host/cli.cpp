@@ -845,6 +845,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
+  b.size_given = bench->count("--size") > 0;
   b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
