@@ -251,6 +251,16 @@ void validate_scene(const Scene& scene) {
   for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);
 }
 
+bool has_light(const Scene& scene) {
+  const auto positive = [](glm::vec3 c) { return glm::any(glm::greaterThan(c, glm::vec3(0.0f))); };
+  if (!scene.lights.empty() || positive(scene.ambient) || scene.environment) return true;
+  // A material emits only on the objects drawn with it.
+  for (const Object& o : scene.objects)
+    if (o.material < scene.materials.size() && positive(scene.materials[o.material].emissive))
+      return true;
+  return false;
+}
+
 bool is_mirroring(const glm::mat4& transform) {
   // In double, so that the sign is that of the determinant of the float matrix except within
   // rounding of singular (degenerate) transforms, whose triangles have no area anyway.

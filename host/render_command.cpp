@@ -138,6 +138,10 @@ int run_render(const RenderArgs& given) {
   RenderArgs args = given;
   std::string size_place;
   const Scene scene = scene_of(args, size_place);
+  // Said before the render, which may take long: a black image is otherwise a puzzle.
+  if (const std::string note = unlit_scene_note(scene, args.scene, args.frame.view);
+      !note.empty() && !args.quiet)
+    std::fprintf(stderr, "tessera: %s\n", note.c_str());
   // Check outputs before spending time on a render.
   if (std::string why = unwritable_reason(args.out); !why.empty()) {
     throw Error("cannot write output file '" + args.out + "': " + why);

@@ -122,6 +122,12 @@ SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool
   return file;
 }
 
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view) {
+  if (view != View::shaded || has_light(scene)) return "";
+  return "note: " + name +
+         " has no lights, ambient light, environment or emissive material: its objects are black";
+}
+
 std::string scene_listing() {
   for (const std::string& folder : scene_folders()) {
     std::error_code ec;

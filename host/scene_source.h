@@ -57,6 +57,11 @@ void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame,
                            bool exposure_given, bool tonemap_given, bool brdf_given,
                            bool view_given = false);
 
+/// "note: NAME has no lights, ...: its objects are black" when `scene` has nothing to light it
+/// (has_light) and `view` is the shaded one (debug views need no light), else "". A note, not a
+/// warning: such a scene is valid, so --strict does not make it an error.
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view);
+
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.
 std::string scene_listing();

@@ -423,6 +423,39 @@ TEST(SceneFileCli, CameraPicksAModelCamera) {
   EXPECT_NE(out.find("Run 'tessera render --help' for the options."), std::string::npos) << out;
 }
 
+// A scene with nothing to light it is valid: its objects are black. `render` says so in a
+// note, which --strict does not make an error, and says nothing where anything gives light or
+// a debug view needs none.
+TEST(SceneFileCli, UnlitSceneIsNoted) {
+  const std::string cube = R"("meshes": [{"name": "c", "type": "cube"}],
+    "objects": [{"mesh": "c", "material": "m"}])";
+  const std::string unlit = test::output_path("unlit.json");
+  std::ofstream(unlit) << R"({"materials": [{"name": "m"}, {"name": "glow", "emissive": [1, 1, 1]}],
+    )" + cube + "}";
+  const std::string glowing = test::output_path("glowing.json");
+  std::ofstream(glowing) << R"({"materials": [{"name": "m", "emissive": [1, 1, 1]}], )" + cube +
+                                "}";
+  const std::string ambient = test::output_path("ambient.json");
+  std::ofstream(ambient) << R"({"materials": [{"name": "m"}], "ambient": [0.1, 0, 0], )" + cube +
+                                "}";
+  const std::string render = std::string(TESSERA_BINARY) +
+                             " render --device lavapipe --size 16x16 --repeat 1 --out " +
+                             test::output_path("unlit.png") + " --scene ";
+  const std::string note = "tessera: note: " + unlit +
+                           " has no lights, ambient light, environment or emissive material: its "
+                           "objects are black\n";
+  std::string out;
+  EXPECT_EQ(test::run_command(render + unlit + " --strict", out), 0) << out;
+  EXPECT_NE(out.find(note), std::string::npos) << out;
+  EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+  // The emissive material above is on no object; here it is. Lights, an environment: below.
+  for (const std::string& lit : {glowing + " ", ambient + " ", unlit + " --env sky",
+                                 unlit + " --view normal", std::string("spheres")}) {
+    EXPECT_EQ(test::run_command(render + lit, out), 0) << out;
+    EXPECT_EQ(out.find("note:"), std::string::npos) << lit << ":\n" << out;
+  }
+}
+
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
 // file is expected is refused with a message saying where a model belongs.
 TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
