@@ -462,25 +462,37 @@ namespace {
 void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples,
                       uint32_t tile_size) {
   const VkPhysicalDeviceLimits& l = ctx.properties.limits;
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  if (width == 0 || height == 0) throw Error("image size " + size + " is empty");
+  if (width == 0 || height == 0) throw ImageSizeError(width, height, "is empty");
   const uint32_t max_side = std::min<uint32_t>(TS_MAX_IMAGE_SIDE, l.maxImageDimension2D);
   if (width > max_side || height > max_side) {
-    throw Error("image size " + size + " is over the largest side of " + std::to_string(max_side) +
-                " px");
+    throw ImageSizeError(width, height,
+                         "is over the largest side of " + std::to_string(max_side) + " px");
   }
   if (div_up(std::max(width, height), tile_size) > TS_MAX_TILES_PER_SIDE) {
-    throw Error("image size " + size + " is over the largest side of " +
-                std::to_string(TS_MAX_TILES_PER_SIDE * tile_size) + " px that tiles of " +
-                std::to_string(tile_size) + " px hold");
+    throw ImageSizeError(width, height,
+                         "is over the largest side of " +
+                             std::to_string(TS_MAX_TILES_PER_SIDE * tile_size) +
+                             " px that tiles of " + std::to_string(tile_size) + " px hold");
   }
-  const uint64_t vis_bytes = uint64_t(width) * height * samples * sizeof(uint64_t);
+  // The visibility buffer is the largest per-pixel buffer: one 64-bit key per sample.
+  const uint64_t key_bytes = uint64_t(samples) * sizeof(uint64_t);
+  const uint64_t vis_bytes = uint64_t(width) * height * key_bytes;
   if (vis_bytes > l.maxStorageBufferRange) {
-    throw Error("image size " + size +
-                (samples > 1 ? " at " + std::to_string(samples) + " samples" : "") + " needs a " +
-                std::to_string((vis_bytes + (1u << 20) - 1) >> 20) +
-                " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
-                std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB)");
+    // The largest square within it, as an example of a size that fits.
+    const uint64_t max_pixels = l.maxStorageBufferRange / key_bytes;
+    uint64_t side = uint64_t(std::sqrt(double(max_pixels)));
+    while (side * side > max_pixels) --side;
+    while ((side + 1) * (side + 1) <= max_pixels) ++side;
+    side = std::min<uint64_t>(side, max_side);
+    const std::string at_samples = std::to_string(samples) + (samples > 1 ? " samples" : " sample");
+    throw ImageSizeError(
+        width, height,
+        (samples > 1 ? "at " + at_samples + " " : std::string()) + "needs a " +
+            std::to_string((vis_bytes + (1u << 20) - 1) >> 20) +
+            " MiB visibility buffer, more than this device's maxStorageBufferRange (" +
+            std::to_string(uint64_t(l.maxStorageBufferRange) >> 20) + " MiB): it takes at most " +
+            std::to_string(max_pixels) + " pixels at " + at_samples + ", e.g. " +
+            std::to_string(side) + "x" + std::to_string(side));
   }
 }
 

@@ -114,6 +114,22 @@ struct RendererOptions {
 /// Throws Error naming `tile_size` unless it is 8 or 16.
 void validate_tile_size(uint32_t tile_size);
 
+/// What Renderer::render throws for an image size (with its samples per pixel) that this
+/// device, or the tile size, cannot take, told apart from other errors: where a command line
+/// asked for the size, the tool reports a bad command line (host/report.h).
+struct ImageSizeError : Error {
+  ImageSizeError(uint32_t width, uint32_t height, const std::string& reason)
+      : Error("image size " + std::to_string(width) + "x" + std::to_string(height) + " " + reason),
+        width(width),
+        height(height),
+        reason(reason) {}
+  uint32_t width, height;
+  /// Why, after the size, with the largest the device takes where that is simple ("needs a
+  /// 2048 MiB visibility buffer, ...: this device takes at most 16777216 pixels at 1 sample,
+  /// 4096x4096").
+  std::string reason;
+};
+
 /// The rasterizer settings of RendererOptions that change the speed and never the image.
 struct RasterTuning {
   uint32_t small_triangle_max_area;
@@ -219,8 +235,8 @@ class Renderer {
   /// Compared with the scene set before, only the changed range of each array is uploaded.
   UploadStats set_scene(const Scene& scene);
 
-  /// Renders the current scene into the output images. Throws Error for a size the device
-  /// cannot handle or when no scene was set.
+  /// Renders the current scene into the output images. Throws ImageSizeError for a size the
+  /// device cannot handle, Error when no scene was set.
   FrameStats render(const FrameSettings& settings, Timing timing = Timing::per_pass);
 
   /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts

@@ -140,8 +140,11 @@ struct Scanner {
              std::string_view("+-.eE0123456789").find(text[pos]) != std::string_view::npos)
         ++pos;
       const std::string number(text.substr(start, pos - start));
-      if (!std::isfinite(std::strtod(number.c_str(), nullptr)))
-        fail(start, number + " is out of the range of a number (NaN and infinity are refused)");
+      if (!std::isfinite(std::strtod(number.c_str(), nullptr))) {
+        throw JsonNumberOverflow(
+            place(start), pointer, start, pos - start,
+            number + " is out of the range of a number (NaN and infinity are refused)");
+      }
     } else {
       while (pos < text.size() && std::isalpha(static_cast<unsigned char>(text[pos]))) ++pos;
     }

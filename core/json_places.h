@@ -7,6 +7,9 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
+
+#include "core/check.h"
 
 namespace tessera {
 
@@ -24,10 +27,29 @@ struct JsonPlaces {
   std::unordered_map<std::string, JsonPlace> keys;    // where each object member's key starts
 };
 
+/// What index_json_places throws for a number that overflows a double: its message is
+/// "LINE:COLUMN: what", and it says which value that is, for a caller that names the value by
+/// its path (nlohmann-json stops at such a number, so the caller has no document to walk).
+struct JsonNumberOverflow : Error {
+  JsonNumberOverflow(JsonPlace place, std::string pointer, size_t offset, size_t length,
+                     std::string what)
+      : Error(std::to_string(place.line) + ":" + std::to_string(place.column) + ": " + what),
+        place(place),
+        pointer(std::move(pointer)),
+        offset(offset),
+        length(length),
+        reason(std::move(what)) {}
+  JsonPlace place;
+  std::string pointer;  // the number's RFC 6901 JSON pointer
+  size_t offset = 0;    // its first byte in the text
+  size_t length = 0;    // and its length in bytes
+  std::string reason;   // the message without the place
+};
+
 /// Indexes every value of `text`, which nlohmann-json has parsed (or refused only for a number
 /// out of double's range). Throws Error("LINE:COLUMN: ...") for what the parser lets through
-/// but a scene file must not have: a number that overflows a double (1e999), a key given
-/// twice in one object, nesting deeper than `max_depth`.
+/// but a scene file must not have: a number that overflows a double (1e999, as
+/// JsonNumberOverflow), a key given twice in one object, nesting deeper than `max_depth`.
 JsonPlaces index_json_places(std::string_view text, size_t max_depth = 64);
 
 /// `token` escaped for use in a JSON pointer (~ as ~0, / as ~1).

@@ -149,8 +149,7 @@ glm::vec3 id_colour(uint32_t id) {
   return glm::vec3(h & 0xFFu, (h >> 8) & 0xFFu, (h >> 16) & 0xFFu) / 255.0f;
 }
 
-void validate_scene(const Scene& scene) {
-  const Camera& c = scene.camera;
+void validate_camera(const Camera& c) {
   require(finite(c.position) && finite(c.target) && finite(c.up),
           "the camera has a NaN or infinite coordinate");
   require(within_coordinates(c.position), "the camera's position is outside +-" +
@@ -163,6 +162,10 @@ void validate_scene(const Scene& scene) {
   require(finite(c.vertical_fov) && c.vertical_fov > 0.0f && c.vertical_fov < 3.1242f,
           "the camera's vertical field of view must be in (0, 179] degrees");
   require(finite(c.near_plane) && c.near_plane > 0.0f, "the camera's near plane must be > 0");
+}
+
+void validate_scene(const Scene& scene) {
+  validate_camera(scene.camera);
   require(finite(scene.background) && finite(scene.ambient),
           "the background or ambient colour has a NaN or infinite component");
 
@@ -246,6 +249,16 @@ void validate_scene(const Scene& scene) {
     }
   }
   for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);
+}
+
+bool has_light(const Scene& scene) {
+  const auto positive = [](glm::vec3 c) { return glm::any(glm::greaterThan(c, glm::vec3(0.0f))); };
+  if (!scene.lights.empty() || positive(scene.ambient) || scene.environment) return true;
+  // A material emits only on the objects drawn with it.
+  for (const Object& o : scene.objects)
+    if (o.material < scene.materials.size() && positive(scene.materials[o.material].emissive))
+      return true;
+  return false;
 }
 
 bool is_mirroring(const glm::mat4& transform) {

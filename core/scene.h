@@ -204,6 +204,15 @@ struct Scene {
 /// object, vertex or field).
 void validate_scene(const Scene& scene);
 
+/// Whether anything gives `scene` light to shade with: a light, ambient light, an environment,
+/// or an object whose material emits. Without any of them every shaded object is black: a
+/// valid scene, which the commands only note (host/scene_source.h, unlit_scene_note).
+bool has_light(const Scene& scene);
+
+/// The camera part of validate_scene, with its messages ("invalid scene: the camera's ..."),
+/// for cameras that are not yet a scene's (a scene file's model cameras, core/scene_file.h).
+void validate_camera(const Camera& camera);
+
 /// How objects are numbered for rendering. Objects are sorted by their content (mesh,
 /// material, transform), not by their position in Scene::objects, and their triangles numbered
 /// consecutively in that order, so that the triangle-instance ids that break depth ties, and

@@ -109,8 +109,9 @@ struct Reader {
   // Each "objects" entry's first object in out.scene.objects and its place, so that
   // validate_scene's "object K" can be traced to the entry that made it.
   std::vector<std::pair<size_t, std::string>> object_sources;
-  // The same for each "lights" entry's light, and the camera's place: validate_scene names
-  // "light K" and "the camera".
+  // The same for each "lights" entry's light and each model's lights (the model's place: its
+  // file says how bright they are, its first object where they go), and the camera's place:
+  // validate_scene names "light K" and "the camera".
   std::vector<std::pair<size_t, std::string>> light_sources;
   std::string camera_source;
 
@@ -143,6 +144,20 @@ struct Reader {
     return {&e, n.pointer + "/" + std::to_string(i), shown};
   }
   bool has(const Node& n, const char* key) const { return n.json->contains(key); }
+  // The node at RFC 6901 JSON `pointer` below `n`, which holds it ("/objects/0/translation/1").
+  Node node_at(Node n, const std::string& pointer) const {
+    for (size_t at = 1; at <= pointer.size();) {
+      const size_t end = std::min(pointer.find('/', at), pointer.size());
+      std::string token;
+      for (size_t i = at; i < end; ++i) {
+        const bool escaped = pointer[i] == '~' && i + 1 < end;
+        token += !escaped ? pointer[i] : pointer[++i] == '1' ? '/' : '~';
+      }
+      n = n.json->is_array() ? element(n, std::stoul(token)) : child(n, token);
+      at = end + 1;
+    }
+    return n;
+  }
 
   void expect(const Node& n, bool ok, const char* what) const {
     if (ok) return;
@@ -409,7 +424,8 @@ void Reader::read_texture(const Node& n) {
         size, cells, vec3_or(n, "color_a", {1, 1, 1}, 0.0), vec3_or(n, "color_b", {0, 0, 0}, 0.0)));
     texture_decls.push_back({n, "", true});
   } else {
-    const uint32_t size = integer_or(n, "size", 512, 1, side);
+    // make_tile_maps' smallest side: refused here, at its place, rather than by it, unplaced.
+    const uint32_t size = integer_or(n, "size", 512, 4, side);
     TileMaps maps = make_tile_maps(size, integer_or(n, "tiles", 8, 1, size),
                                    vec3_or(n, "color", {0.75f, 0.45f, 0.3f}, 0.0),
                                    real_or(n, "strength", 1.0f, 0.0, 100.0));
@@ -636,6 +652,7 @@ void Reader::read_model(const Node& n) {
   Model placed;
   placed.first_light = s.lights.size();
   placed.lights = model.scene.lights.size();
+  if (placed.lights > 0) light_sources.emplace_back(placed.first_light, where(n));
   for (const Light& l : model.scene.lights) s.lights.push_back(l);
   placed.cameras = model.cameras;
   placed.name = string(child(n, "name"));
@@ -879,6 +896,7 @@ void Reader::read_render(const Node& n) {
   RenderDefaults& r = out.render;
   if (has(n, "width")) r.width = uint32_t(integer(child(n, "width"), 1, 16384));
   if (has(n, "height")) r.height = uint32_t(integer(child(n, "height"), 1, 16384));
+  if (r.width || r.height) r.size_place = where(n);
   if (has(n, "exposure_ev")) r.exposure_ev = real(child(n, "exposure_ev"), -64.0, 64.0);
   if (has(n, "tonemap"))
     r.tonemap = choice(child(n, "tonemap"), {std::pair{"aces", ToneMap::aces},
@@ -936,6 +954,13 @@ void Reader::read(const Node& root) {
       c.position = glm::vec3(world * glm::vec4(c.position, 1.0f));
       c.target = glm::vec3(world * glm::vec4(c.target, 1.0f));
       c.up = glm::normalize(glm::mat3(world) * c.up);
+      // Checked here, where the model is, rather than by the renderer once --camera picks it
+      // (whose message named neither file nor camera): an object can place it out of range.
+      try {
+        validate_camera(c);
+      } catch (const Error& e) {
+        throw Error(m.where + "camera " + std::to_string(i) + ": " + e.what());
+      }
       out.model_cameras.push_back(c);
       out.model_camera_names.push_back("model '" + m.name + "' camera " + std::to_string(i));
     }
@@ -989,6 +1014,17 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   Reader reader{name, base_dir, options, {}, out};
   try {
     reader.places = index_json_places(text);
+  } catch (const JsonNumberOverflow& e) {
+    // nlohmann-json stopped at this number and left no document to name the value's path by
+    // (objects[0].translation[1]), as other errors name it: the text is parsed again with the
+    // number written as 0, which changes no other value and no place. If the rest of the file
+    // does not parse either (another such number, a syntax error), the place alone is given.
+    std::string patched = text;
+    patched.replace(e.offset, e.length, "0" + std::string(e.length - 1, ' '));
+    const Json whole = Json::parse(patched, nullptr, false);
+    if (whole.is_discarded()) throw Error(name + ":" + e.what());
+    reader.places.values[e.pointer] = e.place;
+    throw Error(reader.where(reader.node_at({&whole, "", ""}, e.pointer)) + e.reason);
   } catch (const Error& e) {
     throw Error(name + ":" + e.what());
   }

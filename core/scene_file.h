@@ -30,6 +30,9 @@ struct RenderDefaults {
   std::optional<Brdf> brdf;
   std::optional<bool> energy_compensation;
   std::optional<View> view;
+  /// "FILE:LINE:COLUMN: render: " where the file gives width or height, "" if it gives
+  /// neither: for a command to place a size the device cannot render.
+  std::string size_place;
 };
 
 struct SceneFile {

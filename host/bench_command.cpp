@@ -45,7 +45,12 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
     if (!a.raster_shade_given) a.raster_shade = tuned.raster_shade;
     if (!a.tile_lists_given) a.tile_lists = tuned.tile_lists;
   }
-  const BenchResults results = measure_bench(ctx.get(), a);
+  BenchResults results;
+  try {
+    results = measure_bench(ctx.get(), a);
+  } catch (const ImageSizeError& e) {
+    throw_image_size_error(e, a.size_given, "", "tessera bench --help");
+  }
 
   if (!a.quiet) print_bench_table(results, a);
   if (!a.compare.empty())

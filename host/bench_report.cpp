@@ -188,7 +188,7 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
     if (r.run_ms.size() > 1) f << r.run_spread_percent();
     f << ",";
     if (timed_on_device)
-      f << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? 1 : 0);
+      f << r.warmup.frames << "," << r.warmup.ms << "," << (r.warmup.stable ? "true" : "false");
     else
       f << ",,";
     f << ",";

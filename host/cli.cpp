@@ -309,13 +309,20 @@ void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
       ->check(file_with_suffix({".svg", ".png"}));
 }
 
-// --camera N, for the commands that show a scene file's view.
+// --camera N, for the commands that show a scene file's view. Whether camera N exists is known
+// once the scene is loaded (use_model_camera); what is not a camera number at all is refused
+// here, in words (CLI11's own text for -1 was "Could not convert: --camera = -1").
 void add_camera_option(CLI::App& app, uint32_t& camera) {
   app.add_option("--camera", camera,
                  "view through camera N (from 0) of the scene\n"
                  "file's models (glTF cameras, placed as their\n"
                  "model's first instance) instead of its own")
-      ->type_name("N");
+      ->type_name("N")
+      ->check(checked_by([](const std::string& text) {
+        parse_count(text,
+                    "a camera number (0 for the first camera of the scene file's models, "
+                    "1 for the next, ...)");
+      }));
 }
 
 void add_render_options(CLI::App& app, RenderArgs& a) {
@@ -838,6 +845,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.lod_error_px = preset.lod_error_px;
     b.hdr_format = preset.hdr_format;
   }
+  b.size_given = bench->count("--size") > 0;
   b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;

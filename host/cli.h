@@ -55,8 +55,9 @@ struct BenchArgs {
   std::vector<uint32_t> objects = {1, 10, 100};  // object counts, the sweep
   uint32_t width = 512;
   uint32_t height = 512;
-  uint32_t segments = 32;  // sphere tessellation: 960 triangles per sphere
-  uint32_t samples = 1;    // FrameSettings::samples (compute and reference backends)
+  bool size_given = false;  // --size given
+  uint32_t segments = 32;   // sphere tessellation: 960 triangles per sphere
+  uint32_t samples = 1;     // FrameSettings::samples (compute and reference backends)
   AaCoverage aa_coverage = AaCoverage::count;  // FrameSettings::aa_coverage
   uint32_t silhouette_steps = 0;               // FrameSettings::silhouette_steps
   std::string device = "auto";

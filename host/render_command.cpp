@@ -19,12 +19,13 @@ namespace tessera {
 namespace {
 
 // The scene with the environment --env asks for; the file's render defaults fill in what the
-// command line left unset.
-Scene scene_of(RenderArgs& args) {
+// command line left unset. `size_place` is where the file gave the size, if it did.
+Scene scene_of(RenderArgs& args, std::string& size_place) {
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  if (args.camera_given) use_model_camera(file, args.camera);
+  if (args.camera_given) use_model_camera(file, args.camera, "tessera render --help");
   apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
                         args.tonemap_given, args.brdf_given, args.view_given);
+  if (!args.size_given) size_place = file.render.size_place;
   Scene scene = std::move(file.scene);
   if (args.env == "none") {
     scene.environment.reset();
@@ -135,7 +136,12 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
 
 int run_render(const RenderArgs& given) {
   RenderArgs args = given;
-  const Scene scene = scene_of(args);
+  std::string size_place;
+  const Scene scene = scene_of(args, size_place);
+  // Said before the render, which may take long: a black image is otherwise a puzzle.
+  if (const std::string note = unlit_scene_note(scene, args.scene, args.frame.view);
+      !note.empty() && !args.quiet)
+    std::fprintf(stderr, "tessera: %s\n", note.c_str());
   // Check outputs before spending time on a render.
   if (std::string why = unwritable_reason(args.out); !why.empty()) {
     throw Error("cannot write output file '" + args.out + "': " + why);
@@ -164,7 +170,12 @@ int run_render(const RenderArgs& given) {
 
   // The first frame pays for what the driver defers to first use (compiling pipelines,
   // allocating) and for precomputing the environment; it is reported apart from the others.
-  const FrameStats first = renderer.render(settings);
+  FrameStats first;
+  try {
+    first = renderer.render(settings);
+  } catch (const ImageSizeError& e) {
+    throw_image_size_error(e, args.size_given, size_place, "tessera render --help");
+  }
   std::vector<FrameStats> timed;
   for (uint32_t i = 0; i < args.repeat; ++i) timed.push_back(renderer.render(settings));
 

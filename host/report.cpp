@@ -31,6 +31,16 @@ void print_pass_times(const std::string& label, const std::vector<FrameStats>& f
   std::printf("\n");
 }
 
+void throw_image_size_error(const ImageSizeError& e, bool size_given, const std::string& file_place,
+                            const std::string& help_command) {
+  const std::string size = std::to_string(e.width) + "x" + std::to_string(e.height);
+  // The device's limit is known only once it is open, but the size is the command line's.
+  if (size_given) throw UsageError("--size " + size + ": " + e.reason, help_command);
+  if (!file_place.empty())
+    throw Error(file_place + "the size " + size + " " + e.reason + " (--size overrides it)");
+  throw e;
+}
+
 int validation_exit_status(const Context* ctx) {
   if (!ctx || !ctx->validation || (!ctx->validation->errors && !ctx->validation->warnings)) {
     return 0;

@@ -1,6 +1,7 @@
 #pragma once
 // What `tessera render` and `tessera bench` report in the same way: GPU time per pass over
-// repeated frames, and the exit status after the validation layer's reports.
+// repeated frames, a size the device cannot render, and the exit status after the validation
+// layer's reports.
 
 #include <array>
 #include <string>
@@ -18,6 +19,14 @@ std::array<double, kPassCount> pass_medians(const std::vector<FrameStats>& frame
 /// totals, in ms, and with more than one frame the fastest and slowest totals.
 /// `frames` must not be empty and must have timestamps.
 void print_pass_times(const std::string& label, const std::vector<FrameStats>& frames);
+
+/// Reports `e`, a size the device cannot render: as a bad command line (UsageError "--size WxH:
+/// why", whose usage `help_command` shows) when the command line gave the size
+/// (`size_given`); else at the scene file's "render" block that gave it (`file_place`,
+/// RenderDefaults::size_place), saying that --size overrides it; else as it is.
+[[noreturn]] void throw_image_size_error(const ImageSizeError& e, bool size_given,
+                                         const std::string& file_place,
+                                         const std::string& help_command);
 
 /// 0 if `ctx` is null, ran without validation or the layer reported nothing; otherwise prints
 /// the counts to stderr and returns kExitValidationError.

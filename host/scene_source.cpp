@@ -9,6 +9,7 @@
 #include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/model_import.h"
+#include "host/cli.h"
 
 namespace tessera {
 namespace fs = std::filesystem;
@@ -74,7 +75,7 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
   return std::move(model.scene);
 }
 
-void use_model_camera(SceneFile& file, uint32_t index) {
+void use_model_camera(SceneFile& file, uint32_t index, const std::string& help_command) {
   const size_t count = file.model_cameras.size();
   if (index < count) {
     file.scene.camera = file.model_cameras[index];
@@ -83,10 +84,14 @@ void use_model_camera(SceneFile& file, uint32_t index) {
   std::string listed;
   for (size_t i = 0; i < count; ++i)
     listed += (i ? ", " : "") + std::to_string(i) + ": " + file.model_camera_names[i];
-  throw Error("--camera " + std::to_string(index) + ": " +
-              (count == 0 ? std::string("the scene's models bring no cameras (glTF files can)")
-                          : "the scene's models bring " + std::to_string(count) + " camera" +
-                                (count == 1 ? "" : "s") + " (" + listed + ")"));
+  // A bad command line, though found only once the scene is loaded: the scene is as it should
+  // be, the number asked for is not one of its cameras.
+  throw UsageError(
+      "--camera " + std::to_string(index) + ": " +
+          (count == 0 ? std::string("the scene's models bring no cameras (glTF files can)")
+                      : "the scene's models bring " + std::to_string(count) + " camera" +
+                            (count == 1 ? "" : "s") + " (" + listed + ")"),
+      help_command);
 }
 
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
@@ -115,6 +120,12 @@ SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool
     for (const std::string& w : file.warnings)
       std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
   return file;
+}
+
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view) {
+  if (view != View::shaded || has_light(scene)) return "";
+  return "note: " + name +
+         " has no lights, ambient light, environment or emissive material: its objects are black";
 }
 
 std::string scene_listing() {

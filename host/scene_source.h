@@ -45,9 +45,10 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet);
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
 
 /// `--camera N`: sets file.scene.camera to the file's model camera N (SceneFile::model_cameras,
-/// numbered from 0). Throws Error "--camera N: ..." naming the cameras there are (or that the
-/// scene's models bring none) when N is past them.
-void use_model_camera(SceneFile& file, uint32_t index);
+/// numbered from 0). Throws UsageError "--camera N: ..." (a bad command line, whose usage
+/// `help_command` shows) naming the cameras there are, or that the scene's models bring none,
+/// when N is past them.
+void use_model_camera(SceneFile& file, uint32_t index, const std::string& help_command);
 
 /// Fills in the frame settings a command line left unset (the `*_given` flags false) from a
 /// scene file's "render" block, where it has them. Energy compensation is on if either turns
@@ -55,6 +56,11 @@ void use_model_camera(SceneFile& file, uint32_t index);
 void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame, bool size_given,
                            bool exposure_given, bool tonemap_given, bool brdf_given,
                            bool view_given = false);
+
+/// "note: NAME has no lights, ...: its objects are black" when `scene` has nothing to light it
+/// (has_light) and `view` is the shaded one (debug views need no light), else "". A note, not a
+/// warning: such a scene is valid, so --strict does not make it an error.
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view);
 
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.

@@ -20,7 +20,12 @@ int run_tradeoff(const TradeoffArgs& args, const std::string& command_line) {
   options.device = args.device;
   options.validation = args.validate;
   std::unique_ptr<Context> ctx = create_context(options);
-  const TradeoffResults results = measure_tradeoff(*ctx, args);
+  TradeoffResults results;
+  try {
+    results = measure_tradeoff(*ctx, args);
+  } catch (const ImageSizeError& e) {
+    throw_image_size_error(e, args.size_given, "", "tessera tradeoff --help");
+  }
   if (!args.quiet) print_tradeoff_table(results, args);
   if (!args.json.empty()) write_tradeoff_json(args.json, results, args, command_line);
   if (!args.chart.empty()) write_tradeoff_chart(args.chart, results, args);

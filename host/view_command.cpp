@@ -210,9 +210,11 @@ int run_view(const ViewArgs& args) {
     }
   }
   SceneFile file = load_scene_argument(args.scene, args.strict, false);
-  if (args.camera_given) use_model_camera(file, args.camera);
+  if (args.camera_given) use_model_camera(file, args.camera, "tessera view --help");
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
   v.scene = std::move(file.scene);
+  if (const std::string note = unlit_scene_note(v.scene, args.scene, v.frame.view); !note.empty())
+    std::printf("%s\n", note.c_str());
   v.render_defaults = file.render;
   v.description = file.description;
   v.options_at[v.history.state()] = render_options_of(v.frame);

@@ -119,6 +119,9 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
           EXPECT_NE(cell(column), "") << column << " in " << row;
         }
       }
+      // A flag, written as the CSV's other flags are (docs/performance.md, "Columns").
+      if (cells[2] != "reference")
+        EXPECT_TRUE(cell("warmup_stable") == "true" || cell("warmup_stable") == "false") << row;
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
                                  "tile_entries", "tile_list_stride"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
@@ -572,6 +575,7 @@ TEST(BenchCli, RunsRepeatTheSweepAndReportTheirSpreadAndWarmup) {
     // Each run warms up for at least one frame and 20 ms after its first frame.
     EXPECT_GE(int(r["warmup_frames"]), 3 * 2) << r;
     EXPECT_GE(double(r["warmup_ms"]), 3 * 20.0) << r;
+    EXPECT_TRUE(r["warmup_stable"].is_boolean()) << r;
   }
   const std::string csv = read_text(csv_path);
   EXPECT_NE(csv.find("min_ms,max_ms,runs,run_spread_pct,warmup_frames,warmup_ms,warmup_stable"),

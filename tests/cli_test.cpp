@@ -220,6 +220,11 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
       {{"view", "--scene", "nowhere"}, "--scene: unknown scene 'nowhere'"},
+      // CLI11's own text was "Could not convert: --camera = -1".
+      {{"render", "--camera", "-1"},
+       "--camera: expects a camera number (0 for the first camera of the scene file's models, 1 "
+       "for the next, ...), got '-1'"},
+      {{"view", "--camera", "one"}, "--camera: expects a camera number (0 for the first"},
       // CLI11 alone would drop empty entries of a list and run the rest.
       {{"bench", "--objects", "1,,2"}, "--objects: an empty entry in '1,,2'"},
       {{"bench", "--objects=1,10,"}, "--objects: an empty entry in '1,10,'"},
@@ -245,6 +250,15 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
   const std::string folder_env = test::output_path("folder.hdr");  // a folder named like a file
   std::filesystem::create_directories(folder_env);
   std::ofstream(bad_script) << "1 key A\n2 jump\n";
+  // A size the device cannot render, given by a scene file's "render" block (line 2, column 12).
+  const std::string big_scene = test::output_path("big_render.json");
+  std::ofstream(big_scene) << "{\"ambient\": [1, 1, 1],\n \"render\": {\"width\": 16384, "
+                              "\"height\": 16384}}\n";
+  // 16384 x 16384 keys of 8 bytes are 2048 MiB; lavapipe's storage buffers hold 128 MiB, 2^24
+  // keys: 4096 x 4096.
+  const std::string too_big =
+      "needs a 2048 MiB visibility buffer, more than this device's maxStorageBufferRange (128 "
+      "MiB): it takes at most 16777216 pixels at 1 sample, e.g. 4096x4096";
   const ToolCase cases[] = {
       {"render --size 0x10", 2, "tessera: error: --size: width"},
       {"render --brdf phong", 2, "tessera: error: --brdf: expects classic"},
@@ -255,6 +269,17 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --env sky.exr", 2, "tessera: error: --env: expects a .hdr file"},
       {"render --env-size 3", 2, "not a power of two"},
       {"render --anisotropy 17", 2, "--anisotropy: expects a whole number from 1 to 16"},
+      {"render --camera -1", 2, "tessera: error: --camera: expects a camera number"},
+      // The device's limit is known once it is open, but the size is the command line's.
+      {"render --device lavapipe --size 16384x16384 --out /tmp/x.png", 2,
+       "tessera: error: --size 16384x16384: " + too_big},
+      {"bench --device lavapipe --size 16384x16384 --objects 1 --backends compute", 2,
+       "tessera: error: --size 16384x16384: " + too_big},
+      {"tradeoff --device lavapipe --size 16384x16384 --knob samples", 2,
+       "tessera: error: --size 16384x16384: " + too_big},
+      {"render --device lavapipe --scene " + big_scene + " --out /tmp/x.png", 1,
+       "tessera: error: " + big_scene + ":2:12: render: the size 16384x16384 " + too_big +
+           " (--size overrides it)"},
       {"render --out /nonexistent-dir/x.png", 1,
        "tessera: error: cannot write output file '/nonexistent-dir/x.png': folder "
        "'/nonexistent-dir' does not exist"},

@@ -308,6 +308,20 @@ TEST(SceneFile, ExampleScenesLoad) {
   EXPECT_GE(files, 4);
 }
 
+// A number beyond double's range is named by its path, as other errors name their values
+// (tests/data/bad/scene_inf*.json), where the rest of the file parses; with a second such
+// number after it, by its place alone.
+TEST(SceneFile, NumberOutOfRangeIsNamedByItsPath) {
+  EXPECT_EQ(load_error("1e999"),
+            "test.json:1:1: (top level): 1e999 is out of the range of a number (NaN and infinity "
+            "are refused)");
+  EXPECT_EQ(load_error(R"({"a/b~": 1e999})"),
+            "test.json:1:10: a/b~: 1e999 is out of the range of a number (NaN and infinity are "
+            "refused)");
+  EXPECT_EQ(load_error(R"({"x": [1e999, 2e999]})"),
+            "test.json:1:8: 1e999 is out of the range of a number (NaN and infinity are refused)");
+}
+
 TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {
   const std::string text = R"({
   "camera": {"position": [0, 0, 5]},
@@ -384,7 +398,8 @@ TEST(SceneFileCli, RenderUsesTheFileAndItsDefaults) {
 }
 
 // `--camera N` views a scene file through its models' camera N; past the last one, or for a
-// scene whose models bring none, it says which cameras there are.
+// scene whose models bring none, it says which cameras there are, as a bad command line (exit
+// status 2 and where the usage is, though found only once the scene is loaded).
 TEST(SceneFileCli, CameraPicksAModelCamera) {
   const std::string scene = test::output_path("cameras.json");
   std::ofstream(scene) << R"({"models": [{"name": "cams", "file":
@@ -397,13 +412,48 @@ TEST(SceneFileCli, CameraPicksAModelCamera) {
   ASSERT_EQ(test::run_command(render + scene + " --out " + own, out), 0) << out;
   ASSERT_EQ(test::run_command(render + scene + " --camera 0 --out " + picked, out), 0) << out;
   EXPECT_NE(read_png(own).pixels, read_png(picked).pixels);
-  EXPECT_EQ(test::run_command(render + scene + " --camera 2 --out " + picked, out), 1);
-  EXPECT_NE(out.find("--camera 2: the scene's models bring 2 cameras (0: model 'cams' camera 0, "
-                     "1: model 'cams' camera 1)"),
+  EXPECT_EQ(test::run_command(render + scene + " --camera 2 --out " + picked, out), 2);
+  EXPECT_NE(out.find("tessera: error: --camera 2: the scene's models bring 2 cameras (0: model "
+                     "'cams' camera 0, 1: model 'cams' camera 1)\nRun 'tessera render --help' "
+                     "for the options."),
             std::string::npos)
       << out;
-  EXPECT_EQ(test::run_command(render + "spheres --camera 0 --out " + picked, out), 1);
+  EXPECT_EQ(test::run_command(render + "spheres --camera 0 --out " + picked, out), 2);
   EXPECT_NE(out.find("--camera 0: the scene's models bring no cameras"), std::string::npos) << out;
+  EXPECT_NE(out.find("Run 'tessera render --help' for the options."), std::string::npos) << out;
+}
+
+// A scene with nothing to light it is valid: its objects are black. `render` says so in a
+// note, which --strict does not make an error, and says nothing where anything gives light or
+// a debug view needs none.
+TEST(SceneFileCli, UnlitSceneIsNoted) {
+  const std::string cube = R"("meshes": [{"name": "c", "type": "cube"}],
+    "objects": [{"mesh": "c", "material": "m"}])";
+  const std::string unlit = test::output_path("unlit.json");
+  std::ofstream(unlit) << R"({"materials": [{"name": "m"}, {"name": "glow", "emissive": [1, 1, 1]}],
+    )" + cube + "}";
+  const std::string glowing = test::output_path("glowing.json");
+  std::ofstream(glowing) << R"({"materials": [{"name": "m", "emissive": [1, 1, 1]}], )" + cube +
+                                "}";
+  const std::string ambient = test::output_path("ambient.json");
+  std::ofstream(ambient) << R"({"materials": [{"name": "m"}], "ambient": [0.1, 0, 0], )" + cube +
+                                "}";
+  const std::string render = std::string(TESSERA_BINARY) +
+                             " render --device lavapipe --size 16x16 --repeat 1 --out " +
+                             test::output_path("unlit.png") + " --scene ";
+  const std::string note = "tessera: note: " + unlit +
+                           " has no lights, ambient light, environment or emissive material: its "
+                           "objects are black\n";
+  std::string out;
+  EXPECT_EQ(test::run_command(render + unlit + " --strict", out), 0) << out;
+  EXPECT_NE(out.find(note), std::string::npos) << out;
+  EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+  // The emissive material above is on no object; here it is. Lights, an environment: below.
+  for (const std::string& lit : {glowing + " ", ambient + " ", unlit + " --env sky",
+                                 unlit + " --view normal", std::string("spheres")}) {
+    EXPECT_EQ(test::run_command(render + lit, out), 0) << out;
+    EXPECT_EQ(out.find("note:"), std::string::npos) << lit << ":\n" << out;
+  }
 }
 
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene

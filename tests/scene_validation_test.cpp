@@ -126,17 +126,34 @@ TEST_F(SceneUpload, RendererRejectsBadSceneAndBadSizes) {
   FrameSettings settings;
   EXPECT_THROW(renderer.render(settings), Error) << "render before any scene was set";
   renderer.set_scene(one_triangle_scene());
+  // Sizes are refused as ImageSizeError, which the tool tells apart (a bad --size).
   settings.width = 0;
-  EXPECT_THROW(renderer.render(settings), Error);
+  EXPECT_THROW(renderer.render(settings), ImageSizeError);
   settings.width = 20000;
-  EXPECT_THROW(renderer.render(settings), Error);
-  // 8192 x 8192 needs a 512 MiB visibility buffer, over lavapipe's 128 MiB storage range.
+  EXPECT_THROW(renderer.render(settings), ImageSizeError);
+  // 8192 x 8192 needs a 512 MiB visibility buffer, over lavapipe's 128 MiB storage range, which
+  // holds 2^27 / 8 = 2^24 keys of 8 bytes: a square of 4096 px a side at 1 sample, of 2048 at 4.
   settings.width = settings.height = 8192;
   try {
     renderer.render(settings);
     ADD_FAILURE() << "8192x8192 should not fit lavapipe";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos) << e.what();
+  } catch (const ImageSizeError& e) {
+    EXPECT_EQ(e.width, 8192u);
+    EXPECT_EQ(e.reason,
+              "needs a 512 MiB visibility buffer, more than this device's maxStorageBufferRange "
+              "(128 MiB): it takes at most 16777216 pixels at 1 sample, e.g. 4096x4096");
+  }
+  settings.width = settings.height = 4096;
+  settings.samples = 4;
+  try {
+    renderer.render(settings);
+    ADD_FAILURE() << "4096x4096 at 4 samples should not fit lavapipe";
+  } catch (const ImageSizeError& e) {
+    EXPECT_NE(e.reason.find("at 4 samples needs a 512 MiB visibility buffer"), std::string::npos)
+        << e.reason;
+    EXPECT_NE(e.reason.find("at most 4194304 pixels at 4 samples, e.g. 2048x2048"),
+              std::string::npos)
+        << e.reason;
   }
 }
 

@@ -563,6 +563,25 @@ TEST_F(View, UnwritableScreenshotSaysWhy) {
       << run.output;
 }
 
+// A scene with nothing to light it is noted (not warned about: --strict still opens it); a lit
+// one is not.
+TEST_F(View, UnlitSceneIsNoted) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string unlit = output_path("unlit.json");
+  std::ofstream(unlit) << R"({"materials": [{"name": "m"}],
+    "meshes": [{"name": "c", "type": "cube"}], "objects": [{"mesh": "c", "material": "m"}]})";
+  ViewRun run = run_view("1 exit\n", "--strict --scene " + unlit + " --size 32x24");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("note: " + unlit +
+                            " has no lights, ambient light, environment or emissive material: "
+                            "its objects are black\n"),
+            std::string::npos)
+      << run.output;
+  run = run_view("1 exit\n", "--strict --scene " + write_ball_scene() + " --size 32x24");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("has no lights"), std::string::npos) << run.output;
+}
+
 TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   SKIP_WITHOUT_X_SERVER();
   const std::string scene = write_ball_scene();
