@@ -120,8 +120,9 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
         }
       }
       // A flag, written as the CSV's other flags are (docs/performance.md, "Columns").
-      if (cells[2] != "reference")
+      if (cells[2] != "reference") {
         EXPECT_TRUE(cell("warmup_stable") == "true" || cell("warmup_stable") == "false") << row;
+      }
       for (const char* column : {"triangles_rasterized", "setup_ms", "shade_ms", "batches",
                                  "tile_entries", "tile_list_stride"}) {
         const size_t i = std::find(names.begin(), names.end(), column) - names.begin();
