@@ -47,8 +47,10 @@
 #include <tiny_obj_loader.h>
 
 #include "core/check.h"
+#include "core/mapped_file.h"
 #include "core/model_import.h"
 #include "core/parallel.h"
+#include "core/texture.h"
 
 namespace tessera {
 
@@ -675,15 +677,24 @@ struct Importer {
                   std::to_string(size) + " bytes, over the limit of " +
                   std::to_string(options.max_file_bytes) + " (ImportOptions::max_file_bytes)");
     }
-    int w = 0, h = 0, channels = 0;
-    if (!stbi_info(file.c_str(), &w, &h, &channels)) {
-      throw Error(where(info, keyword, material) + ": cannot read texture " + quoted(file) + ": " +
-                  stbi_failure_reason());
-    }
-    if (uint32_t(w) > options.max_texture_side || uint32_t(h) > options.max_texture_side) {
-      throw Error(where(info, keyword, material) + ": texture " + quoted(file) + " is " +
-                  std::to_string(w) + "x" + std::to_string(h) + ", over the largest side of " +
-                  std::to_string(options.max_texture_side) + " (ImportOptions::max_texture_side)");
+    // The header's size before anything is decoded (oversized_image), then whether stb_image
+    // knows the format at all.
+    try {
+      const MappedFile bytes = tessera::map_file(file, options.max_file_bytes);
+      if (const auto side =
+              oversized_image({bytes.data(), bytes.size()}, options.max_texture_side)) {
+        throw Error("texture " + quoted(file) + " is " + std::to_string(side->x) + "x" +
+                    std::to_string(side->y) + ", over the largest side of " +
+                    std::to_string(options.max_texture_side) +
+                    " (ImportOptions::max_texture_side)");
+      }
+      int w = 0, h = 0, channels = 0;
+      const int header = int(std::min<size_t>(bytes.size(), INT32_MAX));  // enough for a header
+      if (!stbi_info_from_memory(bytes.data(), header, &w, &h, &channels)) {
+        throw Error("cannot read texture " + quoted(file) + ": " + stbi_failure_reason());
+      }
+    } catch (const Error& e) {
+      throw Error(where(info, keyword, material) + ": " + e.what());
     }
     // Names only the options the statement gives (a fresh user's trial: -clamp was named
     // where only -s and -o were given).
