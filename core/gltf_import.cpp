@@ -72,6 +72,7 @@ void check_file_size(const Context& ctx, uintmax_t size) {
 // The file's bytes, mapped (map_file): the size is checked first, so that the messages for a
 // missing or oversized file are the same as for bytes handed over (import_gltf_bytes).
 MappedFile read_file(const Context& ctx, const std::string& path) {
+  require_regular_file(path);  // file_size's error for a directory or a FIFO says "not supported"
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
   if (error) ctx.fail("", "cannot read the file: " + error.message());

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/json_places.h"
+#include "core/mapped_file.h"
 
 namespace tessera::gltf {
 namespace {
@@ -328,6 +329,11 @@ void check_files(const Context& ctx, const json& doc, const char* array, bool is
       ctx.fail(where + ".uri", "'" + u + "' is not a relative file name (no network access)");
     }
     const std::filesystem::path path = std::filesystem::path(ctx.base_dir) / decode_uri(u);
+    try {
+      require_regular_file(path.string());
+    } catch (const Error& e) {
+      ctx.fail(where + ".uri", e.what());
+    }
     std::error_code error;
     const uintmax_t size = std::filesystem::file_size(path, error);
     if (error) ctx.fail(where + ".uri", "cannot read '" + path.string() + "': " + error.message());

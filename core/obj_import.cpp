@@ -557,6 +557,11 @@ class MtlReader : public tinyobj::MaterialReader {
     const auto it = scan_.mtllib_line.find(name);
     const size_t line = it == scan_.mtllib_line.end() ? 0 : it->second;
     try {
+      try {
+        require_regular_file(path);  // a directory or a FIFO: an error, not "not found"
+      } catch (const Error& e) {
+        throw Error(place(obj_path_, line) + ": material library " + e.what());
+      }
       const std::optional<std::string> text = read_limited(path, max_bytes_);
       if (!text) {
         warnings.push_back(place(obj_path_, line) + ": material library " + quoted(path) +
@@ -665,6 +670,11 @@ struct Importer {
                                   const std::string& material, const std::string& name,
                                   const tinyobj::texture_option_t& option, bool srgb) {
     const std::string file = map_file(info, name);
+    try {
+      require_regular_file(file);  // a directory or a FIFO: an error, not "not found"
+    } catch (const Error& e) {
+      throw Error(where(info, keyword, material) + ": texture " + e.what());
+    }
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) {
       warn(where(info, keyword, material) + ": texture " + quoted(file) +
@@ -1439,6 +1449,7 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
 }  // namespace
 
 ImportedModel import_obj(const std::string& path, const ImportOptions& options) {
+  require_regular_file(path);  // a directory or a FIFO is said to be one, not "not found"
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error("OBJ file " + quoted(path) + " not found");
   const uint64_t size = fs::file_size(path, ec);
