@@ -19,9 +19,10 @@ namespace {
 using nlohmann::json;
 
 enum class Kind {
-  index,   // integer >= 0
-  uint,    // integer >= 0
-  number,  // any JSON number
+  index,      // integer >= 0
+  uint,       // integer >= 0
+  int_count,  // integer 0 to 2^31 - 1: TinyGLTF reads it into an int, which a larger one wraps
+  number,     // any JSON number
   string,
   boolean,
   object,     // checked against `fields`
@@ -81,6 +82,16 @@ void check_value(const Context& ctx, const json& v, const std::string& where, co
     case Kind::index:
     case Kind::uint:
       if (!is_count(v)) wrong("an integer >= 0");
+      break;
+    case Kind::int_count:
+      if (!is_count(v)) wrong("an integer >= 0");
+      // Quoted as written: TinyGLTF's int would turn 3000000000 into -1294967296, and
+      // 4294967297 into 1 (a fresh user's trial).
+      if (v.get<uint64_t>() > uint64_t(INT32_MAX)) {
+        ctx.fail(where, "is " + v.dump() + ", above " + std::to_string(INT32_MAX) +
+                            " (2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a "
+                            "32-bit int)");
+      }
       break;
     case Kind::scan_index:
       break;
@@ -204,13 +215,15 @@ const std::vector<Field>& document_schema() {
         {"max", Kind::numbers},
         {"sparse",
          Kind::object,
-         {{"count", Kind::uint},
+         {{"count", Kind::int_count},
           {"indices",
            Kind::object,
            {{"bufferView", Kind::index},
-            {"byteOffset", Kind::uint},
-            {"componentType", Kind::uint}}},
-          {"values", Kind::object, {{"bufferView", Kind::index}, {"byteOffset", Kind::uint}}}}}}},
+            {"byteOffset", Kind::int_count},
+            {"componentType", Kind::int_count}}},
+          {"values",
+           Kind::object,
+           {{"bufferView", Kind::index}, {"byteOffset", Kind::int_count}}}}}}},
       {"bufferViews",
        Kind::objects,
        {{"buffer", Kind::index},
@@ -598,6 +611,7 @@ class Scan {
     Number kind;
     switch (f.kind) {
       case Kind::index:
+      case Kind::int_count:
       case Kind::scan_index:
         return index();
       case Kind::uint:

@@ -391,6 +391,26 @@ TEST(GltfImport, GlbBufferReadInTheFileGivesTheEmbeddedScene) {
   }
 }
 
+// A sparse accessor's numbers that TinyGLTF holds in an int are quoted as written when over
+// 2^31 - 1, at their glTF path (tests/data/bad/sparse_count_over_int.gltf has the count): the
+// int would have wrapped this byteOffset to 0, and the message named what that read instead.
+TEST(GltfImport, SparseNumbersOverAnIntAreQuotedAsWritten) {
+  const std::string text = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "sparse": {"count": 1,
+      "indices": {"bufferView": 0, "byteOffset": 4294967296, "componentType": 5123},
+      "values": {"bufferView": 0}}}]})";
+  try {
+    import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "s.gltf",
+                      "/nonexistent");
+    ADD_FAILURE() << "imported";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.gltf: accessors[0].sparse.indices.byteOffset: is 4294967296, above 2147483647 "
+              "(2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a 32-bit int)");
+  }
+}
+
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
   const ImportedModel gltf = import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf");
   const ImportedModel glb = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");
