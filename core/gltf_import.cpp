@@ -540,6 +540,11 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     }
   }
   check_document(ctx, doc);
+  for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+    for (const json& name : member(doc, list)) {
+      ctx.mesh_quantization |= name == "KHR_mesh_quantization";
+    }
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded_image, nullptr);

@@ -303,7 +303,7 @@ const std::vector<Field>& document_schema() {
 
 // Extensions whose every use Tessera honours, so files that require them can be imported.
 // KHR_mesh_quantization only widens the component types of vertex attributes, which
-// read_accessor accepts anyway.
+// read_accessor reads whatever they are (convert_primitive holds them to the extension's).
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
     "KHR_mesh_quantization"};
