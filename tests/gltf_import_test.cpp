@@ -510,6 +510,56 @@ TEST(GltfImport, QuantizedAttributesNeedKhrMeshQuantization) {
             "SHORT for NORMAL");
 }
 
+// The triangle of triangle_bytes, embedded, placed by `node` (nodes[0]).
+std::vector<unsigned char> placed_triangle(const std::string& node) {
+  std::string text = triangle_document(
+      R"({"byteLength": 42, "uri": "data:application/octet-stream;base64,)" +
+          base64(triangle_bytes()) + R"("})",
+      R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6})");
+  const std::string nodes = R"("nodes": [{"mesh": 0}])";
+  text.replace(text.find(nodes), nodes.size(), R"("nodes": [)" + node + "]");
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+// A scale of 0, which Tessera's scene files refuse, is valid glTF (3.5.3: a scale of 0 on every
+// axis hides a node): imported as written, with the scene files' words as a warning, and an
+// error in strict import. A matrix that flattens (determinant 0) likewise.
+TEST(GltfImport, ZeroScaleIsImportedAsWrittenWithAWarning) {
+  const std::string drawn =
+      "imported as written, as glTF 2.0 allows (3.5.3): drawn flat, or not at all where every "
+      "axis is 0";
+  const std::string flattens = "flat.gltf: nodes[0].scale: a scale of 0 flattens the object; ";
+  const ImportedModel flat = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "scale": [1, 0, 1]})"), "flat.gltf", "/nonexistent");
+  EXPECT_EQ(flat.warnings, std::vector<std::string>{flattens + drawn});
+  EXPECT_EQ(flat.scene.objects.at(0).transform,
+            glm::mat4(1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1));
+  const ImportedModel hidden = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "scale": [0, 0, 0]})"), "flat.gltf", "/nonexistent");
+  EXPECT_EQ(hidden.warnings, std::vector<std::string>{flattens + drawn});
+  EXPECT_EQ(glm::mat3(hidden.scene.objects.at(0).transform), glm::mat3(0.0f));
+  const ImportedModel matrix = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"),
+      "flat.gltf", "/nonexistent");
+  EXPECT_EQ(matrix.warnings,
+            std::vector<std::string>{"flat.gltf: nodes[0].matrix: flattens the object (its upper "
+                                     "3x3 part has determinant 0); " +
+                                     drawn});
+  // A small scale is not 0.
+  EXPECT_TRUE(import_gltf_bytes(placed_triangle(R"({"mesh": 0, "scale": [1, 1e-30, 1]})"),
+                                "flat.gltf", "/nonexistent")
+                  .warnings.empty());
+  ImportOptions strict;
+  strict.strict = true;
+  try {
+    import_gltf_bytes(placed_triangle(R"({"mesh": 0, "scale": [1, 0, 1]})"), "flat.gltf",
+                      "/nonexistent", strict);
+    ADD_FAILURE() << "a scale of 0 was imported in strict import";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), flattens + drawn + " (an error in strict import)");
+  }
+}
+
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
   const ImportedModel gltf = import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf");
   const ImportedModel glb = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");
