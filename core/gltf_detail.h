@@ -33,6 +33,9 @@ struct Context {
   /// is converted (its conversion reads some of them in place until it ends).
   ReadPages* read_pages = nullptr;
   mutable std::vector<std::pair<const unsigned char*, size_t>> reads;
+  /// The file lists KHR_mesh_quantization (in extensionsUsed or extensionsRequired), which
+  /// allows integer POSITION, NORMAL and TANGENT components (convert_primitive).
+  bool mesh_quantization = false;
 
   /// Throws Error "FILE: WHERE: WHAT"; `where` is a glTF JSON path such as
   /// meshes[2].primitives[0].mode (empty for the file as a whole).

@@ -72,6 +72,7 @@ void check_file_size(const Context& ctx, uintmax_t size) {
 // The file's bytes, mapped (map_file): the size is checked first, so that the messages for a
 // missing or oversized file are the same as for bytes handed over (import_gltf_bytes).
 MappedFile read_file(const Context& ctx, const std::string& path) {
+  require_regular_file(path);  // file_size's error for a directory or a FIFO says "not supported"
   std::error_code error;
   const uintmax_t size = std::filesystem::file_size(path, error);
   if (error) ctx.fail("", "cannot read the file: " + error.message());
@@ -243,6 +244,16 @@ NodeInfo node_info(const tinygltf::Node& node) {
   return n;
 }
 
+// glTF allows a transform that flattens what it places (a scale of 0: specification 3.5.3,
+// whose notes expect lighting artifacts on one axis and let a scale of 0 on all three hide the
+// node), where Tessera's scene files refuse one with the same words as here. The file is
+// imported as written, with a warning (an error in strict import, as in a scene file): both
+// renderers shade a flattened triangle with its face normal, its normals' transform (the
+// inverse transpose) being singular, and one flattened to a line or a point covers no pixel.
+constexpr const char* kFlattened =
+    "imported as written, as glTF 2.0 allows (3.5.3): drawn flat, or not at all where every "
+    "axis is 0";
+
 // A node's local transform: its matrix, or translation * rotation * scale.
 glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::string& where) {
   glm::dmat4 m(1.0);
@@ -260,6 +271,12 @@ glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::
     if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty()) {
       ctx.warn(where, "has both a matrix and TRS properties; the matrix is used");
     }
+    // As a scale of 0 (below), in double, as scene files test a matrix.
+    if (glm::determinant(glm::dmat3(m)) == 0.0) {
+      ctx.warn(
+          where + ".matrix",
+          std::string("flattens the object (its upper 3x3 part has determinant 0); ") + kFlattened);
+    }
   } else {
     auto or_default = [](const std::vector<double>& v, std::vector<double> fallback) {
       return v.empty() ? fallback : v;
@@ -267,6 +284,9 @@ glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::
     const auto t = or_default(node.translation, {0, 0, 0});
     const auto r = or_default(node.rotation, {0, 0, 0, 1});
     const auto s = or_default(node.scale, {1, 1, 1});
+    if (s[0] == 0.0 || s[1] == 0.0 || s[2] == 0.0) {
+      ctx.warn(where + ".scale", std::string("a scale of 0 flattens the object; ") + kFlattened);
+    }
     glm::dquat q(r[3], r[0], r[1], r[2]);
     const double length = glm::length(q);
     if (!(length > 0.0) || !std::isfinite(length)) {
@@ -539,6 +559,11 @@ ImportedModel import_gltf_from(gltf::Context& ctx, ImportedModel& out,
     }
   }
   check_document(ctx, doc);
+  for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+    for (const json& name : member(doc, list)) {
+      ctx.mesh_quantization |= name == "KHR_mesh_quantization";
+    }
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded_image, nullptr);

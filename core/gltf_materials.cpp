@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/parallel.h"
+#include "core/texture.h"
 
 namespace tessera::gltf {
 namespace {
@@ -43,18 +44,17 @@ Texture decode_image(const Context& ctx, const tinygltf::Model& model, int index
   }
   if (size == 0) ctx.fail(where, "has no image data (its file could not be read)");
   if (size > uint64_t(INT32_MAX)) ctx.fail(where, "is over 2 GiB, more than stb_image reads");
+  const uint32_t largest = ctx.options.max_texture_side;
+  const auto too_large = [&](glm::uvec2 side) {
+    ctx.fail(where, "is " + std::to_string(side.x) + "x" + std::to_string(side.y) +
+                        ", over the largest texture side of " + std::to_string(largest));
+  };
+  if (const auto side = oversized_image({bytes, size}, largest)) too_large(*side);
   int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels)) {
-    ctx.fail(where, std::string("cannot be decoded: ") + stbi_failure_reason());
-  }
-  if (uint32_t(w) > ctx.options.max_texture_side || uint32_t(h) > ctx.options.max_texture_side) {
-    ctx.fail(where, "is " + std::to_string(w) + "x" + std::to_string(h) +
-                        ", over the largest texture side of " +
-                        std::to_string(ctx.options.max_texture_side));
-  }
   std::unique_ptr<stbi_uc, void (*)(void*)> data(
       stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
   if (!data) ctx.fail(where, std::string("cannot be decoded: ") + stbi_failure_reason());
+  if (uint32_t(w) > largest || uint32_t(h) > largest) too_large(glm::uvec2(w, h));
   Texture t;
   t.width = uint32_t(w);
   t.height = uint32_t(h);

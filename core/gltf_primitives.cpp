@@ -49,6 +49,43 @@ void require_finite(const Context& ctx, const AccessorValues& v, const std::stri
   });
 }
 
+// The specification's name of componentType `type`, one read_accessor has accepted (5120 to
+// 5126 but 5124).
+const char* component_type_name(int type) {
+  static const char* const kNames[] = {"BYTE", "UNSIGNED_BYTE", "SHORT", "UNSIGNED_SHORT",
+                                       "INT",  "UNSIGNED_INT",  "FLOAT"};
+  return kNames[type - TINYGLTF_COMPONENT_TYPE_BYTE];
+}
+
+// Fails unless accessors[index], the `name` attribute (POSITION, NORMAL or TANGENT) at `where`,
+// has a component type glTF allows for it: only FLOAT in glTF 2.0 itself (3.7.2.1, the table of
+// attribute semantics); with KHR_mesh_quantization also BYTE, UNSIGNED_BYTE, SHORT and
+// UNSIGNED_SHORT positions, normalized or not, and normalized BYTE and SHORT normals and
+// tangents. read_accessor reads any type, so without this a file that needs the extension but
+// does not declare it was drawn, where viewers that follow the specification refuse it.
+void check_vector_type(const Context& ctx, const tinygltf::Model& model, int index,
+                       const std::string& name, const std::string& where) {
+  const tinygltf::Accessor& a = model.accessors[index];
+  const int type = a.componentType;
+  if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+  const std::string is = "is " + at("accessors", size_t(index)) + ", of componentType " +
+                         std::to_string(type) + " (" + component_type_name(type) +
+                         (a.normalized ? ", normalized" : "") + ")";
+  if (!ctx.mesh_quantization) {
+    ctx.fail(where, is + "; glTF 2.0 allows only FLOAT (5126) for " + name +
+                        " (3.7.2.1) unless the file lists KHR_mesh_quantization in "
+                        "extensionsUsed, which it does not");
+  }
+  const bool small = type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
+  if (name == "POSITION" ? type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
+                         : !(small && a.normalized)) {
+    ctx.fail(where, is + "; KHR_mesh_quantization allows " +
+                        (name == "POSITION" ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
+                                            : "FLOAT or normalized BYTE or SHORT") +
+                        " for " + name);
+  }
+}
+
 // Element i of `values` read as three floats: an iterator over the vec3s of an accessor's flat
 // values (any of visit's kinds), so that a vector is built from them in one pass that the
 // compiler vectorizes (a zero-fill by resize and a scalar copy were a twentieth of the import).
@@ -145,6 +182,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   if (attribute("POSITION") < 0) ctx.fail(attributes + "POSITION", "is missing");
   const AccessorValues positions = read_accessor(ctx, model, attribute("POSITION"),
                                                  attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
+  check_vector_type(ctx, model, attribute("POSITION"), "POSITION", attributes + "POSITION");
   const size_t n = positions.count;
   Mesh mesh;
   visit(positions, [&](auto values) {
@@ -266,6 +304,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // The specification says to ignore given tangents when normals are generated.
   } else {
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3, false);
+    check_vector_type(ctx, model, attribute("NORMAL"), "NORMAL", attributes + "NORMAL");
     reserve_populated(mesh.normals, n);
     mesh.normals.resize(n);
     bool renormalized = false, finite_normals = true;
@@ -305,6 +344,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     }
     if (attribute("TANGENT") >= 0) {
       const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
+      check_vector_type(ctx, model, attribute("TANGENT"), "TANGENT", attributes + "TANGENT");
       mesh.tangents.resize(n);
       visit(tangents, [&](auto values) {
         for (size_t i = 0; i < n; ++i) {

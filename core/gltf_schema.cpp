@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/json_places.h"
+#include "core/mapped_file.h"
 
 namespace tessera::gltf {
 namespace {
@@ -18,9 +19,10 @@ namespace {
 using nlohmann::json;
 
 enum class Kind {
-  index,   // integer >= 0
-  uint,    // integer >= 0
-  number,  // any JSON number
+  index,      // integer >= 0
+  uint,       // integer >= 0
+  int_count,  // integer 0 to 2^31 - 1: TinyGLTF reads it into an int, which a larger one wraps
+  number,     // any JSON number
   string,
   boolean,
   object,     // checked against `fields`
@@ -80,6 +82,16 @@ void check_value(const Context& ctx, const json& v, const std::string& where, co
     case Kind::index:
     case Kind::uint:
       if (!is_count(v)) wrong("an integer >= 0");
+      break;
+    case Kind::int_count:
+      if (!is_count(v)) wrong("an integer >= 0");
+      // Quoted as written: TinyGLTF's int would turn 3000000000 into -1294967296, and
+      // 4294967297 into 1 (a fresh user's trial).
+      if (v.get<uint64_t>() > uint64_t(INT32_MAX)) {
+        ctx.fail(where, "is " + v.dump() + ", above " + std::to_string(INT32_MAX) +
+                            " (2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a "
+                            "32-bit int)");
+      }
       break;
     case Kind::scan_index:
       break;
@@ -203,13 +215,15 @@ const std::vector<Field>& document_schema() {
         {"max", Kind::numbers},
         {"sparse",
          Kind::object,
-         {{"count", Kind::uint},
+         {{"count", Kind::int_count},
           {"indices",
            Kind::object,
            {{"bufferView", Kind::index},
-            {"byteOffset", Kind::uint},
-            {"componentType", Kind::uint}}},
-          {"values", Kind::object, {{"bufferView", Kind::index}, {"byteOffset", Kind::uint}}}}}}},
+            {"byteOffset", Kind::int_count},
+            {"componentType", Kind::int_count}}},
+          {"values",
+           Kind::object,
+           {{"bufferView", Kind::index}, {"byteOffset", Kind::int_count}}}}}}},
       {"bufferViews",
        Kind::objects,
        {{"buffer", Kind::index},
@@ -289,7 +303,7 @@ const std::vector<Field>& document_schema() {
 
 // Extensions whose every use Tessera honours, so files that require them can be imported.
 // KHR_mesh_quantization only widens the component types of vertex attributes, which
-// read_accessor accepts anyway.
+// read_accessor reads whatever they are (convert_primitive holds them to the extension's).
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
     "KHR_mesh_quantization"};
@@ -328,6 +342,11 @@ void check_files(const Context& ctx, const json& doc, const char* array, bool is
       ctx.fail(where + ".uri", "'" + u + "' is not a relative file name (no network access)");
     }
     const std::filesystem::path path = std::filesystem::path(ctx.base_dir) / decode_uri(u);
+    try {
+      require_regular_file(path.string());
+    } catch (const Error& e) {
+      ctx.fail(where + ".uri", e.what());
+    }
     std::error_code error;
     const uintmax_t size = std::filesystem::file_size(path, error);
     if (error) ctx.fail(where + ".uri", "cannot read '" + path.string() + "': " + error.message());
@@ -592,6 +611,7 @@ class Scan {
     Number kind;
     switch (f.kind) {
       case Kind::index:
+      case Kind::int_count:
       case Kind::scan_index:
         return index();
       case Kind::uint:

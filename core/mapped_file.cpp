@@ -20,6 +20,16 @@ namespace {
   throw Error(path + ": cannot read the file: " + std::strerror(error));
 }
 
+[[noreturn]] void not_regular(const std::string& path, mode_t mode) {
+  const char* kind = S_ISDIR(mode)    ? "a directory"
+                     : S_ISFIFO(mode) ? "a FIFO"
+                     : S_ISCHR(mode)  ? "a character device"
+                     : S_ISBLK(mode)  ? "a block device"
+                     : S_ISSOCK(mode) ? "a socket"
+                                      : "a special file";
+  throw Error(path + ": is not a regular file (" + kind + ")");
+}
+
 // Closes a file descriptor on every way out of map_file.
 struct Descriptor {
   int fd;
@@ -124,14 +134,24 @@ void MappedFile::release() {
   mapped_ = false;
 }
 
+void require_regular_file(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode)) {
+    not_regular(path, status.st_mode);
+  }
+}
+
 MappedFile map_file(const std::string& path, uint64_t max_bytes) {
+  // Before opening: opening a FIFO would block.
+  require_regular_file(path);
   const Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
   if (file.fd < 0) cannot_read(path, errno);
   struct stat status {};
   if (::fstat(file.fd, &status) != 0) cannot_read(path, errno);
-  if (S_ISDIR(status.st_mode)) cannot_read(path, EISDIR);
+  // What was opened, should the path have been replaced since.
+  if (!S_ISREG(status.st_mode)) not_regular(path, status.st_mode);
   MappedFile out;
-  if (S_ISREG(status.st_mode) && status.st_size > 0) {
+  if (status.st_size > 0) {
     if (uint64_t(status.st_size) > max_bytes) {
       throw Error(path + ": is " + std::to_string(status.st_size) + " bytes, over the limit of " +
                   std::to_string(max_bytes));
@@ -145,7 +165,7 @@ MappedFile map_file(const std::string& path, uint64_t max_bytes) {
       return out;
     }
   }
-  // Not mappable: read to the end, whatever the size fstat gave (a pipe's is 0).
+  // Not mappable: read to the end, whatever the size fstat gave (a procfs file's is 0).
   unsigned char chunk[1 << 16];
   for (;;) {
     const ssize_t got = ::read(file.fd, chunk, sizeof chunk);

@@ -12,8 +12,9 @@ namespace tessera {
 /// The bytes of a file, mapped read-only (POSIX mmap with MAP_POPULATE): the page cache's own
 /// pages, mapped in one call, where reading into a buffer costs fresh pages (a page fault each
 /// 4 KiB) and a copy of every byte. That was a fifth of a 1.8 MB glb's import
-/// (docs/performance.md, "Loading speed"). Files that cannot be mapped (empty ones, pipes,
-/// special files) are read into memory instead. Move-only; unmaps on destruction.
+/// (docs/performance.md, "Loading speed"). Regular files that cannot be mapped (empty ones,
+/// procfs files, whose size reads 0) are read into memory instead; anything else is refused
+/// (require_regular_file). Move-only; unmaps on destruction.
 /// A mapped file that another process truncates while it is mapped raises SIGBUS on reading
 /// past its new end, as with any mapped file; importers read their files for milliseconds.
 class MappedFile {
@@ -74,8 +75,18 @@ class ReadPages {
 };
 
 /// Maps (or reads) the file at `path`. Throws tessera::Error "PATH: cannot read the file: REASON"
-/// if it cannot be opened or read, and "PATH: is N bytes, over the limit of MAX_BYTES" for a
-/// larger file, checked before any byte is read.
+/// if it cannot be opened or read, require_regular_file's error for what is not a regular file,
+/// and "PATH: is N bytes, over the limit of MAX_BYTES" for a larger file, checked before any byte
+/// is read.
 MappedFile map_file(const std::string& path, uint64_t max_bytes);
+
+/// Throws tessera::Error "PATH: is not a regular file (a directory)" (a FIFO, a character device,
+/// a block device, a socket) where `path` names something that exists and is not a regular file,
+/// symbolic links followed; does nothing otherwise (a missing file is left to the caller, whose
+/// message says where the name came from). Loaders call it (map_file does) before they measure
+/// or open a file they are given: opening a FIFO blocks until a writer comes, /dev/zero never
+/// ends, and std::filesystem::file_size reports either as "Operation not supported" (a fresh
+/// user's trial).
+void require_regular_file(const std::string& path);
 
 }  // namespace tessera

@@ -26,6 +26,9 @@
 //   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
 // - Vertex colours (`v x y z r g b`, an extension some exporters write) are not read: materials
 //   have no vertex-colour input. They are warned about once, with their count.
+// - The text is ASCII or UTF-8, as OBJ files are written: a UTF-16 file (one that starts with
+//   the byte-order mark FF FE or FE FF, or has a NUL byte) is an error at that place, where
+//   every one of its lines would otherwise be ignored and the file said to have no faces.
 
 #include <algorithm>
 #include <bit>
@@ -47,8 +50,10 @@
 #include <tiny_obj_loader.h>
 
 #include "core/check.h"
+#include "core/mapped_file.h"
 #include "core/model_import.h"
 #include "core/parallel.h"
+#include "core/texture.h"
 
 namespace tessera {
 
@@ -287,6 +292,18 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
 
 /// Checks one line of an OBJ file and records what it declares in `scan`.
 void scan_obj_line(const std::string& file, size_t line, std::string_view s, ObjScan& scan) {
+  // Text saved as "Unicode" is UTF-16, where every other byte of ASCII is 0: no line read as a
+  // statement, and the file was said to have no faces (a fresh user's trial). Such lines never
+  // pass scan_obj_line_fast, so the check costs the common lines nothing.
+  if (line == 1 && (s.starts_with("\xFF\xFE") || s.starts_with("\xFE\xFF"))) {
+    fail(file, 1, 1,
+         std::string("the file is UTF-16 (it starts with the byte-order mark ") +
+             (s[0] == '\xFF' ? "FF FE" : "FE FF") + "); OBJ files must be ASCII or UTF-8");
+  }
+  if (const size_t nul = s.find('\0'); nul != std::string_view::npos) {
+    fail(file, line, nul + 1,
+         "a NUL byte: the file is UTF-16 or not text; OBJ files must be ASCII or UTF-8");
+  }
   Tokens tokens(s);
   const std::optional<Token> key = tokens.next();
   if (!key || key->text[0] == '#') return;
@@ -555,6 +572,11 @@ class MtlReader : public tinyobj::MaterialReader {
     const auto it = scan_.mtllib_line.find(name);
     const size_t line = it == scan_.mtllib_line.end() ? 0 : it->second;
     try {
+      try {
+        require_regular_file(path);  // a directory or a FIFO: an error, not "not found"
+      } catch (const Error& e) {
+        throw Error(place(obj_path_, line) + ": material library " + e.what());
+      }
       const std::optional<std::string> text = read_limited(path, max_bytes_);
       if (!text) {
         warnings.push_back(place(obj_path_, line) + ": material library " + quoted(path) +
@@ -663,6 +685,11 @@ struct Importer {
                                   const std::string& material, const std::string& name,
                                   const tinyobj::texture_option_t& option, bool srgb) {
     const std::string file = map_file(info, name);
+    try {
+      require_regular_file(file);  // a directory or a FIFO: an error, not "not found"
+    } catch (const Error& e) {
+      throw Error(where(info, keyword, material) + ": texture " + e.what());
+    }
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) {
       warn(where(info, keyword, material) + ": texture " + quoted(file) +
@@ -675,15 +702,24 @@ struct Importer {
                   std::to_string(size) + " bytes, over the limit of " +
                   std::to_string(options.max_file_bytes) + " (ImportOptions::max_file_bytes)");
     }
-    int w = 0, h = 0, channels = 0;
-    if (!stbi_info(file.c_str(), &w, &h, &channels)) {
-      throw Error(where(info, keyword, material) + ": cannot read texture " + quoted(file) + ": " +
-                  stbi_failure_reason());
-    }
-    if (uint32_t(w) > options.max_texture_side || uint32_t(h) > options.max_texture_side) {
-      throw Error(where(info, keyword, material) + ": texture " + quoted(file) + " is " +
-                  std::to_string(w) + "x" + std::to_string(h) + ", over the largest side of " +
-                  std::to_string(options.max_texture_side) + " (ImportOptions::max_texture_side)");
+    // The header's size before anything is decoded (oversized_image), then whether stb_image
+    // knows the format at all.
+    try {
+      const MappedFile bytes = tessera::map_file(file, options.max_file_bytes);
+      if (const auto side =
+              oversized_image({bytes.data(), bytes.size()}, options.max_texture_side)) {
+        throw Error("texture " + quoted(file) + " is " + std::to_string(side->x) + "x" +
+                    std::to_string(side->y) + ", over the largest side of " +
+                    std::to_string(options.max_texture_side) +
+                    " (ImportOptions::max_texture_side)");
+      }
+      int w = 0, h = 0, channels = 0;
+      const int header = int(std::min<size_t>(bytes.size(), INT32_MAX));  // enough for a header
+      if (!stbi_info_from_memory(bytes.data(), header, &w, &h, &channels)) {
+        throw Error("cannot read texture " + quoted(file) + ": " + stbi_failure_reason());
+      }
+    } catch (const Error& e) {
+      throw Error(where(info, keyword, material) + ": " + e.what());
     }
     // Names only the options the statement gives (a fresh user's trial: -clamp was named
     // where only -s and -o were given).
@@ -1428,6 +1464,7 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
 }  // namespace
 
 ImportedModel import_obj(const std::string& path, const ImportOptions& options) {
+  require_regular_file(path);  // a directory or a FIFO is said to be one, not "not found"
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw Error("OBJ file " + quoted(path) + " not found");
   const uint64_t size = fs::file_size(path, ec);

@@ -21,6 +21,7 @@
 
 #include "core/check.h"
 #include "core/json_places.h"
+#include "core/mapped_file.h"
 #include "core/materials.h"
 #include "core/mesh.h"
 #include "core/model_import.h"
@@ -283,6 +284,11 @@ struct Reader {
     const std::string name = string(n);
     std::filesystem::path p(name);
     if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
+    try {
+      require_regular_file(p.string());
+    } catch (const Error& e) {
+      fail(n, e.what());
+    }
     std::error_code ec;
     const uint64_t bytes = std::filesystem::file_size(p, ec);
     if (ec) fail(n, "cannot read '" + p.string() + "': " + ec.message());
@@ -1062,6 +1068,7 @@ std::string read_scene_description(const std::string& path) {
 }
 
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options) {
+  require_regular_file(path);
   std::error_code ec;
   const uint64_t bytes = std::filesystem::file_size(path, ec);
   if (ec) throw Error(path + ": cannot read the scene file: " + ec.message());

@@ -3,30 +3,59 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 #include <stb/stb_image.h>
 
 #include "core/check.h"
+#include "core/mapped_file.h"
 
 namespace tessera {
 
-Texture load_texture(const std::string& path, bool srgb) {
+std::optional<glm::uvec2> oversized_image(std::span<const unsigned char> bytes, uint32_t max_side) {
   int w = 0, h = 0, channels = 0;
-  const auto too_large = [&] {
-    return Error("texture '" + path + "' is " + std::to_string(w) + "x" + std::to_string(h) +
-                 ", over the largest side of " + std::to_string(kMaxTextureSide));
-  };
-  // The header's size first: decoding a 17000^2 PNG took 7 s and 1.4 GB before it was refused
-  // (a fresh user's trial).
-  if (stbi_info(path.c_str(), &w, &h, &channels) &&
-      (uint32_t(w) > kMaxTextureSide || uint32_t(h) > kMaxTextureSide)) {
-    throw too_large();
+  glm::uvec2 size;
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() <= size_t(INT32_MAX) &&
+      stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels)) {
+    size = glm::uvec2(uint32_t(w), uint32_t(h));
+  } else if (bytes.size() >= 24 && std::memcmp(bytes.data(), kPng, 8) == 0 &&
+             std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+    // stb_image refuses a PNG header whose image would take 2^30 bytes or more (100000 x 100000,
+    // say) and then tries the other formats, so that it says "unknown image type": the size is
+    // read from the IHDR chunk instead, which comes first, width and height as big-endian 32-bit
+    // numbers at bytes 16 and 20 (PNG, ISO/IEC 15948, 5.2, 5.3 and 11.2.2).
+    const auto big_endian = [&](size_t at) {
+      return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+             uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+    };
+    size = glm::uvec2(big_endian(16), big_endian(20));
+  } else {
+    return std::nullopt;
   }
-  std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4),
-                                                 stbi_image_free);
+  if (size.x > max_side || size.y > max_side) return size;
+  return std::nullopt;
+}
+
+Texture load_texture(const std::string& path, bool srgb) {
+  // stb_image reads at most 2 GiB from memory.
+  const MappedFile file = map_file(path, uint64_t(INT32_MAX));
+  const auto too_large = [&](glm::uvec2 size) {
+    return Error("texture '" + path + "' is " + std::to_string(size.x) + "x" +
+                 std::to_string(size.y) + ", over the largest side of " +
+                 std::to_string(kMaxTextureSide));
+  };
+  if (const auto size = oversized_image({file.data(), file.size()}, kMaxTextureSide)) {
+    throw too_large(*size);
+  }
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> data(
+      stbi_load_from_memory(file.data(), int(file.size()), &w, &h, &channels, 4), stbi_image_free);
   if (!data) throw Error("cannot read texture '" + path + "': " + stbi_failure_reason());
-  if (uint32_t(w) > kMaxTextureSide || uint32_t(h) > kMaxTextureSide) throw too_large();
+  if (uint32_t(w) > kMaxTextureSide || uint32_t(h) > kMaxTextureSide) {
+    throw too_large(glm::uvec2(uint32_t(w), uint32_t(h)));
+  }
   Texture t;
   t.width = uint32_t(w);
   t.height = uint32_t(h);

@@ -391,6 +391,175 @@ TEST(GltfImport, GlbBufferReadInTheFileGivesTheEmbeddedScene) {
   }
 }
 
+// A sparse accessor's numbers that TinyGLTF holds in an int are quoted as written when over
+// 2^31 - 1, at their glTF path (tests/data/bad/sparse_count_over_int.gltf has the count): the
+// int would have wrapped this byteOffset to 0, and the message named what that read instead.
+TEST(GltfImport, SparseNumbersOverAnIntAreQuotedAsWritten) {
+  const std::string text = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "sparse": {"count": 1,
+      "indices": {"bufferView": 0, "byteOffset": 4294967296, "componentType": 5123},
+      "values": {"bufferView": 0}}}]})";
+  try {
+    import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "s.gltf",
+                      "/nonexistent");
+    ADD_FAILURE() << "imported";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.gltf: accessors[0].sparse.indices.byteOffset: is 4294967296, above 2147483647 "
+              "(2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a 32-bit int)");
+  }
+}
+
+// One triangle whose POSITION (accessors[0]) and NORMAL (accessors[1]) are stored with the given
+// componentType, 12 bytes apart each: positions (0, 0, 0), (32767, 0, 0), (0, -32768, 16384) as
+// SHORT (the same bits as UNSIGNED_SHORT), else (0, 0, 0), (1, 0, 0), (0, 1, 0); normals
+// (127, 0, 0), (0, -128, 0), (0, 0, 127) as BYTE, else the unit axes. `extension` lists
+// KHR_mesh_quantization in extensionsUsed and extensionsRequired.
+std::vector<unsigned char> quantized_triangle(int position_type, bool position_normalized,
+                                              int normal_type, bool normal_normalized,
+                                              bool extension) {
+  std::vector<unsigned char> bin(72, 0);
+  for (int v = 0; v < 3; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      unsigned char* p =
+          &bin[size_t(12 * v + (position_type == 5122 || position_type == 5123 ? 2 * c : 4 * c))];
+      const int16_t shorts[3][3] = {{0, 0, 0}, {32767, 0, 0}, {0, -32768, 16384}};
+      const float unit = v == c + 1 ? 1.0f : 0.0f;  // (1, 0, 0) and (0, 1, 0)
+      const uint32_t whole = uint32_t(unit);
+      if (position_type == 5122 || position_type == 5123) std::memcpy(p, &shorts[v][c], 2);
+      if (position_type == 5126) std::memcpy(p, &unit, 4);
+      if (position_type == 5125) std::memcpy(p, &whole, 4);
+      unsigned char* n = &bin[size_t(36 + 12 * v + (normal_type == 5120 ? c : 4 * c))];
+      const int8_t bytes[3][3] = {{127, 0, 0}, {0, -128, 0}, {0, 0, 127}};
+      const float axis = v == c ? (v == 1 ? -1.0f : 1.0f) : 0.0f;
+      if (normal_type == 5120) std::memcpy(n, &bytes[v][c], 1);
+      if (normal_type == 5126) std::memcpy(n, &axis, 4);
+    }
+  }
+  const auto normalized = [](bool n) { return n ? "true" : "false"; };
+  const std::string extensions = extension ? R"("extensionsUsed": ["KHR_mesh_quantization"],
+      "extensionsRequired": ["KHR_mesh_quantization"],)"
+                                           : "";
+  const std::string text = R"({"asset": {"version": "2.0"}, )" + extensions +
+                           R"( "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": )" +
+                           std::to_string(position_type) + R"(, "normalized": )" +
+                           normalized(position_normalized) + R"(, "count": 3, "type": "VEC3"},
+      {"bufferView": 1, "componentType": )" +
+                           std::to_string(normal_type) + R"(, "normalized": )" +
+                           normalized(normal_normalized) + R"(, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36, "byteStride": 12},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 36, "byteStride": 12}],
+    "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,)" +
+                           base64(bin) + R"("}]})";
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+// glTF 2.0 allows only FLOAT POSITION, NORMAL and TANGENT (3.7.2.1); KHR_mesh_quantization adds
+// integer positions and normalized BYTE and SHORT normals and tangents. A file that lists the
+// extension imports with integers mapped as the specification maps them (3.11: normalized
+// SHORT c / 32767 and BYTE c / 127, at least -1); one that does not is refused by path.
+TEST(GltfImport, QuantizedAttributesNeedKhrMeshQuantization) {
+  const auto error_of = [](const std::vector<unsigned char>& bytes) {
+    try {
+      import_gltf_bytes(bytes, "q.gltf", "/nonexistent");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const ImportedModel m =
+      import_gltf_bytes(quantized_triangle(5122, true, 5120, true, true), "q.gltf", "/nonexistent");
+  EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+  const Mesh& mesh = m.scene.meshes.at(0);
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  EXPECT_EQ(mesh.positions[1], glm::vec3(1, 0, 0));
+  EXPECT_EQ(mesh.positions[2], glm::vec3(0, -1, float(16384.0 / 32767.0)));
+  EXPECT_EQ(mesh.normals[0], glm::vec3(1, 0, 0));
+  EXPECT_EQ(mesh.normals[1], glm::vec3(0, -1, 0));
+  EXPECT_EQ(mesh.normals[2], glm::vec3(0, 0, 1));
+  // Not normalized, the integers themselves (a node's scale would bring them to size).
+  const ImportedModel raw = import_gltf_bytes(quantized_triangle(5123, false, 5120, true, true),
+                                              "q.gltf", "/nonexistent");
+  EXPECT_EQ(raw.scene.meshes.at(0).positions[2], glm::vec3(0, 32768, 16384));
+  // Without the extension.
+  const std::string rule =
+      " (3.7.2.1) unless the file lists KHR_mesh_quantization in "
+      "extensionsUsed, which it does not";
+  EXPECT_EQ(error_of(quantized_triangle(5122, true, 5120, true, false)),
+            "q.gltf: meshes[0].primitives[0].attributes.POSITION: is accessors[0], of "
+            "componentType 5122 (SHORT, normalized); glTF 2.0 allows only FLOAT (5126) for "
+            "POSITION" +
+                rule);
+  EXPECT_EQ(error_of(quantized_triangle(5126, false, 5120, true, false)),
+            "q.gltf: meshes[0].primitives[0].attributes.NORMAL: is accessors[1], of "
+            "componentType 5120 (BYTE, normalized); glTF 2.0 allows only FLOAT (5126) for NORMAL" +
+                rule);
+  EXPECT_EQ(error_of(quantized_triangle(5126, false, 5126, false, false)), "no error");
+  // With it, types the extension does not list either.
+  EXPECT_EQ(error_of(quantized_triangle(5125, false, 5120, true, true)),
+            "q.gltf: meshes[0].primitives[0].attributes.POSITION: is accessors[0], of "
+            "componentType 5125 (UNSIGNED_INT); KHR_mesh_quantization allows FLOAT, BYTE, "
+            "UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT for POSITION");
+  EXPECT_EQ(error_of(quantized_triangle(5126, false, 5120, false, true)),
+            "q.gltf: meshes[0].primitives[0].attributes.NORMAL: is accessors[1], of "
+            "componentType 5120 (BYTE); KHR_mesh_quantization allows FLOAT or normalized BYTE or "
+            "SHORT for NORMAL");
+}
+
+// The triangle of triangle_bytes, embedded, placed by `node` (nodes[0]).
+std::vector<unsigned char> placed_triangle(const std::string& node) {
+  std::string text = triangle_document(
+      R"({"byteLength": 42, "uri": "data:application/octet-stream;base64,)" +
+          base64(triangle_bytes()) + R"("})",
+      R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6})");
+  const std::string nodes = R"("nodes": [{"mesh": 0}])";
+  text.replace(text.find(nodes), nodes.size(), R"("nodes": [)" + node + "]");
+  return std::vector<unsigned char>(text.begin(), text.end());
+}
+
+// A scale of 0, which Tessera's scene files refuse, is valid glTF (3.5.3: a scale of 0 on every
+// axis hides a node): imported as written, with the scene files' words as a warning, and an
+// error in strict import. A matrix that flattens (determinant 0) likewise.
+TEST(GltfImport, ZeroScaleIsImportedAsWrittenWithAWarning) {
+  const std::string drawn =
+      "imported as written, as glTF 2.0 allows (3.5.3): drawn flat, or not at all where every "
+      "axis is 0";
+  const std::string flattens = "flat.gltf: nodes[0].scale: a scale of 0 flattens the object; ";
+  const ImportedModel flat = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "scale": [1, 0, 1]})"), "flat.gltf", "/nonexistent");
+  EXPECT_EQ(flat.warnings, std::vector<std::string>{flattens + drawn});
+  EXPECT_EQ(flat.scene.objects.at(0).transform,
+            glm::mat4(1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1));
+  const ImportedModel hidden = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "scale": [0, 0, 0]})"), "flat.gltf", "/nonexistent");
+  EXPECT_EQ(hidden.warnings, std::vector<std::string>{flattens + drawn});
+  EXPECT_EQ(glm::mat3(hidden.scene.objects.at(0).transform), glm::mat3(0.0f));
+  const ImportedModel matrix = import_gltf_bytes(
+      placed_triangle(R"({"mesh": 0, "matrix": [1,0,0,0, 0,0,0,0, 0,0,1,0, 0,0,0,1]})"),
+      "flat.gltf", "/nonexistent");
+  EXPECT_EQ(matrix.warnings,
+            std::vector<std::string>{"flat.gltf: nodes[0].matrix: flattens the object (its upper "
+                                     "3x3 part has determinant 0); " +
+                                     drawn});
+  // A small scale is not 0.
+  EXPECT_TRUE(import_gltf_bytes(placed_triangle(R"({"mesh": 0, "scale": [1, 1e-30, 1]})"),
+                                "flat.gltf", "/nonexistent")
+                  .warnings.empty());
+  ImportOptions strict;
+  strict.strict = true;
+  try {
+    import_gltf_bytes(placed_triangle(R"({"mesh": 0, "scale": [1, 0, 1]})"), "flat.gltf",
+                      "/nonexistent", strict);
+    ADD_FAILURE() << "a scale of 0 was imported in strict import";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), flattens + drawn + " (an error in strict import)");
+  }
+}
+
 TEST(GltfImport, BoxTexturedAllThreeFormsGiveTheSameScene) {
   const ImportedModel gltf = import_gltf(kModels + "BoxTextured-glTF/BoxTextured.gltf");
   const ImportedModel glb = import_gltf(kModels + "BoxTextured-glTF-Binary/BoxTextured.glb");

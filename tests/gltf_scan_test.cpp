@@ -69,6 +69,27 @@ TEST(GltfScan, GivesUpWhereTinyGltfReadsNodesDifferently) {
   }
 }
 
+// TinyGLTF also reads a sparse accessor's count, offsets and index type into an int, so the scan
+// gives up on those over 2^31 - 1 too; check_document then quotes the value as written, where
+// TinyGLTF's int would wrap 3000000000 to a negative count and 4294967297 to 1.
+TEST(GltfScan, GivesUpOnSparseValuesThatTinyGltfsIntWouldWrap) {
+  const auto sparse = [](const std::string& members) {
+    return R"({"accessors": [{"count": 4, "sparse": {)" + members + "}}]}";
+  };
+  for (const std::string& text : {
+           sparse(R"("count": 2147483648)"),
+           sparse(R"("count": 4294967297)"),
+           sparse(R"("indices": {"bufferView": 0, "byteOffset": 2147483648})"),
+           sparse(R"("indices": {"bufferView": 0, "componentType": 4294972421})"),
+           sparse(R"("values": {"bufferView": 0, "byteOffset": 2147483648})"),
+       }) {
+    EXPECT_FALSE(scan_document(text).has_value()) << text;
+  }
+  EXPECT_TRUE(scan_document(sparse(R"("count": 2147483647, "indices": {"byteOffset": 2147483647,)"
+                                   R"( "componentType": 5125}, "values": {"byteOffset": 0})"))
+                  .has_value());
+}
+
 TEST(GltfScan, VouchesForTheLargestIntIndex) {
   EXPECT_TRUE(scan_document(R"({"nodes": [{"mesh": 2147483647, "skin": 0}]})").has_value());
 }

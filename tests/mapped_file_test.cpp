@@ -1,15 +1,21 @@
 // map_file (core/mapped_file.h): a file's bytes mapped, or read where it cannot be mapped, and
-// the errors for files that cannot be read; ReadPages, which gives back the pages read.
+// the errors for files that cannot be read; ReadPages, which gives back the pages read;
+// require_regular_file, through every loader.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "core/check.h"
 #include "core/mapped_file.h"
+#include "core/model_import.h"
+#include "core/scene_file.h"
+#include "core/texture.h"
 
 namespace tessera {
 namespace {
@@ -148,10 +154,88 @@ TEST(MappedFile, ErrorsNameTheFileAndTheProblem) {
       (std::filesystem::temp_directory_path() / "tessera_mapped_file_none").string();
   EXPECT_EQ(error_of(missing, 100), missing + ": cannot read the file: No such file or directory");
   const std::string dir = std::filesystem::temp_directory_path().string();
-  EXPECT_EQ(error_of(dir, 100), dir + ": cannot read the file: Is a directory");
+  EXPECT_EQ(error_of(dir, 100), dir + ": is not a regular file (a directory)");
   const std::string big = temp_file("big", std::string(101, 'x')).string();
   EXPECT_EQ(error_of(big, 100), big + ": is 101 bytes, over the limit of 100");
   EXPECT_EQ(error_of("/proc/self/status", 10), "/proc/self/status: is over the limit of 10 bytes");
+}
+
+// What is not a regular file is refused by name before it is opened (a fresh user's trial got
+// "Operation not supported"): /dev/zero would be read until the limit, and opening a FIFO
+// would block until something writes to it.
+TEST(MappedFile, RefusesWhatIsNotARegularFile) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  ASSERT_EQ(error_of(dir, 100), dir + ": is not a regular file (a directory)");
+  ASSERT_EQ(error_of("/dev/zero", 100), "/dev/zero: is not a regular file (a character device)");
+  const std::string fifo =
+      (std::filesystem::temp_directory_path() / "tessera_mapped_fifo").string();
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(error_of(fifo, 100), fifo + ": is not a regular file (a FIFO)");
+  std::filesystem::remove(fifo);
+}
+
+std::string load_error(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Every loader of a file it is given checks it with require_regular_file: models (glTF and the
+// buffers it names, OBJ and its material libraries), textures, scene files and the files they
+// name. Each says PATH: is not a regular file (WHAT), after the place the name came from.
+TEST(MappedFile, EveryLoaderRefusesWhatIsNotARegularFile) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "tessera_not_regular";
+  std::filesystem::remove_all(dir);
+  for (const char* folder : {"folder.gltf", "folder.obj", "folder.mtl", "folder.bin"}) {
+    std::filesystem::create_directories(dir / folder);
+  }
+  const std::string d = dir.string() + "/";
+  // Directories first: before the check each of these gave another message, and a FIFO below
+  // would have blocked the loaders that open it.
+  ASSERT_EQ(load_error([&] { import_gltf(d + "folder.gltf"); }),
+            d + "folder.gltf: is not a regular file (a directory)");
+  ASSERT_EQ(load_error([&] { import_obj(d + "folder.obj"); }),
+            d + "folder.obj: is not a regular file (a directory)");
+  ASSERT_EQ(load_error([&] { load_texture(d + "folder.gltf", true); }),
+            d + "folder.gltf: is not a regular file (a directory)");
+  ASSERT_EQ(load_error([&] { load_scene_file(d + "folder.gltf"); }),
+            d + "folder.gltf: is not a regular file (a directory)");
+  std::ofstream(d + "buffer.gltf")
+      << R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "folder.bin"}]})";
+  ASSERT_EQ(
+      load_error([&] { import_gltf(d + "buffer.gltf"); }),
+      d + "buffer.gltf: buffers[0].uri: " + d + "folder.bin: is not a regular file (a directory)");
+  std::ofstream(d + "library.obj") << "mtllib folder.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  ASSERT_EQ(load_error([&] { import_obj(d + "library.obj"); }),
+            "'" + d + "library.obj' line 1: material library " + d +
+                "folder.mtl: is not a regular file (a directory)");
+  const std::string fifo = d + "fifo.gltf";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string refused = fifo + ": is not a regular file (a FIFO)";
+  EXPECT_EQ(load_error([&] { import_gltf(fifo); }), refused);
+  EXPECT_EQ(load_error([&] { import_obj(fifo); }), refused);
+  EXPECT_EQ(load_error([&] { load_texture(fifo, true); }), refused);
+  EXPECT_EQ(load_error([&] { load_scene_file(fifo); }), refused);
+  // A scene file's model and texture, after the place that names them (columns 35 and 53: the
+  // opening quote of each file's name).
+  EXPECT_EQ(load_error([&] {
+              load_scene_text(R"({"models": [{"name": "m", "file": "fifo.gltf"}], )"
+                              R"("objects": [{"model": "m"}]})",
+                              "s.json", dir.string());
+            }),
+            "s.json:1:35: models.m.file: " + refused);
+  EXPECT_EQ(load_error([&] {
+              load_scene_text(
+                  R"({"textures": [{"name": "t", "type": "file", "file": "fifo.gltf"}]})", "t.json",
+                  dir.string());
+            }),
+            "t.json:1:53: textures.t.file: " + refused);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
