@@ -19,23 +19,22 @@ namespace {
 using nlohmann::json;
 
 enum class Kind {
-  index,      // integer >= 0
-  uint,       // integer >= 0
-  int_count,  // integer 0 to 2^31 - 1: TinyGLTF reads it into an int, which a larger one wraps
-  number,     // any JSON number
+  index,   // integer 0 to 2^31 - 1: an index into one of the file's arrays (a glTFid)
+  int32,   // integer 0 to 2^31 - 1 that is not an index (a mode, a uv set, an enum value)
+  uint,    // integer >= 0, read into 64 bits (byte offsets, lengths and strides, counts)
+  number,  // any JSON number
   string,
   boolean,
-  object,     // checked against `fields`
-  objects,    // array of objects, each checked against `fields`
-  numbers,    // array of `length` numbers (any length when 0)
-  indices,    // array of integers >= 0
-  strings,    // array of strings
-  index_map,  // object whose every value is an integer >= 0 (primitive attributes)
-  // Not checked by check_value (Tessera only warns that it is present), but the scan vouches for
-  // it only as an index: the importer then reads it from TinyGLTF's model, which drops other
-  // values (node.skin).
-  scan_index,
+  object,   // checked against `fields`
+  objects,  // array of objects, each checked against `fields`
+  numbers,  // array of `length` numbers (any length when 0)
+  indices,  // array of indices, each as Kind::index
+  strings,  // array of strings
 };
+
+// The name of a field that stands for every member of its object (primitive attributes and
+// morph targets, whose names are the file's: POSITION, TEXCOORD_0, _CUSTOM, ...).
+constexpr std::string_view kEveryMember = "*";
 
 struct Field {
   const char* name;
@@ -74,26 +73,29 @@ bool is_count(const json& v) {
 void check_fields(const Context& ctx, const json& object, const std::string& where,
                   const std::vector<Field>& fields);
 
+// Fails unless `v`, an integer >= 0, is at most 2^31 - 1. TinyGLTF reads every index, and the
+// other integers of Kind::int32, into an int, which a larger one wraps: 4294967296 to 0, a valid
+// index that imported the wrong accessor, 3000000000 to -1294967296. Quoted as written.
+void check_int_range(const Context& ctx, const json& v, const std::string& where) {
+  if (v.get<uint64_t>() > uint64_t(INT32_MAX)) {
+    ctx.fail(where, "is " + v.dump() + ", above " + std::to_string(INT32_MAX) +
+                        " (2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a "
+                        "32-bit int)");
+  }
+}
+
 void check_value(const Context& ctx, const json& v, const std::string& where, const Field& f) {
   auto wrong = [&](const std::string& expected) {
     ctx.fail(where, "must be " + expected + " (found " + describe(v) + ")");
   };
   switch (f.kind) {
     case Kind::index:
+    case Kind::int32:
+      if (!is_count(v)) wrong("an integer >= 0");
+      check_int_range(ctx, v, where);
+      break;
     case Kind::uint:
       if (!is_count(v)) wrong("an integer >= 0");
-      break;
-    case Kind::int_count:
-      if (!is_count(v)) wrong("an integer >= 0");
-      // Quoted as written: TinyGLTF's int would turn 3000000000 into -1294967296, and
-      // 4294967297 into 1 (a fresh user's trial).
-      if (v.get<uint64_t>() > uint64_t(INT32_MAX)) {
-        ctx.fail(where, "is " + v.dump() + ", above " + std::to_string(INT32_MAX) +
-                            " (2^31 - 1), the largest Tessera reads here (TinyGLTF holds it in a "
-                            "32-bit int)");
-      }
-      break;
-    case Kind::scan_index:
       break;
     case Kind::number:
       if (!v.is_number()) wrong("a number");
@@ -130,49 +132,51 @@ void check_value(const Context& ctx, const json& v, const std::string& where, co
                             std::to_string(v.size()) + ")");
       }
       for (size_t i = 0; i < v.size(); ++i) {
+        const std::string item = where + "[" + std::to_string(i) + "]";
         bool ok = f.kind == Kind::numbers   ? v[i].is_number()
                   : f.kind == Kind::indices ? is_count(v[i])
                                             : v[i].is_string();
         if (!ok) {
-          ctx.fail(where + "[" + std::to_string(i) + "]",
+          ctx.fail(item,
                    std::string("must be one of ") + item_kind + " (found " + describe(v[i]) + ")");
         }
+        if (f.kind == Kind::indices) check_int_range(ctx, v[i], item);
       }
       break;
     }
-    case Kind::index_map:
-      if (!v.is_object()) wrong("an object");
-      for (const auto& [key, value] : v.items()) {
-        if (!is_count(value)) {
-          ctx.fail(where + "." + key,
-                   std::string("must be an integer >= 0 (found ") + describe(value) + ")");
-        }
-      }
-      break;
   }
 }
 
 void check_fields(const Context& ctx, const json& object, const std::string& where,
                   const std::vector<Field>& fields) {
+  const auto path = [&](const std::string& key) { return where.empty() ? key : where + "." + key; };
   for (const Field& f : fields) {
+    if (f.name == kEveryMember) {
+      for (const auto& [key, value] : object.items()) check_value(ctx, value, path(key), f);
+      continue;
+    }
     auto it = object.find(f.name);
-    if (it != object.end()) check_value(ctx, *it, where.empty() ? f.name : where + "." + f.name, f);
+    if (it != object.end()) check_value(ctx, *it, path(f.name), f);
   }
 }
 
-// The properties Tessera reads (glTF 2.0 schema, and the extensions it supports). Others are
-// left to TinyGLTF and then ignored.
+// The properties Tessera reads (glTF 2.0 schema, and the extensions it supports), and every
+// index of glTF 2.0 (each glTFid of its schema: those of skins and animations too, which Tessera
+// ignores, but TinyGLTF reads into an int as it reads the others). Others are left to TinyGLTF
+// and then ignored.
 const std::vector<Field>& document_schema() {
   static const std::vector<Field> texture_transform = {{"offset", Kind::numbers, {}, 2},
                                                        {"rotation", Kind::number},
                                                        {"scale", Kind::numbers, {}, 2},
-                                                       {"texCoord", Kind::uint}};
+                                                       {"texCoord", Kind::int32}};
   static const std::vector<Field> texture_info = {
       {"index", Kind::index},
-      {"texCoord", Kind::uint},
+      {"texCoord", Kind::int32},
       {"scale", Kind::number},
       {"strength", Kind::number},
       {"extensions", Kind::object, {{"KHR_texture_transform", Kind::object, texture_transform}}}};
+  // Attribute name -> accessor: a primitive's attributes and each of its morph targets.
+  static const std::vector<Field> attributes = {{kEveryMember.data(), Kind::index}};
   static const std::vector<Field> schema = {
       {"asset", Kind::object, {{"version", Kind::string}, {"minVersion", Kind::string}}},
       {"extensionsUsed", Kind::strings},
@@ -185,7 +189,7 @@ const std::vector<Field>& document_schema() {
         {"children", Kind::indices},
         {"mesh", Kind::index},
         {"camera", Kind::index},
-        {"skin", Kind::scan_index},
+        {"skin", Kind::index},
         {"matrix", Kind::numbers, {}, 16},
         {"translation", Kind::numbers, {}, 3},
         {"rotation", Kind::numbers, {}, 4},
@@ -198,11 +202,11 @@ const std::vector<Field>& document_schema() {
        {{"name", Kind::string},
         {"primitives",
          Kind::objects,
-         {{"attributes", Kind::index_map},
+         {{"attributes", Kind::object, attributes},
           {"indices", Kind::index},
           {"material", Kind::index},
-          {"mode", Kind::uint},
-          {"targets", Kind::objects}}}}},
+          {"mode", Kind::int32},
+          {"targets", Kind::objects, attributes}}}}},
       {"accessors",
        Kind::objects,
        {{"bufferView", Kind::index},
@@ -213,24 +217,23 @@ const std::vector<Field>& document_schema() {
         {"type", Kind::string},
         {"min", Kind::numbers},
         {"max", Kind::numbers},
+        // TinyGLTF reads a sparse accessor's numbers into an int too.
         {"sparse",
          Kind::object,
-         {{"count", Kind::int_count},
+         {{"count", Kind::int32},
           {"indices",
            Kind::object,
            {{"bufferView", Kind::index},
-            {"byteOffset", Kind::int_count},
-            {"componentType", Kind::int_count}}},
-          {"values",
-           Kind::object,
-           {{"bufferView", Kind::index}, {"byteOffset", Kind::int_count}}}}}}},
+            {"byteOffset", Kind::int32},
+            {"componentType", Kind::int32}}},
+          {"values", Kind::object, {{"bufferView", Kind::index}, {"byteOffset", Kind::int32}}}}}}},
       {"bufferViews",
        Kind::objects,
        {{"buffer", Kind::index},
         {"byteOffset", Kind::uint},
         {"byteLength", Kind::uint},
         {"byteStride", Kind::uint},
-        {"target", Kind::uint}}},
+        {"target", Kind::int32}}},
       {"buffers", Kind::objects, {{"uri", Kind::string}, {"byteLength", Kind::uint}}},
       {"materials",
        Kind::objects,
@@ -265,10 +268,21 @@ const std::vector<Field>& document_schema() {
         {"name", Kind::string}}},
       {"samplers",
        Kind::objects,
-       {{"magFilter", Kind::uint},
-        {"minFilter", Kind::uint},
-        {"wrapS", Kind::uint},
-        {"wrapT", Kind::uint}}},
+       {{"magFilter", Kind::int32},
+        {"minFilter", Kind::int32},
+        {"wrapS", Kind::int32},
+        {"wrapT", Kind::int32}}},
+      {"skins",
+       Kind::objects,
+       {{"inverseBindMatrices", Kind::index},
+        {"skeleton", Kind::index},
+        {"joints", Kind::indices}}},
+      {"animations",
+       Kind::objects,
+       {{"channels",
+         Kind::objects,
+         {{"sampler", Kind::index}, {"target", Kind::object, {{"node", Kind::index}}}}},
+        {"samplers", Kind::objects, {{"input", Kind::index}, {"output", Kind::index}}}}},
       {"cameras",
        Kind::objects,
        {{"type", Kind::string},
@@ -379,11 +393,10 @@ const std::set<std::string, std::less<>> kDocumentMembers = {
 // integers of 19 digits or more, exponents of 4 digits or more, a byte-order mark, keys with
 // escapes, deep nesting), it gives up, as it does at the first error, and the caller parses the
 // whole document instead, whose checks name the error. It accepts only what nlohmann::json
-// parses to the same values and check_value accepts. So that nodes can be read from TinyGLTF's
-// model, which keeps them in a narrower form, it also gives up on indices over 2^31 - 1 (which
-// TinyGLTF's int would wrap), on a skin that is not an index (TinyGLTF drops it) and on an object
-// with both a matrix and translation, rotation or scale (TinyGLTF drops the latter, whose presence
-// Tessera warns about).
+// parses to the same values and check_value accepts (no index over 2^31 - 1, which TinyGLTF's
+// int would wrap). So that nodes can be read from TinyGLTF's model, which keeps them in a
+// narrower form, it also gives up on an object with both a matrix and translation, rotation or
+// scale (TinyGLTF drops the latter, whose presence Tessera warns about).
 class Scan {
  public:
   explicit Scan(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {}
@@ -444,7 +457,7 @@ class Scan {
 
   static const Field* find(const std::vector<Field>& fields, std::string_view key) {
     for (const Field& f : fields) {
-      if (key == f.name) return &f;
+      if (key == f.name || f.name == kEveryMember) return &f;
     }
     return nullptr;
   }
@@ -583,7 +596,7 @@ class Scan {
     bool matrix = false, trs = false;
     return object([&](std::string_view key) {
              const Field* f = find(fields, key);
-             if (f) {
+             if (f && f->name != kEveryMember) {
                matrix |= key == "matrix";
                trs |= key == "translation" || key == "rotation" || key == "scale";
              }
@@ -611,8 +624,7 @@ class Scan {
     Number kind;
     switch (f.kind) {
       case Kind::index:
-      case Kind::int_count:
-      case Kind::scan_index:
+      case Kind::int32:
         return index();
       case Kind::uint:
         return count();
@@ -632,8 +644,6 @@ class Scan {
         return array([&] { return index(); }, n);
       case Kind::strings:
         return array([&] { return string(plain); }, n);
-      case Kind::index_map:
-        return object([&](std::string_view) { return count(); });
     }
     return false;
   }

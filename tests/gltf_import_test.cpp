@@ -411,6 +411,94 @@ TEST(GltfImport, SparseNumbersOverAnIntAreQuotedAsWritten) {
   }
 }
 
+// The Error message of importing the JSON document `doc` as NAME, or "no error".
+std::string document_error(const nlohmann::json& doc, const std::string& name) {
+  const std::string text = doc.dump();
+  try {
+    import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), name, "/nonexistent");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Every index of glTF 2.0 (each glTFid of its schema, and KHR_lights_punctual's light) and every
+// other integer that TinyGLTF reads into an int is refused over 2^31 - 1, quoted as written at
+// its glTF path: TinyGLTF's int wraps 4294967296 (2^32) to 0, a valid index, and a POSITION of
+// 4294967296 imported accessors[0]. A negative one is refused by its type.
+TEST(GltfImport, IndicesOverAnIntAreQuotedAsWritten) {
+  const nlohmann::json base = nlohmann::json::parse(triangle_document(
+      R"({"byteLength": 42, "uri": "data:application/octet-stream;base64,)" +
+          base64(triangle_bytes()) + R"("})",
+      R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6})"));
+  ASSERT_EQ(document_error(base, "i.gltf"), "no error");
+  // (JSON pointer, glTF path); absent objects and arrays on the way are created.
+  const std::pair<const char*, std::string> cases[] = {
+      {"/scene", "scene"},
+      {"/scenes/0/nodes/0", "scenes[0].nodes[0]"},
+      {"/nodes/0/mesh", "nodes[0].mesh"},
+      {"/nodes/0/children/0", "nodes[0].children[0]"},
+      {"/nodes/0/camera", "nodes[0].camera"},
+      {"/nodes/0/skin", "nodes[0].skin"},
+      {"/nodes/0/extensions/KHR_lights_punctual/light",
+       "nodes[0].extensions.KHR_lights_punctual.light"},
+      {"/meshes/0/primitives/0/attributes/POSITION", "meshes[0].primitives[0].attributes.POSITION"},
+      {"/meshes/0/primitives/0/attributes/TEXCOORD_0",
+       "meshes[0].primitives[0].attributes.TEXCOORD_0"},
+      {"/meshes/0/primitives/0/indices", "meshes[0].primitives[0].indices"},
+      {"/meshes/0/primitives/0/material", "meshes[0].primitives[0].material"},
+      {"/meshes/0/primitives/0/mode", "meshes[0].primitives[0].mode"},
+      {"/meshes/0/primitives/0/targets/0/POSITION", "meshes[0].primitives[0].targets[0].POSITION"},
+      {"/accessors/0/bufferView", "accessors[0].bufferView"},
+      {"/accessors/0/sparse/indices/bufferView", "accessors[0].sparse.indices.bufferView"},
+      {"/accessors/0/sparse/values/bufferView", "accessors[0].sparse.values.bufferView"},
+      {"/bufferViews/0/buffer", "bufferViews[0].buffer"},
+      {"/bufferViews/0/target", "bufferViews[0].target"},
+      {"/materials/0/pbrMetallicRoughness/baseColorTexture/index",
+       "materials[0].pbrMetallicRoughness.baseColorTexture.index"},
+      {"/materials/0/pbrMetallicRoughness/metallicRoughnessTexture/index",
+       "materials[0].pbrMetallicRoughness.metallicRoughnessTexture.index"},
+      {"/materials/0/normalTexture/index", "materials[0].normalTexture.index"},
+      {"/materials/0/occlusionTexture/index", "materials[0].occlusionTexture.index"},
+      {"/materials/0/emissiveTexture/index", "materials[0].emissiveTexture.index"},
+      {"/materials/0/emissiveTexture/texCoord", "materials[0].emissiveTexture.texCoord"},
+      {"/materials/0/emissiveTexture/extensions/KHR_texture_transform/texCoord",
+       "materials[0].emissiveTexture.extensions.KHR_texture_transform.texCoord"},
+      {"/textures/0/sampler", "textures[0].sampler"},
+      {"/textures/0/source", "textures[0].source"},
+      {"/images/0/bufferView", "images[0].bufferView"},
+      {"/samplers/0/magFilter", "samplers[0].magFilter"},
+      {"/samplers/0/minFilter", "samplers[0].minFilter"},
+      {"/samplers/0/wrapS", "samplers[0].wrapS"},
+      {"/samplers/0/wrapT", "samplers[0].wrapT"},
+      {"/skins/0/inverseBindMatrices", "skins[0].inverseBindMatrices"},
+      {"/skins/0/skeleton", "skins[0].skeleton"},
+      {"/skins/0/joints/0", "skins[0].joints[0]"},
+      {"/animations/0/channels/0/sampler", "animations[0].channels[0].sampler"},
+      {"/animations/0/channels/0/target/node", "animations[0].channels[0].target.node"},
+      {"/animations/0/samplers/0/input", "animations[0].samplers[0].input"},
+      {"/animations/0/samplers/0/output", "animations[0].samplers[0].output"},
+  };
+  for (const auto& [pointer, path] : cases) {
+    nlohmann::json doc = base;
+    doc[nlohmann::json::json_pointer(pointer)] = uint64_t(1) << 32;
+    EXPECT_EQ(document_error(doc, "i.gltf"),
+              "i.gltf: " + path +
+                  ": is 4294967296, above 2147483647 (2^31 - 1), the largest Tessera reads here "
+                  "(TinyGLTF holds it in a 32-bit int)");
+    doc[nlohmann::json::json_pointer(pointer)] = -1;
+    const std::string negative = document_error(doc, "i.gltf");
+    EXPECT_TRUE(negative.starts_with("i.gltf: " + path + ": must be ") &&
+                negative.ends_with(" (found a negative integer)"))
+        << negative;
+  }
+  // 2^31 - 1 itself is read (and is then past the file's arrays).
+  nlohmann::json largest = base;
+  largest["nodes"][0]["mesh"] = INT32_MAX;
+  EXPECT_EQ(document_error(largest, "i.gltf"),
+            "i.gltf: nodes[0].mesh: refers to meshes[2147483647], but the file has 1 meshes");
+}
+
 // One triangle whose POSITION (accessors[0]) and NORMAL (accessors[1]) are stored with the given
 // componentType, 12 bytes apart each: positions (0, 0, 0), (32767, 0, 0), (0, -32768, 16384) as
 // SHORT (the same bits as UNSIGNED_SHORT), else (0, 0, 0), (1, 0, 0), (0, 1, 0); normals

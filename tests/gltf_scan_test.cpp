@@ -52,15 +52,15 @@ TEST(GltfScan, GivesUpOnTypeErrorsOfCheckedProperties) {
 }
 
 // Nodes are read from TinyGLTF's model, so the scan also gives up where that would differ from
-// the JSON: TinyGLTF keeps indices in an int, drops a skin that is not an integer, and reads no
-// translation, rotation or scale beside a matrix.
+// the JSON: TinyGLTF keeps indices in an int, drops a skin that is not an integer (one
+// check_document refuses), and reads no translation, rotation or scale beside a matrix.
 TEST(GltfScan, GivesUpWhereTinyGltfReadsNodesDifferently) {
   for (
       const char* text : {
           R"({"nodes": [{"mesh": 2147483648}]})",  // 2^31: wraps in an int
           R"({"nodes": [{"children": [0, 4294967296]}]})",
           R"({"nodes": [{"extensions": {"KHR_lights_punctual": {"light": 9999999999}}}]})",
-          R"({"nodes": [{"skin": -1}]})",  // Tessera warns of any skin
+          R"({"nodes": [{"skin": -1}]})",
           R"({"nodes": [{"skin": "a"}]})",
           R"({"nodes": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "scale": [1, 1, 1]}]})",
           R"({"nodes": [{"rotation": [0, 0, 0, 1], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]})",
@@ -88,6 +88,28 @@ TEST(GltfScan, GivesUpOnSparseValuesThatTinyGltfsIntWouldWrap) {
   EXPECT_TRUE(scan_document(sparse(R"("count": 2147483647, "indices": {"byteOffset": 2147483647,)"
                                    R"( "componentType": 5125}, "values": {"byteOffset": 0})"))
                   .has_value());
+}
+
+// Every index, and the other integers TinyGLTF reads into an int, over 2^31 - 1: check_document
+// refuses them, so the scan gives up on them too (it vouched for primitive attributes, whose
+// 4294967296 TinyGLTF wrapped to accessors[0]).
+TEST(GltfScan, GivesUpOnEveryIntThatTinyGltfWouldWrap) {
+  for (const char* text : {
+           R"({"meshes": [{"primitives": [{"attributes": {"POSITION": 4294967296}}]}]})",
+           R"({"meshes": [{"primitives": [{"attributes": {"TEXCOORD_0": 2147483648}}]}]})",
+           R"({"meshes": [{"primitives": [{"targets": [{"NORMAL": 2147483648}]}]}]})",
+           R"({"meshes": [{"primitives": [{"mode": 4294967300}]}]})",
+           R"({"materials": [{"normalTexture": {"index": 0, "texCoord": 4294967297}}]})",
+           R"({"samplers": [{"wrapS": 4294977593}]})",
+           R"({"skins": [{"joints": [2147483648]}]})",
+           R"({"animations": [{"channels": [{"target": {"node": 2147483648}}]}]})",
+       }) {
+    EXPECT_FALSE(scan_document(text).has_value()) << text;
+  }
+  EXPECT_TRUE(
+      scan_document(
+          R"({"meshes": [{"primitives": [{"attributes": {"POSITION": 2147483647}, "mode": 4}]}]})")
+          .has_value());
 }
 
 TEST(GltfScan, VouchesForTheLargestIntIndex) {
