@@ -1,6 +1,8 @@
 // glTF metallic-roughness materials, their textures, samplers and texture transforms.
 
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <stb/stb_image.h>
@@ -123,35 +125,77 @@ uint32_t texture_index(const Context& ctx, const json& doc, const tinygltf::Mode
   return table.textures[key] = uint32_t(scene.textures.size() - 1);
 }
 
+// The number `v` at `where` as a float. Fails, quoting it as written, outside [lo, hi] (">= lo"
+// where hi is HUGE_VAL), and beyond a float's range: a double such as 1e39 became an infinite
+// float, which the renderer then refused without saying where it came from, or not at all. The
+// limits are those the scene files set for the same parameter (docs/scene-format.md).
+float float_number(const Context& ctx, const json& v, const std::string& where,
+                   double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", x);
+    return std::string(buffer);
+  };
+  const double d = v.get<double>();
+  if (d < lo || d > hi) {
+    ctx.fail(where, "is " + v.dump() +
+                        (hi == HUGE_VAL ? ", must be >= " + text(lo)
+                                        : ", outside [" + text(lo) + ", " + text(hi) + "]"));
+  }
+  if (std::fabs(d) > FLT_MAX) {
+    ctx.fail(where, "is " + v.dump() + ", which does not fit a 32-bit float (at most " +
+                        text(FLT_MAX) + ")");
+  }
+  return float(d);
+}
+
+// float_number of `object`.`key`, at `where`.`key`; `fallback` where absent.
+float factor(const Context& ctx, const json& object, const char* key, float fallback,
+             const std::string& where, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+  const auto it = object.find(key);
+  return it == object.end() ? fallback : float_number(ctx, *it, where + "." + key, lo, hi);
+}
+
+// The colour factor `object`.`key` of `components` numbers (the schema has checked how many),
+// each in [0, 1]; `fallback` where absent.
+glm::vec4 colour_factor(const Context& ctx, const json& object, const char* key, int components,
+                        glm::vec4 fallback, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) return fallback;
+  for (int k = 0; k < components; ++k) {
+    fallback[k] = float_number(ctx, (*it)[size_t(k)],
+                               where + "." + key + "[" + std::to_string(k) + "]", 0.0, 1.0);
+  }
+  return fallback;
+}
+
 // KHR_texture_transform as a 3x3 uv matrix: translation * rotation * scale, as the extension
 // specifies (rotation counter-clockwise in uv space, about the origin). Its texCoord, if
-// given, overrides the textureInfo's.
-glm::mat3 uv_transform(const json& info, int& tex_coord) {
+// given, overrides the textureInfo's. Offset and scale must fit a float, as the matrix's terms
+// do then (the rotation is taken in double).
+glm::mat3 uv_transform(const Context& ctx, const json& info, const std::string& where,
+                       int& tex_coord) {
   const json* ext = nullptr;
   if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform")) {
     ext = &info["extensions"]["KHR_texture_transform"];
   }
   if (!ext) return glm::mat3(1.0f);
+  const std::string ext_where = where + ".extensions.KHR_texture_transform";
   tex_coord = ext->value("texCoord", tex_coord);
-  const std::vector<double> offset = ext->value("offset", std::vector<double>{0, 0});
-  const std::vector<double> scale = ext->value("scale", std::vector<double>{1, 1});
+  glm::dvec2 offset(0.0), scale(1.0);
+  for (auto [key, out] : {std::pair{"offset", &offset}, {"scale", &scale}}) {
+    if (!ext->contains(key)) continue;
+    for (int k = 0; k < 2; ++k) {
+      (*out)[k] =
+          float_number(ctx, (*ext)[key][k], ext_where + "." + key + "[" + std::to_string(k) + "]");
+    }
+  }
   const double rotation = ext->value("rotation", 0.0);
   const double c = std::cos(rotation), s = std::sin(rotation);
   const glm::dmat3 t(1, 0, 0, 0, 1, 0, offset[0], offset[1], 1);  // columns
   const glm::dmat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
   const glm::dmat3 sc(scale[0], 0, 0, 0, scale[1], 0, 0, 0, 1);
   return glm::mat3(t * r * sc);
-}
-
-// Fails unless the factor at `where` is in [lo, hi].
-float factor(const Context& ctx, const json& object, const char* key, double fallback,
-             const std::string& where, double lo, double hi) {
-  const double v = object.value(key, fallback);
-  if (!(v >= lo && v <= hi) || !std::isfinite(v)) {
-    ctx.fail(where + "." + key, "is " + std::to_string(v) + ", outside [" + std::to_string(lo) +
-                                    ", " + std::to_string(hi) + "]");
-  }
-  return float(v);
 }
 
 }  // namespace
@@ -192,27 +236,16 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     const std::string where = at("materials", index);
     const json& pbr = member_object(m, "pbrMetallicRoughness");
     const std::string pbr_where = where + ".pbrMetallicRoughness";
-    const std::vector<double> base = pbr.value("baseColorFactor", std::vector<double>{1, 1, 1, 1});
-    for (int k = 0; k < 4; ++k) {
-      if (!(base[k] >= 0.0 && base[k] <= 1.0)) {
-        ctx.fail(pbr_where + ".baseColorFactor", "has a component outside [0, 1]");
-      }
-    }
-    mat.base_color = glm::vec3(base[0], base[1], base[2]);
-    mat.metallic = factor(ctx, pbr, "metallicFactor", 1.0, pbr_where, 0.0, 1.0);
-    mat.roughness = factor(ctx, pbr, "roughnessFactor", 1.0, pbr_where, 0.0, 1.0);
-    const std::vector<double> emissive = m.value("emissiveFactor", std::vector<double>{0, 0, 0});
+    mat.base_color = colour_factor(ctx, pbr, "baseColorFactor", 4, glm::vec4(1.0f), pbr_where);
+    mat.metallic = factor(ctx, pbr, "metallicFactor", 1.0f, pbr_where, 0.0, 1.0);
+    mat.roughness = factor(ctx, pbr, "roughnessFactor", 1.0f, pbr_where, 0.0, 1.0);
     float strength = 1.0f;
     if (m.contains("extensions") && m["extensions"].contains("KHR_materials_emissive_strength")) {
       strength = factor(ctx, m["extensions"]["KHR_materials_emissive_strength"], "emissiveStrength",
-                        1.0, where + ".extensions.KHR_materials_emissive_strength", 0.0, HUGE_VAL);
+                        1.0f, where + ".extensions.KHR_materials_emissive_strength", 0.0);
     }
-    for (int k = 0; k < 3; ++k) {
-      if (!(emissive[k] >= 0.0 && emissive[k] <= 1.0)) {
-        ctx.fail(where + ".emissiveFactor", "has a component outside [0, 1]");
-      }
-    }
-    mat.emissive = glm::vec3(emissive[0], emissive[1], emissive[2]) * strength;
+    mat.emissive =
+        glm::vec3(colour_factor(ctx, m, "emissiveFactor", 3, glm::vec4(0.0f), where)) * strength;
 
     const std::string alpha = m.value("alphaMode", "OPAQUE");
     if (alpha == "MASK") {
@@ -239,7 +272,7 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
       Slot s{&parent[key], parent_where + "." + key, bit};
       if (!s.info->contains("index")) ctx.fail(s.where + ".index", "is missing");
       s.tex_coord = s.info->value("texCoord", 0);
-      s.transform = uv_transform(*s.info, s.tex_coord);
+      s.transform = uv_transform(ctx, *s.info, s.where, s.tex_coord);
       if (s.tex_coord > 1) {
         ctx.fail(s.where + ".texCoord",
                  "is " + std::to_string(s.tex_coord) +
@@ -263,11 +296,11 @@ uint32_t material_index(const Context& ctx, const json& doc, const tinygltf::Mod
     if (normal_map >= 0) {
       mat.normal_map =
           texture_index(ctx, doc, model, normal_map, slots.back().where, false, 1.0f, table, scene);
-      mat.normal_scale = float(m["normalTexture"].value("scale", 1.0));
+      mat.normal_scale = factor(ctx, m["normalTexture"], "scale", 1.0f, where + ".normalTexture");
     }
     const int occlusion_map = slot(m, "occlusionTexture", where, TS_MAP_OCCLUSION);
     if (occlusion_map >= 0) {
-      const float s = factor(ctx, m["occlusionTexture"], "strength", 1.0,
+      const float s = factor(ctx, m["occlusionTexture"], "strength", 1.0f,
                              where + ".occlusionTexture", 0.0, 1.0);
       mat.occlusion_map =
           texture_index(ctx, doc, model, occlusion_map, slots.back().where, false, s, table, scene);

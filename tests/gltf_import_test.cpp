@@ -860,6 +860,64 @@ TEST(GltfImport, HandMadeFeaturesFile) {
   EXPECT_FLOAT_EQ(s.lights[1].outer_angle, 0.4f);
 }
 
+// A material's numbers are held in floats: one that a float cannot hold (1e39, finite as a
+// double) is refused at its path, quoted as written, where it became an infinity that the
+// renderer refused without a place (emissiveStrength) or not at all (normalTexture.scale). The
+// limits are the scene files' for the same parameters: a factor in [0, 1] stays so, emission
+// and the normal scale may be any float (emission >= 0), however large.
+TEST(GltfImport, MaterialNumbersBeyondAFloatAreRefusedAtTheirPath) {
+  std::ifstream in(kData + "/features.gltf");
+  const nlohmann::json features = nlohmann::json::parse(in);
+  const std::string fits = ", which does not fit a 32-bit float (at most 3.40282347e+38)";
+  const std::string strength = "/materials/0/extensions/KHR_materials_emissive_strength";
+  const std::string transform =
+      "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform";
+  const std::string base_transform =
+      "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
+  // (JSON pointer, value, the message after "f.gltf: ").
+  const std::tuple<std::string, double, std::string> cases[] = {
+      {strength + "/emissiveStrength", 1e39,
+       "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: is 1e+39" + fits},
+      {strength + "/emissiveStrength", -1,
+       "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: is -1.0, must "
+       "be >= 0"},
+      {"/materials/0/normalTexture/scale", 1e39,
+       "materials[0].normalTexture.scale: is 1e+39" + fits},
+      {"/materials/0/normalTexture/scale", -1e39,
+       "materials[0].normalTexture.scale: is -1e+39" + fits},
+      {"/materials/0/occlusionTexture/strength", 1e39,
+       "materials[0].occlusionTexture.strength: is 1e+39, outside [0, 1]"},
+      {"/materials/0/pbrMetallicRoughness/metallicFactor", 1e39,
+       "materials[0].pbrMetallicRoughness.metallicFactor: is 1e+39, outside [0, 1]"},
+      {"/materials/0/pbrMetallicRoughness/roughnessFactor", -0.5,
+       "materials[0].pbrMetallicRoughness.roughnessFactor: is -0.5, outside [0, 1]"},
+      {"/materials/0/pbrMetallicRoughness/baseColorFactor/3", 1e39,
+       "materials[0].pbrMetallicRoughness.baseColorFactor[3]: is 1e+39, outside [0, 1]"},
+      {"/materials/0/emissiveFactor/1", 1.5,
+       "materials[0].emissiveFactor[1]: is 1.5, outside [0, 1]"},
+      {transform + "/offset/0", 1e39, base_transform + ".offset[0]: is 1e+39" + fits},
+      {transform + "/scale/1", -1e39, base_transform + ".scale[1]: is -1e+39" + fits},
+  };
+  for (const auto& [pointer, value, message] : cases) {
+    nlohmann::json doc = features;
+    doc[nlohmann::json::json_pointer(pointer)] = value;
+    if (pointer.find("normalTexture") != std::string::npos)
+      doc["materials"][0]["normalTexture"]["index"] = 0;
+    EXPECT_EQ(document_error(doc, "f.gltf"), "f.gltf: " + message);
+  }
+  // Large but within a float: imported, and the renderer takes them.
+  nlohmann::json large = features;
+  large[nlohmann::json::json_pointer(strength + "/emissiveStrength")] = 3e38;
+  large["materials"][0]["normalTexture"] = {{"index", 0}, {"scale", -3e38}};
+  const std::string text = large.dump();
+  const ImportedModel m =
+      import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "f.gltf", kData);
+  const Material& mat = m.scene.materials.at(m.scene.objects.at(0).material);
+  EXPECT_EQ(mat.emissive, glm::vec3(0.1f, 0.2f, 0.3f) * 3e38f);  // each below 3.4e38
+  EXPECT_EQ(mat.normal_scale, -3e38f);
+  EXPECT_NO_THROW(validate_scene(m.scene));
+}
+
 // A lit scene framing the model's world bounds from the front and above.
 Scene framed(Scene s) {
   glm::vec3 lo, hi;
