@@ -57,32 +57,64 @@ const char* component_type_name(int type) {
   return kNames[type - TINYGLTF_COMPONENT_TYPE_BYTE];
 }
 
-// Fails unless accessors[index], the `name` attribute (POSITION, NORMAL or TANGENT) at `where`,
-// has a component type glTF allows for it: only FLOAT in glTF 2.0 itself (3.7.2.1, the table of
-// attribute semantics); with KHR_mesh_quantization also BYTE, UNSIGNED_BYTE, SHORT and
-// UNSIGNED_SHORT positions, normalized or not, and normalized BYTE and SHORT normals and
-// tangents. read_accessor reads any type, so without this a file that needs the extension but
-// does not declare it was drawn, where viewers that follow the specification refuse it.
-void check_vector_type(const Context& ctx, const tinygltf::Model& model, int index,
-                       const std::string& name, const std::string& where) {
+// The component types an attribute may have (glTF 2.0 3.7.2.1, the table of attribute
+// semantics; KHR_mesh_quantization's table), one bit per componentType and normalized flag.
+constexpr uint32_t type_bit(int type, bool normalized) {
+  return 1u << (2 * (type - TINYGLTF_COMPONENT_TYPE_BYTE) + int(normalized));
+}
+constexpr uint32_t kNormalizedSmall =
+    type_bit(TINYGLTF_COMPONENT_TYPE_BYTE, true) | type_bit(TINYGLTF_COMPONENT_TYPE_SHORT, true);
+constexpr uint32_t kNormalizedUnsigned = type_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true) |
+                                         type_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true);
+constexpr uint32_t kSmallIntegers = kNormalizedSmall | kNormalizedUnsigned |
+                                    type_bit(TINYGLTF_COMPONENT_TYPE_BYTE, false) |
+                                    type_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false) |
+                                    type_bit(TINYGLTF_COMPONENT_TYPE_SHORT, false) |
+                                    type_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false);
+struct AttributeTypes {
+  std::string_view semantic;  // TEXCOORD stands for every TEXCOORD_n
+  uint32_t core;              // besides FLOAT, which every one allows
+  uint32_t quantized;         // with KHR_mesh_quantization, besides FLOAT
+  const char* core_names;
+  const char* quantized_names;
+};
+constexpr AttributeTypes kAttributeTypes[] = {
+    {"POSITION", 0, kSmallIntegers, "FLOAT (5126)",
+     "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+    {"NORMAL", 0, kNormalizedSmall, "FLOAT (5126)", "FLOAT or normalized BYTE or SHORT"},
+    {"TANGENT", 0, kNormalizedSmall, "FLOAT (5126)", "FLOAT or normalized BYTE or SHORT"},
+    {"TEXCOORD", kNormalizedUnsigned, kSmallIntegers,
+     "FLOAT (5126), normalized UNSIGNED_BYTE (5121) or normalized UNSIGNED_SHORT (5123)",
+     "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
+};
+
+// Fails unless accessors[index], the `name` attribute (POSITION, NORMAL, TANGENT or TEXCOORD_n)
+// at `where`, has a component type kAttributeTypes allows it. read_accessor reads any type, so
+// without this a file that needs KHR_mesh_quantization but does not declare it was drawn, where
+// viewers that follow the specification refuse it.
+void check_attribute_type(const Context& ctx, const tinygltf::Model& model, int index,
+                          const std::string& name, const std::string& where) {
   const tinygltf::Accessor& a = model.accessors[index];
   const int type = a.componentType;
   if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+  const AttributeTypes* rule = nullptr;
+  for (const AttributeTypes& r : kAttributeTypes) {
+    if (name.starts_with(r.semantic)) rule = &r;
+  }
+  TESSERA_CHECK(rule != nullptr);
+  const uint32_t bit = type_bit(type, a.normalized);
+  if ((rule->core & bit) != 0u) return;
   const std::string is = "is " + at("accessors", size_t(index)) + ", of componentType " +
                          std::to_string(type) + " (" + component_type_name(type) +
                          (a.normalized ? ", normalized" : "") + ")";
   if (!ctx.mesh_quantization) {
-    ctx.fail(where, is + "; glTF 2.0 allows only FLOAT (5126) for " + name +
+    ctx.fail(where, is + "; glTF 2.0 allows only " + rule->core_names + " for " + name +
                         " (3.7.2.1) unless the file lists KHR_mesh_quantization in "
                         "extensionsUsed, which it does not");
   }
-  const bool small = type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
-  if (name == "POSITION" ? type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
-                         : !(small && a.normalized)) {
-    ctx.fail(where, is + "; KHR_mesh_quantization allows " +
-                        (name == "POSITION" ? "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
-                                            : "FLOAT or normalized BYTE or SHORT") +
-                        " for " + name);
+  if ((rule->quantized & bit) == 0u) {
+    ctx.fail(where,
+             is + "; KHR_mesh_quantization allows " + rule->quantized_names + " for " + name);
   }
 }
 
@@ -182,7 +214,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   if (attribute("POSITION") < 0) ctx.fail(attributes + "POSITION", "is missing");
   const AccessorValues positions = read_accessor(ctx, model, attribute("POSITION"),
                                                  attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
-  check_vector_type(ctx, model, attribute("POSITION"), "POSITION", attributes + "POSITION");
+  check_attribute_type(ctx, model, attribute("POSITION"), "POSITION", attributes + "POSITION");
   const size_t n = positions.count;
   Mesh mesh;
   visit(positions, [&](auto values) {
@@ -229,6 +261,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     out.resize(n);  // zeros (value-initialized), written by memset
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
+    check_attribute_type(ctx, model, attribute(name.c_str()), name, attributes + name);
     if (options.uv_transform[set] == glm::mat3(1.0f)) {
       // The product below with the identity: each coordinate plus +0, which turns -0 into +0
       // as the matrix's zero terms do, in float (the same bits; a loop the compiler vectorizes).
@@ -304,7 +337,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // The specification says to ignore given tangents when normals are generated.
   } else {
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3, false);
-    check_vector_type(ctx, model, attribute("NORMAL"), "NORMAL", attributes + "NORMAL");
+    check_attribute_type(ctx, model, attribute("NORMAL"), "NORMAL", attributes + "NORMAL");
     reserve_populated(mesh.normals, n);
     mesh.normals.resize(n);
     bool renormalized = false, finite_normals = true;
@@ -344,7 +377,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     }
     if (attribute("TANGENT") >= 0) {
       const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
-      check_vector_type(ctx, model, attribute("TANGENT"), "TANGENT", attributes + "TANGENT");
+      check_attribute_type(ctx, model, attribute("TANGENT"), "TANGENT", attributes + "TANGENT");
       mesh.tangents.resize(n);
       visit(tangents, [&](auto values) {
         for (size_t i = 0; i < n; ++i) {

@@ -598,6 +598,85 @@ TEST(GltfImport, QuantizedAttributesNeedKhrMeshQuantization) {
             "SHORT for NORMAL");
 }
 
+// The triangle of triangle_bytes, unlit (flat normals, its vertices in order), with a TEXCOORD_0
+// (accessors[2], in buffers[1]) of componentType `type` holding the six components `uv`, each
+// vertex's two at a 4-byte aligned stride (3.6.2.4); `extension` lists KHR_mesh_quantization.
+nlohmann::json uv_triangle(int type, bool normalized, const std::vector<int64_t>& uv,
+                           bool extension) {
+  nlohmann::json doc = nlohmann::json::parse(triangle_document(
+      R"({"byteLength": 42, "uri": "data:application/octet-stream;base64,)" +
+          base64(triangle_bytes()) + R"("})",
+      R"({"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6})"));
+  const size_t size = type == 5120 || type == 5121 ? 1 : type == 5122 || type == 5123 ? 2 : 4;
+  const size_t stride = std::max<size_t>(4, 2 * size);
+  std::vector<unsigned char> bytes(3 * stride, 0);
+  for (size_t i = 0; i < 6; ++i) {
+    const uint32_t bits = uint32_t(uv[i]);  // two's complement: its low bytes are the value's
+    std::memcpy(&bytes[i / 2 * stride + i % 2 * size], &bits, size);
+  }
+  doc["buffers"].push_back({{"byteLength", bytes.size()},
+                            {"uri", "data:application/octet-stream;base64," + base64(bytes)}});
+  doc["bufferViews"].push_back(
+      {{"buffer", 1}, {"byteLength", bytes.size()}, {"byteStride", stride}});
+  doc["accessors"].push_back({{"bufferView", 2},
+                              {"componentType", type},
+                              {"normalized", normalized},
+                              {"count", 3},
+                              {"type", "VEC2"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+  if (extension) doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+  return doc;
+}
+
+// TEXCOORD_n may be FLOAT, normalized UNSIGNED_BYTE or normalized UNSIGNED_SHORT (glTF 2.0
+// 3.7.2.1), read as c / 255 and c / 65535 (3.11); KHR_mesh_quantization adds BYTE, UNSIGNED_BYTE,
+// SHORT and UNSIGNED_SHORT, normalized or not (normalized BYTE max(c / 127, -1), the others the
+// integers they are). Any other is refused naming the attribute, as POSITION's is.
+TEST(GltfImport, TexcoordComponentTypesAreTheSpecificationsAndReadAsItMapsThem) {
+  const auto uvs = [](const nlohmann::json& doc) {
+    const std::string text = doc.dump();
+    const ImportedModel m =
+        import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "t.gltf", "/none");
+    EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+    return m.scene.meshes.at(0).uvs;
+  };
+  using uv = glm::vec2;
+  EXPECT_EQ(uvs(uv_triangle(5121, true, {0, 255, 51, 128, 255, 1}, false)),
+            (std::vector<uv>{{0, 1}, {0.2f, float(128.0 / 255.0)}, {1, float(1.0 / 255.0)}}));
+  EXPECT_EQ(uvs(uv_triangle(5123, true, {0, 65535, 13107, 32768, 65535, 1}, false)),
+            (std::vector<uv>{{0, 1}, {0.2f, float(32768.0 / 65535.0)}, {1, float(1.0 / 65535.0)}}));
+  EXPECT_EQ(uvs(uv_triangle(5120, true, {-128, 127, -127, 0, 64, 1}, true)),
+            (std::vector<uv>{{-1, 1}, {-1, 0}, {float(64.0 / 127.0), float(1.0 / 127.0)}}));
+  EXPECT_EQ(uvs(uv_triangle(5123, false, {0, 1, 2, 3, 4, 5}, true)),
+            (std::vector<uv>{{0, 1}, {2, 3}, {4, 5}}));
+  const std::string is =
+      "t.gltf: meshes[0].primitives[0].attributes.TEXCOORD_0: is accessors[2], "
+      "of componentType ";
+  const std::string core =
+      "; glTF 2.0 allows only FLOAT (5126), normalized UNSIGNED_BYTE (5121) or normalized "
+      "UNSIGNED_SHORT (5123) for TEXCOORD_0 (3.7.2.1) unless the file lists KHR_mesh_quantization "
+      "in extensionsUsed, which it does not";
+  EXPECT_EQ(document_error(uv_triangle(5120, true, {0, 0, 0, 0, 0, 0}, false), "t.gltf"),
+            is + "5120 (BYTE, normalized)" + core);
+  EXPECT_EQ(document_error(uv_triangle(5121, false, {0, 0, 0, 0, 0, 0}, false), "t.gltf"),
+            is + "5121 (UNSIGNED_BYTE)" + core);
+  EXPECT_EQ(document_error(uv_triangle(5122, false, {0, 0, 0, 0, 0, 0}, false), "t.gltf"),
+            is + "5122 (SHORT)" + core);
+  EXPECT_EQ(document_error(uv_triangle(5125, false, {0, 0, 0, 0, 0, 0}, true), "t.gltf"),
+            is + "5125 (UNSIGNED_INT); KHR_mesh_quantization allows FLOAT, BYTE, UNSIGNED_BYTE, "
+                 "SHORT or UNSIGNED_SHORT for TEXCOORD_0");
+  // TEXCOORD_1, read where a texture uses it (tests/data/texcoord1.gltf: base colour), likewise.
+  std::ifstream in(kData + "/texcoord1.gltf");
+  nlohmann::json two_sets = nlohmann::json::parse(in);
+  two_sets["accessors"][3]["componentType"] = 5122;
+  two_sets["accessors"][3]["normalized"] = true;
+  EXPECT_EQ(document_error(two_sets, "t.gltf"),
+            "t.gltf: meshes[0].primitives[0].attributes.TEXCOORD_1: is accessors[3], of "
+            "componentType 5122 (SHORT, normalized); glTF 2.0 allows only FLOAT (5126), normalized "
+            "UNSIGNED_BYTE (5121) or normalized UNSIGNED_SHORT (5123) for TEXCOORD_1 (3.7.2.1) "
+            "unless the file lists KHR_mesh_quantization in extensionsUsed, which it does not");
+}
+
 // The triangle of triangle_bytes, embedded, placed by `node` (nodes[0]).
 std::vector<unsigned char> placed_triangle(const std::string& node) {
   std::string text = triangle_document(
