@@ -9,6 +9,7 @@
 #include <stb/stb_image.h>
 
 #include "core/check.h"
+#include "core/mapped_file.h"
 
 namespace tessera {
 namespace {
@@ -52,6 +53,8 @@ void validate_environment(const Environment& env) {
 }
 
 Environment load_environment(const std::string& path) {
+  // Before it is opened: a FIFO would block the open until a writer came.
+  require_regular_file(path);
   Environment env;
   if (ends_with(path, ".pfm")) {
     env.radiance = read_pfm(path);
@@ -62,8 +65,6 @@ Environment load_environment(const std::string& path) {
     if (!data) {
       // stb_image's own reasons ("can't fopen", "unknown image type") do not say which.
       std::error_code ec;
-      if (std::filesystem::is_directory(path, ec))
-        throw Error("cannot read environment '" + path + "': it is a folder, not a file");
       if (!std::filesystem::is_regular_file(path, ec))
         throw Error("cannot read environment '" + path + "': no such file");
       throw Error("cannot read environment '" + path + "': not a Radiance .hdr image (" +

@@ -584,10 +584,10 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
       ->type_name("FILE")
+      // What is there but not a file (a FIFO, a folder) is said to be so by load_view_script.
       ->check(checked_by([](const std::string& path) {
         std::error_code ec;
-        if (!std::filesystem::is_regular_file(path, ec))
-          throw Error("script file '" + path + "' not found");
+        if (!std::filesystem::exists(path, ec)) throw Error("script file '" + path + "' not found");
       }));
   add_choice(app, "--present", a.present,
              {{"auto", PresentPath::automatic},

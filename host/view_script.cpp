@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/mapped_file.h"
 #include "core/materials.h"
 #include "shaders/shared/constants.h"
 
@@ -275,6 +276,7 @@ std::vector<ScriptEvent> parse_view_script(const std::string& text, const std::s
 std::vector<ScriptEvent> load_view_script(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("script file '" + path + "' not found");
+  require_regular_file(path);  // before it is opened: a FIFO would block the open
   std::ifstream file(path, std::ios::binary);
   if (!file) throw Error("cannot read script file '" + path + "': " + std::strerror(errno));
   std::stringstream text;

@@ -302,8 +302,11 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"view --script " + bad_script, 2, bad_script + ":2: unknown event 'jump'"},
       {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 2,
        "tessera: error: --env: no file '/nonexistent/sky.hdr'"},
+      // Refused before it is opened, as a FIFO is (a FIFO blocked the open: mapped_file_test).
       {"render --env " + folder_env + " --out /tmp/x.png", 1,
-       "tessera: error: cannot read environment '" + folder_env + "': it is a folder, not a file"},
+       "tessera: error: " + folder_env + ": is not a regular file (a directory)"},
+      {"view --script " + folder_env, 2,
+       "tessera: error: " + folder_env + ": is not a regular file (a directory)"},
   };
   for (const ToolCase& c : cases) {
     std::string out;

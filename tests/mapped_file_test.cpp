@@ -6,16 +6,21 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
+#include <thread>
 
 #include "core/check.h"
+#include "core/environment.h"
 #include "core/mapped_file.h"
 #include "core/model_import.h"
 #include "core/scene_file.h"
 #include "core/texture.h"
+#include "host/view_script.h"
 
 namespace tessera {
 namespace {
@@ -182,6 +187,48 @@ std::string load_error(const std::function<void()>& load) {
     return e.what();
   }
   return "no error";
+}
+
+// load_error of `load`, which opens the FIFO `fifo`: a writer comes and goes (a thread opens it
+// without blocking, as often as a reader has it open, and closes it at once), so that a loader
+// that opens it reads an empty file and fails, instead of blocking the test for ever.
+std::string fifo_load_error(const std::string& fifo, const std::function<void()>& load) {
+  std::atomic<bool> done = false;
+  std::thread writer([&] {
+    while (!done) {
+      const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);  // ENXIO while none reads
+      if (fd >= 0) ::close(fd);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  const std::string error = load_error(load);
+  done = true;
+  writer.join();
+  return error;
+}
+
+// An environment map (render --env, a scene file's environment) and a view script (view
+// --script) are checked as the loaders below are: a FIFO blocked the open until a writer came.
+TEST(MappedFile, EnvironmentAndViewScriptRefuseWhatIsNotARegularFile) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "tessera_env_fifo";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "folder.hdr");
+  const std::string d = dir.string() + "/";
+  EXPECT_EQ(load_error([&] { load_environment(d + "folder.hdr"); }),
+            d + "folder.hdr: is not a regular file (a directory)");
+  EXPECT_EQ(load_error([&] { load_view_script(d + "folder.hdr"); }),
+            d + "folder.hdr: is not a regular file (a directory)");
+  for (const char* name : {"sky.hdr", "sky.pfm", "script.txt"}) {
+    ASSERT_EQ(mkfifo((d + name).c_str(), 0600), 0);
+  }
+  for (const char* name : {"sky.hdr", "sky.pfm"}) {
+    EXPECT_EQ(fifo_load_error(d + name, [&] { load_environment(d + name); }),
+              d + name + ": is not a regular file (a FIFO)");
+  }
+  EXPECT_EQ(fifo_load_error(d + "script.txt", [&] { load_view_script(d + "script.txt"); }),
+            d + "script.txt: is not a regular file (a FIFO)");
+  std::filesystem::remove_all(dir);
 }
 
 // Every loader of a file it is given checks it with require_regular_file: models (glTF and the
