@@ -26,9 +26,10 @@
 //   Surfaces", section 5.2), taken as GGX alpha = roughness^2. `Pr` overrides it.
 // - Vertex colours (`v x y z r g b`, an extension some exporters write) are not read: materials
 //   have no vertex-colour input. They are warned about once, with their count.
-// - The text is ASCII or UTF-8, as OBJ files are written: a UTF-16 file (one that starts with
-//   the byte-order mark FF FE or FE FF, or has a NUL byte) is an error at that place, where
-//   every one of its lines would otherwise be ignored and the file said to have no faces.
+// - The text is ASCII or UTF-8, as OBJ and MTL files are written: a UTF-16 file (one that starts
+//   with the byte-order mark FF FE or FE FF, or has a NUL byte) is an error at that place, where
+//   every one of its lines would otherwise be ignored and the file said to have no faces (or
+//   no materials).
 
 #include <algorithm>
 #include <bit>
@@ -290,20 +291,28 @@ void scan_corner(const std::string& file, size_t line, const Token& t, ObjScan& 
   }
 }
 
-/// Checks one line of an OBJ file and records what it declares in `scan`.
-void scan_obj_line(const std::string& file, size_t line, std::string_view s, ObjScan& scan) {
-  // Text saved as "Unicode" is UTF-16, where every other byte of ASCII is 0: no line read as a
-  // statement, and the file was said to have no faces (a fresh user's trial). Such lines never
-  // pass scan_obj_line_fast, so the check costs the common lines nothing.
+/// Fails at line `line` (`s`) of `file`, an OBJ or MTL file (`format`), where it is UTF-16 (a
+/// byte-order mark FF FE or FE FF opens line 1) or has a NUL byte. Text saved as "Unicode" is
+/// UTF-16, where every other byte of ASCII is 0: no line read as a statement, and an OBJ file
+/// was said to have no faces (a fresh user's trial), an MTL file's materials were never
+/// declared.
+void require_text_line(const std::string& file, size_t line, std::string_view s,
+                       const char* format) {
+  const auto rule = [&] { return std::string("; ") + format + " files must be ASCII or UTF-8"; };
   if (line == 1 && (s.starts_with("\xFF\xFE") || s.starts_with("\xFE\xFF"))) {
     fail(file, 1, 1,
          std::string("the file is UTF-16 (it starts with the byte-order mark ") +
-             (s[0] == '\xFF' ? "FF FE" : "FE FF") + "); OBJ files must be ASCII or UTF-8");
+             (s[0] == '\xFF' ? "FF FE" : "FE FF") + ")" + rule());
   }
   if (const size_t nul = s.find('\0'); nul != std::string_view::npos) {
-    fail(file, line, nul + 1,
-         "a NUL byte: the file is UTF-16 or not text; OBJ files must be ASCII or UTF-8");
+    fail(file, line, nul + 1, "a NUL byte: the file is UTF-16 or not text" + rule());
   }
+}
+
+/// Checks one line of an OBJ file and records what it declares in `scan`.
+void scan_obj_line(const std::string& file, size_t line, std::string_view s, ObjScan& scan) {
+  // UTF-16 lines never pass scan_obj_line_fast, so the check costs the common lines nothing.
+  require_text_line(file, line, s, "OBJ");
   Tokens tokens(s);
   const std::optional<Token> key = tokens.next();
   if (!key || key->text[0] == '#') return;
@@ -525,6 +534,7 @@ void scan_mtl(const std::string& file, std::string_view text,
                                          "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
   MtlInfo* current = nullptr;
   for_each_line(text, [&](size_t line, std::string_view s) {
+    require_text_line(file, line, s, "MTL");
     Tokens tokens(s);
     const std::optional<Token> key = tokens.next();
     if (!key || key->text[0] == '#') return;
