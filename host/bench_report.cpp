@@ -176,8 +176,9 @@ void write_bench_csv(const std::string& path, const BenchResults& results, const
     // pass by pass and renders in batches: those cells are empty for the others, not a
     // measured 0.
     const bool compute = r.backend == "compute";
-    f << a.scene << "," << r.objects << "," << r.backend << "," << a.width << "," << a.height << ","
-      << r.triangles_submitted << ",";
+    // The scene may be a file's path, which may hold a comma: quoted, as the device and note are.
+    f << csv_text(a.scene) << "," << r.objects << "," << r.backend << "," << a.width << ","
+      << a.height << "," << r.triangles_submitted << ",";
     if (r.backend != "hardware") f << r.triangles_rasterized;
     // A spread needs two runs; the reference has no warm-up and records no command buffer.
     const bool timed_on_device = r.backend != "reference";

@@ -9,6 +9,7 @@
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "core/mapped_file.h"
 #include "host/cli_values.h"
 #include "host/scene_source.h"
 #include "host/tradeoff.h"
@@ -25,6 +26,8 @@ const std::vector<std::string> kCommands = {"render",   "bench",   "view",
 void check_file_exists(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error("no file '" + path + "'");
+  // A FIFO, a device, a folder: named so now, rather than when the command reads it.
+  require_regular_file(path);
 }
 
 // The same for a scene or model file; one written as a built-in scene's file name (metals.json,
@@ -34,7 +37,10 @@ void check_scene_file_exists(const std::string& path) {
   if (std::filesystem::is_directory(path, ec))
     throw Error("'" + path +
                 "' is a folder, not a scene file (.json) or model (.gltf, .glb, .obj)");
-  if (std::filesystem::exists(path, ec)) return;
+  if (std::filesystem::exists(path, ec)) {
+    require_regular_file(path);
+    return;
+  }
   std::string message = "no file '" + path + "'";
   const std::string stem = std::filesystem::path(path).stem().string();
   const std::vector<std::string> known = known_scene_names();
@@ -47,12 +53,14 @@ void check_scene_file_exists(const std::string& path) {
 // them).
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    // A model's file name, even without a folder, is a file (the command then says to place it
-    // in a scene file), not an unknown scene.
-    if (is_scene_path(name) || is_model_path(name))
+    // A model's file name, even without a folder, is a file, not an unknown scene; these
+    // commands show scene files, and say where a model goes.
+    if (is_scene_path(name) || is_model_path(name)) {
       check_scene_file_exists(name);
-    else
+      if (is_model_path(name)) refuse_model_as_scene(name);
+    } else {
       check_scene_name(name);
+    }
   });
 }
 
@@ -306,7 +314,8 @@ void add_strict(CLI::App& app, bool& strict) {
 void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
   app.add_option("--chart", chart, help)
       ->type_name("FILE")
-      ->check(file_with_suffix({".svg", ".png"}));
+      ->check(file_with_suffix({".svg", ".png"}))
+      ->check(writable_output());
 }
 
 // --camera N, for the commands that show a scene file's view. Whether camera N exists is known
@@ -341,11 +350,13 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
            "512x512");
   app.add_option("--out", a.out, "display image, sRGB (default tessera.png)")
       ->type_name("FILE.png")
-      ->check(file_with_suffix({".png"}));
+      ->check(file_with_suffix({".png"}))
+      ->check(writable_output());
   app.add_option("--hdr-out", a.hdr_out,
                  "linear HDR image too, .pfm (exact floats) or\n.hdr (RGBE)")
       ->type_name("FILE")
-      ->check(file_with_suffix({".pfm", ".hdr"}));
+      ->check(file_with_suffix({".pfm", ".hdr"}))
+      ->check(writable_output());
   app.add_option("--device", a.device,
                  "lavapipe, gpu, a device index (default: a\n"
                  "discrete GPU if there is one, else lavapipe),\n"
@@ -550,9 +561,11 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--csv", a.csv,
                  "write every measurement as CSV, each row with\n"
                  "the settings it was measured with")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(writable_output());
   app.add_option("--json", a.json, "the same as JSON, with device, driver and\ncommand")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(writable_output());
   add_chart(app, a.chart,
             "time against objects (log-log, one line per\n"
             "backend) and the compute path's per-pass\n"
@@ -680,7 +693,8 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
       ->type_name("N")
       ->check(whole_number(1, 1u << 20));
   app.add_option("--json", a.json, "every point as JSON, with device and command")
-      ->type_name("FILE");
+      ->type_name("FILE")
+      ->check(writable_output());
   add_chart(app, a.chart,
             "error against GPU time, a series per knob,\n"
             "each knob's Pareto front joined, SVG or PNG");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/image.h"
 #include "shaders/shared/gpu_types.h"
 
 namespace tessera {
@@ -101,6 +102,15 @@ CLI::Validator file_with_suffix(const std::vector<std::string>& suffixes,
         for (const std::string& suffix : suffixes) choices.push_back("a " + suffix + " file");
         choices.insert(choices.end(), also.begin(), also.end());
         return "expects " + list_of_choices(choices) + ", got " + in_quotes(text);
+      },
+      "");
+}
+
+CLI::Validator writable_output() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::string why = unwritable_reason(text);
+        return why.empty() ? "" : "cannot write " + in_quotes(text) + ": " + why;
       },
       "");
 }

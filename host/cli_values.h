@@ -29,6 +29,11 @@ CLI::Validator image_size();
 CLI::Validator file_with_suffix(const std::vector<std::string>& suffixes,
                                 const std::vector<std::string>& also = {});
 
+/// A file the command will write: its folder exists and may be written in, and it is not a
+/// folder (unwritable_reason, core/image.h). Checked with the command line, so that a mistyped
+/// output folder is a bad command line (status 2), found before the work.
+CLI::Validator writable_output();
+
 /// A value accepted by `check`, which throws tessera::Error with the reason otherwise; the
 /// reason becomes the message. For rules that live with the code they guard (e.g.
 /// validate_environment_options), so that the command line cannot drift from them.

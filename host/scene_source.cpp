@@ -94,12 +94,14 @@ void use_model_camera(SceneFile& file, uint32_t index, const std::string& help_c
       help_command);
 }
 
+void refuse_model_as_scene(const std::string& name) {
+  throw Error(name +
+              ": a model file (glTF or OBJ), not a scene file: place it under \"models\" in "
+              "a scene file (docs/scene-format.md), or sweep it with `tessera bench --scene`");
+}
+
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
-  if (is_model_path(name_or_file)) {
-    throw Error(name_or_file +
-                ": a model file (glTF or OBJ), not a scene file: place it under \"models\" in "
-                "a scene file (docs/scene-format.md), or sweep it with `tessera bench --scene`");
-  }
+  if (is_model_path(name_or_file)) refuse_model_as_scene(name_or_file);
   SceneFileOptions options;
   options.strict = strict;
   std::string path = is_scene_path(name_or_file) ? name_or_file : "";

@@ -44,6 +44,10 @@ Scene load_bench_content(const std::string& path, bool strict, bool quiet);
 /// refuses. Warnings are printed to stderr unless `quiet`.
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
 
+/// Throws Error "NAME: a model file (glTF or OBJ), not a scene file: place it under
+/// \"models\" ...": what render and view say of a model given as their scene.
+[[noreturn]] void refuse_model_as_scene(const std::string& name);
+
 /// `--camera N`: sets file.scene.camera to the file's model camera N (SceneFile::model_cameras,
 /// numbered from 0). Throws UsageError "--camera N: ..." (a bad command line, whose usage
 /// `help_command` shows) naming the cameras there are, or that the scene's models bring none,

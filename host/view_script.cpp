@@ -79,9 +79,10 @@ struct Line {
     if (v != double(uint32_t(v))) fail(std::string(what) + " expects a whole number");
     return uint32_t(v);
   }
-  glm::vec2 position() {
-    const float x = float(number_of("x", 0, 65535));
-    return {x, float(number_of("y", 0, 65535))};
+  // A point in window pixels, its coordinates named as the event's form names them (X0 Y0 ...).
+  glm::vec2 position(const char* x_name, const char* y_name) {
+    const float x = float(number_of(x_name, 0, 65535));
+    return {x, float(number_of(y_name, 0, 65535))};
   }
   void modifiers(InputEvent& e, bool allow_ctrl) {
     while (more()) {
@@ -144,12 +145,12 @@ InputEvent parse_event(Line& line) {
       // A right drag does nothing in the window, so a script line with one is a mistake.
       line.fail("unknown button '" + button + "' (left orbits, middle pans)");
     }
-    e.from = line.position();
-    e.to = line.position();
+    e.from = line.position("X0", "Y0");
+    e.to = line.position("X1", "Y1");
     line.modifiers(e, false);
   } else if (kind == "click") {
     e.kind = EventKind::click;
-    e.from = line.position();
+    e.from = line.position("X", "Y");
     line.end();
   } else if (kind == "wheel") {
     e.kind = EventKind::wheel;

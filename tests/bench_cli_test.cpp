@@ -62,7 +62,8 @@ TEST(BenchCli, ShortSweepWritesCsvJsonAndCharts) {
     const std::string csv = read_text(base + ".csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 3)
         << csv;  // header + 2 counts x 3 backends
-    EXPECT_NE(csv.find(std::string(family.name) + ",3,hardware,64,48"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\"" + std::string(family.name) + "\",3,hardware,64,48"), std::string::npos)
+        << csv;
     // What the hardware baseline does not measure (rasterized triangles, the passes, batches)
     // is left empty, not written as a measured 0; the compute rows have it.
     std::istringstream rows(csv);
@@ -469,18 +470,47 @@ TEST(BenchCli, BadArgumentsNameTheOption) {
   EXPECT_NE(error({"--turbo"}).find("unknown option '--turbo'"), std::string::npos);
 }
 
-// An output that cannot be written is a failure while running (status 1), found before the
-// sweep spends any time.
+// An output that cannot be written is a bad command line (status 2), found before the sweep
+// spends any time.
 TEST(BenchCli, UnwritableOutputFailsBeforeMeasuring) {
   std::string out;
-  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
-                                  " bench --device lavapipe --csv /nonexistent-dir/x.csv",
-                              out),
-            1);
-  EXPECT_NE(out.find("tessera: error: cannot write output file '/nonexistent-dir/x.csv'"),
-            std::string::npos)
-      << out;
+  for (const char* option : {"--csv", "--json"}) {
+    EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) + " bench --device lavapipe " + option +
+                                    " /nonexistent-dir/x.out",
+                                out),
+              2);
+    EXPECT_NE(out.find("tessera: error: " + std::string(option) +
+                       ": cannot write '/nonexistent-dir/x.out': folder '/nonexistent-dir' does "
+                       "not exist"),
+              std::string::npos)
+        << out;
+  }
   EXPECT_EQ(out.find("objects"), std::string::npos) << "no table: nothing was measured\n" << out;
+}
+
+// A scene file's path is the CSV's first cell whatever it holds: quoted, so that a comma in
+// it does not shift the row's columns (RFC 4180, as the device and note cells are).
+TEST(BenchCli, SceneFilePathWithACommaStaysOneCell) {
+  const std::string scene = test::output_path("a,b.json");
+  std::ofstream(scene) << R"({"meshes": [{"name": "s", "type": "sphere", "segments": 8}],
+    "materials": [{"name": "m"}], "ambient": [1, 1, 1],
+    "objects": [{"mesh": "s", "material": "m"}]})";
+  const std::string csv_path = test::output_path("comma_scene.csv");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) + " bench --device lavapipe --scene '" +
+                                  scene + "' --size 16x16 --backends compute --repeat 1 " +
+                                  "--warmup 0 --warmup-ms 0 --quiet --csv " + csv_path,
+                              out),
+            0)
+      << out;
+  std::istringstream rows(read_text(csv_path));
+  std::string header, row;
+  std::getline(rows, header);
+  std::getline(rows, row);
+  const std::vector<std::string> names = split_csv_row(header), cells = split_csv_row(row);
+  EXPECT_EQ(cells.size(), names.size()) << row;
+  EXPECT_EQ(cells[0], scene) << row;
+  EXPECT_EQ(cells[2], "compute") << row;
 }
 
 // Frames for warm_up with a clock of their own: frame k (from 1) returns sequence[k - 1] (then
@@ -646,9 +676,9 @@ TEST(BenchCli, CsvAndJsonSayWhichPointsTookTheOnePass) {
   ASSERT_LT(setting, names.size()) << header;
   EXPECT_EQ(split_csv_row(compute)[setting], "true") << compute;
   EXPECT_EQ(names.back(), "rasterized_and_shaded") << header;
-  EXPECT_TRUE(compute.starts_with("grid,1,compute,")) << compute;
+  EXPECT_TRUE(compute.starts_with("\"grid\",1,compute,")) << compute;
   EXPECT_EQ(split_csv_row(compute).back(), "true") << compute;
-  EXPECT_TRUE(hardware.starts_with("grid,1,hardware,")) << hardware;
+  EXPECT_TRUE(hardware.starts_with("\"grid\",1,hardware,")) << hardware;
   EXPECT_EQ(split_csv_row(hardware).back(), "") << hardware;
   const nlohmann::json j = read_json(base + ".json");
   EXPECT_EQ(j["raster_shade"], true);

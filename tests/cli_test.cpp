@@ -280,9 +280,19 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --device lavapipe --scene " + big_scene + " --out /tmp/x.png", 1,
        "tessera: error: " + big_scene + ":2:12: render: the size 16384x16384 " + too_big +
            " (--size overrides it)"},
-      {"render --out /nonexistent-dir/x.png", 1,
-       "tessera: error: cannot write output file '/nonexistent-dir/x.png': folder "
+      // An output that cannot be written is a bad command line, found before any work.
+      {"render --out /nonexistent-dir/x.png", 2,
+       "tessera: error: --out: cannot write '/nonexistent-dir/x.png': folder "
        "'/nonexistent-dir' does not exist"},
+      {"render --out /tmp/x.png --hdr-out /nonexistent-dir/x.pfm", 2,
+       "tessera: error: --hdr-out: cannot write '/nonexistent-dir/x.pfm': folder "
+       "'/nonexistent-dir' does not exist"},
+      {"tradeoff --knob samples --chart /nonexistent-dir/x.svg", 2,
+       "tessera: error: --chart: cannot write '/nonexistent-dir/x.svg': folder "
+       "'/nonexistent-dir' does not exist"},
+      // What is there but is not a regular file is named with its option, as a missing one is.
+      {"render --scene /dev/zero --out /tmp/x.png", 2,
+       "tessera: error: --scene: /dev/zero: is not a regular file (a character device)"},
       {"devices", 0, "(CPU) - usable (--device "},
       // A device index is checked against the devices present while parsing, as a misspelt
       // device name is.
@@ -303,8 +313,8 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --env /nonexistent/sky.hdr --out /tmp/x.png", 2,
        "tessera: error: --env: no file '/nonexistent/sky.hdr'"},
       // Refused before it is opened, as a FIFO is (a FIFO blocked the open: mapped_file_test).
-      {"render --env " + folder_env + " --out /tmp/x.png", 1,
-       "tessera: error: " + folder_env + ": is not a regular file (a directory)"},
+      {"render --env " + folder_env + " --out /tmp/x.png", 2,
+       "tessera: error: --env: " + folder_env + ": is not a regular file (a directory)"},
       {"view --script " + folder_env, 2,
        "tessera: error: " + folder_env + ": is not a regular file (a directory)"},
   };

@@ -470,9 +470,10 @@ TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
   EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) + " render --scene " + kData +
                                   "/features.gltf --out " + png,
                               out),
-            1);
-  EXPECT_NE(out.find("features.gltf: a model file (glTF or OBJ), not a scene file: place it under "
-                     "\"models\""),
+            2);
+  EXPECT_NE(out.find("--scene: " + kData +
+                     "/features.gltf: a model file (glTF or OBJ), not a scene file: place it "
+                     "under \"models\""),
             std::string::npos)
       << out;
   // Named without a folder, from the folder it is in: the same message, not "unknown scene"
@@ -480,7 +481,7 @@ TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
   EXPECT_EQ(test::run_command("cd " + kData + " && " + TESSERA_BINARY +
                                   " render --scene features.gltf --out " + png,
                               out),
-            1);
+            2);
   EXPECT_NE(out.find("features.gltf: a model file (glTF or OBJ), not a scene file"),
             std::string::npos)
       << out;

@@ -149,7 +149,10 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
       {"1 jump\n", "s.txt:1: unknown event 'jump'"},
       {"\n1 key\n", "s.txt:2: key: missing key name (key NAME [ctrl] [shift])"},
       {"1 key Tab\n", "s.txt:1: unknown key 'Tab'"},
-      {"1 drag left 1 2 3\n", "s.txt:1: drag: missing y (drag left|middle X0 Y0 X1 Y1 [shift])"},
+      {"1 drag left 1 2 3\n", "s.txt:1: drag: missing Y1 (drag left|middle X0 Y0 X1 Y1 [shift])"},
+      // Named as the form names them (a fresh user's trial got "missing x" for X1).
+      {"1 drag left 10 20\n", "s.txt:1: drag: missing X1 (drag left|middle X0 Y0 X1 Y1 [shift])"},
+      {"1 click 5\n", "s.txt:1: click: missing Y (click X Y)"},
       {"1 drag up 1 2 3 4\n", "s.txt:1: unknown button 'up'"},
       // A right drag does nothing in the window.
       {"1 drag right 1 2 3 4\n", "s.txt:1: unknown button 'right' (left orbits, middle pans)"},
