@@ -138,9 +138,19 @@ decltype(auto) visit(const AccessorValues& v, F&& f) {
   return f(v.values.data());
 }
 
-/// Reads accessors[index], referenced from `where`, checking the buffer view and buffer
-/// ranges, stride, size arithmetic and sparse indices; `types` lists the allowed accessor
-/// types (TINYGLTF_TYPE_*).
+/// accessors[index], referenced from `where`, after the checks read_accessor makes before it
+/// reads a byte: the index, that its type is one of `types` (TINYGLTF_TYPE_*), that its
+/// componentType is one glTF defines, and that only byte and short components are normalized.
+/// A caller that allows fewer component types (indices, vertex attributes) checks them between
+/// this and read_accessor, so that a type it refuses is named as such, and not as 4-byte reads
+/// running past a view sized for the type the file should have had.
+const tinygltf::Accessor& checked_accessor(const Context& ctx, const tinygltf::Model& model,
+                                           int index, const std::string& where,
+                                           std::initializer_list<int> types);
+
+/// Reads accessors[index], referenced from `where`, after checked_accessor, checking the buffer
+/// view and buffer ranges, stride, size arithmetic and sparse indices; `types` lists the
+/// allowed accessor types (TINYGLTF_TYPE_*).
 AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
                              const std::string& where, std::initializer_list<int> types);
 
