@@ -228,8 +228,9 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx,
   return {data.data() + view.byteOffset, view.byteLength};
 }
 
-AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
-                             const std::string& where, std::initializer_list<int> types) {
+const tinygltf::Accessor& checked_accessor(const Context& ctx, const tinygltf::Model& model,
+                                           int index, const std::string& where,
+                                           std::initializer_list<int> types) {
   check_index(ctx, where, index, model.accessors.size(), "accessors");
   const tinygltf::Accessor& a = model.accessors[index];
   const std::string name = where + " (" + at("accessors", index) + ")";
@@ -247,6 +248,13 @@ AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, i
                        a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
     ctx.fail(name, "is normalized, which only byte and short components may be");
   }
+  return a;
+}
+
+AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
+                             const std::string& where, std::initializer_list<int> types) {
+  const tinygltf::Accessor& a = checked_accessor(ctx, model, index, where, types);
+  const std::string name = where + " (" + at("accessors", index) + ")";
   AccessorValues r;
   r.count = a.count;
   r.components = tinygltf::GetNumComponentsInType(uint32_t(a.type));

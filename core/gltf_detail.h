@@ -1,6 +1,7 @@
 #pragma once
 // Internals of the glTF 2.0 importer (core/gltf_*.cpp), not a public interface.
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -56,6 +57,21 @@ const nlohmann::json& member_object(const nlohmann::json& o, const char* key);
 /// Fails unless 0 <= index < count: `where` holds an index into the file's `array`.
 void check_index(const Context& ctx, const std::string& where, int64_t index, size_t count,
                  const char* array);
+
+/// What keeps the number `v` from being read as a float, quoting it as written: outside
+/// [lo, hi] ("is -1, must be >= 0" where hi is HUGE_VAL, else "is 2, outside [0, 1]"), or beyond
+/// a float's range ("is 1e+39, which does not fit a 32-bit float (at most 3.40282347e+38)"):
+/// a double such as 1e39 became an infinite float, which the renderer then refused without
+/// saying where it came from, or not at all. Empty where it can be read (no allocation), so
+/// that a caller checking many numbers builds their glTF paths only for the one it refuses.
+std::string float_fault(const nlohmann::json& v, double lo = -HUGE_VAL, double hi = HUGE_VAL);
+
+/// The number `v` at `where` as a float, after float_fault, failing at `where` with its words.
+/// Every number the importer holds in a float (materials, nodes, cameras, lights) goes
+/// through these two, with the limits the scene files set for the same parameter
+/// (docs/scene-format.md).
+float float_number(const Context& ctx, const nlohmann::json& v, const std::string& where,
+                   double lo = -HUGE_VAL, double hi = HUGE_VAL);
 
 /// The JSON document of `text` with only the members that the importer reads from it (asset,
 /// extensionsUsed, extensionsRequired, scene, scenes, nodes, cameras, materials, textures,
@@ -122,9 +138,19 @@ decltype(auto) visit(const AccessorValues& v, F&& f) {
   return f(v.values.data());
 }
 
-/// Reads accessors[index], referenced from `where`, checking the buffer view and buffer
-/// ranges, stride, size arithmetic and sparse indices; `types` lists the allowed accessor
-/// types (TINYGLTF_TYPE_*).
+/// accessors[index], referenced from `where`, after the checks read_accessor makes before it
+/// reads a byte: the index, that its type is one of `types` (TINYGLTF_TYPE_*), that its
+/// componentType is one glTF defines, and that only byte and short components are normalized.
+/// A caller that allows fewer component types (indices, vertex attributes) checks them between
+/// this and read_accessor, so that a type it refuses is named as such, and not as 4-byte reads
+/// running past a view sized for the type the file should have had.
+const tinygltf::Accessor& checked_accessor(const Context& ctx, const tinygltf::Model& model,
+                                           int index, const std::string& where,
+                                           std::initializer_list<int> types);
+
+/// Reads accessors[index], referenced from `where`, after checked_accessor, checking the buffer
+/// view and buffer ranges, stride, size arithmetic and sparse indices; `types` lists the
+/// allowed accessor types (TINYGLTF_TYPE_*).
 AccessorValues read_accessor(const Context& ctx, const tinygltf::Model& model, int index,
                              const std::string& where, std::initializer_list<int> types);
 

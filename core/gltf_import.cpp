@@ -3,7 +3,9 @@
 // here and in gltf_accessors.cpp before use.
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -57,6 +59,30 @@ void check_index(const Context& ctx, const std::string& where, int64_t index, si
                         (index < 0 ? " (negative)" : "") + ", but the file has " +
                         std::to_string(count) + " " + array);
   }
+}
+
+std::string float_fault(const json& v, double lo, double hi) {
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", x);
+    return std::string(buffer);
+  };
+  const double d = v.get<double>();
+  if (d < lo || d > hi) {
+    return "is " + v.dump() +
+           (hi == HUGE_VAL ? ", must be >= " + text(lo)
+                           : ", outside [" + text(lo) + ", " + text(hi) + "]");
+  }
+  if (std::fabs(d) > FLT_MAX) {
+    return "is " + v.dump() + ", which does not fit a 32-bit float (at most " + text(FLT_MAX) + ")";
+  }
+  return {};
+}
+
+float float_number(const Context& ctx, const json& v, const std::string& where, double lo,
+                   double hi) {
+  if (std::string fault = float_fault(v, lo, hi); !fault.empty()) ctx.fail(where, fault);
+  return float(v.get<double>());
 }
 
 namespace {
@@ -189,10 +215,11 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
   return true;
 }
 
-bool finite(const glm::dmat4& m) {
+// Whether every element of `m` is at most `largest` in magnitude (by default: finite).
+bool within(const glm::dmat4& m, double largest = DBL_MAX) {
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) {
-      if (!std::isfinite(m[c][r])) return false;
+      if (!(std::fabs(m[c][r]) <= largest)) return false;  // NaN too
     }
   }
   return true;
@@ -256,6 +283,20 @@ constexpr const char* kFlattened =
 
 // A node's local transform: its matrix, or translation * rotation * scale.
 glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::string& where) {
+  // First, each number must fit a float (float_fault), as the object transform that holds it
+  // does: 1e39, finite as a double, became an infinite float that the scene's checks refused as
+  // "a NaN or infinite transform" of a scene object, naming neither the file nor the node. The
+  // path is built only for the number refused (the walk reads every node).
+  for (auto [key, values] : {std::pair{"matrix", &node.matrix},
+                             {"translation", &node.translation},
+                             {"rotation", &node.rotation},
+                             {"scale", &node.scale}}) {
+    for (size_t k = 0; k < values->size(); ++k) {
+      if (std::string fault = float_fault(json((*values)[k])); !fault.empty()) {
+        ctx.fail(where + "." + key + "[" + std::to_string(k) + "]", fault);
+      }
+    }
+  }
   glm::dmat4 m(1.0);
   if (!node.matrix.empty()) {
     m = glm::make_mat4(node.matrix.data());  // column-major, as glTF stores it
@@ -302,7 +343,7 @@ glm::dmat4 local_transform(const Context& ctx, const NodeInfo& node, const std::
     m = glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2])) * glm::mat4_cast(q) *
         glm::scale(glm::dmat4(1.0), glm::dvec3(s[0], s[1], s[2]));
   }
-  if (!finite(m)) ctx.fail(where, "its transform has a NaN or infinite element");
+  if (!within(m)) ctx.fail(where, "its transform has a NaN or infinite element");
   return m;
 }
 
@@ -348,12 +389,15 @@ Light make_light(const Context& ctx, const json& lights, int index, const glm::d
   if (!(intensity >= 0.0) || !std::isfinite(intensity)) {
     ctx.fail(where + ".intensity", "must be a finite number >= 0");
   }
+  // Held to a float as written, as a scene file's intensity is (1e39 / 683 would fit one, but
+  // 1e42 / 683 would not).
+  if (l.contains("intensity")) float_number(ctx, l["intensity"], where + ".intensity");
   light.intensity = float(intensity / kLumensPerWatt);
   if (l.contains("range")) {
     const double range = l["range"].get<double>();
     if (!(range > 0.0) || !std::isfinite(range)) ctx.fail(where + ".range", "must be > 0");
     // The extension recommends the same window as Tessera's inverse_square falloff.
-    light.range = float(range);
+    light.range = float_number(ctx, l["range"], where + ".range");
   }
   light.falloff = Falloff::inverse_square;
   light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
@@ -401,7 +445,7 @@ std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
         ctx.fail(where + ".perspective.znear", "must be > 0");
       }
       c.vertical_fov = float(yfov);
-      c.near_plane = float(znear);
+      c.near_plane = float_number(ctx, p["znear"], where + ".perspective.znear");
     } else if (type == "orthographic") {
       ctx.warn(where,
                "is orthographic, which Tessera does not render; given as a perspective "
@@ -462,7 +506,12 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     const NodeInfo node =
         json_nodes ? node_info((*json_nodes)[v.node]) : node_info(model.nodes[v.node]);
     const glm::dmat4 world = v.parent * local_transform(ctx, node, where);
-    if (!finite(world)) ctx.fail(where, "its world transform overflows to infinity");
+    // Numbers that each fit a float can multiply, down the hierarchy, to one that does not.
+    if (!within(world, FLT_MAX)) {
+      ctx.fail(where,
+               "its world transform (its ancestors' transforms times its own) overflows a 32-bit "
+               "float");
+    }
     stack.push_back({v.node, {}, true, {}});
     for (size_t c = node.children.size(); c-- > 0;) {
       stack.push_back(

@@ -1,8 +1,6 @@
 // glTF metallic-roughness materials, their textures, samplers and texture transforms.
 
-#include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 
 #include <stb/stb_image.h>
@@ -123,30 +121,6 @@ uint32_t texture_index(const Context& ctx, const json& doc, const tinygltf::Mode
   }
   scene.textures.push_back(std::move(t));
   return table.textures[key] = uint32_t(scene.textures.size() - 1);
-}
-
-// The number `v` at `where` as a float. Fails, quoting it as written, outside [lo, hi] (">= lo"
-// where hi is HUGE_VAL), and beyond a float's range: a double such as 1e39 became an infinite
-// float, which the renderer then refused without saying where it came from, or not at all. The
-// limits are those the scene files set for the same parameter (docs/scene-format.md).
-float float_number(const Context& ctx, const json& v, const std::string& where,
-                   double lo = -HUGE_VAL, double hi = HUGE_VAL) {
-  const auto text = [](double x) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.9g", x);
-    return std::string(buffer);
-  };
-  const double d = v.get<double>();
-  if (d < lo || d > hi) {
-    ctx.fail(where, "is " + v.dump() +
-                        (hi == HUGE_VAL ? ", must be >= " + text(lo)
-                                        : ", outside [" + text(lo) + ", " + text(hi) + "]"));
-  }
-  if (std::fabs(d) > FLT_MAX) {
-    ctx.fail(where, "is " + v.dump() + ", which does not fit a 32-bit float (at most " +
-                        text(FLT_MAX) + ")");
-  }
-  return float(d);
 }
 
 // float_number of `object`.`key`, at `where`.`key`; `fallback` where absent.

@@ -88,13 +88,12 @@ constexpr AttributeTypes kAttributeTypes[] = {
      "FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"},
 };
 
-// Fails unless accessors[index], the `name` attribute (POSITION, NORMAL, TANGENT or TEXCOORD_n)
-// at `where`, has a component type kAttributeTypes allows it. read_accessor reads any type, so
-// without this a file that needs KHR_mesh_quantization but does not declare it was drawn, where
-// viewers that follow the specification refuse it.
-void check_attribute_type(const Context& ctx, const tinygltf::Model& model, int index,
+// Fails unless accessor `a`, accessors[index], the `name` attribute (POSITION, NORMAL, TANGENT or
+// TEXCOORD_n) at `where`, has a component type kAttributeTypes allows it. read_accessor reads
+// any type, so without this a file that needs KHR_mesh_quantization but does not declare it was
+// drawn, where viewers that follow the specification refuse it.
+void check_attribute_type(const Context& ctx, const tinygltf::Accessor& a, int index,
                           const std::string& name, const std::string& where) {
-  const tinygltf::Accessor& a = model.accessors[index];
   const int type = a.componentType;
   if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
   const AttributeTypes* rule = nullptr;
@@ -116,6 +115,16 @@ void check_attribute_type(const Context& ctx, const tinygltf::Model& model, int 
     ctx.fail(where,
              is + "; KHR_mesh_quantization allows " + rule->quantized_names + " for " + name);
   }
+}
+
+// The `name` attribute (POSITION, NORMAL, TANGENT or TEXCOORD_n), accessors[index] at `where`,
+// of accessor type `type`: its component type is checked (check_attribute_type) before its bytes
+// are read, where a type of another size than the file's views hold would be refused first as
+// reads past the view.
+AccessorValues read_attribute(const Context& ctx, const tinygltf::Model& model, int index,
+                              const std::string& name, const std::string& where, int type) {
+  check_attribute_type(ctx, checked_accessor(ctx, model, index, where, {type}), index, name, where);
+  return read_accessor(ctx, model, index, where, {type});
 }
 
 // Element i of `values` read as three floats: an iterator over the vec3s of an accessor's flat
@@ -212,9 +221,8 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   };
   const std::string attributes = where + ".attributes.";
   if (attribute("POSITION") < 0) ctx.fail(attributes + "POSITION", "is missing");
-  const AccessorValues positions = read_accessor(ctx, model, attribute("POSITION"),
-                                                 attributes + "POSITION", {TINYGLTF_TYPE_VEC3});
-  check_attribute_type(ctx, model, attribute("POSITION"), "POSITION", attributes + "POSITION");
+  const AccessorValues positions = read_attribute(ctx, model, attribute("POSITION"), "POSITION",
+                                                  attributes + "POSITION", TINYGLTF_TYPE_VEC3);
   const size_t n = positions.count;
   Mesh mesh;
   visit(positions, [&](auto values) {
@@ -242,7 +250,7 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   // finiteness in its own pass and calls require_finite only when that fails.
   auto read = [&](const std::string& name, int type, bool checked = true) {
     const std::string path = attributes + name;
-    AccessorValues v = read_accessor(ctx, model, attribute(name.c_str()), path, {type});
+    AccessorValues v = read_attribute(ctx, model, attribute(name.c_str()), name, path, type);
     if (checked || v.count != n) require_finite(ctx, v, path);  // a NaN is named first
     if (v.count != n) {
       ctx.fail(path,
@@ -261,7 +269,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     out.resize(n);  // zeros (value-initialized), written by memset
     if (attribute(name.c_str()) < 0) return out;
     const AccessorValues uvs = read(name, TINYGLTF_TYPE_VEC2);
-    check_attribute_type(ctx, model, attribute(name.c_str()), name, attributes + name);
     if (options.uv_transform[set] == glm::mat3(1.0f)) {
       // The product below with the identity: each coordinate plus +0, which turns -0 into +0
       // as the matrix's zero terms do, in float (the same bits; a loop the compiler vectorizes).
@@ -291,14 +298,17 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
   std::vector<uint32_t> vertices;
   if (prim.indices >= 0) {
     const std::string path = where + ".indices";
-    AccessorValues indices = read_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR});
-    const int type = model.accessors[prim.indices].componentType;
+    // The component type before the bytes are read: FLOAT indices over a view sized for shorts
+    // were refused as reads past the view.
+    const int type =
+        checked_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR}).componentType;
     if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
       ctx.fail(path, "has componentType " + std::to_string(type) +
                          ", must be an unsigned byte, short or int");
     }
+    AccessorValues indices = read_accessor(ctx, model, prim.indices, path, {TINYGLTF_TYPE_SCALAR});
     visit(indices, [&](auto values) {
       // The largest index first, in a loop without an exit that the compiler vectorizes; the
       // element is looked for only when one is out of range.
@@ -337,7 +347,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     // The specification says to ignore given tangents when normals are generated.
   } else {
     const AccessorValues normals = read("NORMAL", TINYGLTF_TYPE_VEC3, false);
-    check_attribute_type(ctx, model, attribute("NORMAL"), "NORMAL", attributes + "NORMAL");
     reserve_populated(mesh.normals, n);
     mesh.normals.resize(n);
     bool renormalized = false, finite_normals = true;
@@ -377,7 +386,6 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
     }
     if (attribute("TANGENT") >= 0) {
       const AccessorValues tangents = read("TANGENT", TINYGLTF_TYPE_VEC4);
-      check_attribute_type(ctx, model, attribute("TANGENT"), "TANGENT", attributes + "TANGENT");
       mesh.tangents.resize(n);
       visit(tangents, [&](auto values) {
         for (size_t i = 0; i < n; ++i) {

@@ -997,6 +997,62 @@ TEST(GltfImport, MaterialNumbersBeyondAFloatAreRefusedAtTheirPath) {
   EXPECT_NO_THROW(validate_scene(m.scene));
 }
 
+// A node's matrix, translation, rotation and scale, a camera's znear and a light's intensity and
+// range are held in floats too, by the same check as the material numbers: 1e39 (finite as a
+// double) became an infinite object transform that validate_scene refused as
+// "objects[0]: invalid scene: object 0 has a NaN or infinite transform", naming neither the
+// file nor the node, or an infinite near plane or light range. Numbers that each fit a float
+// but whose product down the hierarchy does not are refused at the node whose world transform
+// overflows.
+TEST(GltfImport, NodeCameraAndLightNumbersBeyondAFloatAreRefusedAtTheirPath) {
+  std::ifstream in(kData + "/features.gltf");
+  const nlohmann::json features = nlohmann::json::parse(in);
+  ASSERT_EQ(document_error(features, "f.gltf"), "no error");
+  const std::string fits = ", which does not fit a 32-bit float (at most 3.40282347e+38)";
+  const std::string lights = "/extensions/KHR_lights_punctual/lights/";
+  const std::string light_where = "extensions.KHR_lights_punctual.lights";
+  // (JSON pointer, value, the message after "f.gltf: ").
+  const std::tuple<std::string, double, std::string> cases[] = {
+      {"/nodes/0/translation/0", 1e39, "nodes[0].translation[0]: is 1e+39" + fits},
+      {"/nodes/2/scale/1", -1e39, "nodes[2].scale[1]: is -1e+39" + fits},
+      // The rotation was normalized (a warning) before the float it is held in was considered.
+      {"/nodes/4/rotation/3", 1e39, "nodes[4].rotation[3]: is 1e+39" + fits},
+      {"/nodes/1/matrix/12", -1e39, "nodes[1].matrix[12]: is -1e+39" + fits},
+      {"/nodes/1/matrix/0", 1e39, "nodes[1].matrix[0]: is 1e+39" + fits},
+      // A node with both a matrix and TRS is read from the JSON, not from TinyGLTF's model (the
+      // scan gives up on it); its TRS numbers, ignored, are held to a float all the same.
+      {"/nodes/1/translation", 1e39, "nodes[1].translation[0]: is 1e+39" + fits},
+      // 1e20 in each of two nodes: 2e40 in the child's world transform.
+      {"/nodes/0/scale", 1e20,
+       "nodes[1]: its world transform (its ancestors' transforms times its own) overflows a "
+       "32-bit float"},
+      {"/cameras/0/perspective/znear", 1e39, "cameras[0].perspective.znear: is 1e+39" + fits},
+      {lights + "0/intensity", 1e39, light_where + "[0].intensity: is 1e+39" + fits},
+      {lights + "1/range", 1e39, light_where + "[1].range: is 1e+39" + fits},
+  };
+  for (const auto& [pointer, value, message] : cases) {
+    nlohmann::json doc = features;
+    doc["nodes"][2]["scale"] = {1, 1, 1};
+    nlohmann::json& v = doc[nlohmann::json::json_pointer(pointer)];
+    v = v.is_null() ? nlohmann::json{value, value, value} : nlohmann::json(value);
+    if (pointer == "/nodes/0/scale") doc["nodes"][1]["matrix"][0] = 1e20;
+    EXPECT_EQ(document_error(doc, "f.gltf"), "f.gltf: " + message) << pointer;
+  }
+  // Large but within a float: imported as written.
+  nlohmann::json large = features;
+  large["nodes"][0]["translation"][0] = 1.5e38;  // times the child's scale of 2: 3e38
+  large["cameras"][0]["perspective"]["znear"] = 3e38;
+  large["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 3e38;
+  large["extensions"]["KHR_lights_punctual"]["lights"][1]["range"] = 3e38;
+  const std::string text = large.dump();
+  const ImportedModel m =
+      import_gltf_bytes(std::vector<unsigned char>(text.begin(), text.end()), "f.gltf", kData);
+  EXPECT_EQ(m.scene.objects.at(0).transform[3][0], 1.5e38f);
+  EXPECT_EQ(m.cameras.at(0).near_plane, 3e38f);
+  EXPECT_EQ(m.scene.lights.at(0).intensity, float(3e38 / 683.0));
+  EXPECT_EQ(m.scene.lights.at(1).range, 3e38f);
+}
+
 // A lit scene framing the model's world bounds from the front and above.
 Scene framed(Scene s) {
   glm::vec3 lo, hi;
