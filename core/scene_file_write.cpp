@@ -1,9 +1,11 @@
 #include "core/scene_file_write.h"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -232,82 +234,103 @@ void save_scene_file(const Scene& scene, const std::string& path, const RenderDe
   const std::string stem = file.stem().string();
   if (const std::string reason = unwritable_reason(path); !reason.empty())
     throw Error("cannot write the scene file '" + path + "': " + reason);
-
-  Json root = {{"version", 1}};
-  if (!description.empty()) root["description"] = description;
-  const Camera& c = scene.camera;
-  const float fov = degrees_for(c.vertical_fov);
-  require_range(fov, FLT_MIN, 179.0f, "camera.vertical_fov_degrees");
-  root["camera"] = {{"position", vec(c.position)},
-                    {"target", vec(c.target)},
-                    {"up", vec(c.up)},
-                    {"vertical_fov_degrees", num(fov)},
-                    {"near", num(c.near_plane)}};
-
-  std::vector<std::string> texture_names;
-  Json textures = Json::array();
-  for (size_t i = 0; i < scene.textures.size(); ++i) {
-    const Texture& t = scene.textures[i];
-    const std::string name = stem + "-texture-" + std::to_string(i) + ".png";
-    write_png((folder / name).string(), Image8{t.width, t.height, t.texels});
-    texture_names.push_back("texture" + std::to_string(i));
-    Json texture = {
-        {"name", texture_names.back()}, {"type", "file"}, {"file", name}, {"srgb", t.srgb}};
-    if (t.wrap_u != TextureWrap::repeat || t.wrap_v != TextureWrap::repeat)
-      texture["wrap"] = Json::array({wrap_name(t.wrap_u), wrap_name(t.wrap_v)});
-    textures.push_back(std::move(texture));
-  }
-  Json materials = Json::array();
-  for (size_t i = 0; i < scene.materials.size(); ++i)
-    materials.push_back(
-        material_json(scene.materials[i], "material" + std::to_string(i), texture_names));
-  Json meshes = Json::array();
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
-    meshes.push_back(mesh_json(scene.meshes[i], "mesh" + std::to_string(i)));
-  Json objects = Json::array();
-  for (const Object& o : scene.objects) {
-    Json matrix = Json::array();
-    for (int k = 0; k < 16; ++k) matrix.push_back(num(o.transform[k / 4][k % 4]));
-    objects.push_back({{"mesh", "mesh" + std::to_string(o.mesh)},
-                       {"material", "material" + std::to_string(o.material)},
-                       {"matrix", std::move(matrix)}});
-  }
-  Json lights = Json::array();
-  for (size_t i = 0; i < scene.lights.size(); ++i) lights.push_back(light_json(scene.lights[i], i));
-  root["textures"] = std::move(textures);
-  root["materials"] = std::move(materials);
-  root["meshes"] = std::move(meshes);
-  root["objects"] = std::move(objects);
-  root["lights"] = std::move(lights);
-  if (scene.environment) {
-    const std::string name = stem + "-environment.pfm";
-    root["environment"] = environment_json(*scene.environment, (folder / name).string(), name);
-  }
-  root["background"] = vec(scene.background);
-  root["ambient"] = vec(scene.ambient);
-  if (render) root["render"] = render_json(*render);
-
-  const std::string text = root.dump(1) + "\n";
-  if (text.size() > SceneFileOptions{}.max_file_bytes) {
-    unwritable("'" + path + "' would be " + std::to_string(text.size() >> 20) + " MiB, over the " +
-               std::to_string(SceneFileOptions{}.max_file_bytes >> 20) +
-               " MiB a scene file may have (large meshes are written inline)");
-  }
   const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw Error("cannot write the scene file '" + path + "'");
-    }
+  if (const std::string reason = unwritable_reason(temporary); !reason.empty()) {
+    throw Error("cannot write the scene file '" + path + "': its temporary file '" + temporary +
+                "': " + reason);
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw Error("cannot write the scene file '" + path + "': " + error.message());
+  // The texture and environment files this save creates, removed again if it fails (files that
+  // were there before are overwritten, as a successful save would).
+  std::vector<std::string> created;
+  auto creates = [&created](const std::string& file) {
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) created.push_back(file);
+    return file;
+  };
+  try {
+    Json root = {{"version", 1}};
+    if (!description.empty()) root["description"] = description;
+    const Camera& c = scene.camera;
+    const float fov = degrees_for(c.vertical_fov);
+    require_range(fov, FLT_MIN, 179.0f, "camera.vertical_fov_degrees");
+    root["camera"] = {{"position", vec(c.position)},
+                      {"target", vec(c.target)},
+                      {"up", vec(c.up)},
+                      {"vertical_fov_degrees", num(fov)},
+                      {"near", num(c.near_plane)}};
+
+    std::vector<std::string> texture_names;
+    Json textures = Json::array();
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+      const Texture& t = scene.textures[i];
+      const std::string name = stem + "-texture-" + std::to_string(i) + ".png";
+      write_png(creates((folder / name).string()), Image8{t.width, t.height, t.texels});
+      texture_names.push_back("texture" + std::to_string(i));
+      Json texture = {
+          {"name", texture_names.back()}, {"type", "file"}, {"file", name}, {"srgb", t.srgb}};
+      if (t.wrap_u != TextureWrap::repeat || t.wrap_v != TextureWrap::repeat)
+        texture["wrap"] = Json::array({wrap_name(t.wrap_u), wrap_name(t.wrap_v)});
+      textures.push_back(std::move(texture));
+    }
+    Json materials = Json::array();
+    for (size_t i = 0; i < scene.materials.size(); ++i)
+      materials.push_back(
+          material_json(scene.materials[i], "material" + std::to_string(i), texture_names));
+    Json meshes = Json::array();
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+      meshes.push_back(mesh_json(scene.meshes[i], "mesh" + std::to_string(i)));
+    Json objects = Json::array();
+    for (const Object& o : scene.objects) {
+      Json matrix = Json::array();
+      for (int k = 0; k < 16; ++k) matrix.push_back(num(o.transform[k / 4][k % 4]));
+      objects.push_back({{"mesh", "mesh" + std::to_string(o.mesh)},
+                         {"material", "material" + std::to_string(o.material)},
+                         {"matrix", std::move(matrix)}});
+    }
+    Json lights = Json::array();
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+      lights.push_back(light_json(scene.lights[i], i));
+    root["textures"] = std::move(textures);
+    root["materials"] = std::move(materials);
+    root["meshes"] = std::move(meshes);
+    root["objects"] = std::move(objects);
+    root["lights"] = std::move(lights);
+    if (scene.environment) {
+      const std::string name = stem + "-environment.pfm";
+      root["environment"] =
+          environment_json(*scene.environment, creates((folder / name).string()), name);
+    }
+    root["background"] = vec(scene.background);
+    root["ambient"] = vec(scene.ambient);
+    if (render) root["render"] = render_json(*render);
+
+    const std::string text = root.dump(1) + "\n";
+    if (text.size() > SceneFileOptions{}.max_file_bytes) {
+      unwritable("'" + path + "' would be " + std::to_string(text.size() >> 20) +
+                 " MiB, over the " + std::to_string(SceneFileOptions{}.max_file_bytes >> 20) +
+                 " MiB a scene file may have (large meshes are written inline)");
+    }
+    {
+      errno = 0;
+      std::ofstream out(temporary, std::ios::binary);
+      out << text;
+      out.close();
+      if (!out) {
+        const int code = errno;
+        std::remove(temporary.c_str());
+        throw Error("cannot write the scene file '" + path + "': writing '" + temporary +
+                    "' failed: " + (code ? std::strerror(code) : "unknown error"));
+      }
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+      std::remove(temporary.c_str());
+      throw Error("cannot write the scene file '" + path + "': " + error.message());
+    }
+  } catch (...) {
+    for (const std::string& file : created) std::remove(file.c_str());
+    throw;
   }
 }
 

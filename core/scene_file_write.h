@@ -26,9 +26,11 @@ namespace tessera {
 /// every radian value), the nearest comes back, within an ulp or two. Angles that came from
 /// degrees (files, and editors working in degrees) always come back exactly.
 /// The scene file is written to PATH.tmp and renamed over `path`, so a failed save leaves an
-/// existing file as it was. Throws Error naming the path when a file cannot be written, and
-/// naming the field when a value is outside what the format accepts (e.g. roughness outside
-/// [0, 1], a field of view over 179 degrees) or the file would exceed the reader's 64 MiB.
+/// existing file as it was, and removes the texture and environment files it created. Throws
+/// Error naming the path and the reason (unwritable_reason, or the OS error) when a file
+/// cannot be written, and naming the field when a value is outside what the format accepts
+/// (e.g. roughness outside [0, 1], a field of view over 179 degrees) or the file would exceed
+/// the reader's 64 MiB.
 /// A non-empty `description` is written as the file's "description".
 void save_scene_file(const Scene& scene, const std::string& path,
                      const RenderDefaults* render = nullptr, const std::string& description = {});

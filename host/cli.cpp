@@ -597,10 +597,12 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "FILE (keys, drags, clicks, resizes,\n"
                  "screenshots, exit; see README)")
       ->type_name("FILE")
-      // What is there but not a file (a FIFO, a folder) is said to be so by load_view_script.
+      // What is there but not a file (a FIFO, a folder) is refused here too, with the option's
+      // name as every option error has it (stat only: opening a FIFO would block).
       ->check(checked_by([](const std::string& path) {
         std::error_code ec;
         if (!std::filesystem::exists(path, ec)) throw Error("script file '" + path + "' not found");
+        require_regular_file(path);
       }));
   add_choice(app, "--present", a.present,
              {{"auto", PresentPath::automatic},

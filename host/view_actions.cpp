@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -265,22 +266,32 @@ void write_scene(const Viewer& v, const std::string& path) {
   save_scene_file(v.scene, path, &render, v.description);
 }
 
-// Ctrl+S (`to_own_file`: the scene's own file) or a script's `save PATH`.
-void save(Viewer& v, const std::string& path, bool to_own_file) {
+// Ctrl+S or a script's `save` (`to_own_file`: the session's scene file), or a script's
+// `save PATH`, after which PATH is the session's scene file.
+void save(Viewer& v, std::string path, bool to_own_file, bool scripted) {
   if (to_own_file && !v.history.dirty()) {
     // Saving rewrites the file in the generated form: never without a reason.
     log(v, "nothing to save: no edits since the scene was loaded or saved (" + path +
                " left as it is)");
     return;
   }
+  // A built-in scene not saved yet: NAME.json in the working folder, unless a file of that
+  // name is there already, which is not this session's to overwrite.
+  std::string instead;
+  if (to_own_file && v.scene_file.empty() && std::filesystem::exists(path)) {
+    instead = " (" + path + " was there already and is not this session's file: left as it is)";
+    path = free_path(path);
+  }
   try {
     write_scene(v, path);
   } catch (const Error& error) {
     log(v, std::string("not saved: ") + error.what());
+    if (scripted) v.scripted_save_failed = true;
     return;
   }
-  if (to_own_file || path == save_path(v)) v.history.mark_saved();
-  log(v, "saved " + path);
+  v.scene_file = path;
+  v.history.mark_saved();
+  log(v, "saved " + path + instead);
 }
 
 // A scripted click or drag that starts where the panel was drawn is the panel's, as a person's
@@ -311,7 +322,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
     case GLFW_KEY_Q:
     case GLFW_KEY_E:
       if (e.key == GLFW_KEY_S && e.ctrl) {
-        save(v, save_path(v), true);
+        save(v, save_path(v), true, e.scripted);
       } else if (e.scripted) {  // held keys of a person are polled each frame instead
         fly_keys = {e.key == GLFW_KEY_W, e.key == GLFW_KEY_S, e.key == GLFW_KEY_A,
                     e.key == GLFW_KEY_D, e.key == GLFW_KEY_Q, e.key == GLFW_KEY_E};
@@ -471,7 +482,7 @@ void handle_event(Viewer& v, const InputEvent& e) {
       }
       break;
     case EventKind::save:
-      save(v, e.path.empty() ? save_path(v) : e.path, e.path.empty());
+      save(v, e.path.empty() ? save_path(v) : e.path, e.path.empty(), true);
       break;
     case EventKind::exit:
       v.exit = true;
@@ -503,7 +514,7 @@ void apply_panel_changes(Viewer& v, const PanelChanges& c) {
 }
 
 std::string save_path(const Viewer& v) {
-  return is_scene_path(v.args.scene) ? v.args.scene : v.args.scene + ".json";
+  return !v.scene_file.empty() ? v.scene_file : v.args.scene + ".json";
 }
 
 std::string autosave_path(const Viewer& v) {
@@ -511,12 +522,54 @@ std::string autosave_path(const Viewer& v) {
   return path.replace_extension(".autosave.json").string();
 }
 
+std::string free_path(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return path;
+  const std::filesystem::path p(path);
+  for (int n = 2;; ++n) {
+    std::filesystem::path next = p;
+    next.replace_filename(p.stem().string() + "-" + std::to_string(n) + p.extension().string());
+    if (!std::filesystem::exists(next, ec)) return next.string();
+  }
+}
+
+std::vector<std::string> earlier_autosaves(const Viewer& v) {
+  namespace fs = std::filesystem;
+  const fs::path first = autosave_path(v);
+  const std::string stem = first.stem().string();  // FILE.autosave
+  const fs::path folder = first.parent_path().empty() ? fs::path(".") : first.parent_path();
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() < stem.size() + 5 || name.compare(0, stem.size(), stem) != 0 ||
+        name.compare(name.size() - 5, 5, ".json") != 0)
+      continue;
+    // FILE.autosave.json, or FILE.autosave-N.json.
+    const std::string middle = name.substr(stem.size(), name.size() - stem.size() - 5);
+    if (!middle.empty() && (middle.size() < 2 || middle[0] != '-' ||
+                            middle.find_first_not_of("0123456789", 1) != std::string::npos))
+      continue;
+    found.push_back((first.parent_path() / name).string());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
 bool autosave_if_unsaved(Viewer& v) {
   if (!v.history.dirty()) return true;
-  const std::string path = autosave_path(v);
+  // Never over an earlier session's autosave: that holds edits this session does not have.
+  const std::string first = autosave_path(v), path = free_path(first);
   try {
     write_scene(v, path);
-    std::fprintf(stderr, "tessera view: unsaved edits written to %s\n", path.c_str());
+    if (path == first) {
+      std::fprintf(stderr, "tessera view: unsaved edits written to %s\n", path.c_str());
+    } else {
+      std::fprintf(stderr,
+                   "tessera view: unsaved edits written to %s (%s, of an earlier session, left "
+                   "as it is)\n",
+                   path.c_str(), first.c_str());
+    }
     return true;
   } catch (const Error& error) {
     std::fprintf(stderr, "tessera view: unsaved edits lost: %s\n", error.what());

@@ -178,7 +178,8 @@ void run_loop(Viewer& v) {
     for (const InputEvent& e : events) handle_event(v, e);
     // The window's title says what the panel's does, for a hidden panel too.
     const std::string title =
-        "tessera view: " + v.args.scene + (v.history.dirty() ? " (unsaved edits)" : "");
+        "tessera view: " + (v.scene_file.empty() ? v.args.scene : v.scene_file) +
+        (v.history.dirty() ? " (unsaved edits)" : "");
     if (title != v.title) set_window_title(*v.window, v.title = title);
     // A frame's time is the time it takes to draw one, whatever the idle time before it.
     fly_held_keys(v, float(std::min(v.frame_ms, 100.0)) * 1e-3f);
@@ -218,9 +219,10 @@ int run_view(const ViewArgs& args) {
   v.render_defaults = file.render;
   v.description = file.description;
   v.options_at[v.history.state()] = render_options_of(v.frame);
-  if (std::filesystem::exists(autosave_path(v))) {
+  if (is_scene_path(args.scene)) v.scene_file = args.scene;
+  for (const std::string& autosave : earlier_autosaves(v)) {
     std::printf("note: %s holds unsaved edits of an earlier session (open it with --scene %s)\n",
-                autosave_path(v).c_str(), autosave_path(v).c_str());
+                autosave.c_str(), autosave.c_str());
   }
   v.environment = v.scene.environment;
   v.orbit = from_camera(v.scene.camera);
@@ -245,6 +247,10 @@ int run_view(const ViewArgs& args) {
   catch_stop_signals();
   run_loop(v);
   bool lost = !autosave_if_unsaved(v);
+  if (v.scripted_save_failed) {
+    std::fprintf(stderr, "tessera view: a save the script asked for failed (said above)\n");
+    lost = true;
+  }
   for (const std::string& path : v.screenshots) {
     std::fprintf(stderr,
                  "tessera view: screenshot %s not written: no frame was presented after "

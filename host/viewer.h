@@ -28,6 +28,10 @@ struct Viewer {
   Scene scene;
   RenderDefaults render_defaults;  // the scene file's "render" block, written back on save
   std::string description;         // the scene file's "description", written back on save
+  // The session's scene file: the one opened, or the one last saved to (a save under another
+  // name makes that file the session's). Empty for a built-in scene until it is saved.
+  std::string scene_file;
+  bool scripted_save_failed = false;  // makes the exit status 1
   FrameSettings frame;
   OrbitCamera orbit;   // scene.camera is to_camera(orbit) once the camera has moved
   Camera home_camera;  // the scene's own, for the Home key
@@ -87,16 +91,25 @@ void apply_panel_changes(Viewer& v, const PanelChanges& c);
 /// set_scene before the next frame, and the log says what it uploaded.
 void mark_changed(Viewer& v, const std::string& what);
 
-/// Where Ctrl+S saves: the scene file itself, or NAME.json in the working folder for a scene
-/// given by name (so the scenes folder is never written).
+/// Where Ctrl+S saves: the session's scene file, or NAME.json in the working folder for a scene
+/// given by name and not saved yet (so the scenes folder is never written). A NAME.json that
+/// is there already is not the session's: Ctrl+S then saves to the first free NAME-N.json.
 std::string save_path(const Viewer& v);
 
-/// The scene's autosave file: FILE.autosave.json beside a scene file, NAME.autosave.json in
-/// the working folder for a named scene.
+/// The scene's autosave file: FILE.autosave.json beside the session's scene file,
+/// NAME.autosave.json in the working folder for a named scene.
 std::string autosave_path(const Viewer& v);
 
-/// Leaving with unsaved edits writes them to autosave_path and says so on stderr; false (and
-/// the reason on stderr) if they could not be written.
+/// `path` if no file is there, else the first of STEM-2.EXT, STEM-3.EXT, ... that is free.
+std::string free_path(const std::string& path);
+
+/// The autosave files of earlier sessions beside the scene: autosave_path and its numbered
+/// variants (FILE.autosave-2.json, ...), sorted by name.
+std::vector<std::string> earlier_autosaves(const Viewer& v);
+
+/// Leaving with unsaved edits writes them to free_path(autosave_path), so that an earlier
+/// session's autosave is never overwritten, and says so on stderr; false (and the reason on
+/// stderr) if they could not be written.
 bool autosave_if_unsaved(Viewer& v);
 
 }  // namespace tessera

@@ -316,7 +316,7 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --env " + folder_env + " --out /tmp/x.png", 2,
        "tessera: error: --env: " + folder_env + ": is not a regular file (a directory)"},
       {"view --script " + folder_env, 2,
-       "tessera: error: " + folder_env + ": is not a regular file (a directory)"},
+       "tessera: error: --script: " + folder_env + ": is not a regular file (a directory)"},
   };
   for (const ToolCase& c : cases) {
     std::string out;

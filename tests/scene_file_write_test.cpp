@@ -216,5 +216,46 @@ TEST(SceneFileWrite, ErrorsNameThePathOrTheField) {
   EXPECT_FALSE(fs::exists(folder + "/bad.json"));
 }
 
+// A save that fails says why, and leaves none of the files it wrote behind: the scene file's
+// temporary a folder (refused before anything is written), or the environment's PFM a folder
+// (after the texture was written). A texture file that was there before is kept.
+TEST(SceneFileWrite, AFailedSaveSaysWhyAndRemovesTheFilesItWrote) {
+  Scene s = make_builtin_scene("spheres");
+  s.textures.push_back(
+      Texture{.width = 2, .height = 1, .texels = {{255, 0, 0, 255}, {0, 0, 0, 255}}});
+  Environment e;
+  e.radiance.width = 4;
+  e.radiance.height = 2;
+  e.radiance.pixels.assign(8, glm::vec4(0.25f, 0.5f, 1.0f, 1.0f));
+  e.radiance.pixels[3] = glm::vec4(2.0f);
+  s.environment = std::make_shared<const Environment>(e);
+  const std::string folder = scratch_folder();
+  const std::string path = folder + "/ro.json";
+  fs::create_directories(path + ".tmp");
+  try {
+    save_scene_file(s, path);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write the scene file '" + path +
+                                         "': its temporary file '" + path +
+                                         ".tmp': it is a folder");
+  }
+  EXPECT_FALSE(fs::exists(folder + "/ro-texture-0.png"));
+  EXPECT_FALSE(fs::exists(path));
+  fs::remove(path + ".tmp");
+  fs::create_directories(folder + "/ro-environment.pfm");
+  EXPECT_THROW(save_scene_file(s, path), Error);
+  EXPECT_FALSE(fs::exists(folder + "/ro-texture-0.png"));
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  // A texture file of an earlier save stays (it was not this save's to remove).
+  std::ofstream(folder + "/ro-texture-0.png") << "earlier";
+  EXPECT_THROW(save_scene_file(s, path), Error);
+  EXPECT_TRUE(fs::exists(folder + "/ro-texture-0.png"));
+  fs::remove(folder + "/ro-environment.pfm");
+  save_scene_file(s, path);  // and with nothing in the way it saves
+  EXPECT_TRUE(fs::exists(path));
+}
+
 }  // namespace
 }  // namespace tessera

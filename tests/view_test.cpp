@@ -43,16 +43,20 @@ struct ViewRun {
   std::string output;
 };
 
-// Runs the viewer on lavapipe with validation (unless `validate` is false), replaying `script`.
-ViewRun run_view(const std::string& script, const std::string& options, bool validate = true) {
-  const std::string path = output_path("script.txt");
+// Runs the viewer on lavapipe with validation (unless `validate` is false), replaying `script`,
+// in the working folder `folder` if given.
+ViewRun run_view(const std::string& script, const std::string& options, bool validate = true,
+                 const std::string& folder = "") {
+  const std::string path = std::filesystem::absolute(output_path("script.txt")).string();
   std::ofstream(path) << script;
   ViewRun run;
-  run.status = run_command("XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} xvfb-run -a " TESSERA_BINARY
-                           " view --device lavapipe" +
-                               std::string(validate ? " --validate" : "") +
-                               " --vsync off --script " + path + " " + options,
-                           run.output);
+  run.status =
+      run_command((folder.empty() ? "" : "cd " + folder + " && ") +
+                      "XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} xvfb-run -a " TESSERA_BINARY
+                      " view --device lavapipe" +
+                      std::string(validate ? " --validate" : "") + " --vsync off --script " + path +
+                      " " + options,
+                  run.output);
   return run;
 }
 
@@ -597,6 +601,121 @@ TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
       << run.output;
   EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());
   EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);  // the scene file is untouched
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// This test's output folder, emptied.
+std::string fresh_folder() {
+  const std::string folder = std::filesystem::path(output_path("x")).parent_path().string();
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+// An earlier session's autosave holds edits this session does not have: it is noted at the
+// start, and this session's unsaved edits go beside it under the next free name.
+TEST_F(View, AnEarlierSessionsAutosaveIsNeverOverwritten) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = fresh_folder();
+  const std::string scene = write_ball_scene();
+  const std::string earlier = folder + "/ball.autosave.json";
+  std::ofstream(earlier) << "the earlier session's edits";
+  const std::string script = "1 click 32 24\n2 key Delete\n3 exit\n";
+  const std::string options = "--scene " + scene + " --size 64x48 --overlay off";
+  ViewRun run = run_view(script, options);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("note: " + earlier + " holds unsaved edits of an earlier session"),
+            std::string::npos)
+      << run.output;
+  const std::string second = folder + "/ball.autosave-2.json";
+  EXPECT_NE(run.output.find("unsaved edits written to " + second + " (" + earlier +
+                            ", of an earlier session, left as it is)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(read_text(earlier), "the earlier session's edits");
+  EXPECT_TRUE(load_scene_file(second).scene.objects.empty());
+  // A third session notes both and writes a third.
+  run = run_view(script, options);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("note: " + second + " holds unsaved edits"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("unsaved edits written to " + folder + "/ball.autosave-3.json"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(read_text(earlier), "the earlier session's edits");
+}
+
+// Ctrl+S and a scripted `save` on a built-in scene write NAME.json in the working folder, but
+// never over a NAME.json the session did not write: the first free NAME-N.json instead, which
+// is then the session's file.
+TEST_F(View, SavingABuiltInSceneNeverOverwritesAnUnrelatedFile) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = fresh_folder();
+  std::ofstream(folder + "/spheres.json") << "an unrelated file";
+  const ViewRun run = run_view(
+      "1 click 80 60\n2 key Delete\n3 key S ctrl\n4 exposure 1.5\n"
+      "5 save\n6 exit\n",
+      "--scene spheres --size 160x120 --overlay off", true, folder);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(read_text(folder + "/spheres.json"), "an unrelated file");
+  EXPECT_NE(run.output.find("frame 3: saved spheres-2.json (spheres.json was there already and is "
+                            "not this session's file: left as it is)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("frame 5: saved spheres-2.json\n"), std::string::npos) << run.output;
+  const SceneFile saved = load_scene_file(folder + "/spheres-2.json");
+  EXPECT_EQ(saved.scene.objects.size(), 48u);
+  ASSERT_TRUE(saved.render.exposure_ev.has_value());
+  EXPECT_EQ(*saved.render.exposure_ev, 1.5f);
+  EXPECT_EQ(run.output.find("unsaved edits written"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(folder + "/spheres-3.json"));
+}
+
+// A failed save says why; a failed scripted save makes the exit status 1.
+TEST_F(View, AFailedScriptedSaveSaysWhyAndExitsWithStatus1) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = fresh_folder();
+  const std::string scene = write_ball_scene();
+  const std::string target = folder + "/ro.json";
+  std::filesystem::create_directories(target + ".tmp");
+  const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 save " + target + "\n4 exit\n",
+                               "--scene " + scene + " --size 64x48 --overlay off");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("frame 3: not saved: cannot write the scene file '" + target +
+                            "': its temporary file '" + target + ".tmp': it is a folder"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("a save the script asked for failed"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(target));
+  // The edits were not saved: they went to the autosave.
+  EXPECT_TRUE(load_scene_file(folder + "/ball.autosave.json").scene.objects.empty());
+}
+
+// After `save PATH` the session's scene is PATH: nothing is unsaved (no autosave), and Ctrl+S
+// saves there.
+TEST_F(View, SaveUnderAnotherNameMakesThatFileTheSessions) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = fresh_folder();
+  const std::string scene = write_ball_scene();
+  const std::string other = folder + "/other.json";
+  ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 save " + other + "\n4 exit\n",
+                         "--scene " + scene + " --size 64x48 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("unsaved edits written"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
+  EXPECT_TRUE(load_scene_file(other).scene.objects.empty());
+  EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);
+  run = run_view("1 save " + other + "\n2 light add\n3 key S ctrl\n4 exit\n",
+                 "--scene " + scene + " --size 64x48 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("frame 3: saved " + other), std::string::npos) << run.output;
+  EXPECT_EQ(load_scene_file(other).scene.lights.size(), 2u);
+  EXPECT_EQ(load_scene_file(scene).scene.lights.size(), 1u);
+  EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
 }
 
 TEST_F(View, AThousandFramesLeaveMemoryFlat) {
