@@ -110,11 +110,21 @@ Mesh make_icosphere(uint32_t level) {
 }
 
 Mesh make_cube() {
+  // Each face: its normal, and the directions in which u (image right) and v (image down)
+  // grow. The side faces show the image upright and unmirrored seen from outside with +y up;
+  // the top and bottom faces as they lie in a cross-shaped net unfolded from the front face:
+  // the top's image top edge at the back (-z), the bottom's at the front (+z). right x down =
+  // -n on every face, so the generated tangents have w = -1, as the uv sphere's do.
+  struct Face {
+    glm::vec3 n, right, down;
+  };
+  const std::array<Face, 6> faces = {
+      Face{{1, 0, 0}, {0, 0, -1}, {0, -1, 0}}, Face{{-1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+      Face{{0, 1, 0}, {1, 0, 0}, {0, 0, 1}},   Face{{0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
+      Face{{0, 0, 1}, {1, 0, 0}, {0, -1, 0}},  Face{{0, 0, -1}, {-1, 0, 0}, {0, -1, 0}}};
   Mesh mesh;
-  const std::array<glm::vec3, 6> normals = {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
-                                            glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
-                                            glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)};
-  for (glm::vec3 n : normals) {
+  for (const Face& f : faces) {
+    const glm::vec3 n = f.n;
     // Two axes spanning the face, chosen so that u x v = n (counter-clockwise from outside).
     glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     glm::vec3 v = glm::cross(n, u);
@@ -122,7 +132,11 @@ Mesh make_cube() {
     uint32_t first = uint32_t(mesh.positions.size());
     const std::array<glm::vec2, 4> corners = {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1),
                                               glm::vec2(-1, 1)};
-    for (glm::vec2 c : corners) add_vertex(mesh, n + c.x * u + c.y * v, n, c * 0.5f + 0.5f);
+    for (glm::vec2 c : corners) {
+      const glm::vec3 p = n + c.x * u + c.y * v;
+      // Exact: p's coordinates are +-1, so the uvs are 0 or 1.
+      add_vertex(mesh, p, n, glm::vec2(glm::dot(p, f.right), glm::dot(p, f.down)) * 0.5f + 0.5f);
+    }
     add_triangle(mesh, first, first + 1, first + 2);
     add_triangle(mesh, first, first + 2, first + 3);
   }
@@ -138,8 +152,10 @@ Mesh make_plane(uint32_t nx, uint32_t ny) {
   Mesh mesh;
   for (uint32_t y = 0; y <= ny; ++y) {
     for (uint32_t x = 0; x <= nx; ++x) {
-      glm::vec2 uv(float(x) / nx, float(y) / ny);
-      add_vertex(mesh, glm::vec3(uv * 2.0f - 1.0f, 0.0f), glm::vec3(0, 0, 1), uv);
+      const glm::vec2 grid(float(x) / nx, float(y) / ny);
+      // v = 0 at the top (+y) edge: the image upright seen from +z (glTF's uv convention).
+      const glm::vec2 uv(grid.x, float(ny - y) / ny);
+      add_vertex(mesh, glm::vec3(grid * 2.0f - 1.0f, 0.0f), glm::vec3(0, 0, 1), uv);
     }
   }
   for (uint32_t y = 0; y < ny; ++y) {

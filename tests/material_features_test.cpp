@@ -152,7 +152,8 @@ TEST_F(MaterialFeatures, EmissiveMapIsDecodedFromSrgbAndScaledByTheFactor) {
     for (uint32_t x = 0; x < 4; ++x) t.texels.push_back((x / 2 + y / 2) % 2 ? b : a);
   // The plane fills the 64 x 64 image exactly: camera 2 away, tan(fov / 2) = 1 / 2, so pixel
   // column px sees x = (px + 0.5) / 32 - 1, row py sees y = 1 - (py + 0.5) / 32, and the plane's
-  // uv is ((x + 1) / 2, (y + 1) / 2). Pixels 16 and 48 see x = -0.48 and 0.52: uv 0.26, 0.76.
+  // uv is ((x + 1) / 2, (1 - y) / 2): pixel (px, py) sees uv ((px + 0.5) / 64, (py + 0.5) / 64),
+  // the texture as it is stored. Pixels 16 and 48 see uv 0.26 and 0.76.
   Scene s;
   s.camera.position = {0.0f, 0.0f, 2.0f};
   s.camera.vertical_fov = 2.0f * std::atan(0.5f);
@@ -167,9 +168,9 @@ TEST_F(MaterialFeatures, EmissiveMapIsDecodedFromSrgbAndScaledByTheFactor) {
     uint32_t px, py;
     glm::u8vec4 texel;
   };
-  // (16, 48): uv (0.26, 0.24), cell (0, 0) = a; (48, 48): cell (1, 0) = b; (16, 16): cell
-  // (0, 1) = b; (48, 16): cell (1, 1) = a.
-  const Probe probes[] = {{16, 48, a}, {48, 48, b}, {16, 16, b}, {48, 16, a}};
+  // (16, 16): uv (0.26, 0.26), cell (0, 0) = a; (48, 16): cell (1, 0) = b; (16, 48): cell
+  // (0, 1) = b; (48, 48): cell (1, 1) = a.
+  const Probe probes[] = {{16, 16, a}, {48, 16, b}, {16, 48, b}, {48, 48, a}};
   auto expected = [&](glm::u8vec4 texel) {
     return glm::dvec3(srgb_decode(texel.r), srgb_decode(texel.g), srgb_decode(texel.b)) *
            glm::dvec3(m.emissive);

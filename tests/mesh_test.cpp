@@ -1,4 +1,4 @@
-// Procedural meshes: counts, winding, closedness, bad parameters.
+// Procedural meshes: counts, winding, closedness, uv layout, bad parameters.
 #include <map>
 #include <tuple>
 
@@ -77,6 +77,78 @@ TEST(Mesh, PlaneFacesPlusZ) {
   Mesh m = make_plane(3, 2);
   EXPECT_EQ(m.triangle_count(), 12u);
   expect_outward_winding(m);
+}
+
+// The uv of the vertex of `mesh` at `position` with normal `normal` (exactly one must match).
+glm::vec2 uv_at(const Mesh& mesh, glm::vec3 position, glm::vec3 normal) {
+  glm::vec2 uv(-1.0f);
+  int found = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (glm::length(mesh.positions[v] - position) < 1e-6f && mesh.normals[v] == normal) {
+      uv = mesh.uvs[v];
+      ++found;
+    }
+  }
+  EXPECT_EQ(found, 1) << "vertices at (" << position.x << ", " << position.y << ", " << position.z
+                      << ")";
+  return uv;
+}
+
+void expect_uv(const Mesh& mesh, glm::vec3 position, glm::vec3 normal, glm::vec2 want,
+               const char* what) {
+  const glm::vec2 uv = uv_at(mesh, position, normal);
+  EXPECT_NEAR(uv.x, want.x, 1e-6f) << what;
+  EXPECT_NEAR(uv.y, want.y, 1e-6f) << what;
+}
+
+// Texture convention (glTF's): uv (0, 0) is the image's top-left corner, v grows down the
+// image. The plane, seen from +z with +y up, shows the image upright and unmirrored.
+TEST(Mesh, PlaneUvsShowTheImageUpright) {
+  const Mesh m = make_plane(3, 2);
+  const glm::vec3 n(0, 0, 1);
+  expect_uv(m, {-1, 1, 0}, n, {0, 0}, "top left");
+  expect_uv(m, {1, 1, 0}, n, {1, 0}, "top right");
+  expect_uv(m, {-1, -1, 0}, n, {0, 1}, "bottom left");
+  expect_uv(m, {1, -1, 0}, n, {1, 1}, "bottom right");
+  expect_uv(m, {1.0f / 3.0f, 0, 0}, n, {2.0f / 3.0f, 0.5f}, "inner vertex");
+  // Tangent along +u (+x); bitangent along +v (-y) = -cross(n, t): w = -1.
+  for (const glm::vec4& t : m.tangents) {
+    EXPECT_NEAR(t.x, 1.0f, 1e-6f);
+    EXPECT_EQ(t.w, -1.0f);
+  }
+}
+
+// Each side face of the cube, seen from outside with +y up, shows the image upright and
+// unmirrored. The top and bottom faces lie as in a cross-shaped net unfolded from the front
+// (+z) face: the top's image top edge at the back (-z), the bottom's at the front (+z).
+TEST(Mesh, CubeUvsShowTheImageUprightOnEveryFace) {
+  struct FaceCorners {
+    const char* name;
+    glm::vec3 n, top_left, top_right, bottom_left;  // as a viewer of the face sees them
+  };
+  const FaceCorners faces[] = {
+      {"front +z", {0, 0, 1}, {-1, 1, 1}, {1, 1, 1}, {-1, -1, 1}},
+      {"back -z", {0, 0, -1}, {1, 1, -1}, {-1, 1, -1}, {1, -1, -1}},
+      {"right +x", {1, 0, 0}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}},
+      {"left -x", {-1, 0, 0}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, -1}},
+      {"top +y", {0, 1, 0}, {-1, 1, -1}, {1, 1, -1}, {-1, 1, 1}},
+      {"bottom -y", {0, -1, 0}, {-1, -1, 1}, {1, -1, 1}, {-1, -1, -1}},
+  };
+  const Mesh m = make_cube();
+  for (const FaceCorners& f : faces) {
+    SCOPED_TRACE(f.name);
+    const glm::vec3 bottom_right = f.top_right + f.bottom_left - f.top_left;
+    expect_uv(m, f.top_left, f.n, {0, 0}, "top left");
+    expect_uv(m, f.top_right, f.n, {1, 0}, "top right");
+    expect_uv(m, f.bottom_left, f.n, {0, 1}, "bottom left");
+    expect_uv(m, bottom_right, f.n, {1, 1}, "bottom right");
+  }
+  // Tangents along +u (image right), bitangents along +v (image down) = -cross(n, t): w = -1
+  // on every face, as on the uv sphere.
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    EXPECT_EQ(m.tangents[v].w, -1.0f) << "vertex " << v;
+    EXPECT_NEAR(glm::dot(glm::vec3(m.tangents[v]), m.normals[v]), 0.0f, 1e-6f);
+  }
 }
 
 TEST(Mesh, BadParametersAreUserErrors) {

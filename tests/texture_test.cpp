@@ -117,20 +117,21 @@ TEST(TextureMaps, WrapModesByHand) {
 }
 
 TEST(TextureMaps, TangentsFollowTheUvs) {
-  // make_plane: u along +x, v along +y, normal +z: tangent +x, bitangent +y = cross(n, t), w = 1.
+  // make_plane: u along +x, v along -y (down the image), normal +z: tangent +x, bitangent
+  // -y = -cross(n, t), w = -1.
   const Mesh plane = make_plane(2, 2);
   ASSERT_EQ(plane.tangents.size(), plane.positions.size());
   for (const glm::vec4& t : plane.tangents) {
     EXPECT_NEAR(t.x, 1.0f, 1e-6f);
     EXPECT_NEAR(t.y, 0.0f, 1e-6f);
-    EXPECT_EQ(t.w, 1.0f);
+    EXPECT_EQ(t.w, -1.0f);
   }
-  // Mirrored v: the bitangent is -cross(n, t), so w = -1.
+  // Mirrored v (along +y): the bitangent is cross(n, t), so w = 1.
   Mesh flipped = plane;
   for (glm::vec2& uv : flipped.uvs) uv.y = 1.0f - uv.y;
   for (const glm::vec4& t :
        generate_tangents(flipped.positions, flipped.normals, flipped.uvs, flipped.indices)) {
-    EXPECT_EQ(t.w, -1.0f);
+    EXPECT_EQ(t.w, 1.0f);
   }
   // Every sphere tangent is unit and orthogonal to its normal, poles included.
   const Mesh sphere = make_uv_sphere(16, 8);
