@@ -10,11 +10,15 @@
 
 #include "core/check.h"
 #include "core/mapped_file.h"
+#include "core/radiance_check.h"
 
 namespace tessera {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+// Largest Radiance file read (a 16384 x 8192 map, uncompressed, is 512 MiB).
+constexpr uint64_t kMaxHdrBytes = uint64_t(1) << 30;
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
@@ -28,6 +32,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 void validate_environment(const Environment& env) {
   const ImageF& r = env.radiance;
+  if (r.width > 0 && r.width < 2 && r.pixels.size() == size_t(r.width) * r.height) {
+    // One texel across cannot wrap around the horizon (bilinear lookups need two).
+    throw Error("environment map of " + std::to_string(r.width) + "x" + std::to_string(r.height) +
+                " texels is too narrow: it needs at least 2 texels across");
+  }
   if (r.width < 2 || r.height < 1 || r.pixels.size() != size_t(r.width) * r.height) {
     throw Error("environment map of " + std::to_string(r.width) + "x" + std::to_string(r.height) +
                 " texels is empty or inconsistent");
@@ -59,16 +68,29 @@ Environment load_environment(const std::string& path) {
   if (ends_with(path, ".pfm")) {
     env.radiance = read_pfm(path);
   } else if (ends_with(path, ".hdr")) {
+    std::error_code ec;
+    // stb_image's own reason ("can't fopen") would not say which.
+    if (!std::filesystem::is_regular_file(path, ec))
+      throw Error("cannot read environment '" + path + "': no such file");
+    const MappedFile file = map_file(path, kMaxHdrBytes);
+    // stb_image reads a truncated file's missing texels as black without a word, and loops for
+    // ever on a run-length count of 0: checked first (core/radiance_check.h).
+    if (const std::string fault = radiance_fault(file.data(), file.size()); !fault.empty())
+      throw Error("Radiance .hdr '" + path + "' " + fault);
     int w = 0, h = 0, channels = 0;
-    std::unique_ptr<float, void (*)(void*)> data(stbi_loadf(path.c_str(), &w, &h, &channels, 4),
-                                                 stbi_image_free);
+    std::unique_ptr<float, void (*)(void*)> data(
+        stbi_loadf_from_memory(file.data(), int(file.size()), &w, &h, &channels, 4),
+        stbi_image_free);
     if (!data) {
-      // stb_image's own reasons ("can't fopen", "unknown image type") do not say which.
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec))
-        throw Error("cannot read environment '" + path + "': no such file");
-      throw Error("cannot read environment '" + path + "': not a Radiance .hdr image (" +
-                  stbi_failure_reason() + ")");
+      const std::string reason = stbi_failure_reason();
+      // A Radiance header whose size overflows stb_image's limits: a Radiance file, too large.
+      if (reason == "too large") {
+        throw Error("cannot read environment '" + path +
+                    "': its size is too large to decode (environment maps have at most 16384 "
+                    "texels a side)");
+      }
+      throw Error("cannot read environment '" + path + "': not a Radiance .hdr image (" + reason +
+                  ")");
     }
     env.radiance.width = uint32_t(w);
     env.radiance.height = uint32_t(h);

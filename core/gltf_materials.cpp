@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "core/gltf_detail.h"
 #include "core/parallel.h"
+#include "core/radiance_check.h"
 #include "core/texture.h"
 
 namespace tessera::gltf {
@@ -50,6 +51,8 @@ Texture decode_image(const Context& ctx, const tinygltf::Model& model, int index
                         ", over the largest texture side of " + std::to_string(largest));
   };
   if (const auto side = oversized_image({bytes, size}, largest)) too_large(*side);
+  // stb_image decodes a Radiance file whatever its mime type, and hangs on a corrupt one.
+  if (const std::string fault = radiance_fault(bytes, size); !fault.empty()) ctx.fail(where, fault);
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_uc, void (*)(void*)> data(
       stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);

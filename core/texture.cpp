@@ -1,4 +1,5 @@
 #include "core/texture.h"
+#include "core/radiance_check.h"
 
 #include <algorithm>
 #include <array>
@@ -49,6 +50,9 @@ Texture load_texture(const std::string& path, bool srgb) {
   if (const auto size = oversized_image({file.data(), file.size()}, kMaxTextureSide)) {
     throw too_large(*size);
   }
+  // stb_image decodes a Radiance file whatever its name, and hangs on a corrupt one.
+  if (const std::string fault = radiance_fault(file.data(), file.size()); !fault.empty())
+    throw Error("texture '" + path + "' " + fault);
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_uc, void (*)(void*)> data(
       stbi_load_from_memory(file.data(), int(file.size()), &w, &h, &channels, 4), stbi_image_free);

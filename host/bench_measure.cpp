@@ -117,7 +117,7 @@ BenchRow measure_hardware(Renderer& r, const FrameSettings& fs, const BenchArgs&
 BenchRow measure_reference(const Scene& scene, const FrameSettings& fs, const BenchArgs& a) {
   ReferenceSettings rs;
   rs.frame = fs;
-  const uint32_t frames = std::min<uint32_t>(a.repeat, 3);  // it is slow; 3 suffice for a median
+  const uint32_t frames = std::min(a.repeat, kReferenceMaxFrames);
   std::vector<double> wall;
   ReferenceFrame f;
   for (uint32_t i = 0; i < frames; ++i) {

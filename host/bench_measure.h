@@ -15,6 +15,10 @@
 
 namespace tessera {
 
+/// The CPU reference's timed frames at most (of --repeat): it is slow, and 3 suffice for a
+/// median. It has no warm-up.
+constexpr uint32_t kReferenceMaxFrames = 3;
+
 /// One measured point of the sweep: a backend at an object count. Times are medians, in ms;
 /// with several runs (--runs), the median of the runs' medians.
 struct BenchRow {

@@ -73,19 +73,32 @@ static std::string frames_phrase(uint32_t repeat) {
   return repeat == 1 ? "one frame each" : "medians of " + std::to_string(repeat) + " frames";
 }
 
-// How the figures were taken: frames, warm-up rule and runs.
+// How the figures were taken: frames, warm-up rule and runs, for the backends measured (the
+// CPU reference times fewer frames, without a warm-up: measure_reference).
 static std::string method_phrase(const BenchArgs& a) {
-  std::string s = frames_phrase(a.repeat) + " after a warm-up of at least " +
-                  std::to_string(a.warmup) + " frames";
-  if (a.warmup_ms > 0) {
-    char ms[32];
-    std::snprintf(ms, sizeof(ms), "%g", a.warmup_ms);
-    s += std::string(" and ") + ms + " ms, until the frame time settles";
+  const auto has = [&](const char* backend) {
+    return std::find(a.backends.begin(), a.backends.end(), backend) != a.backends.end();
+  };
+  std::string s;
+  if (has("compute") || has("hardware")) {
+    s = frames_phrase(a.repeat) + " after a warm-up of at least " + std::to_string(a.warmup) +
+        " frames";
+    if (a.warmup_ms > 0) {
+      char ms[32];
+      std::snprintf(ms, sizeof(ms), "%g", a.warmup_ms);
+      s += std::string(" and ") + ms + " ms, until the frame time settles";
+    }
+  }
+  if (has("reference")) {
+    s += std::string(s.empty() ? "" : "; ") +
+         (has("compute") || has("hardware") ? "the reference " : "") +
+         frames_phrase(std::min(a.repeat, kReferenceMaxFrames)) + " of CPU wall time, no warm-up";
   }
   if (a.runs > 1)
     s += "; " + std::to_string(a.runs) + " runs, the median of their medians and their spread";
   // Timestamps between the passes would add to the frame (Timing::frame).
-  s += "; compute frames timed whole, their passes (CSV, JSON, chart) in as many frames more";
+  if (has("compute"))
+    s += "; compute frames timed whole, their passes (CSV, JSON, chart) in as many frames more";
   return s;
 }
 
@@ -122,14 +135,15 @@ std::string segments_phrase(const BenchArgs& a) {
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
   std::printf(
       "scene %s, %ux%u, %u sample%s per pixel%s%s, small-triangle area %u, shading by "
-      "tiles %s, %s tile lists, raster and shade in one pass %s, device '%s' (%s),\n%s\n",
+      "tiles %s, %s tile lists, raster and shade in one pass %s, device '%s'%s,\n%s\n",
       a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
       coverage_phrase(a).c_str(), segments_phrase(a).c_str(), a.small_triangle_area,
       a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists),
       !a.raster_shade ? "off"
       : a.shade_tiles ? "off (not with shading by tiles)"
                       : "for small frames",
-      results.device.c_str(), results.driver.c_str(), method_phrase(a).c_str());
+      results.device.c_str(), results.driver.empty() ? "" : (" (" + results.driver + ")").c_str(),
+      method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");
@@ -309,7 +323,11 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
                std::to_string(a.height) +
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
                coverage_phrase(a) + (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " +
-               results.device + " (" + frames_phrase(a.repeat) +
+               results.device + " (" +
+               // The reference alone times fewer frames (kReferenceMaxFrames).
+               frames_phrase(a.backends == std::vector<std::string>{"reference"}
+                                 ? std::min(a.repeat, kReferenceMaxFrames)
+                                 : a.repeat) +
                (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";

@@ -5,7 +5,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -256,6 +259,85 @@ TEST(ImageBasedLightingReference, QuadratureMatchesThePublishedLoss) {
       EXPECT_NEAR(albedo_by_quadrature(b, nv, 0.5), reference_specular_albedo(b, nv, 0.5), 2e-3);
     }
   }
+}
+
+// An environment map's message for `path`, or "" if it loads.
+std::string environment_error(const std::string& path) {
+  try {
+    load_environment(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A Radiance file cut short is refused: stb_image decodes the missing texels as black without a
+// word (a fresh user's trial saw the ground of a truncated map vanish), so the loader watches
+// whether the decoder asked for bytes past the end. Run-length encoded scanlines (widths 8 and
+// up, as stb_image writes them) and flat ones (narrower) alike.
+TEST(EnvironmentFile, TruncatedRadianceFileIsRefused) {
+  for (const uint32_t width : {16u, 4u}) {
+    ImageF map;
+    map.width = width;
+    map.height = width / 2;
+    for (uint32_t i = 0; i < map.width * map.height; ++i)
+      map.pixels.push_back(glm::vec4(0.1f * float(i % 7), 1.0f, 0.5f + float(i), 1.0f));
+    const std::string whole = test::output_path("whole_" + std::to_string(width) + ".hdr");
+    write_hdr_image(whole, map);
+    ASSERT_EQ(environment_error(whole), "") << whole;
+    const Environment env = load_environment(whole);
+    EXPECT_EQ(env.radiance.width, map.width);
+    EXPECT_EQ(env.radiance.height, map.height);
+
+    std::ifstream in(whole, std::ios::binary);
+    const std::string bytes(std::istreambuf_iterator<char>(in), {});
+    const std::string cut = test::output_path("cut_" + std::to_string(width) + ".hdr");
+    // The header (up to its resolution line, "-Y H +X W") and the first third of the texels'
+    // bytes; and the whole file less its last byte, the smallest cut.
+    const size_t header = bytes.find('\n', bytes.find("\n-Y ") + 1) + 1;
+    ASSERT_GT(header, 0u) << bytes.substr(0, 80);
+    for (const size_t kept : {header + (bytes.size() - header) / 3, bytes.size() - 1}) {
+      std::ofstream(cut, std::ios::binary) << bytes.substr(0, kept);
+      const std::string error = environment_error(cut);
+      EXPECT_NE(error.find("Radiance .hdr '" + cut + "' is truncated: its " +
+                           std::to_string(map.width) + "x" + std::to_string(map.height) +
+                           " texels need more than its " + std::to_string(kept) + " bytes"),
+                std::string::npos)
+          << kept << " of " << bytes.size() << " bytes: " << error;
+    }
+  }
+}
+
+// A run-length count of 0 never advances stb_image's decoder (2.27 loops for ever on it): the
+// file is refused before decoding. Built by hand: a scanline of 8 texels whose first channel
+// starts with a "dump" of 0 bytes. (A count byte of 128 is a dump of 128, which stb_image
+// refuses by itself as longer than the scanline.)
+TEST(EnvironmentFile, RunLengthCountOfZeroIsRefusedBeforeDecoding) {
+  for (const unsigned char count : {0}) {
+    const std::string path = test::output_path("zero_count.hdr");
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+    bytes += std::string{char(2), char(2), char(0), char(8), char(count), char(1)};
+    std::ofstream(path, std::ios::binary) << bytes;
+    EXPECT_NE(environment_error(path).find(
+                  "has a run-length count of 0 in scanline 0 (corrupt: the decoder would never "
+                  "finish)"),
+              std::string::npos)
+        << int(count) << ": " << environment_error(path);
+  }
+}
+
+// One texel across cannot wrap around the horizon: said so, not "empty or inconsistent".
+TEST(EnvironmentFile, MapOneTexelAcrossIsTooNarrow) {
+  ImageF map;
+  map.width = 1;
+  map.height = 1;
+  map.pixels = {glm::vec4(1.0f)};
+  const std::string path = test::output_path("one_texel.hdr");
+  write_hdr_image(path, map);
+  EXPECT_NE(environment_error(path).find("1x1 texels is too narrow: it needs at least 2 texels "
+                                         "across"),
+            std::string::npos)
+      << environment_error(path);
 }
 
 }  // namespace
