@@ -726,7 +726,7 @@ struct Importer {
       int w = 0, h = 0, channels = 0;
       const int header = int(std::min<size_t>(bytes.size(), INT32_MAX));  // enough for a header
       if (!stbi_info_from_memory(bytes.data(), header, &w, &h, &channels)) {
-        throw Error("cannot read texture " + quoted(file) + ": " + stbi_failure_reason());
+        throw Error("cannot read texture " + quoted(file) + ": " + image_failure_reason());
       }
     } catch (const Error& e) {
       throw Error(where(info, keyword, material) + ": " + e.what());

@@ -14,6 +14,12 @@
 
 namespace tessera {
 
+std::string image_failure_reason() {
+  const std::string reason = stbi_failure_reason() ? stbi_failure_reason() : "";
+  if (reason == "outofdata") return "the data ends early (a truncated file?)";
+  return reason;
+}
+
 std::optional<glm::uvec2> oversized_image(std::span<const unsigned char> bytes, uint32_t max_side) {
   int w = 0, h = 0, channels = 0;
   glm::uvec2 size;
@@ -56,7 +62,7 @@ Texture load_texture(const std::string& path, bool srgb) {
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_uc, void (*)(void*)> data(
       stbi_load_from_memory(file.data(), int(file.size()), &w, &h, &channels, 4), stbi_image_free);
-  if (!data) throw Error("cannot read texture '" + path + "': " + stbi_failure_reason());
+  if (!data) throw Error("cannot read texture '" + path + "': " + image_failure_reason());
   if (uint32_t(w) > kMaxTextureSide || uint32_t(h) > kMaxTextureSide) {
     throw too_large(glm::uvec2(uint32_t(w), uint32_t(h)));
   }

@@ -47,6 +47,10 @@ Texture load_texture(const std::string& path, bool srgb);
 /// took 7 s and 1.4 GB before it was refused (a fresh user's trial).
 std::optional<glm::uvec2> oversized_image(std::span<const unsigned char> bytes, uint32_t max_side);
 
+/// stb_image's reason for its last failure (stbi_failure_reason), in words where its own is a
+/// tag: "outofdata" is "the data ends early (a truncated file?)". Others are returned as they are.
+std::string image_failure_reason();
+
 /// Linear RGBA of each mip level, level 0 first. Level l is max(1, width >> l) by
 /// max(1, height >> l); each texel of level l + 1 is the mean of the (up to) 2 x 2 texels of
 /// level l it covers, averaged in linear space (sRGB texels decoded first).

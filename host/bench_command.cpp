@@ -54,7 +54,8 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
 
   if (!a.quiet) print_bench_table(results, a);
   if (!a.compare.empty())
-    print_comparison(base, compare_runs(base, results, a), differing_settings(base, a));
+    print_comparison(base, compare_runs(base, results, a), differing_settings(base, a),
+                     results.device);
   if (!a.csv.empty()) write_bench_csv(a.csv, results, a);
   if (!a.json.empty()) write_bench_json(a.json, results, a, command_line);
   if (!a.chart.empty()) write_bench_chart(a.chart, results, a);

@@ -1,6 +1,8 @@
 #include "host/bench_compare.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -100,6 +102,12 @@ SavedRun read_bench_json(const std::string& path) {
         throw Error("--compare: '" + path + "': results[" + std::to_string(i) +
                     "] repeats the point " + point_name(p));
     }
+    // A time is positive: 0 or less is no measurement (and old_ms < 0 marks a point the base
+    // lacks, ComparedPoint).
+    if (!(p.total_ms > 0.0) || !std::isfinite(p.total_ms)) {
+      throw Error("--compare: '" + path + "': " + where + "total_ms is " + r["total_ms"].dump() +
+                  ", not a time (> 0 ms)");
+    }
     run.points.push_back(p);
     if (p.backend == "compute" && !r.contains("per_pass_total_ms"))
       run.compute_timed_by_pass = true;
@@ -160,9 +168,21 @@ std::vector<std::string> differing_settings(const SavedRun& base, const BenchArg
 }
 
 void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points,
-                      const std::vector<std::string>& differing) {
+                      const std::vector<std::string>& differing, const std::string& device) {
   std::printf("compared with %s (device '%s', %s): new / old < 1 is faster\n", base.path.c_str(),
               base.device.c_str(), base.date.c_str());
+  if (!base.device.empty() && base.device != device) {
+    std::printf(
+        "warning: the base was measured on device '%s', this run on '%s': the ratios "
+        "compare devices\n",
+        base.device.c_str(), device.c_str());
+  }
+  if (!base.points.empty() && std::none_of(points.begin(), points.end(),
+                                           [](const ComparedPoint& c) { return c.matched(); })) {
+    const SavedPoint& b = base.points.front();
+    std::printf("warning: no point of this run is in the base, which measured %s at %ux%u\n",
+                b.scene.c_str(), b.width, b.height);
+  }
   if (!differing.empty()) {
     std::string list;
     for (const std::string& d : differing) list += (list.empty() ? "" : ", ") + d;

@@ -34,7 +34,8 @@ struct SavedRun {
 
 /// The settings of a bench run that change what a frame computes, by the keys its `--json`
 /// file records them under (samples, aa_coverage, aa_walk_steps, lod, segments,
-/// small_triangle_area, tile_size, depth_rejection, shade_tiles, tile_lists, hdr_format), each as JSON text.
+/// small_triangle_area, tile_size, depth_rejection, shade_tiles, tile_lists, hdr_format), each as
+/// JSON text.
 std::vector<std::pair<std::string, std::string>> bench_settings(const BenchArgs& args);
 
 /// "key value (base: value)" for each setting `base` recorded that this run's `args` differ in;
@@ -61,8 +62,9 @@ std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults
 
 /// Prints the comparison table: old ms, new ms, new / old, and the unmatched points by name;
 /// first a warning naming the settings that differ from the base's (`differing`), whose ratios
-/// then compare unlike frames.
+/// then compare unlike frames, one when the base was measured on another device than this
+/// run's `device`, and one when no point of this run is in the base (another scene or size).
 void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points,
-                      const std::vector<std::string>& differing);
+                      const std::vector<std::string>& differing, const std::string& device);
 
 }  // namespace tessera

@@ -771,6 +771,24 @@ TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
   // A file this version wrote has it, and is not so marked.
   EXPECT_TRUE(read_bench_json(test::output_path("base_cli.json")).compute_timed_by_pass);
   EXPECT_FALSE(read_bench_json(json_path).compute_timed_by_pass);
+  // kBase was measured on device "hand": the ratios compare devices, and the run says so.
+  EXPECT_NE(out.find("warning: the base was measured on device 'hand', this run on 'llvmpipe"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("warning: no point of this run is in the base"), std::string::npos) << out;
+  // Another size shares no point with the base: said, rather than left to an empty table.
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --scene yardstick --objects 1 "
+                                  "--size 16x16 --segments 8 --repeat 1 --warmup 0 "
+                                  "--warmup-ms 0 --compare " +
+                                  base_path,
+                              out),
+            0)
+      << out;
+  EXPECT_NE(out.find("warning: no point of this run is in the base, which measured yardstick at "
+                     "32x32"),
+            std::string::npos)
+      << out;
 }
 
 // A base recorded with other frame settings is compared, with a warning naming each setting
@@ -827,6 +845,16 @@ TEST(BenchCli, BadCompareFilesAreClearErrors) {
                   {"objects": 2, "backend": "compute", "total_ms": "fast"}]})")
                 .find("results[1].total_ms is missing or not a number"),
             std::string::npos);
+  // 0 or a negative time is no measurement (a 0 vanished from the table, a negative one made
+  // its point "only in this run": a fresh user's trial).
+  for (const char* time : {"0", "-1.5"}) {
+    const std::string error = error_of("zero_time.json", std::string(R"({"scene": "grid", "width":
+      8, "height": 8, "results": [{"objects": 1, "backend": "compute", "total_ms": )") +
+                                                             time + "}]}");
+    EXPECT_NE(error.find("results[0].total_ms is " + std::string(time) + ", not a time (> 0 ms)"),
+              std::string::npos)
+        << error;
+  }
   EXPECT_NE(error_of("twice.json", R"({"scene": "grid", "width": 8, "height": 8,
       "results": [{"objects": 1, "backend": "compute", "total_ms": 1},
                   {"objects": 1, "backend": "compute", "total_ms": 2}]})")

@@ -3,6 +3,8 @@
 // normal maps that tilt the normal below the horizon.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,6 +37,26 @@ Texture texture_of(uint32_t w, uint32_t h, std::vector<glm::u8vec4> texels, bool
 // claims 100000 x 100000, whose header stb_image refuses itself (over 2^30 bytes), saying "too
 // large" or, asked for the image's size, "unknown image type": the size is read from the PNG's
 // IHDR chunk instead.
+// A PNG cut short is said to be (stb_image's own reason is the tag "outofdata").
+TEST(TextureMaps, TruncatedFileSaysItEndsEarly) {
+  Image8 image{64, 64, std::vector<glm::u8vec4>(64 * 64)};
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = glm::u8vec4(uint8_t(i * 7), uint8_t(i * 13), uint8_t(i), 255);
+  const std::string whole = test::output_path("whole.png");
+  write_png(whole, image);
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  const std::string cut = test::output_path("cut.png");
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  try {
+    load_texture(cut, true);
+    ADD_FAILURE() << "no error for a truncated PNG";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot read texture '" + cut + "': the data ends early (a truncated file?)");
+  }
+}
+
 TEST(TextureMaps, OversizedFileIsRefusedFromItsHeader) {
   for (const auto& [file, size] : {std::pair{"huge_header.png", "17000x17000"},
                                    std::pair{"huge_header_100000.png", "100000x100000"}}) {
