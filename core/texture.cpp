@@ -1,5 +1,4 @@
 #include "core/texture.h"
-#include "core/radiance_check.h"
 
 #include <algorithm>
 #include <array>
@@ -11,6 +10,7 @@
 
 #include "core/check.h"
 #include "core/mapped_file.h"
+#include "core/radiance_check.h"
 
 namespace tessera {
 

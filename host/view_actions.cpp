@@ -278,9 +278,11 @@ void save(Viewer& v, std::string path, bool to_own_file, bool scripted) {
   // A built-in scene not saved yet: NAME.json in the working folder, unless a file of that
   // name is there already, which is not this session's to overwrite.
   std::string instead;
-  if (to_own_file && v.scene_file.empty() && std::filesystem::exists(path)) {
-    instead = " (" + path + " was there already and is not this session's file: left as it is)";
-    path = free_path(path);
+  if (to_own_file && v.scene_file.empty()) {
+    if (const std::string free = free_path(path); free != path) {
+      instead = " (" + path + " was there already and is not this session's file: left as it is)";
+      path = free;
+    }
   }
   try {
     write_scene(v, path);
