@@ -426,14 +426,16 @@ Light make_light(const Context& ctx, const json& lights, int index, const glm::d
 }
 
 // The cameras in file order, each placed by the first node that uses it (at the origin if none).
-std::vector<Camera> make_cameras(const Context& ctx, const json& doc,
-                                 const std::map<int, glm::dmat4>& placements) {
+std::vector<Camera> make_cameras(
+    const Context& ctx, const json& doc,
+    const std::map<int, std::pair<glm::dmat4, std::string>>& placements, ImportedPlaces& places) {
   std::vector<Camera> cameras;
   const json& list = member(doc, "cameras");
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string where = at("cameras", i);
     auto placed = placements.find(int(i));
-    Camera c = place_camera(placed == placements.end() ? glm::dmat4(1.0) : placed->second);
+    Camera c = place_camera(placed == placements.end() ? glm::dmat4(1.0) : placed->second.first);
+    places.cameras.emplace_back(placed == placements.end() ? "" : placed->second.second, where);
     const std::string type = list[i].value("type", "");
     if (type == "perspective") {
       const json& p = member_object(list[i], "perspective");
@@ -474,8 +476,8 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
 
   MaterialTable table;
   decode_images(ctx, model, table);
-  std::map<std::pair<int, int>, uint32_t> meshes;  // (mesh, primitive)
-  std::map<int, glm::dmat4> camera_placements;
+  std::map<std::pair<int, int>, uint32_t> meshes;                       // (mesh, primitive)
+  std::map<int, std::pair<glm::dmat4, std::string>> camera_placements;  // world, node
   std::vector<bool> on_path(node_count, false);
   struct Visit {
     int node;
@@ -538,6 +540,11 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
         } else {
           out.scene.meshes.push_back(
               convert_primitive(ctx, model, mesh, int(p), table.uv_options[material]));
+          out.places.meshes.push_back(at("meshes", mesh) + ".primitives[" + std::to_string(p) +
+                                      "]");
+          // Without NORMAL, make_flat gave each triangle its own vertices.
+          out.places.vertices_are_elements.push_back(
+              model.meshes[mesh].primitives[p].attributes.count("NORMAL") > 0);
           if (ctx.read_pages) {
             for (const auto& [begin, size] : ctx.reads) ctx.read_pages->mark_read(begin, size);
             ctx.reads.clear();
@@ -545,12 +552,13 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
           object.mesh = meshes[key] = uint32_t(out.scene.meshes.size() - 1);
         }
         out.scene.objects.push_back(object);
+        out.places.objects.push_back(where);
       }
     }
     if (node.camera) {
       const int camera = *node.camera;
       check_index(ctx, where + ".camera", camera, member(doc, "cameras").size(), "cameras");
-      camera_placements.try_emplace(camera, world);
+      camera_placements.try_emplace(camera, world, where);
     }
     if (node.light_extension) {
       if (!node.light) ctx.fail(where + ".extensions.KHR_lights_punctual", "has no light");
@@ -558,10 +566,12 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
       check_index(ctx, where + ".extensions.KHR_lights_punctual.light", light, lights.size(),
                   "KHR_lights_punctual lights");
       out.scene.lights.push_back(make_light(ctx, lights, light, world));
+      out.places.lights.emplace_back(where,
+                                     "extensions.KHR_lights_punctual." + at("lights", light));
     }
     if (node.skin) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
   }
-  out.cameras = make_cameras(ctx, doc, camera_placements);
+  out.cameras = make_cameras(ctx, doc, camera_placements, out.places);
 }
 
 }  // namespace

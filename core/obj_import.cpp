@@ -1575,4 +1575,32 @@ ImportedModel import_obj_scanned(ScanningBuffer& buffer, ObjScan& scan, const st
 
 }  // namespace
 
+size_t obj_vertex_line(const std::string& path, const std::function<bool(glm::vec3)>& pick) {
+  std::optional<std::string> text;
+  try {
+    text = read_limited(path, UINT64_MAX);
+  } catch (const Error&) {
+  }
+  if (!text) return 0;
+  size_t found = 0;
+  for_each_line(*text, [&](size_t line, std::string_view s) {
+    if (found) return;
+    Tokens tokens(s);
+    const std::optional<Token> key = tokens.next();
+    if (!key || key->text != "v") return;
+    glm::vec3 p(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      const std::optional<Token> t = tokens.next();
+      if (!t) return;
+      std::string_view n = t->text;
+      if (!n.empty() && n[0] == '+') n.remove_prefix(1);
+      double value = 0.0;
+      std::from_chars(n.data(), n.data() + n.size(), value);
+      p[k] = float(value);
+    }
+    if (pick(p)) found = line;
+  });
+  return found;
+}
+
 }  // namespace tessera

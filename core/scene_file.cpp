@@ -96,6 +96,13 @@ struct Model {
   std::string name;
   std::string where;                         // its place in the file, for messages
   std::optional<glm::mat4> first_placement;  // of its first instance, once an object places it
+  // The model file as its messages name it, whether it is OBJ, where its meshes start in the
+  // scene, and where its parts come from in it: validate_scene's limits are the scene's, so a
+  // model breaks them only once placed, and the scene's message adds the model's place.
+  std::string file;
+  bool obj = false;
+  uint32_t first_mesh = 0;
+  ImportedPlaces places;
 };
 
 struct Reader {
@@ -110,6 +117,8 @@ struct Reader {
   // Each "objects" entry's first object in out.scene.objects and its place, so that
   // validate_scene's "object K" can be traced to the entry that made it.
   std::vector<std::pair<size_t, std::string>> object_sources;
+  // Each model instance's first object in out.scene.objects and its model.
+  std::vector<std::pair<size_t, uint32_t>> model_instances;
   // The same for each "lights" entry's light and each model's lights (the model's place: its
   // file says how bright they are, its first object where they go), and the camera's place:
   // validate_scene names "light K" and "the camera".
@@ -321,6 +330,8 @@ struct Reader {
   void read_material(const Node& n);
   void read_mesh(const Node& n);
   void read_model(const Node& n);
+  std::string model_camera_place(const Model& m, size_t camera) const;
+  std::string in_model(const std::string& message) const;
   glm::mat4 read_transform(const Node& n) const;
   void read_objects(const Node& n);
   void read_environment(const Node& n);
@@ -663,12 +674,108 @@ void Reader::read_model(const Node& n) {
   placed.cameras = model.cameras;
   placed.name = string(child(n, "name"));
   placed.where = where(n);
+  placed.file = path;
+  placed.obj = ext == ".obj";
+  placed.first_mesh = meshes;
+  placed.places = std::move(model.places);
   for (Object o : model.scene.objects) {
     o.mesh += meshes;
     o.material += materials;
     placed.objects.push_back(o);
   }
   models.push_back(std::move(placed));
+}
+
+// A vector as messages print numbers: (2e+15, 0, 1.5).
+std::string point(glm::vec3 p) {
+  std::ostringstream s;
+  s << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+  return s.str();
+}
+
+bool within_coordinates(glm::vec3 p) {
+  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxSceneCoordinate)));
+}
+
+// "FILE: PLACE: " as the model file's importer names a place in it (glTF: a JSON path; OBJ:
+// 'FILE' line N, or the file alone for line 0).
+std::string model_place(const Model& m, const std::string& place, size_t line = 0) {
+  if (m.obj) return "'" + m.file + "'" + (line ? " line " + std::to_string(line) : "") + ": ";
+  return m.file + ": " + (place.empty() ? "" : place + ": ");
+}
+
+std::string Reader::model_camera_place(const Model& m, size_t camera) const {
+  if (camera >= m.places.cameras.size()) return "";
+  const auto& [node, path] = m.places.cameras[camera];
+  return model_place(m, node.empty() ? path : node + " (" + path + ")");
+}
+
+// validate_scene's `message` about an object or light that a model brought, with the model
+// file's place of it put before it (and, for an object, the vertex that is out of range after
+// it), after the scene file's place, which the caller adds; "" for the scene file's own.
+std::string Reader::in_model(const std::string& message) const {
+  const auto index = [&](const std::string& prefix) -> std::optional<size_t> {
+    if (message.rfind(prefix, 0) != 0) return std::nullopt;
+    return std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
+  };
+  if (const std::optional<size_t> k = index("invalid scene: object ")) {
+    const auto it = std::upper_bound(
+        model_instances.begin(), model_instances.end(), *k,
+        [](size_t v, const std::pair<size_t, uint32_t>& i) { return v < i.first; });
+    if (it == model_instances.begin()) return "";
+    const auto [first, model] = *std::prev(it);
+    const Model& m = models[model];
+    const size_t local = *k - first;
+    if (local >= m.objects.size()) return "";
+    // validate_scene tests the corners of the mesh's box; the first vertex out of range is what
+    // the user can find in the model file (none where only a rotated box's corner is).
+    const Object& o = out.scene.objects[*k];
+    const uint32_t mesh = o.mesh - m.first_mesh;
+    const std::vector<glm::vec3>& positions = out.scene.meshes[o.mesh].positions;
+    size_t v = 0;
+    while (v < positions.size() &&
+           within_coordinates(glm::vec3(o.transform * glm::vec4(positions[v], 1.0f))))
+      ++v;
+    if (m.obj) {
+      if (v == positions.size()) return model_place(m, "") + message;
+      const glm::vec3 p = positions[v];
+      size_t line = obj_vertex_line(m.file, [&](glm::vec3 q) { return q == p; });
+      if (!line)
+        line = obj_vertex_line(m.file, [&](glm::vec3 q) {
+          return !within_coordinates(glm::vec3(o.transform * glm::vec4(q, 1.0f)));
+        });
+      return model_place(m, "", line) + message + " (its vertex " + point(p) + " is placed at " +
+             point(glm::vec3(o.transform * glm::vec4(p, 1.0f))) + ")";
+    }
+    if (local >= m.places.objects.size() || mesh >= m.places.meshes.size()) return "";
+    const std::string primitive = m.places.meshes[mesh];
+    std::string tail = " (" + primitive;
+    if (v < positions.size()) {
+      const glm::vec3 p = positions[v];
+      // A flat-shaded primitive's vertices are its triangles' corners, not its elements.
+      tail += ".attributes.POSITION " +
+              (m.places.vertices_are_elements[mesh]
+                   ? "element " + std::to_string(v) + ", " + point(p) + ", is"
+                   : "value " + point(p) + " is") +
+              " placed at " + point(glm::vec3(o.transform * glm::vec4(p, 1.0f)));
+    }
+    return model_place(m, m.places.objects[local]) + message + tail + ")";
+  }
+  if (const std::optional<size_t> k = index("invalid scene: light ")) {
+    for (const Model& m : models) {
+      if (*k < m.first_light || *k >= m.first_light + m.lights) continue;
+      if (*k - m.first_light >= m.places.lights.size()) return "";
+      const auto& [node, light] = m.places.lights[*k - m.first_light];
+      // The limits on intensity and range are the light's own; its position, its node's.
+      if (message.find(" range is ") != std::string::npos)
+        return model_place(m, light + ".range") + message;
+      if (message.find(" intensity times color is ") != std::string::npos)
+        return model_place(m, light + ".intensity") + message +
+               " (KHR_lights_punctual's candela or lux divided by 683 lm/W)";
+      return model_place(m, node + " (" + light + ")") + message;
+    }
+  }
+  return "";
 }
 
 // translation, rotation (axis-angle in degrees, or a list applied left to right), scale
@@ -760,6 +867,7 @@ void Reader::read_objects(const Node& list) {
       const glm::mat4 world = moved ? placement * local : local;
       if (is_model) {
         if (!models[model].first_placement) models[model].first_placement = world;
+        model_instances.emplace_back(out.scene.objects.size(), model);
         for (Object o : models[model].objects) {
           o.transform = world * o.transform;
           out.scene.objects.push_back(o);
@@ -965,7 +1073,8 @@ void Reader::read(const Node& root) {
       try {
         validate_camera(c);
       } catch (const Error& e) {
-        throw Error(m.where + "camera " + std::to_string(i) + ": " + e.what());
+        throw Error(m.where + "camera " + std::to_string(i) + ": " + model_camera_place(m, i) +
+                    e.what());
       }
       out.model_cameras.push_back(c);
       out.model_camera_names.push_back("model '" + m.name + "' camera " + std::to_string(i));
@@ -1048,7 +1157,9 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
       const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
       const auto it = std::upper_bound(sources.begin(), sources.end(), k,
                                        [](size_t v, const auto& s) { return v < s.first; });
-      if (it != sources.begin()) throw Error(std::prev(it)->second + message);
+      if (it == sources.begin()) return;
+      const std::string in_model = reader.in_model(message);
+      throw Error(std::prev(it)->second + (in_model.empty() ? message : in_model));
     };
     placed("invalid scene: object ", reader.object_sources);
     placed("invalid scene: light ", reader.light_sources);
