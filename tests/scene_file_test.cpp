@@ -7,6 +7,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
@@ -287,6 +288,92 @@ TEST(SceneFile, ModelCamerasArePlacedWithTheirModel) {
                           "drawn"),
             std::string::npos)
       << warnings;
+}
+
+// The scene's limits on positions, light intensities and ranges (core/scene.h) apply once a
+// scene file has placed a model: where a model breaks one, the message names the model file and
+// the place in it (the glTF node, primitive and POSITION element, light or camera; the OBJ
+// line) after the scene file's place, as the importers' own errors are named. Without the model
+// places it named only the scene file's entry ("test.json:2:14: objects[0]: invalid scene:
+// object 0 reaches outside ...").
+TEST(SceneFile, ModelsBreakingSceneLimitsAreNamedInTheModelFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "model_limits";
+  fs::create_directories(dir);
+  std::ifstream in(kData + "/features.gltf");
+  const nlohmann::json features = nlohmann::json::parse(in);
+  // The scene placing model file `name` (written from `doc`) once, at `placement`.
+  const auto error = [&](const std::string& name, const std::string& text,
+                         const std::string& placement = "") {
+    std::ofstream(dir / name) << text;
+    const std::string scene = "{\"models\": [{\"name\": \"m\", \"file\": \"" + name +
+                              "\"}],\n \"objects\": [{\"model\": \"m\"" + placement + "}]}";
+    try {
+      load_scene_text(scene, "test.json", dir.string(), {});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto gltf = [&](const std::string& pointer, double value) {
+    nlohmann::json doc = features;
+    doc[nlohmann::json::json_pointer(pointer)] = value;
+    return doc.dump();
+  };
+  const std::string file = (dir / "f.gltf").string() + ": ";
+  const std::string object = "test.json:2:14: objects[0]: ", model = "test.json:1:13: models.m: ";
+  const std::string outside =
+      "invalid scene: object 0 reaches outside +-1e+15 m per coordinate "
+      "in world space (meshes[0].primitives[0].attributes.POSITION ";
+  // nodes[0] (translation 2e15, 2, 3) is the parent of nodes[1] (scale 2, mesh 0, no NORMAL:
+  // flat, its vertices the strip's corners, the first (0, 0, 0)).
+  EXPECT_EQ(error("f.gltf", gltf("/nodes/0/translation/0", 2e15)),
+            object + file + "nodes[1]: " + outside + "value (0, 0, 0) is placed at (2e+15, 2, 3))");
+  // Within the limit once the scene file scales it down: the limit is the scene's.
+  EXPECT_EQ(error("f.gltf", gltf("/nodes/0/translation/0", 2e15), ", \"scale\": 0.25"), "no error");
+  // Light 1 (nodes[4]) has range 7, light 0 (nodes[3], colour (1, 0.5, 0.25)) intensity 683 cd.
+  const std::string light = "extensions.KHR_lights_punctual.lights[";
+  EXPECT_EQ(error("f.gltf", gltf("/extensions/KHR_lights_punctual/lights/1/range", 2e9)),
+            model + file + light +
+                "1].range: invalid scene: light 1 range is 2e+09 m; it must be 0 (no fade) or "
+                "within [0.001, 1e+09] m");
+  // 1e30 cd / 683 lm/W = 1.46413e27 W/sr; 1e27 cd is 1.46e24 W/sr, within 1e26.
+  EXPECT_EQ(error("f.gltf", gltf("/extensions/KHR_lights_punctual/lights/0/intensity", 1e30)),
+            model + file + light +
+                "0].intensity: invalid scene: light 0 intensity times color is 1.46413e+27, above "
+                "1e+26 W/sr (KHR_lights_punctual's candela or lux divided by 683 lm/W)");
+  EXPECT_EQ(error("f.gltf", gltf("/extensions/KHR_lights_punctual/lights/0/intensity", 1e27)),
+            "no error");
+  EXPECT_EQ(error("f.gltf", gltf("/nodes/3/translation/1", 2e15)),
+            model + file + "nodes[3] (" + light +
+                "0]): invalid scene: light 0 position is outside +-1e+15 m per coordinate");
+  // cameras[0] is placed by nodes[2].
+  EXPECT_EQ(error("f.gltf", gltf("/nodes/2/translation/2", 2e15)),
+            model + "camera 0: " + file +
+                "nodes[2] (cameras[0]): invalid scene: the camera's position is outside +-1e+15 m "
+                "per coordinate");
+
+  // A triangle with normals, whose vertices are POSITION's elements: element 1 is (2e15, 0, 0).
+  const float data[18] = {0, 0, 0, 2e15f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  std::ofstream(dir / "tri.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(data), sizeof data);
+  const std::string tri = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+       "min": [0, 0, 0], "max": [2e15, 1, 0]},
+      {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 72}],
+    "buffers": [{"uri": "tri.bin", "byteLength": 72}]})";
+  EXPECT_EQ(error("tri.gltf", tri, ", \"translation\": [0, 0, 5]"),
+            object + (dir / "tri.gltf").string() + ": nodes[0]: " + outside +
+                "element 1, (2e+15, 0, 0), is placed at (2e+15, 0, 5))");
+  // OBJ places its errors by line: the vertex's.
+  EXPECT_EQ(error("tri.obj", "# a triangle\nv 0 0 0\nv 2e15 0 0\nv 0 1 0\nf 1 2 3\n"),
+            object + "'" + (dir / "tri.obj").string() +
+                "' line 3: invalid scene: object 0 reaches outside +-1e+15 m per coordinate in "
+                "world space (its vertex (2e+15, 0, 0) is placed at (2e+15, 0, 0))");
 }
 
 // The example scene files of examples/scenes/ (the ones docs/gltf.md renders) load without an
