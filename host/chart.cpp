@@ -301,6 +301,7 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
     bool front;
   };
   std::vector<Label> labels;
+  std::vector<LabelSegment> lines;  // the fronts' joins, which labels keep off
   for (size_t k = 0; k < chart.series.size(); ++k) {
     const ScatterSeries& s = chart.series[k];
     const Colour col = kPalette[k % std::size(kPalette)];
@@ -316,8 +317,10 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
     std::sort(front.begin(), front.end(),
               [](const ScatterPoint* p, const ScatterPoint* q) { return p->x < q->x; });
     for (size_t i = 0; i + 1 < front.size(); ++i) {
-      c.line(a.px(front[i]->x), a.py(front[i]->y), a.px(front[i + 1]->x), a.py(front[i + 1]->y),
-             col, 1.5);
+      const LabelSegment join{a.px(front[i]->x), a.py(front[i]->y), a.px(front[i + 1]->x),
+                              a.py(front[i + 1]->y)};
+      c.line(join.x0, join.y0, join.x1, join.y1, col, 1.5);
+      lines.push_back(join);
     }
     c.rect(b.x + b.w + 20, b.y + 18 * k, 14, 10, col);
     c.text(b.x + b.w + 40, b.y + 5 + 18 * k, s.name, 12, kInk, 0);
@@ -326,19 +329,26 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
                    [](const Label& p, const Label& q) { return p.front && !q.front; });
   std::vector<LabelRequest> requests;
   for (const Label& l : labels) requests.push_back(l.request);
-  const std::vector<LabelSpot> spots = place_labels(requests, {b.x, b.y - 20, b.w + 10, b.h + 20});
+  // Inside the axes by a few pixels, so that no label touches them (the plot's top may take
+  // labels up to the title's margin; the right side up to the legend's).
+  const LabelRect bounds{b.x + 3, b.y - 20, b.w + 7, b.h + 20 - 3};
+  const std::vector<LabelSpot> spots = place_labels(requests, bounds, lines);
   for (size_t i = 0; i < labels.size(); ++i) {
     const LabelRect& box = spots[i].box;
     if (spots[i].leader) {
-      const double to_x = std::clamp(labels[i].request.x, box.x, box.x + box.w);
-      const double to_y = std::clamp(labels[i].request.y, box.y, box.y + box.h);
-      c.line(labels[i].request.x, labels[i].request.y, to_x, to_y, labels[i].colour, 0.6);
+      const LabelSegment leader = leader_line(labels[i].request, box);
+      c.line(leader.x0, leader.y0, leader.x1, leader.y1, labels[i].colour, 0.6);
     }
     c.text(box.x, box.y + box.h / 2, *labels[i].text, 10, labels[i].colour, 0);
   }
-  const double note_y = b.y + 18 * chart.series.size() + 20;
+  double note_y = b.y + 18 * chart.series.size() + 20;
   c.text(b.x + b.w + 20, note_y, "large marks, joined:", 11, kInk, 0);
   c.text(b.x + b.w + 20, note_y + 14, "each knob's Pareto front", 11, kInk, 0);
+  note_y += 14;
+  for (const std::string& note : chart.notes) {
+    note_y += 14;
+    c.text(b.x + b.w + 20, note_y, note, 11, kInk, 0);
+  }
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {

@@ -41,6 +41,7 @@ struct ScatterSeries {
 struct ScatterChart {
   std::string title, x_label, y_label;
   std::vector<ScatterSeries> series;
+  std::vector<std::string> notes;  // lines under the legend (e.g. what was left out, and why)
 };
 
 /// Writes `chart` to `path` (.svg or .png; throws Error otherwise or if it cannot be written).

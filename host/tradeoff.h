@@ -10,6 +10,7 @@
 #include "compute/renderer.h"
 #include "core/frame_settings.h"
 #include "core/image_metrics.h"
+#include "core/scene.h"
 #include "core/statistics.h"
 #include "core/warmup.h"
 #include "host/cli.h"
@@ -39,6 +40,13 @@ struct KnobInfo {
 /// The knobs, in the order they are documented.
 const std::vector<KnobInfo>& knobs();
 
+/// Why knob `knob` cannot change the image of `scene` rendered with `frame` (every setting
+/// would give the same image and the same time but for noise), e.g. "the scene has no
+/// environment" for env-size; "" where it can. Only reasons known before rendering: a knob
+/// whose effect depends on the image's content (hdr: radiance past fp16's range) is measured.
+std::string knob_cannot_matter(const std::string& knob, const Scene& scene,
+                               const FrameSettings& frame);
+
 /// The settings of knob `knob`, each starting from `frame` and `options` (the command line's,
 /// with every device choice made: tuned_for_device). The setting equal to theirs is the
 /// default; with RendererOptions::shade_tiles unset, neither of that knob's is.
@@ -64,8 +72,37 @@ struct TradeoffPoint {
   std::vector<WarmupStats> warmups;
 };
 
+/// A knob asked for but not measured, and why (knob_cannot_matter).
+struct SkippedKnob {
+  std::string knob, reason;
+};
+
+/// The scene a tradeoff measures and the frame its knobs start from: the command line's, with
+/// what it left unset from the scene file's "render" block.
+struct TradeoffScene {
+  Scene scene;
+  FrameSettings frame;
+  std::string size_place;  // where the file gave the size (RenderDefaults::size_place), or ""
+  std::vector<SkippedKnob> skipped;  // the knobs of --knob that cannot matter for it, in order
+};
+
+/// Loads `args.scene` (a bench family, a built-in scene or a scene file) and finds which of
+/// `args.knobs` cannot matter for it (knob_cannot_matter). Throws Error for a bad scene.
+TradeoffScene load_tradeoff_scene(const TradeoffArgs& args);
+
+/// The ground truth as configured for `scene`, in words: only what applies to it (analytic
+/// spheres where it has spheres, texture filtering where it has texture maps, environment
+/// directions where it has an environment, the BRDFs where lights or an environment go
+/// through one). `knobs`: those measured; the brdf knob's truth shades with filament and
+/// energy compensation, every other knob's with `frame`'s BRDF.
+std::string describe_truth(const Scene& scene, const FrameSettings& frame,
+                           const std::vector<std::string>& knobs, uint32_t truth_samples,
+                           uint32_t environment_directions);
+
 struct TradeoffResults {
   std::string device, driver;
+  uint32_t width = 0, height = 0;     // the image size measured (the command line's or the file's)
+  std::vector<SkippedKnob> skipped;   // knobs asked for that cannot matter for the scene
   std::string truth;                  // how the ground truth was made, in words
   double truth_seconds = 0.0;         // CPU wall time of the ground truth
   std::vector<TradeoffPoint> points;  // by knob in the order asked, then by setting
@@ -76,10 +113,15 @@ struct TradeoffResults {
 /// small-triangle area where it applies (preset_sets_small_triangle_area).
 RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& args);
 
-/// Renders every setting of every knob of `args` on `ctx` (rounds interleave the settings so
-/// that a clock change affects them alike) and the ground truth on the CPU. Throws Error for
-/// a bad scene, knob or size.
-TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args);
+/// Renders every setting of every knob of `args` that can matter for `scene` (the others are
+/// listed in TradeoffResults::skipped) on `ctx` (rounds interleave the settings so that a clock
+/// change affects them alike) and the ground truth on the CPU. Throws Error for a bad knob,
+/// ImageSizeError for a size the device cannot take.
+TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
+                                 const TradeoffScene& scene);
+
+/// The table print_tradeoff_table prints.
+std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args);
 
 void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args);
 void write_tradeoff_json(const std::string& path, const TradeoffResults& results,

@@ -16,15 +16,24 @@ int run_tradeoff(const TradeoffArgs& args, const std::string& command_line) {
       throw Error("cannot write output file '" + *path + "': " + why);
   }
   for (const std::string& knob : args.knobs) knob_settings(knob, args.frame, {});
+  // The scene before the device, as `tessera render`: its faults are found without one.
+  const TradeoffScene scene = load_tradeoff_scene(args);
+  if (scene.skipped.size() == args.knobs.size()) {
+    std::string why;
+    for (const SkippedKnob& s : scene.skipped) why += "\n  " + s.knob + ": " + s.reason;
+    throw Error("nothing to measure: no knob asked for can matter for scene '" + args.scene +
+                "':" + why);
+  }
   ContextOptions options;
   options.device = args.device;
   options.validation = args.validate;
   std::unique_ptr<Context> ctx = create_context(options);
   TradeoffResults results;
   try {
-    results = measure_tradeoff(*ctx, args);
+    results = measure_tradeoff(*ctx, args, scene);
   } catch (const ImageSizeError& e) {
-    throw_image_size_error(e, args.size_given, "", "tessera tradeoff --help");
+    // A command-line size is a bad command line; a scene file's is reported at its place.
+    throw_image_size_error(e, args.size_given, scene.size_place, "tessera tradeoff --help");
   }
   if (!args.quiet) print_tradeoff_table(results, args);
   if (!args.json.empty()) write_tradeoff_json(args.json, results, args, command_line);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/lod.h"
 #include "host/tradeoff.h"
 
 namespace tessera {
@@ -42,6 +43,24 @@ KnobSetting base(const std::string& knob, const std::string& label, const FrameS
   return s;
 }
 
+// What the objects of `scene` draw with (materials and meshes no object uses cannot matter).
+bool draws_a_sphere(const Scene& scene) {
+  for (const Object& o : scene.objects)
+    if (o.mesh < scene.meshes.size() && scene.meshes[o.mesh].analytic_sphere) return true;
+  return false;
+}
+
+bool draws_a_texture(const Scene& scene) {
+  for (const Object& o : scene.objects) {
+    if (o.material >= scene.materials.size()) continue;
+    const Material& m = scene.materials[o.material];
+    for (uint32_t map : {m.base_color_map, m.metallic_roughness_map, m.normal_map, m.occlusion_map,
+                         m.emissive_map})
+      if (map != kNoTexture) return true;
+  }
+  return false;
+}
+
 std::string known_knobs() {
   std::string names;
   for (const KnobInfo& k : knobs()) names += (names.empty() ? "" : ", ") + std::string(k.name);
@@ -49,6 +68,38 @@ std::string known_knobs() {
 }
 
 }  // namespace
+
+std::string knob_cannot_matter(const std::string& knob, const Scene& scene,
+                               const FrameSettings& frame) {
+  if (knob == "brdf" && scene.lights.empty() && !scene.environment) {
+    // Ambient and emitted light are added as they are (shaders/lighting.glsl).
+    return "the scene has no lights and no environment, the only light a BRDF shades";
+  }
+  if (knob == "tessellation" && !draws_a_sphere(scene))
+    return "the scene draws no spheres, the only meshes the knob re-tessellates";
+  if (knob == "anisotropy" && !draws_a_texture(scene))
+    return "no material the scene draws with has a texture map, the only thing it filters";
+  if ((knob == "env-size" || knob == "env-samples") && !scene.environment)
+    return "the scene has no environment";
+  if (knob == "lod") {
+    const std::vector<LodChain> chains = build_lod_chains(scene);
+    const bool levels =
+        std::any_of(scene.objects.begin(), scene.objects.end(), [&](const Object& o) {
+          return o.mesh < chains.size() && chains[o.mesh].levels.size() > 1;
+        });
+    if (!levels) return "no mesh the scene draws has a level of detail but its own";
+  }
+  if (knob == "raster-shade") {
+    // rasterizes_and_shades_in_one_pass (compute/renderer.cpp) takes one-sample frames
+    // without level of detail only.
+    if (frame.samples != 1)
+      return "the frames are at " + std::to_string(frame.samples) +
+             " samples, and only frames at 1 take the one pass";
+    if (frame.lod == Lod::automatic)
+      return "the frames have level of detail, and only frames without take the one pass";
+  }
+  return "";
+}
 
 std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
                                        const RendererOptions& options) {

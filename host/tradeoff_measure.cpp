@@ -21,22 +21,6 @@
 namespace tessera {
 namespace {
 
-// The scene to measure, with the file's render defaults filling in what the command left unset.
-Scene load_scene(const TradeoffArgs& args, FrameSettings& frame) {
-  if (is_bench_family(args.scene)) {
-    return make_bench_scene(args.scene, args.objects ? args.objects : 100, 32,
-                            float(frame.width) / float(frame.height));
-  }
-  // The command line refuses --objects here (cli.cpp); a caller that sets it gets the same.
-  if (args.objects) {
-    throw Error("--objects applies to the benchmark families (" + bench_family_names() +
-                "), not to '" + args.scene + "'");
-  }
-  SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
-  apply_render_defaults(file.render, frame, args.size_given, false, false, args.brdf_given, true);
-  return std::move(file.scene);
-}
-
 // `scene` with every sphere remade with `segments` slices (0: unchanged).
 Scene with_sphere_segments(const Scene& scene, uint32_t segments) {
   Scene out = scene;
@@ -88,6 +72,65 @@ struct Candidate {
 
 }  // namespace
 
+TradeoffScene load_tradeoff_scene(const TradeoffArgs& args) {
+  TradeoffScene out;
+  out.frame = args.frame;
+  if (is_bench_family(args.scene)) {
+    out.scene = make_bench_scene(args.scene, args.objects ? args.objects : 100, 32,
+                                 float(out.frame.width) / float(out.frame.height));
+  } else {
+    // The command line refuses --objects here (cli.cpp); a caller that sets it gets the same.
+    if (args.objects) {
+      throw Error("--objects applies to the benchmark families (" + bench_family_names() +
+                  "), not to '" + args.scene + "'");
+    }
+    SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
+    // The file's render defaults fill in what the command left unset.
+    apply_render_defaults(file.render, out.frame, args.size_given, false, false, args.brdf_given,
+                          true);
+    if (!args.size_given) out.size_place = file.render.size_place;
+    out.scene = std::move(file.scene);
+  }
+  validate_scene(out.scene);
+  for (const std::string& knob : args.knobs) {
+    if (std::string why = knob_cannot_matter(knob, out.scene, out.frame); !why.empty())
+      out.skipped.push_back({knob, std::move(why)});
+  }
+  return out;
+}
+
+std::string describe_truth(const Scene& scene, const FrameSettings& frame,
+                           const std::vector<std::string>& knobs, uint32_t truth_samples,
+                           uint32_t environment_directions) {
+  const std::string n = std::to_string(truth_samples);
+  std::string out = "CPU reference, double precision: ";
+  if (knob_cannot_matter("tessellation", scene, frame).empty()) out += "analytic spheres, ";
+  out += n + "x" + n + " samples per pixel (box filter), ";
+  if (knob_cannot_matter("anisotropy", scene, frame).empty())
+    out += "16x anisotropic texture filtering, ";
+  out += "no level of detail, fp32 HDR range";
+  if (scene.environment)
+    out += ", " + std::to_string(environment_directions) +
+           " environment directions per lobe and pixel";
+  // Without lights or an environment no BRDF shades anything: the truth names none.
+  if (!knob_cannot_matter("brdf", scene, frame).empty()) return out;
+  auto brdf_name = [](Brdf brdf, bool ec) {
+    const std::string name = brdf == Brdf::classic    ? "classic"
+                             : brdf == Brdf::filament ? "filament"
+                                                      : "blinn-phong";
+    // Blinn-Phong has no energy compensation (shaders/lighting.glsl).
+    return "the " + name + " BRDF" +
+           (ec && brdf != Brdf::blinn_phong ? " with energy compensation" : "");
+  };
+  const std::string faithful = brdf_name(Brdf::filament, true);
+  const std::string given = brdf_name(frame.brdf, frame.energy_compensation);
+  const bool brdf_knob = std::find(knobs.begin(), knobs.end(), "brdf") != knobs.end();
+  if (!brdf_knob) return out + "; " + given;
+  if (knobs.size() == 1) return out + "; " + faithful;
+  return out + "; the brdf knob against " + faithful + ", the others against " + given +
+         " (the settings')";
+}
+
 RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& args) {
   RendererOptions options = tuned_for_device(ctx, {});
   options.environment = args.env_options;
@@ -97,17 +140,26 @@ RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& ar
   return options;
 }
 
-TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
+TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
+                                 const TradeoffScene& loaded) {
   TradeoffResults results;
   results.device = ctx.properties.deviceName;
   results.driver = ctx.driver;
-  FrameSettings frame = args.frame;
-  const Scene scene = load_scene(args, frame);
-  validate_scene(scene);
+  const FrameSettings& frame = loaded.frame;
+  const Scene& scene = loaded.scene;
+  results.width = frame.width;
+  results.height = frame.height;
+  results.skipped = loaded.skipped;
+  std::vector<std::string> measured;
+  for (const std::string& knob : args.knobs) {
+    if (std::none_of(results.skipped.begin(), results.skipped.end(),
+                     [&](const SkippedKnob& s) { return s.knob == knob; }))
+      measured.push_back(knob);
+  }
   const RendererOptions options = tradeoff_base_options(ctx, args);
 
   std::vector<Candidate> candidates;
-  for (const std::string& knob : args.knobs) {
+  for (const std::string& knob : measured) {
     for (KnobSetting& s : knob_settings(knob, frame, options)) {
       Candidate c;
       c.scene = with_sphere_segments(scene, s.sphere_segments);
@@ -170,13 +222,8 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
   const uint32_t per_sample = args.truth_env_samples / (args.truth_samples * args.truth_samples);
   truth.environment_samples = std::max(16u, per_sample);
   results.truth =
-      "CPU reference, double precision: analytic spheres, " + std::to_string(args.truth_samples) +
-      "x" + std::to_string(args.truth_samples) +
-      " samples per pixel (box filter), 16x anisotropic filtering, no level of detail, fp32 "
-      "HDR range, " +
-      std::to_string(truth.environment_samples * args.truth_samples * args.truth_samples) +
-      " environment directions per lobe and pixel; the BRDF knob against filament "
-      "with energy compensation, the others against the command line's BRDF";
+      describe_truth(scene, frame, measured, args.truth_samples,
+                     truth.environment_samples * args.truth_samples * args.truth_samples);
   struct Truth {
     ReferenceFrame frame;
     Ownership ownership;            // by index into Scene::objects
@@ -187,11 +234,15 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args) {
     return s.knob == "brdf" ? std::pair{Brdf::filament, true}
                             : std::pair{frame.brdf, frame.energy_compensation};
   };
+  // Without lights or an environment the BRDF shades nothing: the message names none.
+  const bool lit = knob_cannot_matter("brdf", scene, frame).empty();
   const auto start = std::chrono::steady_clock::now();
   for (const Candidate& c : candidates) {
     const auto key = truth_key(c.setting);
     if (truths.count(key)) continue;
-    if (!args.quiet) {
+    if (!args.quiet && !lit) {
+      std::fprintf(stderr, "rendering the ground truth\n");
+    } else if (!args.quiet) {
       const char* brdf = key.first == Brdf::classic    ? "classic"
                          : key.first == Brdf::filament ? "filament"
                                                        : "blinn-phong";

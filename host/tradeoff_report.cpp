@@ -22,34 +22,81 @@ nlohmann::json finite_or_null(double v) {
 
 }  // namespace
 
-void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
-  std::printf("scene '%s', %ux%u, device '%s' (%s)\n", args.scene.c_str(), args.frame.width,
-              args.frame.height, results.device.c_str(), results.driver.c_str());
-  std::printf("truth: %s (%.1f s of CPU wall time)\n", results.truth.c_str(),
-              results.truth_seconds);
-  std::printf(
+// printf into a std::string.
+template <typename... T>
+std::string format(const char* f, T... values) {
+  const int n = std::snprintf(nullptr, 0, f, values...);
+  std::string out(size_t(std::max(n, 0)), '\0');
+  std::snprintf(out.data(), out.size() + 1, f, values...);
+  return out;
+}
+
+std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
+  std::string out;
+  out += format("scene '%s', %ux%u, device '%s' (%s)\n", args.scene.c_str(), results.width,
+                results.height, results.device.c_str(), results.driver.c_str());
+  out +=
+      format("truth: %s (%.1f s of CPU wall time)\n", results.truth.c_str(), results.truth_seconds);
+  if (!results.skipped.empty()) {
+    out += "not measured, as they cannot matter for this scene:\n";
+    for (const SkippedKnob& s : results.skipped) out += "  " + s.knob + ": " + s.reason + "\n";
+  }
+  out += format(
       "GPU ms: median of %u round%s x %u frame%s (min..max); errors against the truth: mean and\n"
       "99th percentile relative error of linear radiance over all pixels and over the interior\n"
       "(pixels the truth shows one object in), PSNR of the 8-bit image, silhouette error\n",
       args.rounds, args.rounds == 1 ? "" : "s", args.repeat, args.repeat == 1 ? "" : "s");
-  std::printf("%-15s %-13s %9s %17s %9s %9s %9s %8s %8s  %s\n", "knob", "setting", "GPU ms",
-              "(min..max)", "mean rel", "interior", "p99 rel", "PSNR dB", "silh px", "");
+  // Every cell as text first, so that each column is as wide as its widest cell: a setting's
+  // label ("4 samples, silhouette") or a time of several digits shifts no column after it.
+  const std::vector<std::string> header = {"knob",       "setting",  "GPU ms",
+                                           "(min..max)", "mean rel", "interior",
+                                           "p99 rel",    "PSNR dB",  "silh px"};
+  const std::vector<bool> left = {true, true, false, false, false, false, false, false, false};
+  std::vector<std::vector<std::string>> rows;
+  size_t min_width = 0, max_width = 0;
   for (const TradeoffPoint& p : results.points) {
+    min_width = std::max(min_width, format("%.3f", p.gpu_ms.min).size());
+    max_width = std::max(max_width, format("%.3f", p.gpu_ms.max).size());
+  }
+  for (const TradeoffPoint& p : results.points) {
+    // The ".." of every row in one column.
+    const std::string range =
+        format("%*.3f..%-*.3f", int(min_width), p.gpu_ms.min, int(max_width), p.gpu_ms.max);
+    rows.push_back({p.setting.knob, p.setting.label, format("%.3f", p.gpu_ms.median), range,
+                    format("%.4f", p.error.mean_relative), format("%.4f", p.interior_mean_relative),
+                    format("%.4f", p.error.p99_relative), format("%.2f", p.error.psnr_db),
+                    format("%.3f", p.error.silhouette_px)});
+  }
+  std::vector<size_t> width(header.size());
+  for (size_t c = 0; c < header.size(); ++c) {
+    width[c] = header[c].size();
+    for (const auto& row : rows) width[c] = std::max(width[c], row[c].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    std::string l;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      const size_t pad = width[c] - cells[c].size();
+      if (c > 0) l += "  ";  // two spaces: headers such as "p99 rel" have one
+      if (!left[c]) l.append(pad, ' ');
+      l += cells[c];
+      if (left[c]) l.append(pad, ' ');
+    }
+    return l;
+  };
+  out += line(header);
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  out += "\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const TradeoffPoint& p = results.points[i];
     std::string marks;
     if (p.setting.is_default) marks += "default ";
     if (p.on_front) marks += "front ";
-    if (p.precompute_ms > 0) {
-      char buf[64];
-      std::snprintf(buf, sizeof(buf), "precompute %.3f ms ", p.precompute_ms);
-      marks += buf;
-    }
+    if (p.precompute_ms > 0) marks += format("precompute %.3f ms ", p.precompute_ms);
     if (p.setting.speed_only)
       marks +=
           p.identical_to_default ? "(image identical to default)" : "(IMAGE DIFFERS FROM DEFAULT)";
-    std::printf("%-15s %-13s %9.3f %8.3f..%-8.3f %9.4f %9.4f %9.4f %8.2f %8.3f  %s\n",
-                p.setting.knob.c_str(), p.setting.label.c_str(), p.gpu_ms.median, p.gpu_ms.min,
-                p.gpu_ms.max, p.error.mean_relative, p.interior_mean_relative, p.error.p99_relative,
-                p.error.psnr_db, p.error.silhouette_px, marks.c_str());
+    while (!marks.empty() && marks.back() == ' ') marks.pop_back();
+    out += line(rows[i]) + (marks.empty() ? "" : "  " + marks) + "\n";
   }
   // The warm-ups, over every setting and round.
   uint32_t frames_min = ~0u, frames_max = 0, unsettled = 0, count = 0;
@@ -65,16 +112,21 @@ void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& ar
     }
   }
   if (count > 0 && args.warmup_ms > 0) {
-    std::printf(
+    out += format(
         "warm-up per setting and round (at least %u frames and %g ms, then until the median of\n"
         "5 frames is within 2 %% of the 5 before): %u..%u frames, %.0f..%.0f ms; %u of %u "
         "unsettled\n",
         args.warmup, args.warmup_ms, frames_min, frames_max, ms_min, ms_max, unsettled, count);
   } else if (count > 0) {
     // --warmup-ms 0: the --warmup frames alone, with no settling rule.
-    std::printf("warm-up per setting and round: %u frames, %.0f..%.0f ms\n", args.warmup, ms_min,
-                ms_max);
+    out += format("warm-up per setting and round: %u frames, %.0f..%.0f ms\n", args.warmup, ms_min,
+                  ms_max);
   }
+  return out;
+}
+
+void print_tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
+  std::fputs(tradeoff_table(results, args).c_str(), stdout);
 }
 
 void write_tradeoff_json(const std::string& path, const TradeoffResults& results,
@@ -88,14 +140,18 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
   j["command"] = command_line;
   j["date"] = date;
   j["scene"] = args.scene;
-  j["width"] = args.frame.width;
-  j["height"] = args.frame.height;
+  j["width"] = results.width;
+  j["height"] = results.height;
   j["rounds"] = args.rounds;
   j["frames_per_round"] = args.repeat;
   j["warmup"] = {{"min_frames", args.warmup}, {"min_ms", args.warmup_ms}};
   j["hdr_format"] = args.frame.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16";
   j["tile_size"] = args.tile_size;
   j["truth"] = {{"description", results.truth}, {"cpu_seconds", results.truth_seconds}};
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const SkippedKnob& s : results.skipped)
+    skipped.push_back({{"knob", s.knob}, {"reason", s.reason}});
+  j["skipped_knobs"] = skipped;
   nlohmann::json points = nlohmann::json::array();
   for (const TradeoffPoint& p : results.points) {
     nlohmann::json warmups = nlohmann::json::array();
@@ -130,9 +186,13 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
 void write_tradeoff_chart(const std::string& path, const TradeoffResults& results,
                           const TradeoffArgs& args) {
   ScatterChart chart;
-  chart.title = "speed against accuracy: '" + args.scene + "', " +
-                std::to_string(args.frame.width) + "x" + std::to_string(args.frame.height) + ", " +
-                results.device;
+  chart.title = "speed against accuracy: '" + args.scene + "', " + std::to_string(results.width) +
+                "x" + std::to_string(results.height) + ", " + results.device;
+  // The knobs left out, under the legend, as the table says why.
+  if (!results.skipped.empty()) {
+    chart.notes = {"", "not measured (cannot matter", "for this scene):"};
+    for (const SkippedKnob& s : results.skipped) chart.notes.push_back("  " + s.knob);
+  }
   chart.x_label = "GPU time per frame, ms (median)";
   chart.y_label = "mean relative error against the truth";
   for (const TradeoffPoint& p : results.points) {

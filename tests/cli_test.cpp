@@ -280,6 +280,9 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --device lavapipe --scene " + big_scene + " --out /tmp/x.png", 1,
        "tessera: error: " + big_scene + ":2:12: render: the size 16384x16384 " + too_big +
            " (--size overrides it)"},
+      {"tradeoff --device lavapipe --scene " + big_scene + " --knob samples", 1,
+       "tessera: error: " + big_scene + ":2:12: render: the size 16384x16384 " + too_big +
+           " (--size overrides it)"},
       // An output that cannot be written is a bad command line, found before any work.
       {"render --out /nonexistent-dir/x.png", 2,
        "tessera: error: --out: cannot write '/nonexistent-dir/x.png': folder "

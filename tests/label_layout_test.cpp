@@ -2,6 +2,7 @@
 // points' marks, inside the plot, next to their points where there is room.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "host/label_layout.h"
@@ -61,6 +62,55 @@ TEST(LabelLayout, LabelsStayInsideThePlot) {
   EXPECT_LT(spots[0].box.x, 598);  // to the left of its point
   EXPECT_TRUE(inside(spots[1].box, kPlot));
   EXPECT_GT(spots[1].box.y + spots[1].box.h / 2, 2);  // its middle below its point
+}
+
+TEST(LabelLayout, LengthInsideARectangle) {
+  const LabelRect r{10, 10, 20, 10};                         // x 10..30, y 10..20
+  EXPECT_DOUBLE_EQ(length_inside({0, 15, 40, 15}, r), 20);   // straight across
+  EXPECT_DOUBLE_EQ(length_inside({20, 15, 40, 15}, r), 10);  // from inside, out
+  EXPECT_DOUBLE_EQ(length_inside({5, 5, 35, 25}, r), 0.0 + std::hypot(10, 10 * 2.0 / 3.0) * 1.5)
+      << "the diagonal enters at x 12.5 and leaves at x 27.5";
+  EXPECT_DOUBLE_EQ(length_inside({0, 0, 40, 0}, r), 0);     // above
+  EXPECT_DOUBLE_EQ(length_inside({0, 10, 40, 10}, r), 0);   // along the top edge only
+  EXPECT_DOUBLE_EQ(length_inside({15, 12, 15, 12}, r), 0);  // a point
+}
+
+TEST(LabelLayout, LabelsKeepOffTheLinesGiven) {
+  // A series' line through the usual place (right of the point, above): the label goes
+  // elsewhere, off the line.
+  const LabelRequest point{300, 200, 3, 40, 10};
+  const LabelSegment line{300, 190, 400, 190};
+  const std::vector<LabelSpot> spots = place_labels({point}, kPlot, {line});
+  EXPECT_EQ(length_inside(line, spots[0].box), 0.0);
+  EXPECT_FALSE(spots[0].leader);
+}
+
+TEST(LabelLayout, LeadersCrossNoLabelWhereThereIsRoom) {
+  // Four points within 30 px, as a knob's settings of like cost and error are: two labels go
+  // out a ring, and their leaders must not run through the labels of the others (a place off
+  // every label, mark and leader exists: this check finds it).
+  const std::vector<LabelRequest> labels = {
+      {328, 201, 3, 60, 10}, {320, 210, 3, 50, 10}, {348, 213, 3, 40, 10}, {329, 202, 3, 40, 10}};
+  const std::vector<LabelSpot> spots = place_labels(labels, kPlot);
+  bool any_leader = false;
+  for (size_t i = 0; i < spots.size(); ++i) {
+    for (size_t j = 0; j < labels.size(); ++j) {
+      const LabelRect mark{labels[j].x - 3, labels[j].y - 3, 6, 6};
+      EXPECT_FALSE(overlaps(spots[i].box, mark)) << "label " << i << ", mark " << j;
+      if (j < i) {
+        EXPECT_FALSE(overlaps(spots[i].box, spots[j].box)) << i << " and " << j;
+      }
+    }
+    if (!spots[i].leader) continue;
+    any_leader = true;
+    const LabelSegment leader = leader_line(labels[i], spots[i].box);
+    for (size_t j = 0; j < spots.size(); ++j) {
+      if (j != i) {
+        EXPECT_EQ(length_inside(leader, spots[j].box), 0.0) << "leader " << i << ", label " << j;
+      }
+    }
+  }
+  EXPECT_TRUE(any_leader);
 }
 
 TEST(LabelLayout, WithoutRoomTheLeastOverlapIsTaken) {

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "core/check.h"
+#include "core/environment.h"
+#include "core/mesh.h"
 #include "core/pareto.h"
 #include "host/cli.h"
 #include "host/tradeoff.h"
@@ -117,6 +120,159 @@ TEST(Tradeoff, KnobsListTheirSettingsAndMarkTheDefault) {
   }
 }
 
+// A scene of one object: a single triangle (no sphere, no level of detail but its own) or a
+// sphere, with a plain material, nothing to light it.
+Scene one_object_scene(bool sphere) {
+  Scene scene;
+  Mesh triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  triangle.indices = {0, 1, 2};
+  scene.meshes = {sphere ? make_uv_sphere(16, 8) : triangle};
+  scene.materials = {Material{}};
+  scene.objects = {Object{}};
+  return scene;
+}
+
+TEST(Tradeoff, KnobsThatCannotMatterForTheSceneSayWhy) {
+  FrameSettings frame;
+  auto why = [&](const char* knob, const Scene& scene) {
+    return knob_cannot_matter(knob, scene, frame);
+  };
+  Scene bare = one_object_scene(false);
+  // No light or environment: ambient and emission reach the image without a BRDF.
+  EXPECT_EQ(why("brdf", bare),
+            "the scene has no lights and no environment, the only light a BRDF shades");
+  EXPECT_EQ(why("tessellation", bare),
+            "the scene draws no spheres, the only meshes the knob re-tessellates");
+  EXPECT_EQ(why("anisotropy", bare),
+            "no material the scene draws with has a texture map, the only thing it filters");
+  EXPECT_EQ(why("env-size", bare), "the scene has no environment");
+  EXPECT_EQ(why("env-samples", bare), "the scene has no environment");
+  // One triangle cannot be halved and keep a triangle: its chain is the base mesh alone.
+  EXPECT_EQ(why("lod", bare), "no mesh the scene draws has a level of detail but its own");
+  // What matters whatever the scene: visibility samples and their weights, the HDR storage,
+  // the speed-only knobs.
+  for (const char* knob : {"samples", "aa-coverage", "aa-walk-steps", "hdr", "small-triangle",
+                           "tile-size", "depth-rejection", "shade-tiles", "raster-shade"})
+    EXPECT_EQ(why(knob, bare), "") << knob;
+
+  // Each reason goes with what it names.
+  Scene lit = bare;
+  lit.lights = {Light{}};
+  EXPECT_EQ(why("brdf", lit), "");
+  Scene sky = bare;
+  sky.environment = std::make_shared<const Environment>(make_sky_environment(16));
+  EXPECT_EQ(why("brdf", sky), "") << "the environment's light goes through the BRDF";
+  EXPECT_EQ(why("env-size", sky), "");
+  EXPECT_EQ(why("env-samples", sky), "");
+  Scene textured = bare;
+  textured.materials[0].normal_map = 0;
+  EXPECT_EQ(why("anisotropy", textured), "");
+  // A material with a map that no object draws with cannot matter either.
+  Scene unused_map = bare;
+  unused_map.materials.push_back(textured.materials[0]);
+  EXPECT_NE(why("anisotropy", unused_map), "");
+  const Scene sphere = one_object_scene(true);
+  EXPECT_EQ(why("tessellation", sphere), "");
+  EXPECT_EQ(why("lod", sphere), "");
+
+  // Only one-sample frames without level of detail take the one pass.
+  frame.samples = 4;
+  EXPECT_EQ(why("raster-shade", bare),
+            "the frames are at 4 samples, and only frames at 1 take the one pass");
+  frame.samples = 1;
+  frame.lod = Lod::automatic;
+  EXPECT_EQ(why("raster-shade", bare),
+            "the frames have level of detail, and only frames without take the one pass");
+}
+
+TEST(Tradeoff, TheTruthIsDescribedAsConfiguredForTheScene) {
+  FrameSettings frame;
+  frame.brdf = Brdf::classic;
+  // Nothing but the samples, the level of detail and the HDR range applies to a bare triangle
+  // under ambient light: no spheres, textures, environment or BRDF to name.
+  Scene scene = one_object_scene(false);
+  scene.ambient = glm::vec3(1.0f);
+  EXPECT_EQ(describe_truth(scene, frame, {"samples", "brdf"}, 4, 1024),
+            "CPU reference, double precision: 4x4 samples per pixel (box filter), no level of "
+            "detail, fp32 HDR range");
+  // A sphere, a texture, an environment: each named, and the BRDFs the truths shade with.
+  scene.meshes[0] = make_uv_sphere(16, 8);
+  scene.materials[0].base_color_map = 0;
+  scene.environment = std::make_shared<const Environment>(make_sky_environment(16));
+  const std::string full =
+      "CPU reference, double precision: analytic spheres, 8x8 samples per pixel (box filter), "
+      "16x anisotropic texture filtering, no level of detail, fp32 HDR range, 1024 environment "
+      "directions per lobe and pixel";
+  EXPECT_EQ(describe_truth(scene, frame, {"samples", "brdf"}, 8, 1024),
+            full +
+                "; the brdf knob against the filament BRDF with energy compensation, the others "
+                "against the classic BRDF (the settings')");
+  EXPECT_EQ(describe_truth(scene, frame, {"brdf"}, 8, 1024),
+            full + "; the filament BRDF with energy compensation");
+  frame.energy_compensation = true;
+  EXPECT_EQ(describe_truth(scene, frame, {"samples"}, 8, 1024),
+            full + "; the classic BRDF with energy compensation");
+}
+
+TEST(Tradeoff, TableColumnsLineUpWhateverTheirWidths) {
+  // A setting's label longer than the header's column and a time of four digits before the
+  // point: every value must still end where its column's header ends.
+  TradeoffResults results;
+  results.width = 64;
+  results.height = 32;
+  results.skipped = {{"anisotropy", "no texture"}};
+  TradeoffPoint a;
+  a.setting.knob = "aa-coverage";
+  a.setting.label = "4 samples, silhouette";
+  a.gpu_ms = {1234.5, 1000.25, 2345.125, 2};
+  a.error.mean_relative = 0.5;
+  TradeoffPoint b;
+  b.setting.knob = "samples";
+  b.setting.label = "1 sample";
+  b.gpu_ms = {1.5, 1.25, 1.75, 2};
+  b.error.mean_relative = 0.25;
+  results.points = {a, b};
+  TradeoffArgs args;
+  args.warmup_ms = 0;
+  const std::string table = tradeoff_table(results, args);
+  std::vector<std::string> lines;
+  for (size_t at = 0, end; (end = table.find('\n', at)) != std::string::npos; at = end + 1)
+    lines.push_back(table.substr(at, end - at));
+  const auto header = std::find_if(lines.begin(), lines.end(),
+                                   [](const std::string& l) { return l.rfind("knob", 0) == 0; });
+  ASSERT_NE(header, lines.end()) << table;
+  ASSERT_GE(lines.end() - header, 3) << table;
+  const std::string& row_a = header[1];
+  const std::string& row_b = header[2];
+  // Where each right-aligned header ends, each row's value ends: (its last character is at
+  // that column and a space or the end follows).
+  auto ends_at = [](const std::string& line, size_t end, const std::string& text) {
+    return end >= text.size() && line.compare(end - text.size(), text.size(), text) == 0 &&
+           (end == line.size() || line[end] == ' ');
+  };
+  for (const auto& [title, value_a, value_b] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"GPU ms", "1234.500", "1.500"},
+           {"mean rel", "0.5000", "0.2500"},
+           {"silh px", "0.000", "0.000"}}) {
+    const size_t end = header->find(title) + title.size();
+    EXPECT_TRUE(ends_at(row_a, end, value_a)) << title << "\n" << table;
+    EXPECT_TRUE(ends_at(row_b, end, value_b)) << title << "\n" << table;
+  }
+  // The settings start under "setting"; the ranges' ".." one above the other.
+  EXPECT_EQ(row_a.find("4 samples"), header->find("setting")) << table;
+  EXPECT_EQ(row_b.find("1 sample"), header->find("setting")) << table;
+  EXPECT_EQ(row_a.find(".."), row_b.find("..")) << table;
+  // The knob left out is named with its reason, above the table.
+  EXPECT_NE(table.find("not measured, as they cannot matter for this scene:\n  anisotropy: "
+                       "no texture\n"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("64x32"), std::string::npos) << table;
+}
+
 TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
   const CommandLine line = parse_command_line({"tradeoff", "--scene", "grid", "--objects", "49",
                                                "--knob", "brdf,small-triangle", "--size", "64x32",
@@ -167,7 +323,8 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const std::string command =
       std::string(TESSERA_BINARY) +
       " tradeoff --device lavapipe --validate --scene spheres --knob "
-      "brdf,small-triangle,tile-size,depth-rejection,shade-tiles --size 48x48 --repeat 1 "
+      "brdf,anisotropy,small-triangle,tile-size,depth-rejection,shade-tiles --size 48x48 "
+      "--repeat 1 "
       "--rounds 1 "
       "--truth-samples 4 --warmup 1 --warmup-ms 1 --json " +
       base + ".json --chart " + base + ".svg";
@@ -178,6 +335,13 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   EXPECT_EQ(j["width"], 48);
   const auto& points = j["points"];
   ASSERT_EQ(points.size(), 17u);  // brdf 5, small-triangle 6, the others 2 each
+  // The spheres have no texture maps: anisotropy is left out, and said to be.
+  ASSERT_EQ(j["skipped_knobs"].size(), 1u) << j["skipped_knobs"].dump();
+  EXPECT_EQ(j["skipped_knobs"][0]["knob"], "anisotropy");
+  EXPECT_NE(out.find("  anisotropy: no material the scene draws with has a texture map"),
+            std::string::npos)
+      << out;
+  for (const auto& p : points) EXPECT_NE(p["knob"], "anisotropy");
   // The truth shades with filament and energy compensation: that setting's interior error
   // (shading alone, edges apart) must be the lowest of the BRDF knob's, and well below
   // Blinn-Phong's, which is a different model altogether.
@@ -214,6 +378,21 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   const std::string chart(std::istreambuf_iterator<char>(svg), {});
   EXPECT_NE(chart.find("Pareto front"), std::string::npos);
   EXPECT_NE(chart.find("filament+ec"), std::string::npos);
+  EXPECT_NE(chart.find(">  anisotropy<"), std::string::npos) << "named as not measured";
+}
+
+TEST(Tradeoff, NothingToMeasureIsAnErrorNamingEachKnobsReason) {
+  std::string out;
+  const std::string command =
+      std::string(TESSERA_BINARY) +
+      " tradeoff --device lavapipe --scene spheres --knob anisotropy,env-size";
+  EXPECT_EQ(test::run_command(command, out), 1) << out;
+  EXPECT_NE(out.find("tessera: error: nothing to measure: no knob asked for can matter for "
+                     "scene 'spheres':\n  anisotropy: no material the scene draws with has a "
+                     "texture map, the only thing it filters\n  env-size: the scene has no "
+                     "environment"),
+            std::string::npos)
+      << out;
 }
 
 TEST(Tradeoff, ObjectsNeedABenchFamily) {
