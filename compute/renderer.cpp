@@ -457,9 +457,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   return stats;
 }
 
-namespace {
-
-void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples,
+void check_image_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples,
                       uint32_t tile_size) {
   const VkPhysicalDeviceLimits& l = ctx.properties.limits;
   if (width == 0 || height == 0) throw ImageSizeError(width, height, "is empty");
@@ -495,8 +493,6 @@ void check_frame_size(const Context& ctx, uint32_t width, uint32_t height, uint3
             std::to_string(side) + "x" + std::to_string(side));
   }
 }
-
-}  // namespace
 
 Buffer create_binding_buffer(const Context& ctx, const BindingInfo& b, uint64_t bytes) {
   return create_buffer(ctx, bytes, kStorageUsage | b.extra_usage,
@@ -590,7 +586,7 @@ bool ensure_frame_resources(Renderer::State& s, const FrameSettings& settings) {
   Context& ctx = s.ctx;
   // The outline list is allocated by ensure_scratch_buffers from the first frame that needs it.
   s.outlines = s.outlines || lists_outlines(settings);
-  check_frame_size(ctx, settings.width, settings.height, settings.samples, s.options.tile_size);
+  check_image_size(ctx, settings.width, settings.height, settings.samples, s.options.tile_size);
   if (settings.width == s.width && settings.height == s.height && settings.samples == s.samples &&
       settings.hdr_format == s.hdr_format)
     return false;

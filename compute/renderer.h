@@ -223,6 +223,12 @@ struct UploadStats {
   uint32_t mip_chains_built = 0;     // textures whose content the previous scene did not have
 };
 
+/// Throws ImageSizeError unless a Renderer with tiles of `tile_size` on `ctx` renders frames of
+/// `width` x `height` at `samples` per pixel: what render checks first, for a command to refuse
+/// a size before it builds a renderer (or opens a window).
+void check_image_size(const Context& ctx, uint32_t width, uint32_t height, uint32_t samples,
+                      uint32_t tile_size);
+
 class Renderer {
  public:
   /// Builds every pipeline once. `ctx` must outlive the renderer.

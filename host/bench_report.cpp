@@ -132,18 +132,26 @@ std::string segments_phrase(const BenchArgs& a) {
 
 }  // namespace
 
+// ", small-triangle area 128, shading by tiles off, ...": the compute path's rasterizer
+// settings, for a run that measures it; "" for the CPU reference and the hardware baseline,
+// which have none of them (the reference rasterizes every triangle alike in one pass over the
+// image, the baseline draws through the graphics pipeline).
+static std::string raster_phrase(const BenchArgs& a) {
+  if (std::find(a.backends.begin(), a.backends.end(), "compute") == a.backends.end()) return "";
+  return ", small-triangle area " + std::to_string(a.small_triangle_area) + ", shading by tiles " +
+         (a.shade_tiles ? "on" : "off") + ", " + tile_lists_name(a.tile_lists) +
+         " tile lists, raster and shade in one pass " +
+         (!a.raster_shade ? "off"
+          : a.shade_tiles ? "off (not with shading by tiles)"
+                          : "for small frames");
+}
+
 void print_bench_table(const BenchResults& results, const BenchArgs& a) {
-  std::printf(
-      "scene %s, %ux%u, %u sample%s per pixel%s%s, small-triangle area %u, shading by "
-      "tiles %s, %s tile lists, raster and shade in one pass %s, device '%s'%s,\n%s\n",
-      a.scene.c_str(), a.width, a.height, a.samples, a.samples == 1 ? "" : "s",
-      coverage_phrase(a).c_str(), segments_phrase(a).c_str(), a.small_triangle_area,
-      a.shade_tiles ? "on" : "off", tile_lists_name(a.tile_lists),
-      !a.raster_shade ? "off"
-      : a.shade_tiles ? "off (not with shading by tiles)"
-                      : "for small frames",
-      results.device.c_str(), results.driver.empty() ? "" : (" (" + results.driver + ")").c_str(),
-      method_phrase(a).c_str());
+  std::printf("scene %s, %ux%u, %u sample%s per pixel%s%s%s, device '%s'%s,\n%s\n", a.scene.c_str(),
+              a.width, a.height, a.samples, a.samples == 1 ? "" : "s", coverage_phrase(a).c_str(),
+              segments_phrase(a).c_str(), raster_phrase(a).c_str(), results.device.c_str(),
+              results.driver.empty() ? "" : (" (" + results.driver + ")").c_str(),
+              method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");

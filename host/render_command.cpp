@@ -19,8 +19,9 @@ namespace tessera {
 namespace {
 
 // The scene with the environment --env asks for; the file's render defaults fill in what the
-// command line left unset. `size_place` is where the file gave the size, if it did.
-Scene scene_of(RenderArgs& args, std::string& size_place) {
+// command line left unset. `size_place` is where the file gave the size, if it did;
+// `env_removed` whether the scene had an environment that --env none took away.
+Scene scene_of(RenderArgs& args, std::string& size_place, bool& env_removed) {
   SceneFile file = load_scene_argument(args.scene, args.strict, args.quiet);
   if (args.camera_given) use_model_camera(file, args.camera, "tessera render --help");
   apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
@@ -28,6 +29,7 @@ Scene scene_of(RenderArgs& args, std::string& size_place) {
   if (!args.size_given) size_place = file.render.size_place;
   Scene scene = std::move(file.scene);
   if (args.env == "none") {
+    env_removed = scene.environment != nullptr;
     scene.environment.reset();
   } else if (args.env == "sky") {
     scene.environment = std::make_shared<const Environment>(make_sky_environment(1024));
@@ -137,9 +139,10 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
 int run_render(const RenderArgs& given) {
   RenderArgs args = given;
   std::string size_place;
-  const Scene scene = scene_of(args, size_place);
+  bool env_removed = false;
+  const Scene scene = scene_of(args, size_place, env_removed);
   // Said before the render, which may take long: a black image is otherwise a puzzle.
-  if (const std::string note = unlit_scene_note(scene, args.scene, args.frame.view);
+  if (const std::string note = unlit_scene_note(scene, args.scene, args.frame.view, env_removed);
       !note.empty() && !args.quiet)
     std::fprintf(stderr, "tessera: %s\n", note.c_str());
   // Check outputs before spending time on a render.

@@ -124,8 +124,12 @@ SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool
   return file;
 }
 
-std::string unlit_scene_note(const Scene& scene, const std::string& name, View view) {
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view,
+                             bool env_removed) {
   if (view != View::shaded || has_light(scene)) return "";
+  if (env_removed)
+    return "note: --env none removed the environment that lit " + name +
+           ", which has no lights, ambient light or emissive material: its objects are black";
   return "note: " + name +
          " has no lights, ambient light, environment or emissive material: its objects are black";
 }

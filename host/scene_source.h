@@ -63,8 +63,11 @@ void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame,
 
 /// "note: NAME has no lights, ...: its objects are black" when `scene` has nothing to light it
 /// (has_light) and `view` is the shaded one (debug views need no light), else "". A note, not a
-/// warning: such a scene is valid, so --strict does not make it an error.
-std::string unlit_scene_note(const Scene& scene, const std::string& name, View view);
+/// warning: such a scene is valid, so --strict does not make it an error. `env_removed`: the
+/// file had an environment that `--env none` took away, which the note then says rather than
+/// that the file has none.
+std::string unlit_scene_note(const Scene& scene, const std::string& name, View view,
+                             bool env_removed = false);
 
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.

@@ -228,13 +228,23 @@ int run_view(const ViewArgs& args) {
   v.orbit = from_camera(v.scene.camera);
   v.home_camera = v.scene.camera;
 
-  v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
+  // The device before the window: a starting size it cannot render is refused as `render`
+  // refuses it, before a window opens. (A window the user resizes past it later ends the
+  // session with the renderer's error.)
   ContextOptions options;
   options.device = args.device;
   options.validation = args.validate;
   options.instance_extensions = window_instance_extensions();
   options.swapchain = true;
   v.ctx = create_context(options);
+  const RendererOptions renderer_options = tuned_for_device(*v.ctx, {.resolve = false});
+  try {
+    check_image_size(*v.ctx, v.frame.width, v.frame.height, v.frame.samples,
+                     renderer_options.tile_size);
+  } catch (const ImageSizeError& e) {
+    throw_image_size_error(e, args.size_given, v.render_defaults.size_place, "tessera view --help");
+  }
+  v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
   v.chain.surface = create_window_surface(v.ctx->instance, *v.window);
   create_presenter(*v.ctx, v.presenter);
   // The presenter records the resolve pass, into the swapchain image where it can. Building
@@ -242,7 +252,7 @@ int run_view(const ViewArgs& args) {
   std::printf("compiling shaders...\n");
   set_window_title(*v.window, "tessera view: " + args.scene + " (compiling shaders...)");
   poll_window(*v.window, 0.0);
-  v.renderer = std::make_unique<Renderer>(*v.ctx, tuned_for_device(*v.ctx, {.resolve = false}));
+  v.renderer = std::make_unique<Renderer>(*v.ctx, renderer_options);
   v.renderer->set_scene(v.scene);
   catch_stop_signals();
   run_loop(v);

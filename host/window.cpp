@@ -138,6 +138,12 @@ std::unique_ptr<Window> open_window(uint32_t width, uint32_t height, const std::
 }
 
 std::vector<std::string> window_instance_extensions() {
+  // Asked before any window is open (the device is opened first): GLFW must be initialised.
+  // open_window's glfwInit then does nothing, and its Window ends GLFW.
+  if (!glfwInit()) throw Error("cannot open a window: " + glfw_error());
+  if (!glfwVulkanSupported()) {
+    throw Error("cannot open a window: GLFW found no Vulkan loader (" + glfw_error() + ")");
+  }
   uint32_t count = 0;
   const char** names = glfwGetRequiredInstanceExtensions(&count);
   if (!names) throw Error("GLFW cannot make Vulkan surfaces here: " + glfw_error());

@@ -47,6 +47,7 @@ struct Window {
 std::unique_ptr<Window> open_window(uint32_t width, uint32_t height, const std::string& title);
 
 /// The instance extensions GLFW needs for a surface (VK_KHR_surface and the platform's).
+/// Initialises GLFW if open_window has not; throws Error as open_window does where it cannot.
 std::vector<std::string> window_instance_extensions();
 
 /// Creates a surface for `window` on `instance`; the caller destroys it. Throws Error.

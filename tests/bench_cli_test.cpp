@@ -651,6 +651,39 @@ TEST(BenchCli, RasterizerSettingsAreTheDevicesUnlessGiven) {
   EXPECT_EQ(g["depth_rejection"], false);
 }
 
+// The heading lists the settings that apply to what was measured: the CPU reference takes the
+// size, samples and the family's segments, but neither it nor the hardware baseline has the
+// compute path's rasterizer settings (small triangles, shading by tiles, tile lists, the
+// one-pass path), which a run that measures the compute path lists.
+TEST(BenchCli, HeadingListsOnlyTheSettingsOfTheBackendsMeasured) {
+  const std::string base = std::string(TESSERA_BINARY) +
+                           " bench --device lavapipe --scene grid --objects 1 --size 24x16 "
+                           "--segments 6 --repeat 1 --warmup 0 --warmup-ms 0 ";
+  const char* compute_settings[] = {"small-triangle area", "shading by tiles", "tile lists",
+                                    "raster and shade in one pass"};
+  // The heading's first line (a driver may say something before it).
+  const auto heading = [](const std::string& out) {
+    const size_t start = out.find("scene grid");
+    return start == std::string::npos ? "" : out.substr(start, out.find('\n', start) - start);
+  };
+  std::string out;
+  ASSERT_EQ(test::run_command(base + "--samples 4 --backends reference", out), 0) << out;
+  EXPECT_EQ(heading(out),
+            "scene grid, 24x16, 4 samples per pixel, count coverage, 6 segments, device "
+            "'reference (CPU)',")
+      << out;
+  ASSERT_EQ(test::run_command(base + "--backends hardware,reference", out), 0) << out;
+  EXPECT_TRUE(
+      heading(out).starts_with("scene grid, 24x16, 1 sample per pixel, 6 segments, "
+                               "device '"))
+      << out;
+  for (const char* setting : compute_settings)
+    EXPECT_EQ(heading(out).find(setting), std::string::npos) << setting << "\n" << out;
+  ASSERT_EQ(test::run_command(base + "--backends reference,compute", out), 0) << out;
+  for (const char* setting : compute_settings)
+    EXPECT_NE(heading(out).find(setting), std::string::npos) << setting << "\n" << out;
+}
+
 // The CSV and JSON say, point by point, whether the compute path's timed frames were rasterized
 // and shaded in one pass: on lavapipe only when asked for and with shading by tiles off (one
 // sphere at 32x32 is far below the pass's limits), never for the other backends.

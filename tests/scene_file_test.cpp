@@ -541,6 +541,21 @@ TEST(SceneFileCli, UnlitSceneIsNoted) {
     EXPECT_EQ(test::run_command(render + lit, out), 0) << out;
     EXPECT_EQ(out.find("note:"), std::string::npos) << lit << ":\n" << out;
   }
+  // A file lit by its environment alone is black once --env none removes it: the note says
+  // that, not that the file has no environment. Without an environment to remove, --env none
+  // leaves the note as it was.
+  const std::string sky = test::output_path("sky_only.json");
+  std::ofstream(sky) << R"({"materials": [{"name": "m"}], "environment": "sky", )" + cube + "}";
+  EXPECT_EQ(test::run_command(render + sky + " --env none", out), 0) << out;
+  EXPECT_NE(out.find("tessera: note: --env none removed the environment that lit " + sky +
+                     ", which has no lights, ambient light or emissive material: its objects "
+                     "are black\n"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(test::run_command(render + sky, out), 0) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+  EXPECT_EQ(test::run_command(render + unlit + " --env none", out), 0) << out;
+  EXPECT_NE(out.find(note), std::string::npos) << out;
 }
 
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene

@@ -570,6 +570,38 @@ TEST_F(View, UnwritableScreenshotSaysWhy) {
       << run.output;
 }
 
+// A starting size the device cannot render is refused as `render` refuses it, before the
+// window and the renderer: --size is a bad command line (status 2) naming --size, a scene file's
+// "render" size an error placed at its entry (line 2, column 12). 16384 x 16384 keys of 8
+// bytes are 2048 MiB; lavapipe's storage buffers hold 128 MiB, 2^24 keys: 4096 x 4096.
+TEST_F(View, AStartingSizeTheDeviceCannotRenderIsRefusedAsRenderRefusesIt) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string too_big =
+      "needs a 2048 MiB visibility buffer, more than this device's maxStorageBufferRange (128 "
+      "MiB): it takes at most 16777216 pixels at 1 sample, e.g. 4096x4096";
+  ViewRun run = run_view("1 exit\n", "--size 16384x16384", false);
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("tessera: error: --size 16384x16384: " + too_big + "\n"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("tessera view --help"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("compiling shaders"), std::string::npos) << run.output;
+  const std::string big_scene = output_path("big_view.json");
+  std::ofstream(big_scene) << "{\"ambient\": [1, 1, 1],\n \"render\": {\"width\": 16384, "
+                              "\"height\": 16384}}\n";
+  run = run_view("1 exit\n", "--scene " + big_scene, false);
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(
+      run.output.find("tessera: error: " + big_scene + ":2:12: render: the size 16384x16384 " +
+                      too_big + " (--size overrides it)\n"),
+      std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("compiling shaders"), std::string::npos) << run.output;
+  // --size overrides it.
+  run = run_view("1 exit\n", "--scene " + big_scene + " --size 32x24", false);
+  EXPECT_EQ(run.status, 0) << run.output;
+}
+
 // A scene with nothing to light it is noted (not warned about: --strict still opens it); a lit
 // one is not.
 TEST_F(View, UnlitSceneIsNoted) {
