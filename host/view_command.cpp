@@ -116,6 +116,25 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   return true;
 }
 
+// Whether the device renders a framebuffer of `width` x `height`; says once, for each size
+// it cannot, why not and that the window stays as it was until made smaller.
+bool renderable_size(Viewer& v, uint32_t width, uint32_t height) {
+  try {
+    check_image_size(*v.ctx, width, height, v.frame.samples, v.tile_size);
+  } catch (const ImageSizeError& e) {
+    if (v.refused_size != std::pair{width, height}) {
+      std::printf("frame %" PRIu64
+                  ": the window's %ux%u pixels are not drawn: a frame of that "
+                  "size %s; make the window smaller\n",
+                  v.frame_number, width, height, e.reason.c_str());
+      v.refused_size = {width, height};
+    }
+    return false;
+  }
+  v.refused_size = {};
+  return true;
+}
+
 // SIGINT or SIGTERM received: the loop leaves as if the window were closed.
 volatile std::sig_atomic_t g_signal = 0;
 
@@ -149,8 +168,11 @@ void run_loop(Viewer& v) {
     uint32_t width = 0, height = 0;
     framebuffer_size(*v.window, width, height);
     // X11 keeps an iconified window's size, so both the flag and a 0 x 0 framebuffer count.
+    // A window larger than the device can render (a maximised window on a large screen with
+    // lavapipe's 128 MiB buffers) is drawn again once it is made smaller.
     auto hidden = [&] {
-      return v.minimised || window_iconified(*v.window) || width == 0 || height == 0;
+      return v.minimised || window_iconified(*v.window) || width == 0 || height == 0 ||
+             !renderable_size(v, width, height);
     };
     // A script renders every frame, so that its frame numbers mean the same on every run.
     // Interactively, a frame is drawn only when something may have changed; otherwise the
@@ -229,8 +251,8 @@ int run_view(const ViewArgs& args) {
   v.home_camera = v.scene.camera;
 
   // The device before the window: a starting size it cannot render is refused as `render`
-  // refuses it, before a window opens. (A window the user resizes past it later ends the
-  // session with the renderer's error.)
+  // refuses it, before a window opens. (A window the user makes larger than that later is
+  // not drawn until made smaller again: renderable_size.)
   ContextOptions options;
   options.device = args.device;
   options.validation = args.validate;
@@ -253,9 +275,16 @@ int run_view(const ViewArgs& args) {
   set_window_title(*v.window, "tessera view: " + args.scene + " (compiling shaders...)");
   poll_window(*v.window, 0.0);
   v.renderer = std::make_unique<Renderer>(*v.ctx, renderer_options);
+  v.tile_size = renderer_options.tile_size;
   v.renderer->set_scene(v.scene);
   catch_stop_signals();
-  run_loop(v);
+  try {
+    run_loop(v);
+  } catch (const Error&) {
+    // The session ends with the error, but not with the user's edits.
+    autosave_if_unsaved(v);
+    throw;
+  }
   bool lost = !autosave_if_unsaved(v);
   if (v.scripted_save_failed) {
     std::fprintf(stderr, "tessera view: a save the script asked for failed (said above)\n");

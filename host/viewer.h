@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compute/context.h"
@@ -65,7 +66,10 @@ struct Viewer {
   bool scene_changed = false;  // set_scene before the next frame
   std::string change;          // what changed it ("camera", "material", ...), for the log
   std::chrono::steady_clock::time_point changed_at{};
-  bool minimised = false;  // by the script (a real window reports a 0 x 0 framebuffer)
+  bool minimised = false;   // by the script (a real window reports a 0 x 0 framebuffer)
+  uint32_t tile_size = 16;  // the renderer's (RendererOptions::tile_size), for size checks
+  // The last framebuffer size the device could not render, said once (renderable_size).
+  std::pair<uint32_t, uint32_t> refused_size{};
   bool exit = false;
   std::string title;                     // the window's, as last set
   std::vector<std::string> screenshots;  // written from the next presented frame

@@ -635,6 +635,32 @@ TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);  // the scene file is untouched
 }
 
+// A window made larger than the device renders (on lavapipe, 128 MiB of visibility buffer)
+// is left undrawn, said once, until it is made smaller; the session and its edits go on.
+TEST_F(View, AWindowTooLargeForTheDeviceWaitsUntilMadeSmaller) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const std::string autosave = output_path("ball.autosave.json");
+  const std::string png = output_path("after_resize.png");
+  std::filesystem::remove(autosave);
+  std::filesystem::remove(png);
+  // 8192 x 4097 pixels of 8-byte keys is 256 MiB and 8192 B over, so 257 MiB rounded up.
+  const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 resize 8192 4097\n6 resize 64 48\n" +
+                                   std::string("8 screenshot ") + png + "\n9 exit\n",
+                               "--scene " + scene + " --size 64x48 --overlay off", false);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string refused =
+      "the window's 8192x4097 pixels are not drawn: a frame of that size needs a 257 MiB "
+      "visibility buffer, more than this device's maxStorageBufferRange (128 MiB)";
+  const size_t first = run.output.find(refused);
+  EXPECT_NE(first, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(refused, first + 1), std::string::npos) << run.output;  // once
+  const Image8 shot = read_png(png);
+  EXPECT_EQ(shot.width, 64u);
+  EXPECT_EQ(shot.height, 48u);
+  EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());  // the edit was kept
+}
+
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
