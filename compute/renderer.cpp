@@ -246,9 +246,12 @@ bool reallocate_if_smaller(const Context& ctx, Buffer& buffer, VkDeviceSize byte
                            UploadStats& stats, bool& dirty) {
   if (buffer.buffer && buffer.size >= bytes) return false;
   destroy_buffer(ctx, buffer);
-  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
-  buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
-                         MemoryKind::device);
+  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate, but not
+  // past what a descriptor binds whole (check_scene_buffers refused a larger `bytes`).
+  const VkDeviceSize room = std::min<VkDeviceSize>(
+      bytes + bytes / 4,
+      std::max<VkDeviceSize>(bytes, ctx.properties.limits.maxStorageBufferRange));
+  buffer = create_buffer(ctx, std::max<VkDeviceSize>(room, 256), kStorageUsage, MemoryKind::device);
   stats.buffers_created++;
   dirty = true;
   return true;
@@ -371,6 +374,20 @@ void prepare_lod(Renderer::State& s) {
   GpuSceneArrays& a = s.uploaded;
   const size_t vertices = a.vertices.size(), indices = a.indices.size(), uv1s = a.uv1s.size();
   append_lod_chains(chains, a);
+  try {
+    check_scene_buffers(buffer_counts(a), s.ctx.properties.limits.maxStorageBufferRange,
+                        "the scene with its level-of-detail chains");
+  } catch (const SceneSizeError&) {
+    // The arrays as set_scene left them, which the GPU holds: frames without level of detail
+    // still render this scene.
+    a.vertices.resize(vertices);
+    a.indices.resize(indices);
+    a.adjacency.resize(indices);
+    a.uv1s.resize(uv1s);
+    a.lod_levels.clear();
+    a.lod_meshes.clear();
+    throw;
+  }
   std::vector<PendingCopy> copies;
   UploadStats stats;
   bool& dirty = s.descriptors_dirty;
@@ -403,6 +420,8 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   validate_scene(scene);
   State& s = *s_;
   GpuSceneArrays next = flatten_scene(scene, &s.texture_cache);
+  // Before any buffer is touched, so that a refused scene leaves the previous one in place.
+  check_scene_buffers(buffer_counts(next), s.ctx.properties.limits.maxStorageBufferRange);
   UploadStats stats;
   stats.mip_chains_built = next.mip_chains_built;
   std::vector<PendingCopy> copies;

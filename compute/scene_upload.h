@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/lod.h"
@@ -42,6 +43,24 @@ struct GpuSceneArrays {
   uint32_t mip_chains_built = 0;  // textures whose mip chain was built, not reused
 };
 
+/// Elements of each array of GpuSceneArrays that a storage buffer of the renderer holds, for
+/// check_scene_buffers: from buffer_counts, or predicted for a scene not built yet (bench).
+struct SceneBufferCounts {
+  uint64_t vertices = 0, indices = 0, objects = 0, group_objects = 0, materials = 0, lights = 0,
+           textures = 0, texels = 0, uv1s = 0, lod_levels = 0, lod_meshes = 0;
+};
+
+SceneBufferCounts buffer_counts(const GpuSceneArrays& arrays);
+
+/// Throws SceneSizeError (compute/renderer.h) for the first storage buffer that `counts` make
+/// larger than `max_range` bytes (the device's maxStorageBufferRange, the most one descriptor
+/// may bind), naming the buffer, its size, the limit and how many elements it holds at most.
+/// `what` starts the message ("the scene"). The buffers sized by objects besides the object
+/// buffer (TS_BINDING_OBJECT_CLIP, _LOD_DRAWS, _LOD_SUMS) take fewer bytes per object, and the
+/// adjacency as many as the indices, so they fit when these do.
+void check_scene_buffers(const SceneBufferCounts& counts, uint64_t max_range,
+                         const std::string& what = "the scene");
+
 /// Packed mip chains of the textures of the last flattened scene, by content, so that
 /// flattening an edited scene rebuilds only the chains of textures that changed. A hit
 /// compares the whole texture, not only its hash, so a hash collision cannot reuse a wrong
@@ -66,7 +85,8 @@ uint64_t texture_hash(const Texture& texture);
 /// map; texture mip chains are built (build_mip_chain, textures in parallel) and packed as
 /// fp16. With a `cache`, chains of textures it holds are reused rather than built, and the cache
 /// is left holding exactly the textures of `scene`; the arrays are the same either way.
-/// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels.
+/// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels, naming
+/// the object or texture that goes past it. Buffer sizes are checked by check_scene_buffers.
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache = nullptr);
 
 /// The object slot of `numbering` that holds id k * TS_TRIANGLE_GROUP, for every k with

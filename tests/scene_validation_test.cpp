@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "compute/scene_upload.h"
 #include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/mesh.h"
@@ -116,7 +117,191 @@ TEST(SceneValidation, NamesBadTransformCameraAndLights) {
   EXPECT_NE(error_of(s).find("light 0"), std::string::npos) << error_of(s);
 }
 
+std::string buffer_error(const SceneBufferCounts& counts, uint64_t max_range,
+                         const std::string& what = "the scene") {
+  try {
+    check_scene_buffers(counts, max_range, what);
+  } catch (const SceneSizeError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every storage buffer of the scene is bound whole, so none may exceed maxStorageBufferRange.
+TEST(SceneBuffers, EachIsCheckedAgainstTheStorageRange) {
+  constexpr uint64_t kLavapipe = 128ull << 20;  // lavapipe's maxStorageBufferRange, 2^27
+  // 10^6 objects of 160 bytes: 160e6 / 2^20 = 152.6 MiB; 2^27 / 160 = 838860.8 objects fit.
+  EXPECT_EQ(buffer_error({.objects = 1000000}, kLavapipe),
+            "the scene needs a 153 MiB object buffer (1000000 objects), more than this device's "
+            "maxStorageBufferRange (128 MiB): it holds at most 838860 objects");
+  EXPECT_EQ(buffer_error({.objects = 838860}, kLavapipe), "") << "838860 * 160 < 2^27";
+  // 2^27 / 48 = 2796202.7 vertices; one more is 134217744 bytes, 16 over.
+  EXPECT_EQ(buffer_error({.vertices = 2796202}, kLavapipe), "");
+  EXPECT_EQ(buffer_error({.vertices = 2796203}, kLavapipe),
+            "the scene needs a 129 MiB vertex buffer (2796203 vertices), more than this device's "
+            "maxStorageBufferRange (128 MiB): it holds at most 2796202 vertices");
+
+  // A small limit (sizes in bytes below 1 MiB), at exactly the limit and one word over.
+  EXPECT_EQ(buffer_error({.indices = 250}, 1000), "");
+  EXPECT_EQ(buffer_error({.indices = 251}, 1000),
+            "the scene needs an index buffer of 1004 bytes (251 indices), more than this "
+            "device's maxStorageBufferRange (1000 bytes): it holds at most 250 indices");
+  // The group table follows the objects: 6 * 160 + 10 * 4 = 1000 fits, 11 words do not, and
+  // the 5 objects the message names are 1000 * 6 / 1004 = 5.98 objects like these.
+  EXPECT_EQ(buffer_error({.objects = 6, .group_objects = 10}, 1000), "");
+  EXPECT_EQ(buffer_error({.objects = 6, .group_objects = 11}, 1000),
+            "the scene needs an object buffer of 1004 bytes (6 objects), more than this device's "
+            "maxStorageBufferRange (1000 bytes): it holds at most 5 objects");
+  // Each other buffer by its element's size: 80-byte materials, lights and textures, 8-byte
+  // texels and uv set 1 entries, 16-byte and 32-byte level-of-detail entries.
+  EXPECT_NE(buffer_error({.materials = 13}, 1000).find("material buffer of 1040 bytes"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.lights = 13}, 1000).find("light buffer of 1040 bytes"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.textures = 13}, 1000).find("texture buffer of 1040 bytes"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.texels = 126}, 1000).find("texel buffer of 1008 bytes (126 texels"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.uv1s = 126}, 1000).find("uv set 1 buffer of 1008 bytes"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.lod_levels = 63}, 1000).find("level buffer of 1008 bytes"),
+            std::string::npos);
+  EXPECT_NE(buffer_error({.lod_meshes = 32}, 1000).find("mesh buffer of 1024 bytes"),
+            std::string::npos);
+  EXPECT_EQ(buffer_error({.materials = 12, .lights = 12, .textures = 12, .texels = 125}, 1000), "");
+  // The first buffer over is named; the caller says what needs it.
+  EXPECT_EQ(buffer_error({.vertices = 21, .indices = 251}, 1000,
+                         "the scene with its level-of-detail chains")
+                .rfind("the scene with its level-of-detail chains needs a vertex buffer of 1008 "
+                       "bytes (21 vertices)",
+                       0),
+            0u);
+  try {
+    check_scene_buffers({.objects = 1000000}, kLavapipe);
+    ADD_FAILURE() << "10^6 objects should not fit 128 MiB";
+  } catch (const SceneSizeError& e) {
+    EXPECT_EQ(e.buffer, "object buffer");
+    EXPECT_EQ(e.bytes, 160000000u);
+    EXPECT_EQ(e.limit, kLavapipe);
+  }
+}
+
+TEST(SceneBuffers, CountsAreTheFlattenedArrays) {
+  Scene s = one_triangle_scene();
+  s.objects.push_back({});
+  const SceneBufferCounts c = buffer_counts(flatten_scene(s));
+  EXPECT_EQ(c.vertices, 3u);
+  EXPECT_EQ(c.indices, 3u);
+  EXPECT_EQ(c.objects, 2u);
+  EXPECT_EQ(c.group_objects, 1u) << "2 triangle instances, one group";
+  EXPECT_EQ(c.materials, 1u);
+  EXPECT_EQ(c.uv1s, 0u) << "no material reads uv set 1";
+}
+
+TEST(SceneBuffers, TooManyTriangleInstancesNamesTheMeshThatMakesThem) {
+  // 2^16 - 1 triangles (a plane of 1 x (2^15 - 1) quads is 2^16 - 2: one triangle more by hand)
+  // placed by 2^16 + 2 objects: (2^16 - 1)(2^16 + 2) = 2^32 + 2^16 - 2 > 2^32 - 1. A second
+  // mesh of one triangle placed once comes after.
+  Scene s = one_triangle_scene();
+  Mesh big;
+  const uint32_t triangles = 65535;
+  for (uint32_t t = 0; t < triangles; ++t) {
+    big.indices.insert(big.indices.end(), {0, 1, 2});
+  }
+  big.positions = s.meshes[0].positions;
+  big.normals = s.meshes[0].normals;
+  big.uvs = s.meshes[0].uvs;
+  s.meshes.insert(s.meshes.begin(), big);
+  s.objects[0].mesh = 1;
+  for (uint32_t i = 0; i < 65538; ++i) s.objects.push_back({.mesh = 0});
+  try {
+    flatten_scene(s);
+    ADD_FAILURE() << "over 2^32 - 1 triangle instances";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "the scene has 4295032831 triangle instances, more than the 2^32 - 1 Tessera can "
+              "number: 4295032830 of them are the 65535 triangles of mesh 0, which 65538 objects "
+              "place");
+  }
+}
+
 class SceneUpload : public test::VulkanTest {};
+
+// Lowers the context's maxStorageBufferRange (what the renderer reads; the validation layer
+// keeps the device's own) while it lives.
+struct LoweredStorageRange {
+  LoweredStorageRange(Context& ctx, uint32_t range)
+      : limits(ctx.properties.limits), saved(limits.maxStorageBufferRange) {
+    limits.maxStorageBufferRange = range;
+  }
+  ~LoweredStorageRange() { limits.maxStorageBufferRange = saved; }
+  VkPhysicalDeviceLimits& limits;
+  uint32_t saved;
+};
+
+TEST_F(SceneUpload, SceneOverTheStorageRangeIsRefusedBeforeUploadAndKeepsThePrevious) {
+  Renderer renderer(context());
+  FrameSettings settings;
+  settings.width = settings.height = 8;
+  renderer.set_scene(one_triangle_scene());
+  renderer.render(settings);
+  const Image8 before = renderer.read_ldr();
+  // 40 objects of the triangle: 40 * 160 bytes and a group word, 6404 bytes, over 4800, which
+  // holds 4800 * 40 / 6404 = 29.98 such objects.
+  Scene many = one_triangle_scene();
+  many.objects.assign(40, Object{});
+  {
+    LoweredStorageRange lowered(context(), 4800);
+    try {
+      renderer.set_scene(many);
+      ADD_FAILURE() << "6404 bytes of objects should not fit 4800";
+    } catch (const SceneSizeError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "the scene needs an object buffer of 6404 bytes (40 objects), more than this "
+                "device's maxStorageBufferRange (4800 bytes): it holds at most 29 objects");
+    }
+  }
+  renderer.render(settings);
+  EXPECT_EQ(renderer.read_ldr().pixels, before.pixels) << "the previous scene stays";
+
+  // The level-of-detail chains are checked as the first frame with them appends them: a
+  // 32-segment sphere's 33 * 17 vertices (26928 bytes) fit 30000 bytes, its chain's other
+  // tessellations after them do not. The refused frame leaves the scene as it was.
+  Scene sphere = one_triangle_scene();
+  sphere.meshes[0] = make_uv_sphere(32, 16);
+  sphere.camera.position = {0.0f, 0.0f, 4.0f};
+  sphere.lights.push_back({.position = {2.0f, 2.0f, 4.0f}, .intensity = 20.0f});
+  renderer.set_scene(sphere);
+  renderer.render(settings);
+  const Image8 without_lod = renderer.read_ldr();
+  settings.lod = Lod::automatic;
+  {
+    LoweredStorageRange lowered(context(), 30000);
+    try {
+      renderer.render(settings);
+      ADD_FAILURE() << "the chains' vertices should not fit 30000 bytes";
+    } catch (const SceneSizeError& e) {
+      EXPECT_EQ(e.buffer, "vertex buffer");
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("the scene with its level-of-detail chains needs a ", 0), 0u)
+          << message;
+      EXPECT_NE(message.find(" vertex buffer ("), std::string::npos) << message;
+      EXPECT_NE(message.find("maxStorageBufferRange (30000 bytes): it holds at most 625 vertices"),
+                std::string::npos)
+          << message << " (30000 / 48 = 625)";
+    }
+  }
+  settings.lod = Lod::off;
+  renderer.render(settings);
+  EXPECT_EQ(renderer.read_ldr().pixels, without_lod.pixels);
+  settings.lod = Lod::automatic;
+  renderer.render(settings);
+  const Image8 with_lod = renderer.read_ldr();
+  Renderer fresh(context());
+  fresh.set_scene(sphere);
+  fresh.render(settings);
+  EXPECT_EQ(fresh.read_ldr().pixels, with_lod.pixels) << "the chains appended once, as anew";
+}
 
 TEST_F(SceneUpload, RendererRejectsBadSceneAndBadSizes) {
   Renderer renderer(context());
