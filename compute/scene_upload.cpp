@@ -243,7 +243,6 @@ SceneBufferCounts buffer_counts(const GpuSceneArrays& a) {
           .materials = a.materials.size(),
           .lights = a.lights.size(),
           .textures = a.textures.size(),
-          .texels = a.texels.size(),
           .uv1s = a.uv1s.size(),
           .lod_levels = a.lod_levels.size(),
           .lod_meshes = a.lod_meshes.size()};
@@ -268,7 +267,6 @@ void check_scene_buffers(const SceneBufferCounts& c, uint64_t max_range, const s
       {"material buffer", c.materials * sizeof(gpu::GpuMaterial), c.materials, "materials"},
       {"light buffer", c.lights * sizeof(gpu::GpuLight), c.lights, "lights"},
       {"texture buffer", c.textures * sizeof(gpu::GpuTexture), c.textures, "textures"},
-      {"texel buffer", c.texels * sizeof(glm::uvec2), c.texels, "texels with their mip levels"},
       {"uv set 1 buffer", c.uv1s * sizeof(glm::vec2), c.uv1s, "vertices"},
       {"level-of-detail level buffer", c.lod_levels * sizeof(gpu::GpuLodLevel), c.lod_levels,
        "levels"},
@@ -290,6 +288,36 @@ void check_scene_buffers(const SceneBufferCounts& c, uint64_t max_range, const s
             "): it holds at most " + std::to_string(at_most) + " " + r.unit,
         r.buffer, r.bytes, max_range);
   }
+}
+
+AddressedBufferLimits addressed_buffer_limits(const Context& ctx) {
+  uint64_t heap = 0;
+  const VkPhysicalDeviceMemoryProperties& m = ctx.memory_properties;
+  for (uint32_t i = 0; i < m.memoryHeapCount; ++i) {
+    if (m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
+  }
+  return {
+      .max_allocation = ctx.max_allocation_size, .max_buffer = ctx.max_buffer_size, .heap = heap};
+}
+
+uint64_t largest_addressed_buffer(const AddressedBufferLimits& l) {
+  return std::min({l.max_allocation, l.max_buffer, l.heap});
+}
+
+void check_texel_buffer(uint64_t texels, const AddressedBufferLimits& l, const std::string& what) {
+  const uint64_t bytes = texels * sizeof(glm::uvec2);  // texels < 2^32 (flatten_scene)
+  const uint64_t limit = largest_addressed_buffer(l);
+  if (bytes <= limit) return;
+  const char* name = limit == l.max_buffer       ? "maxBufferSize"
+                     : limit == l.max_allocation ? "maxMemoryAllocationSize"
+                                                 : "largest device-local memory heap";
+  throw SceneSizeError(what + " needs " + sized_buffer("texel buffer", bytes) + " (" +
+                           std::to_string(texels) +
+                           " texels with their mip levels), more than this device's " + name +
+                           " (" + size_text(limit) + "): it holds at most " +
+                           std::to_string(limit / sizeof(glm::uvec2)) + " texels",
+                       "texel buffer", bytes, limit);
 }
 
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {

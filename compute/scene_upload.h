@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "compute/context.h"
 #include "core/lod.h"
 #include "core/scene.h"
 #include "core/texture.h"
@@ -44,10 +45,11 @@ struct GpuSceneArrays {
 };
 
 /// Elements of each array of GpuSceneArrays that a storage buffer of the renderer holds, for
-/// check_scene_buffers: from buffer_counts, or predicted for a scene not built yet (bench).
+/// check_scene_buffers: from buffer_counts, or predicted for a scene not built yet (bench). Not
+/// the texels, which the shaders read at a device address (check_texel_buffer).
 struct SceneBufferCounts {
   uint64_t vertices = 0, indices = 0, objects = 0, group_objects = 0, materials = 0, lights = 0,
-           textures = 0, texels = 0, uv1s = 0, lod_levels = 0, lod_meshes = 0;
+           textures = 0, uv1s = 0, lod_levels = 0, lod_meshes = 0;
 };
 
 SceneBufferCounts buffer_counts(const GpuSceneArrays& arrays);
@@ -60,6 +62,26 @@ SceneBufferCounts buffer_counts(const GpuSceneArrays& arrays);
 /// adjacency as many as the indices, so they fit when these do.
 void check_scene_buffers(const SceneBufferCounts& counts, uint64_t max_range,
                          const std::string& what = "the scene");
+
+/// What caps a buffer the shaders read at its device address (the texels): no descriptor binds
+/// it, so maxStorageBufferRange does not, but it is one buffer in one allocation.
+struct AddressedBufferLimits {
+  uint64_t max_allocation;  // maxMemoryAllocationSize
+  uint64_t max_buffer;      // maxBufferSize (2^64 - 1 where the device does not report it)
+  uint64_t heap;            // the largest device-local memory heap
+};
+
+/// The limits of `ctx`'s device.
+AddressedBufferLimits addressed_buffer_limits(const Context& ctx);
+
+/// The most bytes such a buffer may hold: the smallest of the limits.
+uint64_t largest_addressed_buffer(const AddressedBufferLimits& limits);
+
+/// Throws SceneSizeError (compute/renderer.h) if `texels` (GpuSceneArrays::texels, 8 bytes
+/// each) need more bytes than `limits` allow, naming the smallest limit and how many texels it
+/// holds. (More than 2^32 texels flatten_scene refuses: the shaders index them in 32 bits.)
+void check_texel_buffer(uint64_t texels, const AddressedBufferLimits& limits,
+                        const std::string& what = "the scene");
 
 /// Packed mip chains of the textures of the last flattened scene, by content, so that
 /// flattening an edited scene rebuilds only the chains of textures that changed. A hit

@@ -2,8 +2,12 @@
 // reference), so the two agree to float rounding. Needs bindings.glsl.
 
 // Texel (x, y) of the level starting at texel `offset`, `width` texels wide, as linear RGBA.
+// The texel's index is below 2^32 (flatten_scene refuses more texels), its byte offset computed
+// in 64 bits: the buffer may exceed 4 GiB, and an index into a runtime array past 2^31 may be
+// taken as signed.
 vec4 texel_at(uint offset, uint width, uint x, uint y) {
-  uvec2 raw = texels[offset + y * width + x];
+  uint64_t address = packUint2x32(frame.texels_address) + uint64_t(offset + y * width + x) * 8ul;
+  uvec2 raw = TexelRef(address).texel;
   return vec4(unpackHalf2x16(raw.x), unpackHalf2x16(raw.y));
 }
 

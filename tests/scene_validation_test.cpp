@@ -153,14 +153,13 @@ TEST(SceneBuffers, EachIsCheckedAgainstTheStorageRange) {
             "the scene needs an object buffer of 1004 bytes (6 objects), more than this device's "
             "maxStorageBufferRange (1000 bytes): it holds at most 5 objects");
   // Each other buffer by its element's size: 80-byte materials, lights and textures, 8-byte
-  // texels and uv set 1 entries, 16-byte and 32-byte level-of-detail entries.
+  // uv set 1 entries, 16-byte and 32-byte level-of-detail entries. (Not the texels, which the
+  // shaders read at a device address: TexelsAreCheckedAgainstTheAllocationLimits.)
   EXPECT_NE(buffer_error({.materials = 13}, 1000).find("material buffer of 1040 bytes"),
             std::string::npos);
   EXPECT_NE(buffer_error({.lights = 13}, 1000).find("light buffer of 1040 bytes"),
             std::string::npos);
   EXPECT_NE(buffer_error({.textures = 13}, 1000).find("texture buffer of 1040 bytes"),
-            std::string::npos);
-  EXPECT_NE(buffer_error({.texels = 126}, 1000).find("texel buffer of 1008 bytes (126 texels"),
             std::string::npos);
   EXPECT_NE(buffer_error({.uv1s = 126}, 1000).find("uv set 1 buffer of 1008 bytes"),
             std::string::npos);
@@ -168,7 +167,7 @@ TEST(SceneBuffers, EachIsCheckedAgainstTheStorageRange) {
             std::string::npos);
   EXPECT_NE(buffer_error({.lod_meshes = 32}, 1000).find("mesh buffer of 1024 bytes"),
             std::string::npos);
-  EXPECT_EQ(buffer_error({.materials = 12, .lights = 12, .textures = 12, .texels = 125}, 1000), "");
+  EXPECT_EQ(buffer_error({.materials = 12, .lights = 12, .textures = 12}, 1000), "");
   // The first buffer over is named; the caller says what needs it.
   EXPECT_EQ(buffer_error({.vertices = 21, .indices = 251}, 1000,
                          "the scene with its level-of-detail chains")
@@ -183,6 +182,49 @@ TEST(SceneBuffers, EachIsCheckedAgainstTheStorageRange) {
     EXPECT_EQ(e.buffer, "object buffer");
     EXPECT_EQ(e.bytes, 160000000u);
     EXPECT_EQ(e.limit, kLavapipe);
+  }
+}
+
+std::string texel_error(uint64_t texels, const AddressedBufferLimits& limits) {
+  try {
+    check_texel_buffer(texels, limits);
+  } catch (const SceneSizeError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The texel buffer is read at its device address, not bound by a descriptor: the device's
+// largest allocation and buffer and its memory cap it, not maxStorageBufferRange.
+TEST(SceneBuffers, TexelsAreCheckedAgainstTheAllocationLimits) {
+  // lavapipe's: maxMemoryAllocationSize 2 GiB, maxBufferSize 4 GiB - 1, and a larger heap.
+  const AddressedBufferLimits lavapipe{
+      .max_allocation = 1ull << 31, .max_buffer = 0xFFFFFFFFull, .heap = 16ull << 30};
+  // A 4096 x 4096 texture's chain has (4^13 - 1) / 3 = 22369621 texels, 178956968 bytes: over
+  // the 128 MiB of lavapipe's maxStorageBufferRange, which refused it before, and well within
+  // 2 GiB, which holds 2^31 / 8 = 268435456 texels.
+  EXPECT_EQ(texel_error(22369621, lavapipe), "");
+  EXPECT_EQ(texel_error(268435456, lavapipe), "");
+  // A 16384 x 16384 texture's: (4^15 - 1) / 3 = 357913941 texels, 2863311528 bytes, 2730.7 MiB.
+  EXPECT_EQ(texel_error(357913941, lavapipe),
+            "the scene needs a 2731 MiB texel buffer (357913941 texels with their mip levels), "
+            "more than this device's maxMemoryAllocationSize (2048 MiB): it holds at most "
+            "268435456 texels");
+  // Whichever limit is smallest is named: 126 texels are 1008 bytes, 125 fit 1000.
+  EXPECT_EQ(texel_error(125, {.max_allocation = 4000, .max_buffer = 1000, .heap = 8000}), "");
+  EXPECT_EQ(texel_error(126, {.max_allocation = 4000, .max_buffer = 1000, .heap = 8000}),
+            "the scene needs a texel buffer of 1008 bytes (126 texels with their mip levels), "
+            "more than this device's maxBufferSize (1000 bytes): it holds at most 125 texels");
+  EXPECT_NE(texel_error(126, {.max_allocation = 4000, .max_buffer = 8000, .heap = 1000})
+                .find("more than this device's largest device-local memory heap (1000 bytes)"),
+            std::string::npos);
+  try {
+    check_texel_buffer(357913941, lavapipe);
+    ADD_FAILURE() << "2863311528 bytes should not fit 2 GiB";
+  } catch (const SceneSizeError& e) {
+    EXPECT_EQ(e.buffer, "texel buffer");
+    EXPECT_EQ(e.bytes, 2863311528u);
+    EXPECT_EQ(e.limit, 1ull << 31);
   }
 }
 
@@ -301,6 +343,36 @@ TEST_F(SceneUpload, SceneOverTheStorageRangeIsRefusedBeforeUploadAndKeepsThePrev
   fresh.set_scene(sphere);
   fresh.render(settings);
   EXPECT_EQ(fresh.read_ldr().pixels, with_lod.pixels) << "the chains appended once, as anew";
+}
+
+// The texels are read at a buffer device address, not through a descriptor: a scene whose
+// texel buffer exceeds maxStorageBufferRange renders, and as it does under the device's own
+// range, to the bit.
+TEST_F(SceneUpload, TexelsPastTheStorageRangeRender) {
+  const Scene scene = make_builtin_scene("textured");
+  // Textures of 1024 x 1024, four of 512 x 512 and one of 256 x 256 with their mip chains:
+  // (4^11 - 1) / 3 + 4 (4^10 - 1) / 3 + (4^9 - 1) / 3 = 1398101 + 1398100 + 87381 texels,
+  // 23068656 bytes, over 1 MiB, which every other buffer of the scene fits.
+  constexpr uint32_t kRange = 1u << 20;
+  const GpuSceneArrays arrays = flatten_scene(scene);
+  ASSERT_EQ(arrays.texels.size(), 2883582u);
+  ASSERT_NO_THROW(check_scene_buffers(buffer_counts(arrays), kRange));
+  FrameSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  Renderer normal(context());
+  normal.set_scene(scene);
+  normal.render(settings);
+  const ImageF expected = normal.read_hdr();
+  LoweredStorageRange lowered(context(), kRange);
+  Renderer renderer(context());
+  renderer.set_scene(scene);
+  renderer.render(settings);
+  const ImageF image = renderer.read_hdr();
+  ASSERT_EQ(image.pixels.size(), expected.pixels.size());
+  EXPECT_EQ(std::memcmp(image.pixels.data(), expected.pixels.data(),
+                        image.pixels.size() * sizeof(image.pixels[0])),
+            0);
 }
 
 TEST_F(SceneUpload, RendererRejectsBadSceneAndBadSizes) {
