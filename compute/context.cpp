@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -138,6 +139,8 @@ std::string missing_features(VkPhysicalDevice device) {
     add("subgroup ballot and arithmetic operations in compute shaders");
   }
   if (!v12.shaderBufferInt64Atomics) add("shaderBufferInt64Atomics (64-bit buffer atomics)");
+  // The shaders read the scene's texels at a buffer device address (shaders/texture.glsl).
+  if (!v12.bufferDeviceAddress) add("bufferDeviceAddress (buffers read at a device address)");
   return missing;
 }
 
@@ -301,10 +304,21 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
   vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties maintenance3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  VkPhysicalDeviceMaintenance4PropertiesKHR maintenance4{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_PROPERTIES_KHR};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props2.pNext = &driver;
+  driver.pNext = &maintenance3;
+  // maxBufferSize is Vulkan 1.3's (or VK_KHR_maintenance4's); Tessera asks for 1.2.
+  const bool has_maintenance4 =
+      device_has_extension(ctx->physical_device, VK_KHR_MAINTENANCE_4_EXTENSION_NAME);
+  if (has_maintenance4) maintenance3.pNext = &maintenance4;
   vkGetPhysicalDeviceProperties2(ctx->physical_device, &props2);
   ctx->driver = std::string(driver.driverName) + " " + driver.driverInfo;
+  ctx->max_allocation_size = maintenance3.maxMemoryAllocationSize;
+  ctx->max_buffer_size = has_maintenance4 ? maintenance4.maxBufferSize : UINT64_MAX;
 
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical_device, &family_count, nullptr);
@@ -332,6 +346,7 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
 
   VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   v12.shaderBufferInt64Atomics = VK_TRUE;
+  v12.bufferDeviceAddress = VK_TRUE;  // missing_features required it
   VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features.pNext = &v12;
   features.features.shaderInt64 = VK_TRUE;

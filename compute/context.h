@@ -55,6 +55,11 @@ struct Context {
   VkCommandPool command_pool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory_properties{};
+  // The largest single allocation and buffer the device allows (maxMemoryAllocationSize;
+  // maxBufferSize where the device has VK_KHR_maintenance4, else 2^64 - 1): the caps of a buffer
+  // the shaders read through its device address (the scene's texels), which no descriptor binds.
+  uint64_t max_allocation_size = 0;
+  uint64_t max_buffer_size = 0;
   uint32_t timestamp_valid_bits = 0;      // 0: the queue cannot write timestamps
   bool swapchain_mutable_format = false;  // VK_KHR_swapchain_mutable_format is enabled
   // multiDrawIndirect and drawIndirectFirstInstance, enabled where the device has both (the

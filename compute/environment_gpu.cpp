@@ -150,6 +150,11 @@ void set_environment(const Context& ctx, EnvironmentGpu& env,
                                  MemoryKind::device);
   VkDeviceSize texels = 0;
   for (uint32_t l = 0; l < cube_levels; ++l) texels += 6ull * (side >> l) * (side >> l);
+  // A descriptor binds the levels whole (TS_BINDING_ENV_LEVELS): at the largest side that
+  // validate_environment_options allows, 6 (4^TS_ENV_MAX_LEVELS - 1) / 3 texels of 8 bytes (16
+  // MiB at 512) fit the 2^27 bytes of maxStorageBufferRange that Vulkan guarantees on every
+  // device, so no scene or option needs a check against the device's own.
+  static_assert(2ull * ((1ull << (2 * TS_ENV_MAX_LEVELS)) - 1) * 8 <= (1ull << 27));
   env.level_texels = create_buffer(
       ctx, texels * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
       MemoryKind::device);

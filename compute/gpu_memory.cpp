@@ -24,7 +24,7 @@ uint32_t find_memory_type(const Context& ctx, uint32_t type_bits, VkMemoryProper
 }
 
 VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind kind,
-                        bool& mappable) {
+                        bool& mappable, VkMemoryAllocateFlags flags = 0) {
   VkMemoryPropertyFlags wanted = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   VkMemoryPropertyFlags preferred = 0;
   if (kind == MemoryKind::device_mapped) preferred = kMappable;
@@ -37,6 +37,9 @@ VkDeviceMemory allocate(const Context& ctx, VkMemoryRequirements req, MemoryKind
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = req.size;
   info.memoryTypeIndex = find_memory_type(ctx, req.memoryTypeBits, wanted, preferred);
+  VkMemoryAllocateFlagsInfo flags_info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags_info.flags = flags;
+  if (flags) info.pNext = &flags_info;
   mappable = (ctx.memory_properties.memoryTypes[info.memoryTypeIndex].propertyFlags & kMappable) ==
              kMappable;
   VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -64,13 +67,20 @@ Buffer create_buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags u
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
   bool mappable = false;
+  const bool by_address = usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
   try {
-    b.memory = allocate(ctx, req, kind, mappable);
+    b.memory =
+        allocate(ctx, req, kind, mappable, by_address ? VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT : 0);
   } catch (...) {
     vkDestroyBuffer(ctx.device, b.buffer, nullptr);
     throw;
   }
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+  if (by_address) {
+    VkBufferDeviceAddressInfo address{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    address.buffer = b.buffer;
+    b.address = vkGetBufferDeviceAddress(ctx.device, &address);
+  }
   if (kind != MemoryKind::device && mappable)
     VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, size, 0, &b.mapped));
   return b;

@@ -26,6 +26,10 @@ struct Buffer {
   VkDeviceSize size = 0;
   void* mapped = nullptr;  // set for MemoryKind::upload and ::readback (and ::device_mapped where
                            // the device has a host-visible device-local type)
+  // Where the shaders find it (a buffer reference): set for a buffer created with
+  // VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, whose memory is then allocated with
+  // VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT (the context enables bufferDeviceAddress).
+  VkDeviceAddress address = 0;
 };
 
 /// Creates a buffer of `size` bytes (> 0). Throws Error if the device is out of memory.

@@ -337,7 +337,6 @@ constexpr BindingInfo kBindings[] = {
     // background's colours (GpuBackground, shaders/background.comp).
     {TS_BINDING_DFG, kStorageBuffer, Source::sized, Scale::fixed,
      TS_BACKGROUND_OFFSET + sizeof(gpu::GpuBackground)},
-    {TS_BINDING_TEXELS, kStorageBuffer, Source::scene},
     {TS_BINDING_TEXTURES, kStorageBuffer, Source::scene},
     {TS_BINDING_ENV_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},
     {TS_BINDING_ENV_SPECULAR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, Source::environment},

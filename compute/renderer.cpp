@@ -221,6 +221,7 @@ Renderer::~Renderer() {
   Context& ctx = s_->ctx;
   vkDeviceWaitIdle(ctx.device);
   for (Buffer& b : s_->buffers) destroy_buffer(ctx, b);
+  destroy_buffer(ctx, s_->texels);
   destroy_buffer(ctx, s_->counters_readback);
   destroy_buffer(ctx, s_->frame_constants);
   destroy_environment_gpu(ctx, s_->env);
@@ -242,12 +243,21 @@ struct PendingCopy {
 };
 
 // Makes `buffer` a new one of at least `bytes` if it is smaller (or none); returns whether it did.
+// `extra_usage` VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT: a buffer the shaders read at its
+// address (the texels), which no descriptor binds.
 bool reallocate_if_smaller(const Context& ctx, Buffer& buffer, VkDeviceSize bytes,
-                           UploadStats& stats, bool& dirty) {
+                           UploadStats& stats, bool& dirty, VkBufferUsageFlags extra_usage = 0) {
   if (buffer.buffer && buffer.size >= bytes) return false;
   destroy_buffer(ctx, buffer);
-  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate.
-  buffer = create_buffer(ctx, std::max<VkDeviceSize>(bytes + bytes / 4, 256), kStorageUsage,
+  // Never empty (Vulkan forbids size 0); room to grow so small edits do not reallocate, but not
+  // past what a descriptor binds whole (check_scene_buffers refused a larger `bytes`) or, for a
+  // buffer read by address, past what the device allocates (check_texel_buffer).
+  const uint64_t cap = extra_usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT
+                           ? largest_addressed_buffer(addressed_buffer_limits(ctx))
+                           : ctx.properties.limits.maxStorageBufferRange;
+  const VkDeviceSize room =
+      std::min<VkDeviceSize>(bytes + bytes / 4, std::max<VkDeviceSize>(bytes, cap));
+  buffer = create_buffer(ctx, std::max<VkDeviceSize>(room, 256), kStorageUsage | extra_usage,
                          MemoryKind::device);
   stats.buffers_created++;
   dirty = true;
@@ -258,9 +268,10 @@ bool reallocate_if_smaller(const Context& ctx, Buffer& buffer, VkDeviceSize byte
 // Returns true if it did.
 template <typename T>
 bool queue_reallocation(const Context& ctx, Buffer& buffer, const std::vector<T>& next,
-                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty) {
+                        std::vector<PendingCopy>& copies, UploadStats& stats, bool& dirty,
+                        VkBufferUsageFlags extra_usage = 0) {
   const VkDeviceSize bytes = next.size() * sizeof(T);
-  if (!reallocate_if_smaller(ctx, buffer, bytes, stats, dirty)) return false;
+  if (!reallocate_if_smaller(ctx, buffer, bytes, stats, dirty, extra_usage)) return false;
   if (bytes) copies.push_back({buffer.buffer, 0, next.data(), bytes});
   return true;
 }
@@ -297,8 +308,8 @@ void queue_changed_range(const Buffer& buffer, VkDeviceSize offset, const std::v
 template <typename T>
 void queue_array_upload(const Context& ctx, Buffer& buffer, const std::vector<T>& previous,
                         const std::vector<T>& next, std::vector<PendingCopy>& copies,
-                        UploadStats& stats, bool& dirty) {
-  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty)) return;
+                        UploadStats& stats, bool& dirty, VkBufferUsageFlags extra_usage = 0) {
+  if (queue_reallocation(ctx, buffer, next, copies, stats, dirty, extra_usage)) return;
   queue_changed_range(buffer, 0, previous, next, copies);
 }
 
@@ -323,27 +334,45 @@ void queue_objects_upload(const Context& ctx, Buffer& buffer, const GpuSceneArra
   queue_changed_range(buffer, object_bytes, prev.group_objects, next.group_objects, copies);
 }
 
-// Copies `copies` to the GPU (through one staging buffer) and waits. Returns the bytes copied.
+// Bytes of one staging buffer of submit_copies at most: a scene's uploads may exceed the
+// device's maxMemoryAllocationSize (2^30 at least) with a texel buffer near it.
+constexpr VkDeviceSize kStagingChunk = VkDeviceSize(256) << 20;
+
+// Copies `copies` to the GPU (through a staging buffer of at most kStagingChunk bytes, refilled
+// as often as they need) and waits. Returns the bytes copied.
 VkDeviceSize submit_copies(const Context& ctx, const std::vector<PendingCopy>& copies) {
   VkDeviceSize total = 0;
   for (const PendingCopy& c : copies) total += c.size;
   if (total == 0) return 0;
-  Buffer staging = create_buffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
-  VkDeviceSize offset = 0;
-  for (const PendingCopy& c : copies) {
-    std::memcpy(static_cast<char*>(staging.mapped) + offset, c.data, c.size);
-    offset += c.size;
-  }
-  submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
-    full_barrier(cmd);
-    VkDeviceSize src = 0;
-    for (const PendingCopy& c : copies) {
-      VkBufferCopy region{src, c.dst_offset, c.size};
-      vkCmdCopyBuffer(cmd, staging.buffer, c.dst, 1, &region);
-      src += c.size;
+  Buffer staging = create_buffer(ctx, std::min(total, kStagingChunk),
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
+  size_t next = 0;        // the copy being staged
+  VkDeviceSize done = 0;  // its bytes staged before
+  while (next < copies.size()) {
+    std::vector<VkBufferCopy> regions;  // with each region's destination buffer
+    std::vector<VkBuffer> dsts;
+    VkDeviceSize offset = 0;
+    while (next < copies.size() && offset < staging.size) {
+      const PendingCopy& c = copies[next];
+      const VkDeviceSize n = std::min(c.size - done, staging.size - offset);
+      std::memcpy(static_cast<char*>(staging.mapped) + offset,
+                  static_cast<const char*>(c.data) + done, n);
+      regions.push_back({offset, c.dst_offset + done, n});
+      dsts.push_back(c.dst);
+      offset += n;
+      done += n;
+      if (done == c.size) {
+        ++next;
+        done = 0;
+      }
     }
-    transfer_to_compute(cmd);
-  });
+    submit_and_wait(ctx, [&](VkCommandBuffer cmd) {
+      full_barrier(cmd);
+      for (size_t i = 0; i < regions.size(); ++i)
+        vkCmdCopyBuffer(cmd, staging.buffer, dsts[i], 1, &regions[i]);
+      transfer_to_compute(cmd);
+    });
+  }
   destroy_buffer(ctx, staging);
   return total;
 }
@@ -371,6 +400,20 @@ void prepare_lod(Renderer::State& s) {
   GpuSceneArrays& a = s.uploaded;
   const size_t vertices = a.vertices.size(), indices = a.indices.size(), uv1s = a.uv1s.size();
   append_lod_chains(chains, a);
+  try {
+    check_scene_buffers(buffer_counts(a), s.ctx.properties.limits.maxStorageBufferRange,
+                        "the scene with its level-of-detail chains");
+  } catch (const SceneSizeError&) {
+    // The arrays as set_scene left them, which the GPU holds: frames without level of detail
+    // still render this scene.
+    a.vertices.resize(vertices);
+    a.indices.resize(indices);
+    a.adjacency.resize(indices);
+    a.uv1s.resize(uv1s);
+    a.lod_levels.clear();
+    a.lod_meshes.clear();
+    throw;
+  }
   std::vector<PendingCopy> copies;
   UploadStats stats;
   bool& dirty = s.descriptors_dirty;
@@ -403,6 +446,9 @@ UploadStats Renderer::set_scene(const Scene& scene) {
   validate_scene(scene);
   State& s = *s_;
   GpuSceneArrays next = flatten_scene(scene, &s.texture_cache);
+  // Before any buffer is touched, so that a refused scene leaves the previous one in place.
+  check_scene_buffers(buffer_counts(next), s.ctx.properties.limits.maxStorageBufferRange);
+  check_texel_buffer(next.texels.size(), addressed_buffer_limits(s.ctx));
   UploadStats stats;
   stats.mip_chains_built = next.mip_chains_built;
   std::vector<PendingCopy> copies;
@@ -419,8 +465,10 @@ UploadStats Renderer::set_scene(const Scene& scene) {
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_LIGHTS), prev.lights, next.lights, copies, stats,
                      s.descriptors_dirty);
-  queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXELS), prev.texels, next.texels, copies, stats,
-                     s.descriptors_dirty);
+  // Read at its address, which each frame's GpuFrame carries: no descriptor to rewrite.
+  bool texels_moved = false;
+  queue_array_upload(s.ctx, s.texels, prev.texels, next.texels, copies, stats, texels_moved,
+                     VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_TEXTURES), prev.textures, next.textures, copies,
                      stats, s.descriptors_dirty);
   queue_array_upload(s.ctx, s.buffer(TS_BINDING_UV1), prev.uv1s, next.uv1s, copies, stats,
@@ -1201,40 +1249,42 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
   const glm::dmat4 view_proj = clip_from_world(s);
   const uint32_t hdr_rounding =
       settings.hdr_format == HdrFormat::fp16 ? s.hdr_half_rounding : TS_HDR_ROUNDING_AS_IS;
-  const gpu::GpuFrame f{.view_proj = glm::mat4(view_proj),
-                        .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
-                        .camera_position = camera.position,
-                        .near_plane = camera.near_plane,
-                        .background = s.background,
-                        .exposure_scale = std::exp2(settings.exposure_ev),
-                        .ambient = s.ambient,
-                        .view = view_id(settings.view),
-                        .guard_band = guard_band(s),
-                        .tonemap = tonemap_id(settings.tonemap),
-                        .cull = s.options.cull == CullMode::back    ? TS_CULL_BACK
-                                : s.options.cull == CullMode::front ? TS_CULL_FRONT
-                                                                    : TS_CULL_NONE,
-                        .image_size = glm::uvec2(s.width, s.height),
-                        .tiles = glm::uvec2(s.tiles_x, s.tiles_y),
-                        .object_count = uint32_t(s.uploaded.objects.size()),
-                        .light_count = uint32_t(s.uploaded.lights.size()),
-                        .triangle_count = uint32_t(s.uploaded.triangle_count),
-                        .raster_capacity = s.raster_capacity,
-                        .tile_entry_capacity = s.tile_entry_capacity,
-                        .small_triangle_max_area = s.options.small_triangle_max_area,
-                        .small_triangle_walk_area = s.options.small_triangle_walk_area,
-                        .environment = s.env.source ? 1u : 0u,
-                        .env_levels = specular_levels(s.env),
-                        .anisotropy = settings.max_anisotropy,
-                        .lod_scale = float(lod_pixels_per_unit(camera, s.width, s.height) /
-                                           double(settings.lod_error_px)),
-                        .batch_count = s.frame_batches,
-                        .batch_triangles = s.batch_triangles,
-                        .hdr_max = float(hdr_max(settings.hdr_format)),
-                        .hdr_rounding = hdr_rounding,
-                        .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u,
-                        .tile_list_stride = s.tile_list_stride,
-                        .reset_visibility = resets_visibility(settings) ? 1u : 0u};
+  const gpu::GpuFrame f{
+      .view_proj = glm::mat4(view_proj),
+      .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
+      .camera_position = camera.position,
+      .near_plane = camera.near_plane,
+      .background = s.background,
+      .exposure_scale = std::exp2(settings.exposure_ev),
+      .ambient = s.ambient,
+      .view = view_id(settings.view),
+      .guard_band = guard_band(s),
+      .tonemap = tonemap_id(settings.tonemap),
+      .cull = s.options.cull == CullMode::back    ? TS_CULL_BACK
+              : s.options.cull == CullMode::front ? TS_CULL_FRONT
+                                                  : TS_CULL_NONE,
+      .image_size = glm::uvec2(s.width, s.height),
+      .tiles = glm::uvec2(s.tiles_x, s.tiles_y),
+      .object_count = uint32_t(s.uploaded.objects.size()),
+      .light_count = uint32_t(s.uploaded.lights.size()),
+      .triangle_count = uint32_t(s.uploaded.triangle_count),
+      .raster_capacity = s.raster_capacity,
+      .tile_entry_capacity = s.tile_entry_capacity,
+      .small_triangle_max_area = s.options.small_triangle_max_area,
+      .small_triangle_walk_area = s.options.small_triangle_walk_area,
+      .environment = s.env.source ? 1u : 0u,
+      .env_levels = specular_levels(s.env),
+      .anisotropy = settings.max_anisotropy,
+      .lod_scale =
+          float(lod_pixels_per_unit(camera, s.width, s.height) / double(settings.lod_error_px)),
+      .batch_count = s.frame_batches,
+      .batch_triangles = s.batch_triangles,
+      .hdr_max = float(hdr_max(settings.hdr_format)),
+      .hdr_rounding = hdr_rounding,
+      .resolve_in_shading = resolves_in_shading(s) ? 1u : 0u,
+      .tile_list_stride = s.tile_list_stride,
+      .reset_visibility = resets_visibility(settings) ? 1u : 0u,
+      .texels_address = glm::uvec2(uint32_t(s.texels.address), uint32_t(s.texels.address >> 32))};
   s.background_inputs = {f.background, f.exposure_scale, f.view,
                          f.tonemap,    f.hdr_rounding,   f.hdr_max};
   // Pre-exposure (shaders/bindings.glsl): what the HDR image holds is radiance times this.

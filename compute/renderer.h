@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "compute/context.h"
@@ -130,6 +132,18 @@ struct ImageSizeError : Error {
   std::string reason;
 };
 
+/// What Renderer::set_scene (and render, for the level-of-detail chains it appends) throws for a
+/// scene one of whose storage buffers would be larger than this device's maxStorageBufferRange,
+/// the most a descriptor may bind, before any of it is uploaded: told apart from other errors so
+/// that `tessera bench` can name the --objects count that needs it.
+struct SceneSizeError : Error {
+  SceneSizeError(const std::string& message, std::string buffer, uint64_t bytes, uint64_t limit)
+      : Error(message), buffer(std::move(buffer)), bytes(bytes), limit(limit) {}
+  std::string buffer;  // "object buffer"
+  uint64_t bytes;      // that the scene needs in it
+  uint64_t limit;      // maxStorageBufferRange
+};
+
 /// The rasterizer settings of RendererOptions that change the speed and never the image.
 struct RasterTuning {
   uint32_t small_triangle_max_area;
@@ -237,12 +251,14 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Validates `scene` (throws Error on bad input) and makes it the scene rendered next.
+  /// Validates `scene` (throws Error on bad input, SceneSizeError for a buffer larger than the
+  /// device binds) and makes it the scene rendered next; a refused scene leaves the previous one.
   /// Compared with the scene set before, only the changed range of each array is uploaded.
   UploadStats set_scene(const Scene& scene);
 
   /// Renders the current scene into the output images. Throws ImageSizeError for a size the
-  /// device cannot handle, Error when no scene was set.
+  /// device cannot handle, SceneSizeError when the level-of-detail chains (FrameSettings::lod)
+  /// make a buffer larger than the device binds, Error when no scene was set.
   FrameStats render(const FrameSettings& settings, Timing timing = Timing::per_pass);
 
   /// Copies of the last frame. read_coverage needs RendererOptions::debug_coverage; it counts

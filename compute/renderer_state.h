@@ -110,6 +110,9 @@ struct Renderer::State {
   Buffer counters_readback;    // the counters, copied back after each frame
 
   Buffer frame_constants;  // GpuFrame (TS_BINDING_FRAME), written before each frame
+  // The scene's texels (GpuSceneArrays::texels), which the shaders read at its device address
+  // (GpuFrame.texels_address) rather than through a descriptor.
+  Buffer texels;
 
   std::map<ShadeVariant, VkPipeline> shade_variants;  // specialized shading pipelines
   // The passes (by Pass) and generic shading pipelines (by Pipeline, after the passes) for more

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "compute/renderer.h"
 #include "core/check.h"
 #include "core/mesh_adjacency.h"
 #include "core/parallel.h"
@@ -120,7 +121,12 @@ void pack_textures(const std::vector<Texture>& textures, TextureCache* cache, Gp
   for (size_t i = 0; i < textures.size(); ++i) {
     const TextureCache::Entry& e = next.entries[entry_of[i]];
     if (out.texels.size() > 0xFFFFFFFFull - e.texels.size()) {
-      throw Error("the scene's textures have more than 2^32 texels with their mip levels");
+      throw Error(
+          "the scene's textures have more than 2^32 texels with their mip levels: "
+          "texture " +
+          std::to_string(i) + " (" + std::to_string(textures[i].width) + "x" +
+          std::to_string(textures[i].height) + ", " + std::to_string(e.texels.size()) +
+          " texels with its mip levels) takes them past it");
     }
     gpu::GpuTexture g = e.descriptor;
     g.wrap = uint32_t(textures[i].wrap_u) | uint32_t(textures[i].wrap_v) << 2;
@@ -156,6 +162,40 @@ void append_vertices(const Mesh& mesh, const std::vector<glm::vec4>& tangents, b
       out.uv1s.insert(out.uv1s.end(), mesh.uvs1.begin(), mesh.uvs1.end());
     }
   }
+}
+
+// The error for a scene of more than 2^32 - 1 triangle instances, naming the mesh that makes
+// most of them (a mesh placed by many objects, or a very large one).
+Error too_many_triangles(const Scene& scene, const ObjectNumbering& numbering) {
+  std::vector<uint64_t> placements(scene.meshes.size());
+  for (const Object& o : scene.objects) placements[o.mesh]++;
+  size_t top = 0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (placements[m] * scene.meshes[m].triangle_count() >
+        placements[top] * scene.meshes[top].triangle_count())
+      top = m;
+  }
+  const uint64_t triangles = scene.meshes[top].triangle_count();
+  return Error("the scene has " + std::to_string(numbering.triangle_count) +
+               " triangle instances, more than the 2^32 - 1 Tessera can number: " +
+               std::to_string(placements[top] * triangles) + " of them are the " +
+               std::to_string(triangles) + " triangles of mesh " + std::to_string(top) +
+               ", which " + std::to_string(placements[top]) +
+               (placements[top] == 1 ? " object places" : " objects place"));
+}
+
+constexpr uint64_t kMiB = 1u << 20;
+
+// `bytes` for a message: in MiB from 1 MiB on, rounded down; in bytes below.
+std::string size_text(uint64_t bytes) {
+  return bytes < kMiB ? std::to_string(bytes) + " bytes" : std::to_string(bytes / kMiB) + " MiB";
+}
+
+// "a 153 MiB object buffer" (MiB rounded up), or "an object buffer of 1004 bytes" below 1 MiB.
+std::string sized_buffer(const std::string& buffer, uint64_t bytes) {
+  if (bytes >= kMiB) return "a " + std::to_string((bytes + kMiB - 1) / kMiB) + " MiB " + buffer;
+  const bool vowel = buffer[0] == 'i' || buffer[0] == 'o';  // index, object
+  return (vowel ? "an " : "a ") + buffer + " of " + std::to_string(bytes) + " bytes";
 }
 
 // The smallest float >= x (x >= 0, finite).
@@ -195,6 +235,91 @@ uint64_t texture_hash(const Texture& texture) {
   return mix(h, n);
 }
 
+SceneBufferCounts buffer_counts(const GpuSceneArrays& a) {
+  return {.vertices = a.vertices.size(),
+          .indices = a.indices.size(),
+          .objects = a.objects.size(),
+          .group_objects = a.group_objects.size(),
+          .materials = a.materials.size(),
+          .lights = a.lights.size(),
+          .textures = a.textures.size(),
+          .uv1s = a.uv1s.size(),
+          .lod_levels = a.lod_levels.size(),
+          .lod_meshes = a.lod_meshes.size()};
+}
+
+void check_scene_buffers(const SceneBufferCounts& c, uint64_t max_range, const std::string& what) {
+  // Each storage buffer of the scene (TS_BINDING_*): a descriptor binds it whole, and Vulkan
+  // allows no range above maxStorageBufferRange (VUID-VkWriteDescriptorSet-descriptorType-00333):
+  // a driver may fail or read wrong data past it even where lavapipe happens not to.
+  struct Row {
+    const char* buffer;
+    uint64_t bytes;
+    uint64_t count;
+    const char* unit;
+  };
+  const Row rows[] = {
+      {"vertex buffer", c.vertices * sizeof(gpu::GpuVertex), c.vertices, "vertices"},
+      {"index buffer", c.indices * sizeof(uint32_t), c.indices, "indices"},
+      // Then the group table (group_objects), a word per TS_TRIANGLE_GROUP triangle instances.
+      {"object buffer", c.objects * sizeof(gpu::GpuObject) + c.group_objects * sizeof(uint32_t),
+       c.objects, "objects"},
+      {"material buffer", c.materials * sizeof(gpu::GpuMaterial), c.materials, "materials"},
+      {"light buffer", c.lights * sizeof(gpu::GpuLight), c.lights, "lights"},
+      {"texture buffer", c.textures * sizeof(gpu::GpuTexture), c.textures, "textures"},
+      {"uv set 1 buffer", c.uv1s * sizeof(glm::vec2), c.uv1s, "vertices"},
+      {"level-of-detail level buffer", c.lod_levels * sizeof(gpu::GpuLodLevel), c.lod_levels,
+       "levels"},
+      {"level-of-detail mesh buffer", c.lod_meshes * sizeof(gpu::GpuLodMesh), c.lod_meshes,
+       "meshes"},
+  };
+  static_assert(sizeof(glm::mat4) < sizeof(gpu::GpuObject) &&
+                    sizeof(VkDrawIndexedIndirectCommand) < sizeof(gpu::GpuObject),
+                "the object buffer is the largest buffer sized by objects");
+  for (const Row& r : rows) {
+    if (r.bytes <= max_range) continue;
+    // As many elements as fit at this buffer's bytes per element (the object buffer's group
+    // table shared out over its objects).
+    const uint64_t at_most =
+        uint64_t((unsigned __int128)max_range * r.count / std::max<uint64_t>(r.bytes, 1));
+    throw SceneSizeError(
+        what + " needs " + sized_buffer(r.buffer, r.bytes) + " (" + std::to_string(r.count) + " " +
+            r.unit + "), more than this device's maxStorageBufferRange (" + size_text(max_range) +
+            "): it holds at most " + std::to_string(at_most) + " " + r.unit,
+        r.buffer, r.bytes, max_range);
+  }
+}
+
+AddressedBufferLimits addressed_buffer_limits(const Context& ctx) {
+  uint64_t heap = 0;
+  const VkPhysicalDeviceMemoryProperties& m = ctx.memory_properties;
+  for (uint32_t i = 0; i < m.memoryHeapCount; ++i) {
+    if (m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      heap = std::max<uint64_t>(heap, m.memoryHeaps[i].size);
+  }
+  return {
+      .max_allocation = ctx.max_allocation_size, .max_buffer = ctx.max_buffer_size, .heap = heap};
+}
+
+uint64_t largest_addressed_buffer(const AddressedBufferLimits& l) {
+  return std::min({l.max_allocation, l.max_buffer, l.heap});
+}
+
+void check_texel_buffer(uint64_t texels, const AddressedBufferLimits& l, const std::string& what) {
+  const uint64_t bytes = texels * sizeof(glm::uvec2);  // texels < 2^32 (flatten_scene)
+  const uint64_t limit = largest_addressed_buffer(l);
+  if (bytes <= limit) return;
+  const char* name = limit == l.max_buffer       ? "maxBufferSize"
+                     : limit == l.max_allocation ? "maxMemoryAllocationSize"
+                                                 : "largest device-local memory heap";
+  throw SceneSizeError(what + " needs " + sized_buffer("texel buffer", bytes) + " (" +
+                           std::to_string(texels) +
+                           " texels with their mip levels), more than this device's " + name +
+                           " (" + size_text(limit) + "): it holds at most " +
+                           std::to_string(limit / sizeof(glm::uvec2)) + " texels",
+                       "texel buffer", bytes, limit);
+}
+
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
   GpuSceneArrays out;
   std::vector<uint32_t> first_index(scene.meshes.size());
@@ -223,10 +348,7 @@ GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache) {
   out.mesh_base_vertex = base_vertex;
   const ObjectNumbering numbering = number_objects(scene);
   // The all-ones id is never used: it marks empty pixels in the visibility buffer.
-  if (numbering.triangle_count > 0xFFFFFFFFull) {
-    throw Error("the scene has " + std::to_string(numbering.triangle_count) +
-                " triangle instances, more than the 2^32 - 1 Tessera can number");
-  }
+  if (numbering.triangle_count > 0xFFFFFFFFull) throw too_many_triangles(scene, numbering);
   out.numbering = numbering;
   out.triangle_count = numbering.triangle_count;
   out.group_objects = group_objects(numbering);
@@ -312,9 +434,11 @@ void append_lod_chains(const std::vector<LodChain>& chains, GpuSceneArrays& out)
                          .triangle_count = uint32_t(mesh.triangle_count()),
                          .error = float_at_least(level.error)};
       if (!level.is_base) {
-        if (out.indices.size() + mesh.indices.size() > 0xFFFFFFFFull ||
-            out.vertices.size() + mesh.positions.size() > 0xFFFFFFFFull) {
-          throw Error("the level-of-detail chains need more than 2^32 indices or vertices");
+        const bool indices = out.indices.size() + mesh.indices.size() > 0xFFFFFFFFull;
+        if (indices || out.vertices.size() + mesh.positions.size() > 0xFFFFFFFFull) {
+          throw Error(std::string("the level-of-detail chains need more than 2^32 ") +
+                      (indices ? "indices" : "vertices") + ": mesh " + std::to_string(m) +
+                      "'s chain takes them past it");
         }
         g.first_index = uint32_t(out.indices.size());
         out.indices.insert(out.indices.end(), mesh.indices.begin(), mesh.indices.end());

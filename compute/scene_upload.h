@@ -3,8 +3,10 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
+#include "compute/context.h"
 #include "core/lod.h"
 #include "core/scene.h"
 #include "core/texture.h"
@@ -42,6 +44,45 @@ struct GpuSceneArrays {
   uint32_t mip_chains_built = 0;  // textures whose mip chain was built, not reused
 };
 
+/// Elements of each array of GpuSceneArrays that a storage buffer of the renderer holds, for
+/// check_scene_buffers: from buffer_counts, or predicted for a scene not built yet (bench). Not
+/// the texels, which the shaders read at a device address (check_texel_buffer).
+struct SceneBufferCounts {
+  uint64_t vertices = 0, indices = 0, objects = 0, group_objects = 0, materials = 0, lights = 0,
+           textures = 0, uv1s = 0, lod_levels = 0, lod_meshes = 0;
+};
+
+SceneBufferCounts buffer_counts(const GpuSceneArrays& arrays);
+
+/// Throws SceneSizeError (compute/renderer.h) for the first storage buffer that `counts` make
+/// larger than `max_range` bytes (the device's maxStorageBufferRange, the most one descriptor
+/// may bind), naming the buffer, its size, the limit and how many elements it holds at most.
+/// `what` starts the message ("the scene"). The buffers sized by objects besides the object
+/// buffer (TS_BINDING_OBJECT_CLIP, _LOD_DRAWS, _LOD_SUMS) take fewer bytes per object, and the
+/// adjacency as many as the indices, so they fit when these do.
+void check_scene_buffers(const SceneBufferCounts& counts, uint64_t max_range,
+                         const std::string& what = "the scene");
+
+/// What caps a buffer the shaders read at its device address (the texels): no descriptor binds
+/// it, so maxStorageBufferRange does not, but it is one buffer in one allocation.
+struct AddressedBufferLimits {
+  uint64_t max_allocation;  // maxMemoryAllocationSize
+  uint64_t max_buffer;      // maxBufferSize (2^64 - 1 where the device does not report it)
+  uint64_t heap;            // the largest device-local memory heap
+};
+
+/// The limits of `ctx`'s device.
+AddressedBufferLimits addressed_buffer_limits(const Context& ctx);
+
+/// The most bytes such a buffer may hold: the smallest of the limits.
+uint64_t largest_addressed_buffer(const AddressedBufferLimits& limits);
+
+/// Throws SceneSizeError (compute/renderer.h) if `texels` (GpuSceneArrays::texels, 8 bytes
+/// each) need more bytes than `limits` allow, naming the smallest limit and how many texels it
+/// holds. (More than 2^32 texels flatten_scene refuses: the shaders index them in 32 bits.)
+void check_texel_buffer(uint64_t texels, const AddressedBufferLimits& limits,
+                        const std::string& what = "the scene");
+
 /// Packed mip chains of the textures of the last flattened scene, by content, so that
 /// flattening an edited scene rebuilds only the chains of textures that changed. A hit
 /// compares the whole texture, not only its hash, so a hash collision cannot reuse a wrong
@@ -66,7 +107,8 @@ uint64_t texture_hash(const Texture& texture);
 /// map; texture mip chains are built (build_mip_chain, textures in parallel) and packed as
 /// fp16. With a `cache`, chains of textures it holds are reused rather than built, and the cache
 /// is left holding exactly the textures of `scene`; the arrays are the same either way.
-/// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels.
+/// Throws Error if the scene has more than 2^32 - 1 triangle instances or 2^32 texels, naming
+/// the object or texture that goes past it. Buffer sizes are checked by check_scene_buffers.
 GpuSceneArrays flatten_scene(const Scene& scene, TextureCache* cache = nullptr);
 
 /// The object slot of `numbering` that holds id k * TS_TRIANGLE_GROUP, for every k with

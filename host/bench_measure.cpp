@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "compute/baselines/hardware_baseline.h"
+#include "compute/scene_upload.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
 #include "core/check.h"
@@ -149,7 +150,9 @@ std::vector<std::pair<uint32_t, double>> compute_over_hardware(const std::vector
 }
 
 // One whole sweep: a row per (object count, backend); `run` (from 0) labels the progress bar.
-std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint32_t run) {
+// `max_range`: the device's maxStorageBufferRange (0 without a renderer).
+std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a,
+                                    uint32_t run) {
   std::vector<BenchRow> rows;
   FrameSettings fs;
   fs.width = a.width;
@@ -187,6 +190,26 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, const BenchArgs& a, uint
                     " triangle instances, more than the 2^32 - 1 Tessera can number (at most " +
                     std::to_string(0xFFFFFFFFull / per) + " " + (file ? "placements" : "objects") +
                     ")");
+    }
+    // And each count's buffers against the device's maxStorageBufferRange, which set_scene
+    // would refuse only at that point, after the sweep's smaller counts: of the arrays only the
+    // objects and their group table grow with N (every placement shares the meshes and textures).
+    if (renderer) {
+      const SceneBufferCounts base = buffer_counts(flatten_scene(one));
+      for (uint32_t n : counts) {
+        SceneBufferCounts c = base;
+        c.objects = base.objects * n;
+        c.group_objects = (per * n + TS_TRIANGLE_GROUP - 1) / TS_TRIANGLE_GROUP;
+        try {
+          check_scene_buffers(c, max_range);
+        } catch (const SceneSizeError& e) {
+          std::string placements;
+          if (file && e.buffer == "object buffer") {
+            placements = " (" + std::to_string(uint64_t(e.limit) * n / e.bytes) + " placements)";
+          }
+          throw Error("--objects " + std::to_string(n) + ": " + e.what() + placements);
+        }
+      }
     }
   }
   Progress progress(counts.size() * a.backends.size(), !a.quiet);
@@ -308,7 +331,8 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
   }
   std::vector<std::vector<BenchRow>> runs;
   for (uint32_t run = 0; run < std::max(a.runs, 1u); ++run)
-    runs.push_back(measure_sweep(renderer.get(), a, run));
+    runs.push_back(measure_sweep(renderer.get(),
+                                 ctx ? ctx->properties.limits.maxStorageBufferRange : 0, a, run));
   results.rows = merge_runs(runs);
   results.compute_over_hardware = compute_over_hardware(results.rows);
   return results;

@@ -1,9 +1,17 @@
 // Texture filtering by hand from the texel buffer: the same lookups as core/texture.cpp (the
 // reference), so the two agree to float rounding. Needs bindings.glsl.
 
-// Texel (x, y) of the level starting at texel `offset`, `width` texels wide, as linear RGBA.
-vec4 texel_at(uint offset, uint width, uint x, uint y) {
-  uvec2 raw = texels[offset + y * width + x];
+// The texels of the level starting at texel `offset`: its address computed in 64 bits (the
+// buffer may exceed 4 GiB, and an index past 2^31 into one runtime array may be taken as
+// signed), the texels within it indexed from there (fewer than 2^28: validate_scene allows
+// sides up to kMaxTextureSide, 16384).
+TexelLevel texel_level(uint offset) {
+  return TexelLevel(packUint2x32(frame.texels_address) + uint64_t(offset) * 8ul);
+}
+
+// Texel (x, y) of `level`, `width` texels wide, as linear RGBA.
+vec4 texel_at(TexelLevel level, uint width, uint x, uint y) {
+  uvec2 raw = unpackUint2x32(level.texels[y * width + x]);
   return vec4(unpackHalf2x16(raw.x), unpackHalf2x16(raw.y));
 }
 
@@ -38,7 +46,7 @@ vec4 bilinear(uint tex, uint level, vec2 uv) {
   uint wrap_u = wrap & 3u, wrap_v = wrap >> 2u;
   uv = vec2(fold_coordinate(uv.x, wrap_u), fold_coordinate(uv.y, wrap_v));
   ivec2 size = ivec2(max(textures[tex].size >> level, uvec2(1u)));
-  uint offset = textures[tex].level_offset[level >> 2u][level & 3u];
+  TexelLevel texels = texel_level(textures[tex].level_offset[level >> 2u][level & 3u]);
   vec2 xy = uv * vec2(size) - 0.5;
   vec2 corner = floor(xy);
   vec2 f = xy - corner;
@@ -46,8 +54,8 @@ vec4 bilinear(uint tex, uint level, vec2 uv) {
   uint x0 = texel_index(i0.x, size.x, wrap_u), x1 = texel_index(i0.x + 1, size.x, wrap_u);
   uint y0 = texel_index(i0.y, size.y, wrap_v), y1 = texel_index(i0.y + 1, size.y, wrap_v);
   uint w = uint(size.x);
-  return mix(mix(texel_at(offset, w, x0, y0), texel_at(offset, w, x1, y0), f.x),
-             mix(texel_at(offset, w, x0, y1), texel_at(offset, w, x1, y1), f.x), f.y);
+  return mix(mix(texel_at(texels, w, x0, y0), texel_at(texels, w, x1, y0), f.x),
+             mix(texel_at(texels, w, x0, y1), texel_at(texels, w, x1, y1), f.x), f.y);
 }
 
 vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {

@@ -738,6 +738,26 @@ TEST(BenchCli, CountsPastTheTriangleNumberingAreRefusedFirst) {
   EXPECT_EQ(out.find("median ms"), std::string::npos) << "refused before measuring: " << out;
 }
 
+// Counts whose object buffer would be larger than the device binds (lavapipe's
+// maxStorageBufferRange, 128 MiB = 2^27 bytes) are refused before any scene is built, too:
+// 10^6 spheres of 960 triangles need 160 bytes each and a group word per 256 triangle
+// instances, 160e6 + 3.75e6 * 4 = 175e6 bytes (166.9 MiB), and 2^27 / 175 = 766958.4 fit.
+TEST(BenchCli, CountsPastTheStorageRangeAreRefusedFirst) {
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " bench --device lavapipe --objects 1,1000000 --size 32x32 "
+                                  "--backends compute --repeat 1 --warmup 0 --warmup-ms 0",
+                              out),
+            1)
+      << out;
+  EXPECT_NE(out.find("--objects 1000000: the scene needs a 167 MiB object buffer (1000000 "
+                     "objects), more than this device's maxStorageBufferRange (128 MiB): it "
+                     "holds at most 766958 objects"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("median ms"), std::string::npos) << "refused before measuring: " << out;
+}
+
 TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {
   const std::string base_path = test::output_path("base.json");
   std::ofstream(base_path) << kBase;

@@ -95,44 +95,44 @@ using glm::vec4;
 #define TS_BINDING_LDR_IMAGE 17
 #define TS_BINDING_CLIP_LIST 18
 #define TS_BINDING_DFG 19
-#define TS_BINDING_TEXELS 20          // every texture's mip chain, fp16 RGBA
-#define TS_BINDING_TEXTURES 21        // GpuTexture per Scene::textures entry
-#define TS_BINDING_ENV_MAP 22         // equirectangular radiance with mips (sampler2D)
-#define TS_BINDING_ENV_SPECULAR 23    // prefiltered specular cube, one roughness per level
-#define TS_BINDING_ENV_LEVELS 24      // the same cube's levels as written by the prefilter
-#define TS_BINDING_ENV_IRRADIANCE 25  // 9 spherical-harmonic coefficients of irradiance / pi
-#define TS_BINDING_UV1 26          // the second uv set (vec2 per vertex), when a material reads it
-#define TS_BINDING_LOD_LEVELS 27   // GpuLodLevel of every mesh's level-of-detail chain
-#define TS_BINDING_LOD_MESHES 28   // GpuLodMesh per Scene::meshes entry
-#define TS_BINDING_LOD_SUMS 29     // triangles per TS_LOD_GROUP_SIZE objects, then their scan
-#define TS_BINDING_LOD_DRAWS 30    // VkDrawIndexedIndirectCommand per object (hardware baseline)
-#define TS_BINDING_HDR_TEXTURE 31  // the HDR image again, sampled: what the resolve pass reads
+#define TS_BINDING_TEXTURES 20        // GpuTexture per Scene::textures entry
+#define TS_BINDING_ENV_MAP 21         // equirectangular radiance with mips (sampler2D)
+#define TS_BINDING_ENV_SPECULAR 22    // prefiltered specular cube, one roughness per level
+#define TS_BINDING_ENV_LEVELS 23      // the same cube's levels as written by the prefilter
+#define TS_BINDING_ENV_IRRADIANCE 24  // 9 spherical-harmonic coefficients of irradiance / pi
+#define TS_BINDING_UV1 25          // the second uv set (vec2 per vertex), when a material reads it
+#define TS_BINDING_LOD_LEVELS 26   // GpuLodLevel of every mesh's level-of-detail chain
+#define TS_BINDING_LOD_MESHES 27   // GpuLodMesh per Scene::meshes entry
+#define TS_BINDING_LOD_SUMS 28     // triangles per TS_LOD_GROUP_SIZE objects, then their scan
+#define TS_BINDING_LOD_DRAWS 29    // VkDrawIndexedIndirectCommand per object (hardware baseline)
+#define TS_BINDING_HDR_TEXTURE 30  // the HDR image again, sampled: what the resolve pass reads
 // Per screen tile: an upper bound on the high word of every visibility key of the tile's
 // samples (hierarchical depth rejection, raster_common.glsl), all ones when nothing is known.
-#define TS_BINDING_TILE_FAR 32
+#define TS_BINDING_TILE_FAR 31
 // Per object: its clip-space transform this frame, view_proj * model (object_clip.comp).
-#define TS_BINDING_OBJECT_CLIP 33
+#define TS_BINDING_OBJECT_CLIP 32
 // Per index of TS_BINDING_INDICES (3 per triangle): the mesh's triangle across that corner's
 // edge to the next, or TS_NO_NEIGHBOUR (core/mesh_adjacency.h), for silhouette coverage.
-#define TS_BINDING_ADJACENCY 34
+#define TS_BINDING_ADJACENCY 33
 // Silhouette coverage: the outline pixels the shading pass found (GpuOutlinePixel), which the
 // outline pass measures; GpuCounters.outline_pixels of batch 0 says how many.
-#define TS_BINDING_OUTLINE 35
+#define TS_BINDING_OUTLINE 34
 // Shading by tiles (RendererOptions::shade_tiles, shaders/list_tiles.comp): per screen tile,
 // nonzero once a rasterizer may have written a sample of it this frame; then the tiles the
 // shading pass shades (from the front) and those its background dispatch fills (from the back).
 // Before that, in a frame with counted tile lists and shading by tiles, each batch's scan pass
 // lists there the tiles that hold entries for the per-tile rasterizer
 // (GpuCounters::tiles_dispatch).
-#define TS_BINDING_TILE_DRAWN 36
-#define TS_BINDING_SHADE_TILES 37
-#define TS_BINDING_COUNT 38
+#define TS_BINDING_TILE_DRAWN 35
+#define TS_BINDING_SHADE_TILES 36
+#define TS_BINDING_COUNT 37
 #define TS_NO_NEIGHBOUR 0xFFFFFFFFu
 // The objects' buffer (TS_BINDING_OBJECTS) holds, after its GpuObject array, a word per
 // TS_TRIANGLE_GROUP triangle-instance ids (group k: ids from k * TS_TRIANGLE_GROUP on): the
 // object slot that holds the group's first id (group_objects, compute/scene_upload.h), where
 // setup's object search starts. After the objects rather than a buffer of its own: lavapipe
-// allows 32 storage buffers a stage, and the passes' one descriptor set has them all.
+// allows 32 storage buffers a stage, and the passes' one descriptor set had them all (31 since
+// the texels are read at a device address, GpuFrame.texels_address).
 #define TS_TRIANGLE_GROUP_BITS 8u
 #define TS_TRIANGLE_GROUP (1u << TS_TRIANGLE_GROUP_BITS)
 #define TS_OBJECT_WORDS 40u  // sizeof(GpuObject) / 4
@@ -336,8 +336,12 @@ struct GpuFrame {
   // 1: the shading pass empties every key it reads (FrameSettings::keep_visibility off), so
   // that the next frame need not fill the visibility buffer.
   uint reset_visibility;
-  uint pad_frame1;
-  uint pad_frame2;  // std140 rounds the block to 16 bytes
+  // The device address of the scene's texels (every texture's mip chain, fp16 RGBA, two halves
+  // per uint: GpuSceneArrays::texels) as (low, high) words. Read through a buffer reference
+  // (texture.glsl) rather than a descriptor, whose range maxStorageBufferRange caps (128 MiB,
+  // 16.7 M texels, on lavapipe); a buffer reached by address is capped only by the device's
+  // allocation and buffer sizes.
+  uvec2 texels_address;
 };
 
 // One input of the BRDF probe (brdf_probe.comp, tests only): directions and a material.
@@ -384,8 +388,9 @@ struct GpuOutlinePixel {
 // behind the scene): computed once by the background pass (background.comp) whenever what it
 // depends on changes, and stored by the shading pass, which then need not tone-map and encode
 // each background pixel. 32 bytes, after the DFG tables in their buffer (TS_BINDING_DFG,
-// TS_BACKGROUND_OFFSET): a binding of its own would be lavapipe's 33rd storage buffer of a
-// stage, one more than it allows (maxPerStageDescriptorStorageBuffers).
+// TS_BACKGROUND_OFFSET): a binding of its own would have been lavapipe's 33rd storage buffer
+// of a stage, one more than it allows (maxPerStageDescriptorStorageBuffers), before the texels
+// left the set.
 #define TS_DFG_BYTES (2 * (TS_DFG_SIZE + 1) * TS_DFG_SIZE * 16)  // two tables and their means
 #define TS_BACKGROUND_OFFSET TS_DFG_BYTES
 struct GpuBackground {
@@ -531,6 +536,7 @@ static_assert(offsetof(GpuFrame, hdr_max) == 260);
 static_assert(offsetof(GpuFrame, resolve_in_shading) == 268);
 static_assert(offsetof(GpuFrame, tile_list_stride) == 272);
 static_assert(offsetof(GpuFrame, reset_visibility) == 276);
+static_assert(offsetof(GpuFrame, texels_address) == 280);
 static_assert(sizeof(GpuBrdfSample) == 64);
 static_assert(offsetof(GpuBrdfSample, roughness) == 28);
 static_assert(offsetof(GpuBrdfSample, base_color) == 48);
