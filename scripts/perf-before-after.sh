@@ -12,12 +12,14 @@ set -euo pipefail
 before=$1 after=$2 out=$3 device=${4:-gpu} size=${5:-1920x1080} repeat=${6:-50}
 mkdir -p "$out"
 
-sweeps=("spheres:49" "lights:1" "textured:1" "environment:1" "grid:${GRID:-1,1000,100000}")
+# SCENE:OBJECTS for a benchmark family; a built-in scene alone (bench takes no --objects for it).
+sweeps=("spheres" "lights" "textured" "environment" "grid:${GRID:-1,1000,100000}")
 run() {  # build label round
   local bin=$1 label=$2 round=$3
   for s in "${sweeps[@]}"; do
-    local scene=${s%%:*} objects=${s#*:}
-    "$bin" bench --device "$device" --scene "$scene" --objects "$objects" --size "$size" \
+    local scene=${s%%:*} objects=()
+    [[ $s == *:* ]] && objects=(--objects "${s#*:}")
+    "$bin" bench --device "$device" --scene "$scene" "${objects[@]}" --size "$size" \
       --backends compute --repeat "$repeat" --warmup 5 --quiet \
       --json "$out/${label}_${round}_${scene}.json"
   done
