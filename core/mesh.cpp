@@ -171,4 +171,29 @@ Mesh make_plane(uint32_t nx, uint32_t ny) {
   return mesh;
 }
 
+MeshShape shape_of(const Mesh& mesh) {
+  using Kind = MeshShape::Kind;
+  const uint64_t v = mesh.positions.size(), t = mesh.triangle_count();
+  // The counts pick the candidates; only the whole mesh compared decides.
+  if (t == 12 && mesh == make_cube()) return {Kind::cube};
+  for (uint32_t level = 0; level <= 8; ++level)
+    if (t == 20ull << (2 * level) && mesh == make_icosphere(level)) return {Kind::icosphere, level};
+  // uv sphere: (segments + 1)(rings + 1) vertices, 2 segments (rings - 1) triangles.
+  for (uint64_t s = 3; s + 1 <= v / 3; ++s) {
+    if (v % (s + 1) != 0) continue;
+    const uint64_t rings = v / (s + 1) - 1;
+    if (rings >= 2 && t == 2 * s * (rings - 1) &&
+        mesh == make_uv_sphere(uint32_t(s), uint32_t(rings)))
+      return {Kind::uv_sphere, uint32_t(s), uint32_t(rings)};
+  }
+  // plane: (nx + 1)(ny + 1) vertices, 2 nx ny triangles.
+  for (uint64_t nx = 1; nx + 1 <= v / 2; ++nx) {
+    if (v % (nx + 1) != 0) continue;
+    const uint64_t ny = v / (nx + 1) - 1;
+    if (ny >= 1 && t == 2 * nx * ny && mesh == make_plane(uint32_t(nx), uint32_t(ny)))
+      return {Kind::plane, uint32_t(nx), uint32_t(ny)};
+  }
+  return {};
+}
+
 }  // namespace tessera

@@ -32,4 +32,14 @@ Mesh make_cube();
 /// (2 * nx * ny triangles). Requires nx, ny >= 1 (throws Error).
 Mesh make_plane(uint32_t nx, uint32_t ny);
 
+/// Which of the builders above makes `mesh` bit for bit, and with what: the scene file writer
+/// saves such a mesh as that shape, and `tessera tradeoff` names a scene's spheres by it.
+struct MeshShape {
+  enum class Kind { none, uv_sphere, icosphere, cube, plane };
+  Kind kind = Kind::none;
+  uint32_t a = 0;  // uv_sphere: segments; icosphere: level; plane: nx
+  uint32_t b = 0;  // uv_sphere: rings; plane: ny
+};
+MeshShape shape_of(const Mesh& mesh);
+
 }  // namespace tessera

@@ -62,25 +62,18 @@ void require_range(float v, float lo, float hi, const std::string& field) {
 
 // The built-in shape equal to `mesh`, as its JSON declaration, or null.
 Json builtin_shape(const Mesh& mesh) {
-  const uint64_t v = mesh.positions.size(), t = mesh.triangle_count();
-  if (t == 12 && mesh == make_cube()) return {{"type", "cube"}};
-  for (uint32_t level = 0; level <= 8; ++level)
-    if (t == 20ull << (2 * level) && mesh == make_icosphere(level))
-      return {{"type", "icosphere"}, {"level", level}};
-  // uv sphere: (segments + 1)(rings + 1) vertices, 2 segments (rings - 1) triangles.
-  for (uint64_t s = 3; s + 1 <= v / 3; ++s) {
-    if (v % (s + 1) != 0) continue;
-    const uint64_t rings = v / (s + 1) - 1;
-    if (rings >= 2 && t == 2 * s * (rings - 1) &&
-        mesh == make_uv_sphere(uint32_t(s), uint32_t(rings)))
-      return {{"type", "sphere"}, {"segments", s}, {"rings", rings}};
-  }
-  // plane: (nx + 1)(ny + 1) vertices, 2 nx ny triangles.
-  for (uint64_t nx = 1; nx + 1 <= v / 2; ++nx) {
-    if (v % (nx + 1) != 0) continue;
-    const uint64_t ny = v / (nx + 1) - 1;
-    if (ny >= 1 && t == 2 * nx * ny && mesh == make_plane(uint32_t(nx), uint32_t(ny)))
-      return {{"type", "plane"}, {"nx", nx}, {"ny", ny}};
+  const MeshShape shape = shape_of(mesh);
+  switch (shape.kind) {
+    case MeshShape::Kind::cube:
+      return {{"type", "cube"}};
+    case MeshShape::Kind::icosphere:
+      return {{"type", "icosphere"}, {"level", shape.a}};
+    case MeshShape::Kind::uv_sphere:
+      return {{"type", "sphere"}, {"segments", shape.a}, {"rings", shape.b}};
+    case MeshShape::Kind::plane:
+      return {{"type", "plane"}, {"nx", shape.a}, {"ny", shape.b}};
+    case MeshShape::Kind::none:
+      break;
   }
   return nullptr;
 }

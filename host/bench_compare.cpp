@@ -173,30 +173,36 @@ void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& po
               base.device.c_str(), base.date.c_str());
   if (!base.device.empty() && base.device != device) {
     std::printf(
-        "warning: the base was measured on device '%s', this run on '%s': the ratios "
+        "tessera: warning: the base was measured on device '%s', this run on '%s': the ratios "
         "compare devices\n",
         base.device.c_str(), device.c_str());
   }
-  if (!base.points.empty() && std::none_of(points.begin(), points.end(),
-                                           [](const ComparedPoint& c) { return c.matched(); })) {
+  const bool any_matched =
+      std::any_of(points.begin(), points.end(), [](const ComparedPoint& c) { return c.matched(); });
+  if (!base.points.empty() && !any_matched) {
     const SavedPoint& b = base.points.front();
-    std::printf("warning: no point of this run is in the base, which measured %s at %ux%u\n",
-                b.scene.c_str(), b.width, b.height);
+    std::printf(
+        "tessera: warning: no point of this run is in the base, which measured %s at %ux%u\n",
+        b.scene.c_str(), b.width, b.height);
   }
   if (!differing.empty()) {
     std::string list;
     for (const std::string& d : differing) list += (list.empty() ? "" : ", ") + d;
     std::printf(
-        "warning: this run's settings differ from the base's: %s; the ratios compare "
+        "tessera: warning: this run's settings differ from the base's: %s; the ratios compare "
         "unlike frames\n",
         list.c_str());
   }
   if (base.compute_timed_by_pass) {
     std::printf(
-        "note: the base timed its compute frames pass by pass (it has no per_pass_total_ms), "
+        "tessera: note: the base timed its compute frames pass by pass (it has no "
+        "per_pass_total_ms), "
         "with timestamps between the passes that add to a frame; this run times them whole\n");
   }
-  std::printf("%9s %9s %10s %10s %10s\n", "objects", "backend", "old ms", "new ms", "new / old");
+  // The table of ratios only where there is a ratio: no empty header.
+  if (any_matched) {
+    std::printf("%9s %9s %10s %10s %10s\n", "objects", "backend", "old ms", "new ms", "new / old");
+  }
   for (const ComparedPoint& c : points) {
     if (c.matched()) {
       std::printf("%9u %9s %10.3f %10.3f %10.3f\n", c.point.objects, c.point.backend.c_str(),

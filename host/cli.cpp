@@ -629,11 +629,12 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
 void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--scene", a.scene,
                  "built-in scene (default spheres), scene file,\n"
-                 "or a benchmark family: grid, scatter, huge")
+                 "or a benchmark family: grid, scatter, huge,\n"
+                 "yardstick")
       ->type_name("S")
       ->check(bench_scene());
   app.add_option("--objects", a.objects,
-                 "objects of a benchmark family (grid, scatter,\nhuge; default 100)")
+                 "objects of a benchmark family (grid, scatter,\nhuge, yardstick; default 100)")
       ->type_name("N")
       ->check(whole_number(1, 100'000'000));
   app.add_option("--knob", a.knobs,

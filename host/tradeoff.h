@@ -49,10 +49,20 @@ std::string knob_cannot_matter(const std::string& knob, const Scene& scene,
 
 /// The settings of knob `knob`, each starting from `frame` and `options` (the command line's,
 /// with every device choice made: tuned_for_device). The setting equal to theirs is the
-/// default; with RendererOptions::shade_tiles unset, neither of that knob's is.
+/// default; with RendererOptions::shade_tiles unset, neither of that knob's is. With `scene`,
+/// the tessellation knob's default is labelled with its spheres' tessellation
+/// ("scene's own (64 slices)": scene_sphere_tessellation).
 /// Throws Error naming the known knobs if `knob` is not one of knobs().
 std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
-                                       const RendererOptions& options);
+                                       const RendererOptions& options,
+                                       const Scene* scene = nullptr);
+
+/// The tessellation of the spheres (meshes with Mesh::analytic_sphere) the objects of `scene`
+/// draw, as the tessellation knob's settings name theirs: "64 slices" (a uv sphere of 64
+/// segments and 32 stacks), "64 slices, 20 stacks", "icosphere level 3", "960 triangles" (a
+/// sphere no builder of core/mesh.h makes as it is); "mixed: A; B" (and "; N more") where they
+/// differ; "" where the scene draws no sphere.
+std::string scene_sphere_tessellation(const Scene& scene);
 
 /// One measured setting.
 struct TradeoffPoint {

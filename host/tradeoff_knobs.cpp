@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/lod.h"
+#include "core/mesh.h"
 #include "host/tradeoff.h"
 
 namespace tessera {
@@ -61,6 +62,20 @@ bool draws_a_texture(const Scene& scene) {
   return false;
 }
 
+// One sphere mesh's tessellation, in the terms of the knob's settings ("N slices": N segments
+// and half as many stacks).
+std::string sphere_tessellation(const Mesh& mesh) {
+  const MeshShape shape = shape_of(mesh);
+  if (shape.kind == MeshShape::Kind::icosphere) return "icosphere level " + std::to_string(shape.a);
+  if (shape.kind == MeshShape::Kind::uv_sphere) {
+    std::string out = std::to_string(shape.a) + " slices";
+    if (shape.b != shape.a / 2) out += ", " + std::to_string(shape.b) + " stacks";
+    return out;
+  }
+  // A sphere no builder makes as it is (a model's, say): its size says what it costs.
+  return std::to_string(mesh.triangle_count()) + " triangles";
+}
+
 std::string known_knobs() {
   std::string names;
   for (const KnobInfo& k : knobs()) names += (names.empty() ? "" : ", ") + std::string(k.name);
@@ -101,8 +116,25 @@ std::string knob_cannot_matter(const std::string& knob, const Scene& scene,
   return "";
 }
 
+std::string scene_sphere_tessellation(const Scene& scene) {
+  std::vector<uint32_t> seen;
+  std::vector<std::string> kinds;
+  for (const Object& o : scene.objects) {
+    if (o.mesh >= scene.meshes.size() || !scene.meshes[o.mesh].analytic_sphere) continue;
+    if (std::find(seen.begin(), seen.end(), o.mesh) != seen.end()) continue;
+    seen.push_back(o.mesh);
+    const std::string kind = sphere_tessellation(scene.meshes[o.mesh]);
+    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
+  }
+  if (kinds.size() <= 1) return kinds.empty() ? "" : kinds[0];
+  // A label, not a list: the first two, and how many more.
+  std::string out = "mixed: " + kinds[0] + "; " + kinds[1];
+  if (kinds.size() > 2) out += "; " + std::to_string(kinds.size() - 2) + " more";
+  return out;
+}
+
 std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSettings& frame,
-                                       const RendererOptions& options) {
+                                       const RendererOptions& options, const Scene* scene) {
   std::vector<KnobSetting> out;
   if (knob == "brdf") {
     struct Variant {
@@ -122,7 +154,9 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       out.push_back(s);
     }
   } else if (knob == "tessellation") {
-    KnobSetting own = base(knob, "scene's own", frame, options);
+    const std::string spheres = scene ? scene_sphere_tessellation(*scene) : "";
+    KnobSetting own = base(knob, spheres.empty() ? "scene's own" : "scene's own (" + spheres + ")",
+                           frame, options);
     own.is_default = true;
     out.push_back(own);
     for (uint32_t segments : {8u, 16u, 32u, 64u, 128u}) {

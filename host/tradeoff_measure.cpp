@@ -160,7 +160,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
 
   std::vector<Candidate> candidates;
   for (const std::string& knob : measured) {
-    for (KnobSetting& s : knob_settings(knob, frame, options)) {
+    for (KnobSetting& s : knob_settings(knob, frame, options, &scene)) {
       Candidate c;
       c.scene = with_sphere_segments(scene, s.sphere_segments);
       c.setting = std::move(s);

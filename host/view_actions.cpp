@@ -42,12 +42,12 @@ void camera_moved(Viewer& v) {
 }
 
 // From /proc/self/statm: its second number is the resident set in pages.
-void print_resident_memory(const Viewer& v) {
+void print_resident_memory(Viewer& v) {
   unsigned long long pages_total = 0, pages_resident = 0;
   FILE* statm = std::fopen("/proc/self/statm", "r");
   const bool read = statm && std::fscanf(statm, "%llu %llu", &pages_total, &pages_resident) == 2;
   if (statm) std::fclose(statm);
-  if (!read) return log(v, "resident memory unknown");
+  if (!read) return refuse(v, "resident memory unknown: /proc/self/statm cannot be read");
   log(v, "resident memory " +
              std::to_string(pages_resident * (unsigned long long)sysconf(_SC_PAGESIZE) / 1024) +
              " KiB");
@@ -109,7 +109,7 @@ bool edit(Viewer& v, const Edit& e) {
   try {
     v.history.apply(v.scene, e);
   } catch (const Error& error) {
-    log(v, std::string("edit refused: ") + error.what());
+    refuse(v, std::string("edit refused: ") + error.what());
     return false;
   }
   v.options_at[v.history.state()] = render_options_of(v.frame);
@@ -169,9 +169,9 @@ void edit_option(Viewer& v, const InputEvent& e) {
   set_options(v, o, label, false);
 }
 
-bool has_selection(const Viewer& v, const char* action) {
+bool has_selection(Viewer& v, const char* action) {
   if (v.selected >= 0) return true;
-  log(v, std::string("no object selected to ") + action);
+  refuse(v, std::string("no object selected to ") + action);
   return false;
 }
 
@@ -206,8 +206,8 @@ void edit_light(Viewer& v, const InputEvent& e) {
   if (e.field == "add") {
     c.add_light = true;
   } else if (e.index >= v.scene.lights.size()) {
-    log(v, "no light " + std::to_string(e.index) + " (the scene has " +
-               std::to_string(v.scene.lights.size()) + ")");
+    refuse(v, "no light " + std::to_string(e.index) + " (the scene has " +
+                  std::to_string(v.scene.lights.size()) + ")");
     return;
   } else if (e.field == "delete") {
     c.delete_light = true;
@@ -233,7 +233,7 @@ glm::mat4 placed_at(const Viewer& v, uint32_t object, glm::vec3 point) {
 void undo_or_redo(Viewer& v, bool redo) {
   const std::string label = redo ? v.history.redo_label() : v.history.undo_label();
   if (!(redo ? v.history.redo(v.scene) : v.history.undo(v.scene))) {
-    log(v, redo ? "nothing to redo" : "nothing to undo");
+    refuse(v, redo ? "nothing to redo" : "nothing to undo");
     return;
   }
   // Indices may have shifted: an undone add or redone delete removes an object.
@@ -268,7 +268,7 @@ void write_scene(const Viewer& v, const std::string& path) {
 
 // Ctrl+S or a script's `save` (`to_own_file`: the session's scene file), or a script's
 // `save PATH`, after which PATH is the session's scene file.
-void save(Viewer& v, std::string path, bool to_own_file, bool scripted) {
+void save(Viewer& v, std::string path, bool to_own_file) {
   if (to_own_file && !v.history.dirty()) {
     // Saving rewrites the file in the generated form: never without a reason.
     log(v, "nothing to save: no edits since the scene was loaded or saved (" + path +
@@ -287,8 +287,7 @@ void save(Viewer& v, std::string path, bool to_own_file, bool scripted) {
   try {
     write_scene(v, path);
   } catch (const Error& error) {
-    log(v, std::string("not saved: ") + error.what());
-    if (scripted) v.scripted_save_failed = true;
+    refuse(v, std::string("not saved: ") + error.what());
     return;
   }
   v.scene_file = path;
@@ -324,7 +323,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
     case GLFW_KEY_Q:
     case GLFW_KEY_E:
       if (e.key == GLFW_KEY_S && e.ctrl) {
-        save(v, save_path(v), true, e.scripted);
+        save(v, save_path(v), true);
       } else if (e.scripted) {  // held keys of a person are polled each frame instead
         fly_keys = {e.key == GLFW_KEY_W, e.key == GLFW_KEY_S, e.key == GLFW_KEY_A,
                     e.key == GLFW_KEY_D, e.key == GLFW_KEY_Q, e.key == GLFW_KEY_E};
@@ -334,9 +333,17 @@ void handle_key(Viewer& v, const InputEvent& e) {
       break;
     case GLFW_KEY_F:
       if (!e.shift) {
-        if (frame_scene(v.orbit, v.scene, aspect_of(v))) camera_moved(v);
+        if (frame_scene(v.orbit, v.scene, aspect_of(v))) {
+          camera_moved(v);
+        } else {
+          refuse(v, "nothing to frame: the scene has no vertex");
+        }
       } else if (has_selection(v, "frame")) {
-        if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v))) camera_moved(v);
+        if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v))) {
+          camera_moved(v);
+        } else {
+          refuse(v, "nothing to frame: the selected object's mesh has no vertex");
+        }
       }
       break;
     case GLFW_KEY_HOME:
@@ -381,7 +388,8 @@ void handle_key(Viewer& v, const InputEvent& e) {
       break;
     }
     case GLFW_KEY_P:
-      v.screenshots.push_back("tessera_view_" + std::to_string(v.frame_number) + ".png");
+      v.screenshots.push_back(
+          {"tessera_view_" + std::to_string(v.frame_number) + ".png", e.scripted});
       break;
     case GLFW_KEY_ESCAPE:
       v.selected = -1;
@@ -439,7 +447,9 @@ void fly_held_keys(Viewer& v, float seconds) {
   camera_moved(v);
 }
 
-void handle_event(Viewer& v, const InputEvent& e) {
+namespace {
+
+void handle_event_kind(Viewer& v, const InputEvent& e) {
   switch (e.kind) {
     case EventKind::key:
       handle_key(v, e);
@@ -476,7 +486,7 @@ void handle_event(Viewer& v, const InputEvent& e) {
       v.minimised = false;
       break;
     case EventKind::screenshot:
-      v.screenshots.push_back(e.path);
+      v.screenshots.push_back({e.path, e.scripted});
       if (v.minimised || window_iconified(*v.window)) {
         log(v, "screenshot " + e.path +
                    " waits: the window is minimised; it is written from the first frame after "
@@ -484,7 +494,7 @@ void handle_event(Viewer& v, const InputEvent& e) {
       }
       break;
     case EventKind::save:
-      save(v, e.path.empty() ? save_path(v) : e.path, e.path.empty(), true);
+      save(v, e.path.empty() ? save_path(v) : e.path, e.path.empty());
       break;
     case EventKind::exit:
       v.exit = true;
@@ -502,6 +512,19 @@ void handle_event(Viewer& v, const InputEvent& e) {
       edit_option(v, e);
       break;
   }
+}
+
+}  // namespace
+
+void refuse(Viewer& v, const std::string& why) {
+  log(v, why);
+  v.event_failed = true;
+}
+
+void handle_event(Viewer& v, const InputEvent& e) {
+  v.event_failed = false;
+  handle_event_kind(v, e);
+  if (e.scripted && v.event_failed) v.script_failures++;
 }
 
 void apply_panel_changes(Viewer& v, const PanelChanges& c) {
@@ -565,16 +588,16 @@ bool autosave_if_unsaved(Viewer& v) {
   try {
     write_scene(v, path);
     if (path == first) {
-      std::fprintf(stderr, "tessera view: unsaved edits written to %s\n", path.c_str());
+      std::fprintf(stderr, "tessera: note: unsaved edits written to %s\n", path.c_str());
     } else {
       std::fprintf(stderr,
-                   "tessera view: unsaved edits written to %s (%s, of an earlier session, left "
+                   "tessera: note: unsaved edits written to %s (%s, of an earlier session, left "
                    "as it is)\n",
                    path.c_str(), first.c_str());
     }
     return true;
   } catch (const Error& error) {
-    std::fprintf(stderr, "tessera view: unsaved edits lost: %s\n", error.what());
+    std::fprintf(stderr, "tessera: error: unsaved edits lost: %s\n", error.what());
     return false;
   }
 }

@@ -99,8 +99,10 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
                 std::chrono::duration<double, std::milli>(now - v.changed_at).count());
     v.scene_changed = false;
   }
-  for (const std::string& path : v.screenshots) {
-    // A screenshot that cannot be written says why and leaves the session running.
+  for (const Viewer::Screenshot& screenshot : v.screenshots) {
+    // A screenshot that cannot be written says why and leaves the session running; a
+    // scripted one counts as a failed script command.
+    const std::string& path = screenshot.path;
     const std::string reason = unwritable_reason(path);
     try {
       if (!reason.empty()) throw Error(reason);
@@ -110,6 +112,7 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
     } catch (const Error& error) {
       std::printf("frame %" PRIu64 ": screenshot %s not written: %s\n", v.frame_number,
                   path.c_str(), error.what());
+      if (screenshot.scripted) v.script_failures++;
     }
   }
   v.screenshots.clear();
@@ -237,14 +240,15 @@ int run_view(const ViewArgs& args) {
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
   v.scene = std::move(file.scene);
   if (const std::string note = unlit_scene_note(v.scene, args.scene, v.frame.view); !note.empty())
-    std::printf("%s\n", note.c_str());
+    std::printf("tessera: %s\n", note.c_str());
   v.render_defaults = file.render;
   v.description = file.description;
   v.options_at[v.history.state()] = render_options_of(v.frame);
   if (is_scene_path(args.scene)) v.scene_file = args.scene;
   for (const std::string& autosave : earlier_autosaves(v)) {
-    std::printf("note: %s holds unsaved edits of an earlier session (open it with --scene %s)\n",
-                autosave.c_str(), autosave.c_str());
+    std::printf(
+        "tessera: note: %s holds unsaved edits of an earlier session (open it with --scene %s)\n",
+        autosave.c_str(), autosave.c_str());
   }
   v.environment = v.scene.environment;
   v.orbit = from_camera(v.scene.camera);
@@ -286,21 +290,24 @@ int run_view(const ViewArgs& args) {
     throw;
   }
   bool lost = !autosave_if_unsaved(v);
-  if (v.scripted_save_failed) {
-    std::fprintf(stderr, "tessera view: a save the script asked for failed (said above)\n");
-    lost = true;
-  }
-  for (const std::string& path : v.screenshots) {
-    std::fprintf(stderr,
-                 "tessera view: screenshot %s not written: no frame was presented after "
-                 "it was asked for (the window stayed minimised)\n",
-                 path.c_str());
+  for (const Viewer::Screenshot& screenshot : v.screenshots) {
+    std::printf("frame %" PRIu64
+                ": screenshot %s not written: no frame was presented after it was asked for "
+                "(the window stayed minimised)\n",
+                v.frame_number, screenshot.path.c_str());
+    if (screenshot.scripted) v.script_failures++;
     lost = true;
   }
   if (v.frames_presented > 1) {
     const double seconds = std::chrono::duration<double>(v.last_present - v.first_present).count();
     std::printf("%llu frames presented, %.1f frames per second after the first\n",
                 (unsigned long long)v.frames_presented, double(v.frames_presented - 1) / seconds);
+  }
+  if (v.script_failures > 0) {
+    // Said last. A script is used as a test: any command it could not carry out fails the run.
+    std::fprintf(stderr, "tessera: error: %u script command%s failed (said above)\n",
+                 v.script_failures, v.script_failures == 1 ? "" : "s");
+    lost = true;
   }
   v.release();
   const int status = validation_exit_status(v.ctx.get());

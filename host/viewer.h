@@ -32,7 +32,11 @@ struct Viewer {
   // The session's scene file: the one opened, or the one last saved to (a save under another
   // name makes that file the session's). Empty for a built-in scene until it is saved.
   std::string scene_file;
-  bool scripted_save_failed = false;  // makes the exit status 1
+  // Script commands that could not be carried out (a failed save or screenshot, an edit
+  // refused, no selection or light to act on, ...): each is said as it happens, and any makes
+  // the exit status 1, as a script is used as a test. A person's input never counts.
+  uint32_t script_failures = 0;
+  bool event_failed = false;  // set by refuse() while an event is handled
   FrameSettings frame;
   OrbitCamera orbit;   // scene.camera is to_camera(orbit) once the camera has moved
   Camera home_camera;  // the scene's own, for the Home key
@@ -71,8 +75,12 @@ struct Viewer {
   // The last framebuffer size the device could not render, said once (renderable_size).
   std::pair<uint32_t, uint32_t> refused_size{};
   bool exit = false;
-  std::string title;                     // the window's, as last set
-  std::vector<std::string> screenshots;  // written from the next presented frame
+  std::string title;  // the window's, as last set
+  struct Screenshot {
+    std::string path;
+    bool scripted = false;  // a failure counts in script_failures
+  };
+  std::vector<Screenshot> screenshots;  // written from the next presented frame
 
   ~Viewer() { release(); }
   /// Destroys the window's Vulkan objects and the renderer, leaving the context.
@@ -80,8 +88,13 @@ struct Viewer {
 };
 
 /// What input event `e` does: camera moves, picking, edits, undo and redo, saving, the
-/// script-only events. Bad edits (a scene that would not validate) are refused with a message.
+/// script-only events. Bad edits (a scene that would not validate) are refused with a message;
+/// a scripted event that could not be carried out counts in Viewer::script_failures.
 void handle_event(Viewer& v, const InputEvent& e);
+
+/// Says (as a frame's log line) why the event being handled could not be carried out, and
+/// marks it failed (Viewer::event_failed).
+void refuse(Viewer& v, const std::string& why);
 
 /// Moves the camera for the fly keys (WASD, Q, E) held now, over `seconds`.
 void fly_held_keys(Viewer& v, float seconds);

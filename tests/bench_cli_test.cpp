@@ -819,14 +819,16 @@ TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
   EXPECT_NE(out.find("only in the base: yardstick, 7 objects, 32x32, compute"), std::string::npos)
       << out;
   // kBase has no per_pass_total_ms: its compute frames were timed pass by pass.
-  EXPECT_NE(out.find("note: the base timed its compute frames pass by pass"), std::string::npos)
+  EXPECT_NE(out.find("tessera: note: the base timed its compute frames pass by pass"),
+            std::string::npos)
       << out;
   // A file this version wrote has it, and is not so marked.
   EXPECT_TRUE(read_bench_json(test::output_path("base_cli.json")).compute_timed_by_pass);
   EXPECT_FALSE(read_bench_json(json_path).compute_timed_by_pass);
   // kBase was measured on device "hand": the ratios compare devices, and the run says so.
-  EXPECT_NE(out.find("warning: the base was measured on device 'hand', this run on 'llvmpipe"),
-            std::string::npos)
+  EXPECT_NE(
+      out.find("tessera: warning: the base was measured on device 'hand', this run on 'llvmpipe"),
+      std::string::npos)
       << out;
   EXPECT_EQ(out.find("warning: no point of this run is in the base"), std::string::npos) << out;
   // Another size shares no point with the base: said, rather than left to an empty table.
@@ -838,9 +840,13 @@ TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
                               out),
             0)
       << out;
-  EXPECT_NE(out.find("warning: no point of this run is in the base, which measured yardstick at "
-                     "32x32"),
+  EXPECT_NE(out.find("tessera: warning: no point of this run is in the base, which measured "
+                     "yardstick at 32x32"),
             std::string::npos)
+      << out;
+  // No ratio to show: no table header without rows.
+  EXPECT_EQ(out.find("new / old\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("only in this run: yardstick, 1 object, 16x16, compute"), std::string::npos)
       << out;
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "compute/context.h"
+#include "core/bench_scenes.h"
 #include "core/check.h"
 #include "core/image.h"
 #include "host/cli.h"
@@ -151,6 +152,29 @@ TEST(Cli, HelpOfTheToolAndOfEachCommandListsItsOptions) {
   for (const char* command : {"devices", "scenes"}) {
     const std::string help = help_of({command, "--help"});
     EXPECT_NE(help.find(std::string("Usage: tessera ") + command), std::string::npos) << help;
+  }
+}
+
+// The help of an option that takes a benchmark family names every one (core/bench_scenes.h):
+// tradeoff's --scene and --objects once left out yardstick.
+TEST(Cli, HelpNamesEveryBenchmarkFamily) {
+  struct Section {
+    std::vector<std::string> args;
+    const char *from, *to;  // the option's help runs from `from` to the next option, `to`
+  };
+  for (const Section& s : {Section{{"bench", "--help"}, "--scene", "--objects"},
+                           Section{{"tradeoff", "--help"}, "--scene", "--objects"},
+                           Section{{"tradeoff", "--help"}, "--objects", "--knob"}}) {
+    const std::string help = help_of(s.args);
+    const size_t from = help.find(std::string("  ") + s.from + " ");
+    const size_t to = help.find(std::string("  ") + s.to + " ", from);
+    ASSERT_NE(from, std::string::npos) << help;
+    ASSERT_NE(to, std::string::npos) << help;
+    const std::string option = help.substr(from, to - from);
+    for (const BenchFamilyInfo& family : bench_families())
+      EXPECT_NE(option.find(family.name), std::string::npos)
+          << s.args[0] << " " << s.from << " lacks " << family.name << ":\n"
+          << option;
   }
 }
 

@@ -187,6 +187,39 @@ TEST(Tradeoff, KnobsThatCannotMatterForTheSceneSayWhy) {
             "the frames have level of detail, and only frames without take the one pass");
 }
 
+// The tessellation knob's default row says what the scene's spheres are, in the terms of the
+// knob's other settings ("N slices": N segments, N / 2 stacks), counting only the meshes
+// objects draw.
+TEST(Tradeoff, TessellationDefaultNamesTheScenesSpheres) {
+  const FrameSettings frame;
+  const RendererOptions options{.shade_tiles = false, .raster_shade = false};
+  auto own = [&](const std::vector<Mesh>& meshes, const std::vector<uint32_t>& drawn) {
+    Scene scene;
+    scene.meshes = meshes;
+    scene.materials = {Material{}};
+    for (uint32_t m : drawn) scene.objects.push_back(Object{.mesh = m});
+    const std::vector<KnobSetting> settings = knob_settings("tessellation", frame, options, &scene);
+    EXPECT_TRUE(settings.at(0).is_default);
+    return settings.at(0).label;
+  };
+  const Mesh uv24 = make_uv_sphere(24, 12), ico2 = make_icosphere(2);
+  EXPECT_EQ(own({uv24, uv24}, {0, 1, 0}), "scene's own (24 slices)");
+  EXPECT_EQ(own({make_uv_sphere(24, 8)}, {0}), "scene's own (24 slices, 8 stacks)");
+  EXPECT_EQ(own({ico2}, {0}), "scene's own (icosphere level 2)");
+  // An undrawn mesh does not count.
+  EXPECT_EQ(own({uv24, ico2}, {1}), "scene's own (icosphere level 2)");
+  EXPECT_EQ(own({uv24, ico2}, {0, 1}), "scene's own (mixed: 24 slices; icosphere level 2)");
+  EXPECT_EQ(own({uv24, ico2, make_uv_sphere(8, 4), make_icosphere(1)}, {0, 1, 2, 3}),
+            "scene's own (mixed: 24 slices; icosphere level 2; 2 more)");
+  // A sphere no builder makes (here one of radius 2): its triangles, 2 * 8 * (4 - 1).
+  Mesh big = make_uv_sphere(8, 4);
+  for (glm::vec3& p : big.positions) p *= 2.0f;
+  big.analytic_sphere->radius = 2.0f;
+  EXPECT_EQ(own({big}, {0}), "scene's own (48 triangles)");
+  // Without a scene (the command line's checks), the plain label.
+  EXPECT_EQ(knob_settings("tessellation", frame, options).at(0).label, "scene's own");
+}
+
 TEST(Tradeoff, TheTruthIsDescribedAsConfiguredForTheScene) {
   FrameSettings frame;
   frame.brdf = Brdf::classic;

@@ -557,17 +557,55 @@ TEST_F(View, PanelLightControlsGiveTheEditedScenesImage) {
   expect_same_image(png, headless(scene, frame));
 }
 
-// A screenshot that cannot be written says why, and the session goes on.
-TEST_F(View, UnwritableScreenshotSaysWhy) {
+// A screenshot that cannot be written says why, and the session goes on (the next one is
+// written); as a script is a test, the failed scripted one makes the exit status 1, said at
+// the end.
+TEST_F(View, UnwritableScreenshotSaysWhyAndFailsTheScript) {
   SKIP_WITHOUT_X_SERVER();
   const std::string scene_path = write_ball_scene();
-  const ViewRun run = run_view("1 screenshot /nonexistent-dir/shot.png\n2 exit\n",
-                               "--scene " + scene_path + " --size 32x24");
-  ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("screenshot /nonexistent-dir/shot.png not written: folder "
+  const std::string png = output_path("after_unwritable.png");
+  std::filesystem::remove(png);
+  const ViewRun run =
+      run_view("1 screenshot /nonexistent-dir/shot.png\n2 screenshot " + png + "\n3 exit\n",
+               "--scene " + scene_path + " --size 32x24");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("frame 1: screenshot /nonexistent-dir/shot.png not written: folder "
                             "'/nonexistent-dir' does not exist"),
             std::string::npos)
       << run.output;
+  EXPECT_TRUE(std::filesystem::exists(png)) << run.output;
+  EXPECT_NE(run.output.find("tessera: error: 1 script command failed (said above)\n"),
+            std::string::npos)
+      << run.output;
+}
+
+// Every scripted command the viewer cannot carry out says why, as the frame's log line, and
+// counts: the session goes on, and at the end the count is said and the exit status is 1.
+// Here: a light the scene lacks (the ball scene has one), a material edit and a delete with
+// nothing selected, an undo with nothing to undo. Doing what is asked, or finding it already
+// done (an option set to what it is, a save with nothing to save), is no failure.
+TEST_F(View, ScriptCommandsThatCannotBeCarriedOutFailTheScript) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = write_ball_scene();
+  const ViewRun run = run_view(
+      "1 light 9 intensity 3\n2 material roughness 0.5\n3 key Delete\n4 key Z ctrl\n"
+      "5 tonemap aces\n5 key S ctrl\n6 light 0 intensity 3\n7 exit\n",
+      "--scene " + scene_path + " --size 32x24 --overlay off");
+  EXPECT_EQ(run.status, 1) << run.output;
+  for (const std::string said :
+       {"frame 1: no light 9 (the scene has 1)\n",
+        "frame 2: no object selected to change the material of\n",
+        "frame 3: no object selected to delete\n", "frame 4: nothing to undo\n"})
+    EXPECT_NE(run.output.find(said), std::string::npos) << said << " in\n" << run.output;
+  EXPECT_NE(run.output.find("tessera: error: 4 script commands failed (said above)\n"),
+            std::string::npos)
+      << run.output;
+  // The session went on: the last edit was made, and kept in the autosave.
+  EXPECT_NE(run.output.find("change light 0"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("tessera: note: unsaved edits written to "), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("tone map aces: already so"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("nothing to save"), std::string::npos) << run.output;
 }
 
 // A starting size the device cannot render is refused as `render` refuses it, before the
@@ -611,7 +649,7 @@ TEST_F(View, UnlitSceneIsNoted) {
     "meshes": [{"name": "c", "type": "cube"}], "objects": [{"mesh": "c", "material": "m"}]})";
   ViewRun run = run_view("1 exit\n", "--strict --scene " + unlit + " --size 32x24");
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("note: " + unlit +
+  EXPECT_NE(run.output.find("tessera: note: " + unlit +
                             " has no lights, ambient light, environment or emissive material: "
                             "its objects are black\n"),
             std::string::npos)
@@ -629,7 +667,8 @@ TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 exit\n",
                                "--scene " + scene + " --size 64x48 --overlay off");
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("unsaved edits written to " + autosave), std::string::npos)
+  EXPECT_NE(run.output.find("tessera: note: unsaved edits written to " + autosave),
+            std::string::npos)
       << run.output;
   EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());
   EXPECT_EQ(load_scene_file(scene).scene.objects.size(), 1u);  // the scene file is untouched
@@ -686,8 +725,9 @@ TEST_F(View, AnEarlierSessionsAutosaveIsNeverOverwritten) {
   const std::string options = "--scene " + scene + " --size 64x48 --overlay off";
   ViewRun run = run_view(script, options);
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("note: " + earlier + " holds unsaved edits of an earlier session"),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("tessera: note: " + earlier + " holds unsaved edits of an earlier session"),
+      std::string::npos)
       << run.output;
   const std::string second = folder + "/ball.autosave-2.json";
   EXPECT_NE(run.output.find("unsaved edits written to " + second + " (" + earlier +
@@ -699,7 +739,7 @@ TEST_F(View, AnEarlierSessionsAutosaveIsNeverOverwritten) {
   // A third session notes both and writes a third.
   run = run_view(script, options);
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("note: " + second + " holds unsaved edits"), std::string::npos)
+  EXPECT_NE(run.output.find("tessera: note: " + second + " holds unsaved edits"), std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("unsaved edits written to " + folder + "/ball.autosave-3.json"),
             std::string::npos)
@@ -747,7 +787,9 @@ TEST_F(View, AFailedScriptedSaveSaysWhyAndExitsWithStatus1) {
                             "': its temporary file '" + target + ".tmp': it is a folder"),
             std::string::npos)
       << run.output;
-  EXPECT_NE(run.output.find("a save the script asked for failed"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("tessera: error: 1 script command failed (said above)\n"),
+            std::string::npos)
+      << run.output;
   EXPECT_FALSE(std::filesystem::exists(target));
   // The edits were not saved: they went to the autosave.
   EXPECT_TRUE(load_scene_file(folder + "/ball.autosave.json").scene.objects.empty());
