@@ -164,6 +164,24 @@ void validate_camera(const Camera& c) {
   require(finite(c.near_plane) && c.near_plane > 0.0f, "the camera's near plane must be > 0");
 }
 
+namespace {
+
+// Each mesh's box in object space (lowest, highest corner), for the checks of placed objects.
+std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes(const Scene& scene) {
+  std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
+  for (const Mesh& mesh : scene.meshes) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    boxes.emplace_back(lo, hi);
+  }
+  return boxes;
+}
+
+}  // namespace
+
 void validate_scene(const Scene& scene) {
   validate_camera(scene.camera);
   require(finite(scene.background) && finite(scene.ambient),
@@ -216,15 +234,7 @@ void validate_scene(const Scene& scene) {
       throw Error(std::string("invalid scene: ") + e.what());
     }
   }
-  std::vector<std::pair<glm::vec3, glm::vec3>> boxes;  // per mesh, object space
-  for (const Mesh& mesh : scene.meshes) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const glm::vec3& p : mesh.positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    boxes.emplace_back(lo, hi);
-  }
+  const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = mesh_boxes(scene);
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];
     const std::string name = "object " + std::to_string(o);
@@ -249,6 +259,41 @@ void validate_scene(const Scene& scene) {
     }
   }
   for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);
+}
+
+CoarsePositions coarse_positions(const Scene& scene) {
+  const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = mesh_boxes(scene);
+  CoarsePositions coarse;
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Object& obj = scene.objects[o];
+    if (obj.mesh >= scene.meshes.size() || scene.meshes[obj.mesh].positions.empty()) continue;
+    const auto [lo, hi] = boxes[obj.mesh];
+    glm::dvec3 world_lo(std::numeric_limits<double>::max()), world_hi(-world_lo);
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::dvec4 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                         (corner & 4) ? hi.z : lo.z, 1.0);
+      const glm::dvec3 w(glm::dmat4(obj.transform) * p);
+      world_lo = glm::min(world_lo, w);
+      world_hi = glm::max(world_hi, w);
+    }
+    const glm::dvec3 side = world_hi - world_lo;
+    const double size = std::max({side.x, side.y, side.z});
+    const glm::dvec3 reach = glm::max(glm::abs(world_lo), glm::abs(world_hi));
+    const double distance = std::max({reach.x, reach.y, reach.z});
+    // The spacing of floats at `distance`: 2^(exponent - 23) for a 24-bit significand.
+    const float far = float(distance);
+    const double spacing =
+        double(std::nextafter(far, std::numeric_limits<float>::infinity())) - far;
+    // An object of no size (its vertices at one point) draws nothing to see a grain in.
+    if (size <= 0.0 || !(spacing > size / 1024.0)) continue;
+    if (coarse.count++ == 0) {
+      coarse.first = o;
+      coarse.distance = distance;
+      coarse.spacing = spacing;
+      coarse.size = size;
+    }
+  }
+  return coarse;
 }
 
 bool has_light(const Scene& scene) {

@@ -209,6 +209,21 @@ void validate_scene(const Scene& scene);
 /// valid scene, which the commands only note (host/scene_source.h, unlit_scene_note).
 bool has_light(const Scene& scene);
 
+/// Objects placed so far from the origin that 32-bit positions, which the GPU shades with (the
+/// CPU reference works in double), resolve them coarsely: where a float's spacing at the
+/// object's farthest coordinate exceeds 1/1024 of its box's largest side (a 1 m object beyond
+/// 8192 m; at 1e6 m floats are 0.0625 m apart), its shading and outline show that grain as
+/// stripes. A valid scene, which the commands only note (host/scene_source.h).
+struct CoarsePositions {
+  size_t count = 0;       // objects so placed; 0: none, and the rest is unset
+  size_t first = 0;       // the first of them, by index into Scene::objects
+  double distance = 0.0;  // its farthest coordinate from the origin (m, absolute value)
+  double spacing = 0.0;   // a float's spacing there (m)
+  double size = 0.0;      // its world box's largest side (m)
+};
+/// Assumes a scene validate_scene accepts. O(objects + vertices).
+CoarsePositions coarse_positions(const Scene& scene);
+
 /// The camera part of validate_scene, with its messages ("invalid scene: the camera's ..."),
 /// for cameras that are not yet a scene's (a scene file's model cameras, core/scene_file.h).
 void validate_camera(const Camera& camera);

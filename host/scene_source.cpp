@@ -134,6 +134,21 @@ std::string unlit_scene_note(const Scene& scene, const std::string& name, View v
          " has no lights, ambient light, environment or emissive material: its objects are black";
 }
 
+std::string coarse_positions_note(const Scene& scene, const std::string& name) {
+  const CoarsePositions c = coarse_positions(scene);
+  if (c.count == 0) return "";
+  char text[512];
+  std::snprintf(
+      text, sizeof text,
+      "note: object %zu of %s lies %g m from the origin, where 32-bit positions are %g "
+      "m apart, 1/%.0f of its size%s: the GPU shades it with stripes and a stepped "
+      "outline (the CPU reference, in double, does not); model the scene around the "
+      "origin (docs/scene-format.md)",
+      c.first, name.c_str(), c.distance, c.spacing, c.size / c.spacing,
+      c.count > 1 ? (", as " + std::to_string(c.count - 1) + " more objects are").c_str() : "");
+  return text;
+}
+
 std::string scene_listing() {
   for (const std::string& folder : scene_folders()) {
     std::error_code ec;

@@ -69,6 +69,11 @@ void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame,
 std::string unlit_scene_note(const Scene& scene, const std::string& name, View view,
                              bool env_removed = false);
 
+/// "note: object K of NAME lies D m from the origin, where 32-bit positions are S m apart, ..."
+/// when `scene` has objects that coarse_positions (core/scene.h) finds, else "". A note: such
+/// a scene is valid, only imprecise on the GPU.
+std::string coarse_positions_note(const Scene& scene, const std::string& name);
+
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.
 std::string scene_listing();

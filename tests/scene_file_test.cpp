@@ -558,6 +558,39 @@ TEST(SceneFileCli, UnlitSceneIsNoted) {
   EXPECT_NE(out.find(note), std::string::npos) << out;
 }
 
+// An object far from the origin for its size is noted with the spacing of 32-bit floats there:
+// a cube of side 2 at x = 10^6 reaches 1000001, between 2^19 and 2^20, where floats are 2^-4 =
+// 0.0625 apart, 1/32 of its side. The same cube at x = 1000 is not noted (2^-14 apart), nor the
+// far one on the reference, which computes in double.
+TEST(SceneFileCli, ObjectsFarFromTheOriginAreNoted) {
+  const auto write = [](const std::string& name, const char* x) {
+    const std::string path = test::output_path(name);
+    std::ofstream(path) << R"({"materials": [{"name": "m"}], "ambient": [1, 1, 1],
+      "meshes": [{"name": "c", "type": "cube"}], "camera": {"position": [)"
+                        << x << R"(, 0, 8], "target": [)" << x << R"(, 0, 0]},
+      "objects": [{"mesh": "c", "material": "m", "translation": [)"
+                        << x << R"(, 0, 0]},
+        {"mesh": "c", "material": "m", "translation": [)"
+                        << x << ", 3, 0]}]}";
+    return path;
+  };
+  const std::string far = write("far.json", "1000000"), near = write("near.json", "1000");
+  const std::string render = std::string(TESSERA_BINARY) +
+                             " render --size 16x16 --repeat 1 --out " +
+                             test::output_path("far.png") + " --scene ";
+  std::string out;
+  EXPECT_EQ(test::run_command(render + far + " --device lavapipe", out), 0) << out;
+  EXPECT_NE(out.find("tessera: note: object 0 of " + far +
+                     " lies 1e+06 m from the origin, where 32-bit positions are 0.0625 m apart, "
+                     "1/32 of its size, as 1 more objects are: "),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(test::run_command(render + near + " --device lavapipe", out), 0) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+  EXPECT_EQ(test::run_command(render + far + " --device reference", out), 0) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+}
+
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
 // file is expected is refused with a message saying where a model belongs.
 TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "compute/scene_upload.h"
 #include "core/builtin_scenes.h"
@@ -477,6 +478,32 @@ TEST_F(SceneUpload, RebuildsOnlyTheMipChainsOfChangedTextures) {
   EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 0u);
   scene.textures[6].srgb = !scene.textures[6].srgb;
   EXPECT_EQ(renderer.set_scene(scene).mip_chains_built, 1u);
+}
+
+// Floats between 2^k and 2^(k+1) are 2^(k-23) apart. A cube of side 2 (make_cube) is resolved
+// coarsely where that spacing exceeds 2/1024 = 2^-9: from 2^15 on (2^-8), not below (2^-9 at
+// 2^14..2^15, equal, not above).
+TEST(CoarsePositions, ObjectsFarForTheirSizeAreFoundByFloatSpacing) {
+  Scene scene;
+  scene.meshes.push_back(make_cube());
+  scene.materials.push_back(Material{});
+  const auto place = [&](glm::vec3 at, float scale) {
+    Object o;
+    o.transform = glm::scale(glm::translate(glm::mat4(1.0f), at), glm::vec3(scale));
+    scene.objects.push_back(o);
+  };
+  place({0.0f, 0.0f, 0.0f}, 1.0f);
+  place({20000.0f, 0.0f, 0.0f}, 1.0f);  // reaches 20001: spacing 2^-9, not above 2^-9
+  EXPECT_EQ(coarse_positions(scene).count, 0u);
+  place({0.0f, -40000.0f, 0.0f}, 1.0f);  // reaches 40001: spacing 2^-8
+  place({1e6f, 0.0f, 0.0f}, 1.0f);       // 2^-4 = 0.0625
+  place({1e6f, 0.0f, 0.0f}, 100.0f);     // side 200: 0.0625 is not above 200/1024
+  const CoarsePositions coarse = coarse_positions(scene);
+  EXPECT_EQ(coarse.count, 2u);
+  EXPECT_EQ(coarse.first, 2u);
+  EXPECT_DOUBLE_EQ(coarse.distance, 40001.0);
+  EXPECT_DOUBLE_EQ(coarse.spacing, 1.0 / 256.0);
+  EXPECT_DOUBLE_EQ(coarse.size, 2.0);
 }
 
 }  // namespace
