@@ -171,7 +171,11 @@ int run_render(const RenderArgs& given) {
   if (args.raster_shade_given) renderer_options.raster_shade = args.raster_shade;
   if (args.tile_lists_given) renderer_options.tile_lists = args.tile_lists;
   Renderer renderer(*ctx, renderer_options);
-  renderer.set_scene(scene);
+  try {
+    renderer.set_scene(scene);
+  } catch (const SceneSizeError& e) {
+    throw Error(args.scene + ": " + e.what());  // which scene is too large for this device
+  }
 
   const FrameSettings& settings = args.frame;
 

@@ -558,6 +558,27 @@ TEST(SceneFileCli, UnlitSceneIsNoted) {
   EXPECT_NE(out.find(note), std::string::npos) << out;
 }
 
+// A scene file whose objects need a larger object buffer than the device binds (lavapipe: 128
+// MiB, 160 bytes an object, so under 840,000 objects) is refused naming the file.
+TEST(SceneFileCli, SceneTooLargeForTheDeviceNamesTheFile) {
+  const std::string path = test::output_path("too_many.json");
+  std::ofstream(path) << R"({"materials": [{"name": "m"}], "ambient": [1, 1, 1],
+    "meshes": [{"name": "c", "type": "cube"}],
+    "objects": [{"mesh": "c", "material": "m", "grid": {"count": [1000, 1000, 1]}}]})";
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --size 16x16 --out " +
+                                  test::output_path("too_many.png") + " --scene " + path,
+                              out),
+            1)
+      << out;
+  EXPECT_NE(out.find("tessera: error: " + path + ": the scene needs a "), std::string::npos) << out;
+  EXPECT_NE(out.find(" object buffer (1000000 objects), more than this device's "
+                     "maxStorageBufferRange (128 MiB)"),
+            std::string::npos)
+      << out;
+}
+
 // An object far from the origin for its size is noted with the spacing of 32-bit floats there:
 // a cube of side 2 at x = 10^6 reaches 1000001, between 2^19 and 2^20, where floats are 2^-4 =
 // 0.0625 apart, 1/32 of its side. The same cube at x = 1000 is not noted (2^-14 apart), nor the
