@@ -442,6 +442,14 @@ void restore_objects(Renderer::State& s) {
 
 }  // namespace
 
+void Renderer::set_camera(const Camera& camera) {
+  State& s = *s_;
+  if (!s.has_scene) throw Error("set_camera before set_scene");
+  validate_camera(camera);
+  s.camera = camera;
+  s.nothing_to_clip.reset();  // predicted again for the new camera
+}
+
 UploadStats Renderer::set_scene(const Scene& scene) {
   validate_scene(scene);
   State& s = *s_;

@@ -256,6 +256,12 @@ class Renderer {
   /// Compared with the scene set before, only the changed range of each array is uploaded.
   UploadStats set_scene(const Scene& scene);
 
+  /// Makes `camera` the camera of the scene set last, as set_scene with only the camera changed
+  /// would, without flattening or comparing the scene's arrays again: what a window's orbiting
+  /// needs every frame (a scene of 300,000 objects took 1.5 s a frame through set_scene).
+  /// Throws Error for a camera validate_scene refuses, or when no scene was set.
+  void set_camera(const Camera& camera);
+
   /// Renders the current scene into the output images. Throws ImageSizeError for a size the
   /// device cannot handle, SceneSizeError when the level-of-detail chains (FrameSettings::lod)
   /// make a buffer larger than the device binds, Error when no scene was set.

@@ -137,16 +137,22 @@ std::string unlit_scene_note(const Scene& scene, const std::string& name, View v
 std::string coarse_positions_note(const Scene& scene, const std::string& name) {
   const CoarsePositions c = coarse_positions(scene);
   if (c.count == 0) return "";
-  char text[512];
-  std::snprintf(
-      text, sizeof text,
-      "note: object %zu of %s lies %g m from the origin, where 32-bit positions are %g "
-      "m apart, 1/%.0f of its size%s: the GPU shades it with stripes and a stepped "
-      "outline (the CPU reference, in double, does not); model the scene around the "
-      "origin (docs/scene-format.md)",
-      c.first, name.c_str(), c.distance, c.spacing, c.size / c.spacing,
-      c.count > 1 ? (", as " + std::to_string(c.count - 1) + " more objects are").c_str() : "");
-  return text;
+  const auto number = [](const char* format, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, format, value);
+    return std::string(text);
+  };
+  // Past its size the spacing is a multiple of it, not a fraction ("1/0").
+  const std::string share = c.spacing < c.size
+                                ? "1/" + number("%.0f", c.size / c.spacing) + " of its size"
+                                : number("%.3g", c.spacing / c.size) + " times its size";
+  return "note: object " + std::to_string(c.first) + " of " + name + " lies " +
+         number("%g", c.distance) + " m from the origin, where 32-bit positions are " +
+         number("%g", c.spacing) + " m apart, " + share +
+         (c.count > 1 ? ", as " + std::to_string(c.count - 1) + " more objects are" : "") +
+         ": the GPU shades it with stripes and a stepped outline, or loses it where that "
+         "spacing nears its size (the CPU reference, in double, does not); model the scene "
+         "around the origin (docs/scene-format.md)";
 }
 
 std::string scene_listing() {

@@ -423,6 +423,7 @@ void mark_changed(Viewer& v, const std::string& what) {
     v.change.append(", ").append(what);
   }
   v.scene_changed = true;
+  if (what != "camera") v.scene_edited = true;
 }
 
 namespace {
@@ -491,6 +492,10 @@ void handle_event_kind(Viewer& v, const InputEvent& e) {
         log(v, "screenshot " + e.path +
                    " waits: the window is minimised; it is written from the first frame after "
                    "the restore");
+      } else if (v.refused_size != std::pair<uint32_t, uint32_t>{}) {
+        log(v, "screenshot " + e.path +
+                   " waits: the window is too large to draw (said above); it is written from "
+                   "the first frame drawn after it is made smaller");
       }
       break;
     case EventKind::save:

@@ -66,7 +66,12 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   v.window->panel_popup = overlay && overlay_popup_open();
   v.window->panel_has_keyboard = overlay && overlay_wants_keyboard();
   UploadStats upload;
-  if (v.scene_changed) upload = v.renderer->set_scene(v.scene);
+  if (v.scene_changed && v.scene_edited) {
+    upload = v.renderer->set_scene(v.scene);
+    v.scene_edited = false;
+  } else if (v.scene_changed) {
+    v.renderer->set_camera(v.scene.camera);  // an orbit: nothing to compare or upload
+  }
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
   v.last_stats = v.renderer->render(v.frame);
@@ -282,7 +287,11 @@ int run_view(const ViewArgs& args) {
   poll_window(*v.window, 0.0);
   v.renderer = std::make_unique<Renderer>(*v.ctx, renderer_options);
   v.tile_size = renderer_options.tile_size;
-  v.renderer->set_scene(v.scene);
+  try {
+    v.renderer->set_scene(v.scene);
+  } catch (const SceneSizeError& e) {
+    throw Error(args.scene + ": " + e.what());  // which scene is too large for this device
+  }
   catch_stop_signals();
   try {
     run_loop(v);
@@ -295,7 +304,7 @@ int run_view(const ViewArgs& args) {
   for (const Viewer::Screenshot& screenshot : v.screenshots) {
     std::printf("frame %" PRIu64
                 ": screenshot %s not written: no frame was presented after it was asked for "
-                "(the window stayed minimised)\n",
+                "(the window stayed minimised or too large to draw)\n",
                 v.frame_number, screenshot.path.c_str());
     if (screenshot.scripted) v.script_failures++;
     lost = true;

@@ -68,6 +68,7 @@ struct Viewer {
   int selected = -1;           // index into scene.objects, or -1
   glm::vec2 pointer{0.0f};     // window position where new objects go (last click or drag)
   bool scene_changed = false;  // set_scene before the next frame
+  bool scene_edited = false;   // and more than the camera changed (else set_camera will do)
   std::string change;          // what changed it ("camera", "material", ...), for the log
   std::chrono::steady_clock::time_point changed_at{};
   bool minimised = false;   // by the script (a real window reports a 0 x 0 framebuffer)

@@ -282,6 +282,30 @@ struct LoweredStorageRange {
   uint32_t saved;
 };
 
+// set_camera renders what set_scene with only the camera changed renders, bit for bit, and
+// refuses what validate_scene refuses in a camera.
+TEST_F(SceneUpload, SetCameraRendersAsSetSceneWithThatCamera) {
+  Scene scene = make_sphere_grid_scene();
+  FrameSettings settings;
+  settings.width = 64;
+  settings.height = 48;
+  Camera moved = scene.camera;
+  moved.position = glm::vec3(3.0f, 2.0f, 7.0f);
+  Renderer orbiting(context());
+  orbiting.set_scene(scene);
+  orbiting.render(settings);
+  orbiting.set_camera(moved);
+  orbiting.render(settings);
+  scene.camera = moved;
+  Renderer fresh(context());
+  fresh.set_scene(scene);
+  fresh.render(settings);
+  EXPECT_EQ(orbiting.read_hdr().pixels, fresh.read_hdr().pixels);
+  Camera broken = moved;
+  broken.target = broken.position;  // no view direction
+  EXPECT_THROW(orbiting.set_camera(broken), Error);
+}
+
 TEST_F(SceneUpload, SceneOverTheStorageRangeIsRefusedBeforeUploadAndKeepsThePrevious) {
   Renderer renderer(context());
   FrameSettings settings;

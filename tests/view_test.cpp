@@ -684,9 +684,11 @@ TEST_F(View, AWindowTooLargeForTheDeviceWaitsUntilMadeSmaller) {
   std::filesystem::remove(autosave);
   std::filesystem::remove(png);
   // 8192 x 4097 pixels of 8-byte keys is 256 MiB and 8192 B over, so 257 MiB rounded up.
-  const ViewRun run = run_view("1 click 32 24\n2 key Delete\n3 resize 8192 4097\n6 resize 64 48\n" +
-                                   std::string("8 screenshot ") + png + "\n9 exit\n",
-                               "--scene " + scene + " --size 64x48 --overlay off", false);
+  // The screenshot asked for while the window is too large waits for the next drawn frame.
+  const ViewRun run =
+      run_view("1 click 32 24\n2 key Delete\n3 resize 8192 4097\n" + std::string("5 screenshot ") +
+                   png + "\n6 resize 64 48\n9 exit\n",
+               "--scene " + scene + " --size 64x48 --overlay off", false);
   ASSERT_EQ(run.status, 0) << run.output;
   const std::string refused =
       "the window's 8192x4097 pixels are not drawn: a frame of that size needs a 257 MiB "
@@ -694,6 +696,10 @@ TEST_F(View, AWindowTooLargeForTheDeviceWaitsUntilMadeSmaller) {
   const size_t first = run.output.find(refused);
   EXPECT_NE(first, std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(refused, first + 1), std::string::npos) << run.output;  // once
+  EXPECT_NE(run.output.find("frame 5: screenshot " + png +
+                            " waits: the window is too large to draw (said above)"),
+            std::string::npos)
+      << run.output;
   const Image8 shot = read_png(png);
   EXPECT_EQ(shot.width, 64u);
   EXPECT_EQ(shot.height, 48u);
