@@ -49,14 +49,22 @@ ViewRun run_view(const std::string& script, const std::string& options, bool val
                  const std::string& folder = "") {
   const std::string path = std::filesystem::absolute(output_path("script.txt")).string();
   std::ofstream(path) << script;
+  // The viewer's own exit status, written inside xvfb-run: xvfb-run at times fails to remove its
+  // temporary folder after the viewer has exited ("problem while cleaning up temporary
+  // directory", status 5, seen under load), which is not the viewer's status.
+  const std::string status_path =
+      std::filesystem::absolute(output_path("view_status.txt")).string();
+  std::filesystem::remove(status_path);
   ViewRun run;
-  run.status =
-      run_command((folder.empty() ? "" : "cd " + folder + " && ") +
-                      "XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} xvfb-run -a " TESSERA_BINARY
-                      " view --device lavapipe" +
-                      std::string(validate ? " --validate" : "") + " --vsync off --script " + path +
-                      " " + options,
-                  run.output);
+  const int outer = run_command(
+      (folder.empty() ? "" : "cd " + folder + " && ") +
+          "XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} xvfb-run -a sh -c '\"$0\" \"$@\"; echo $? > " +
+          status_path + "' " TESSERA_BINARY " view --device lavapipe" +
+          std::string(validate ? " --validate" : "") + " --vsync off --script " + path + " " +
+          options,
+      run.output);
+  std::ifstream status(status_path);
+  if (!(status >> run.status)) run.status = outer;  // the viewer never ran
   return run;
 }
 
