@@ -56,7 +56,12 @@ Texture decode_image(const Context& ctx, const tinygltf::Model& model, int index
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_uc, void (*)(void*)> data(
       stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4), stbi_image_free);
-  if (!data) ctx.fail(where, "cannot be decoded: " + image_failure_reason());
+  if (!data) {
+    // Name the image file where there is one: the path alone says only which image it is.
+    const bool file = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+    ctx.fail(where, (file ? "'" + image.uri + "' " : std::string()) +
+                        "cannot be decoded: " + image_failure_reason());
+  }
   if (uint32_t(w) > largest || uint32_t(h) > largest) too_large(glm::uvec2(w, h));
   Texture t;
   t.width = uint32_t(w);

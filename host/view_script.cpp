@@ -4,6 +4,8 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include "core/check.h"
 #include "core/mapped_file.h"
 #include "core/materials.h"
+#include "core/scene.h"
 #include "shaders/shared/constants.h"
 
 namespace tessera {
@@ -64,13 +67,22 @@ struct Line {
     for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
     fail("unknown " + std::string(what) + " '" + w + "' (" + list + ")");
   }
+  // A range's end as written: whole numbers in full, the scene's limits (1e+26) as %g.
+  static std::string bound(double v) {
+    if (v == std::floor(v) && std::abs(v) < 1e9) return std::to_string(int64_t(v));
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+  }
   double number_of(const char* what, double min, double max) {
     const std::string& w = word(what);
     double value = 0.0;
     auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), value);
-    if (ec != std::errc() || end != w.data() + w.size() || !(value >= min && value <= max)) {
-      fail(std::string(what) + " expects a number from " + std::to_string(int64_t(min)) + " to " +
-           std::to_string(int64_t(max)) + ", got '" + w + "'");
+    // Compared as the floats the events hold: 1e15 is kMaxSceneCoordinate once rounded.
+    const bool within = float(value) >= float(min) && float(value) <= float(max);
+    if (ec != std::errc() || end != w.data() + w.size() || !within) {
+      fail(std::string(what) + " expects a number from " + bound(min) + " to " + bound(max) +
+           ", got '" + w + "'");
     }
     return value;
   }
@@ -208,11 +220,14 @@ InputEvent parse_event(Line& line) {
     e.index = uint32_t(index);
     e.field = line.word("light action");
     if (e.field == "position") {
-      for (int c = 0; c < 3; ++c) e.value[c] = float(line.number_of("coordinate", -1e6, 1e6));
+      // The scene's own limits (validate_scene), so that a script can set what a scene file can.
+      for (int c = 0; c < 3; ++c) {
+        e.value[c] = float(line.number_of("coordinate", -kMaxSceneCoordinate, kMaxSceneCoordinate));
+      }
     } else if (e.field == "color") {
       for (int c = 0; c < 3; ++c) e.value[c] = float(line.number_of("colour component", 0, 1e6));
     } else if (e.field == "intensity") {
-      e.value.x = float(line.number_of("intensity", 0, 1e9));
+      e.value.x = float(line.number_of("intensity", 0, kMaxLightIntensity));
     } else if (e.field != "delete") {
       line.fail("unknown light action '" + e.field +
                 "' (add, or after the light's index: delete, position, color, intensity)");

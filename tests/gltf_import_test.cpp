@@ -131,6 +131,22 @@ TEST(GltfImport, LimitsAreEnforced) {
   EXPECT_EQ(repeating.wrap_v, TextureWrap::repeat);
 }
 
+// An image file that does not decode is named by its file as well as its glTF place (a fresh
+// user's trial: "images[0]: cannot be decoded" said which image, not which file).
+TEST(GltfImport, AnImageThatDoesNotDecodeNamesItsFile) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(test::output_path("x")).parent_path() / "undecodable";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const fs::path source = kModels + "BoxTextured-glTF";
+  fs::copy_file(source / "BoxTextured.gltf", folder / "BoxTextured.gltf");
+  fs::copy_file(source / "BoxTextured0.bin", folder / "BoxTextured0.bin");
+  std::ofstream(folder / "CesiumLogoFlat.png") << "not an image at all";
+  const std::string error = import_error((folder / "BoxTextured.gltf").string());
+  EXPECT_NE(error.find("images[0]: 'CesiumLogoFlat.png' cannot be decoded: "), std::string::npos)
+      << error;
+}
+
 void world_bounds(const Scene& s, glm::vec3& lo, glm::vec3& hi) {
   lo = glm::vec3(INFINITY);
   hi = glm::vec3(-INFINITY);

@@ -154,6 +154,15 @@ TEST(ViewScript, ReadsEveryEvent) {
   EXPECT_EQ(events[10].frame, 8u);
 }
 
+// What a scene file may hold, a script may set (validate_scene's limits).
+TEST(ViewScript, LightValuesReachTheScenesLimits) {
+  const std::vector<ScriptEvent> events =
+      parse_view_script("1 light 0 intensity 1e26\n2 light 0 position -1e15 0 1e15\n", "s.txt");
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].event.value.x, 1e26f);
+  EXPECT_EQ(events[1].event.value, glm::vec3(-1e15f, 0.0f, 1e15f));
+}
+
 TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
   const std::pair<const char*, const char*> cases[] = {
       {"1 exit\n0 exit\n", "s.txt:2: frame 0 comes before the previous line's frame 1"},
@@ -177,6 +186,10 @@ TEST(ViewScript, ErrorsNameFileLineAndWhatIsWrong) {
       {"1 key A alt\n", "s.txt:1: unexpected 'alt'"},
       {"1 light 0 dim\n", "s.txt:1: unknown light action 'dim'"},
       {"1 light 1.5 delete\n", "s.txt:1: light index expects a whole number"},
+      // The scene's own limits (a fresh user's trial: 1e9 was the script's, 1e26 a file's).
+      {"1 light 0 intensity 1e27\n", "s.txt:1: intensity expects a number from 0 to 1e+26, got"},
+      {"1 light 0 position 2e15 0 0\n",
+       "s.txt:1: coordinate expects a number from -1e+15 to 1e+15, got '2e15'"},
   };
   for (const auto& [text, message] : cases) {
     try {
