@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/check.h"
+#include "core/clip_prediction.h"
 
 namespace tessera {
 namespace {
@@ -89,17 +90,13 @@ bool content_less(const Object& a, const Object& b) {
   return false;
 }
 
-bool within_coordinates(glm::vec3 p) {
-  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxSceneCoordinate)));
-}
-
 void validate_light(const Light& light, size_t l) {
   const std::string name = "light " + std::to_string(l);
   require(finite(light.position) && finite(light.direction) && finite(light.color) &&
               finite(light.intensity),
           name + " has a NaN or infinite value");
   const bool positioned = light.kind != LightKind::directional;
-  require(!positioned || within_coordinates(light.position),
+  require(!positioned || within_scene_coordinates(light.position),
           name + " position is outside +-" + number(kMaxSceneCoordinate) + " m per coordinate");
   // Zero only when every component is: a direction of length 1e-30 is still a direction (the
   // upload normalises it without underflow).
@@ -152,8 +149,9 @@ glm::vec3 id_colour(uint32_t id) {
 void validate_camera(const Camera& c) {
   require(finite(c.position) && finite(c.target) && finite(c.up),
           "the camera has a NaN or infinite coordinate");
-  require(within_coordinates(c.position), "the camera's position is outside +-" +
-                                              number(kMaxSceneCoordinate) + " m per coordinate");
+  require(
+      within_scene_coordinates(c.position),
+      "the camera's position is outside +-" + number(kMaxSceneCoordinate) + " m per coordinate");
   require(glm::length(c.target - c.position) > 0.0f, "the camera's target equals its position");
   require(glm::length(glm::cross(c.target - c.position, c.up)) > 0.0f,
           "the camera's up vector is zero or parallel to its view direction");
@@ -166,17 +164,10 @@ void validate_camera(const Camera& c) {
 
 namespace {
 
-// Each mesh's box in object space (lowest, highest corner), for the checks of placed objects.
-std::vector<std::pair<glm::vec3, glm::vec3>> mesh_boxes(const Scene& scene) {
-  std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
-  for (const Mesh& mesh : scene.meshes) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const glm::vec3& p : mesh.positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    boxes.emplace_back(lo, hi);
-  }
+// Each mesh's box in object space, for the checks of placed objects (empty meshes are skipped).
+std::vector<MeshBox> mesh_boxes(const Scene& scene) {
+  std::vector<MeshBox> boxes;
+  for (const Mesh& mesh : scene.meshes) boxes.push_back(mesh_box(mesh));
   return boxes;
 }
 
@@ -234,7 +225,7 @@ void validate_scene(const Scene& scene) {
       throw Error(std::string("invalid scene: ") + e.what());
     }
   }
-  const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = mesh_boxes(scene);
+  const std::vector<MeshBox> boxes = mesh_boxes(scene);
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];
     const std::string name = "object " + std::to_string(o);
@@ -253,7 +244,7 @@ void validate_scene(const Scene& scene) {
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
                         (corner & 4) ? hi.z : lo.z);
-      require(within_coordinates(glm::vec3(obj.transform * glm::vec4(p, 1.0f))),
+      require(within_scene_coordinates(glm::vec3(obj.transform * glm::vec4(p, 1.0f))),
               name + " reaches outside +-" + number(kMaxSceneCoordinate) +
                   " m per coordinate in world space");
     }
@@ -262,7 +253,7 @@ void validate_scene(const Scene& scene) {
 }
 
 CoarsePositions coarse_positions(const Scene& scene) {
-  const std::vector<std::pair<glm::vec3, glm::vec3>> boxes = mesh_boxes(scene);
+  const std::vector<MeshBox> boxes = mesh_boxes(scene);
   CoarsePositions coarse;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];

@@ -175,6 +175,10 @@ enum class View { shaded, normal, uv, triangle, object };
 /// ranges"). Within them every intermediate of the light arithmetic stays finite in fp32.
 /// Positions: every light, the camera and every vertex in world space, per coordinate, in m.
 inline constexpr float kMaxSceneCoordinate = 1e15f;
+/// Whether every coordinate of `p` is within +-kMaxSceneCoordinate (what validate_scene requires).
+inline bool within_scene_coordinates(glm::vec3 p) {
+  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxSceneCoordinate)));
+}
 /// Intensity times the largest colour component: W/sr (point, spot) or W/m^2 (directional).
 inline constexpr float kMaxLightIntensity = 1e26f;
 /// Inverse-square range, in m: 0 (no fade) or within [kMinLightRange, kMaxLightRange].

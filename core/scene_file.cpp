@@ -693,10 +693,6 @@ std::string point(glm::vec3 p) {
   return s.str();
 }
 
-bool within_coordinates(glm::vec3 p) {
-  return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxSceneCoordinate)));
-}
-
 // "FILE: PLACE: " as the model file's importer names a place in it (glTF: a JSON path; OBJ:
 // 'FILE' line N, or the file alone for line 0).
 std::string model_place(const Model& m, const std::string& place, size_t line = 0) {
@@ -734,7 +730,7 @@ std::string Reader::in_model(const std::string& message) const {
     const std::vector<glm::vec3>& positions = out.scene.meshes[o.mesh].positions;
     size_t v = 0;
     while (v < positions.size() &&
-           within_coordinates(glm::vec3(o.transform * glm::vec4(positions[v], 1.0f))))
+           within_scene_coordinates(glm::vec3(o.transform * glm::vec4(positions[v], 1.0f))))
       ++v;
     if (m.obj) {
       if (v == positions.size()) return model_place(m, "") + message;
@@ -742,7 +738,7 @@ std::string Reader::in_model(const std::string& message) const {
       size_t line = obj_vertex_line(m.file, [&](glm::vec3 q) { return q == p; });
       if (!line)
         line = obj_vertex_line(m.file, [&](glm::vec3 q) {
-          return !within_coordinates(glm::vec3(o.transform * glm::vec4(q, 1.0f)));
+          return !within_scene_coordinates(glm::vec3(o.transform * glm::vec4(q, 1.0f)));
         });
       return model_place(m, "", line) + message + " (its vertex " + point(p) + " is placed at " +
              point(glm::vec3(o.transform * glm::vec4(p, 1.0f))) + ")";
