@@ -43,6 +43,14 @@ struct ViewRun {
   std::string output;
 };
 
+// This test's output folder, emptied.
+std::string fresh_folder() {
+  const std::string folder = std::filesystem::path(output_path("x")).parent_path().string();
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
 // Runs the viewer on lavapipe with validation (unless `validate` is false), replaying `script`,
 // in the working folder `folder` if given.
 ViewRun run_view(const std::string& script, const std::string& options, bool validate = true,
@@ -346,7 +354,9 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
     expected.push_back(i);
   }
   script += "9 click 0 0\n10 exit\n";  // the background
-  const ViewRun run = run_view(script, "--scene spheres --size 160x120 --overlay off");
+  // In a folder of its own: notes of autosaves left where tests run would name them here.
+  const ViewRun run =
+      run_view(script, "--scene spheres --size 160x120 --overlay off", true, fresh_folder());
   ASSERT_EQ(run.status, 0) << run.output;
   std::vector<uint64_t> selected = numbers_after(run.output, "selected object");
   ASSERT_EQ(selected.size(), expected.size()) << run.output;
@@ -358,13 +368,15 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
 
 TEST_F(View, MaterialEditGivesTheEditedScenesImage) {
   SKIP_WITHOUT_X_SERVER();
-  const std::string png = output_path("gold.png");
+  // In a folder of its own, where the unsaved edit's autosave goes (not where tests run).
+  const std::string folder = fresh_folder();
+  const std::string png = std::filesystem::absolute(output_path("gold.png")).string();
   // The centre pixel shows sphere 24, the middle of the 7x7 grid.
   const ViewRun run = run_view(
       "1 click 80 60\n2 material preset gold\n3 material roughness 0.2\n"
       "4 screenshot " +
           png + "\n4 exit\n",
-      "--scene spheres --size 160x120 --overlay off");
+      "--scene spheres --size 160x120 --overlay off", true, folder);
   ASSERT_EQ(run.status, 0) << run.output;
   ASSERT_NE(run.output.find("selected object 24"), std::string::npos) << run.output;
   FrameSettings frame;
@@ -730,14 +742,6 @@ TEST_F(View, AWindowTooLargeForTheDeviceWaitsUntilMadeSmaller) {
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// This test's output folder, emptied.
-std::string fresh_folder() {
-  const std::string folder = std::filesystem::path(output_path("x")).parent_path().string();
-  std::filesystem::remove_all(folder);
-  std::filesystem::create_directories(folder);
-  return folder;
 }
 
 // An earlier session's autosave holds edits this session does not have: it is noted at the
