@@ -580,7 +580,9 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   app.add_option("--scene", a.scene,
                  "built-in scene (default spheres; see\n"
                  "`tessera scenes`) or a scene file; Ctrl+S\n"
-                 "saves it")
+                 "saves it; unsaved edits at exit go to\n"
+                 "FILE.autosave.json beside it, or\n"
+                 "NAME.builtin-autosave.json here")
       ->type_name("NAME|FILE")
       ->check(builtin_scene());
   app.add_option("--device", a.device,

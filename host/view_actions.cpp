@@ -548,7 +548,12 @@ std::string save_path(const Viewer& v) {
 }
 
 std::string autosave_path(const Viewer& v) {
-  std::filesystem::path path = save_path(v);
+  // A scene file's autosaves end in ".autosave.json" or ".autosave-N.json", a built-in's in
+  // ".builtin-autosave.json" or ".builtin-autosave-N.json", which no file's can: a NAME.json
+  // saved beside a built-in NAME (its autosave NAME.autosave.json) never takes the built-in's
+  // autosaves for its own, nor the built-in the file's.
+  if (v.scene_file.empty()) return v.args.scene + ".builtin-autosave.json";
+  std::filesystem::path path = v.scene_file;
   return path.replace_extension(".autosave.json").string();
 }
 
@@ -566,7 +571,7 @@ std::string free_path(const std::string& path) {
 std::vector<std::string> earlier_autosaves(const Viewer& v) {
   namespace fs = std::filesystem;
   const fs::path first = autosave_path(v);
-  const std::string stem = first.stem().string();  // FILE.autosave
+  const std::string stem = first.stem().string();  // FILE.autosave, NAME.builtin-autosave
   const fs::path folder = first.parent_path().empty() ? fs::path(".") : first.parent_path();
   std::vector<std::string> found;
   std::error_code ec;
@@ -575,7 +580,7 @@ std::vector<std::string> earlier_autosaves(const Viewer& v) {
     if (name.size() < stem.size() + 5 || name.compare(0, stem.size(), stem) != 0 ||
         name.compare(name.size() - 5, 5, ".json") != 0)
       continue;
-    // FILE.autosave.json, or FILE.autosave-N.json.
+    // STEM.json, or STEM-N.json.
     const std::string middle = name.substr(stem.size(), name.size() - stem.size() - 5);
     if (!middle.empty() && (middle.size() < 2 || middle[0] != '-' ||
                             middle.find_first_not_of("0123456789", 1) != std::string::npos))

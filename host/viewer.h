@@ -114,15 +114,17 @@ void mark_changed(Viewer& v, const std::string& what);
 /// is there already is not the session's: Ctrl+S then saves to the first free NAME-N.json.
 std::string save_path(const Viewer& v);
 
-/// The scene's autosave file: FILE.autosave.json beside the session's scene file,
-/// NAME.autosave.json in the working folder for a named scene.
+/// The scene's autosave file: FILE.autosave.json beside the session's scene file (FILE without
+/// its extension), NAME.builtin-autosave.json in the working folder for a scene given by name
+/// and not saved yet, a name no scene file's autosave has (NAME.json's is NAME.autosave.json).
 std::string autosave_path(const Viewer& v);
 
 /// `path` if no file is there, else the first of STEM-2.EXT, STEM-3.EXT, ... that is free.
 std::string free_path(const std::string& path);
 
 /// The autosave files of earlier sessions beside the scene: autosave_path and its numbered
-/// variants (FILE.autosave-2.json, ...), sorted by name.
+/// variants (FILE.autosave-2.json, ..., or NAME.builtin-autosave-2.json, ...), sorted by name;
+/// never a built-in scene's for a scene file, nor a scene file's for a built-in scene.
 std::vector<std::string> earlier_autosaves(const Viewer& v);
 
 /// Leaving with unsaved edits writes them to free_path(autosave_path), so that an earlier

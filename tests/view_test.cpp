@@ -778,6 +778,49 @@ TEST_F(View, AnEarlierSessionsAutosaveIsNeverOverwritten) {
   EXPECT_EQ(read_text(earlier), "the earlier session's edits");
 }
 
+// A built-in scene's autosave has a name no scene file's autosave has: NAME.json saved beside
+// it (whose autosave is NAME.autosave.json) and the built-in NAME never take each other's
+// autosaves for their own. Both were NAME.autosave.json: each session noted the other scene's
+// as its own earlier session's, and wrote NAME.autosave-2.json beside it.
+TEST_F(View, ABuiltInScenesAutosaveIsNotASceneFilesOfTheSameName) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = fresh_folder();
+  std::filesystem::copy_file(write_ball_scene(), folder + "/spheres.json");
+  std::ofstream(folder + "/spheres.autosave.json") << "the scene file's earlier edits";
+  ViewRun run = run_view("1 click 80 60\n2 key Delete\n3 exit\n",
+                         "--scene spheres --size 160x120 --overlay off", true, folder);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("spheres.autosave.json holds"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("tessera: note: unsaved edits written to "
+                            "spheres.builtin-autosave.json\n"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(read_text(folder + "/spheres.autosave.json"), "the scene file's earlier edits");
+  EXPECT_EQ(load_scene_file(folder + "/spheres.builtin-autosave.json").scene.objects.size(), 48u);
+  // The scene file's session notes its own autosave, not the built-in's, and writes beside it.
+  run = run_view("1 click 32 24\n2 key Delete\n3 exit\n",
+                 "--scene spheres.json --size 64x48 --overlay off", true, folder);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("tessera: note: spheres.autosave.json holds unsaved edits of an "
+                            "earlier session"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("spheres.builtin-autosave.json holds"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("unsaved edits written to spheres.autosave-2.json "
+                            "(spheres.autosave.json, of an earlier session, left as it is)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_TRUE(load_scene_file(folder + "/spheres.autosave-2.json").scene.objects.empty());
+  // The built-in's next session notes only its own.
+  run = run_view("1 exit\n", "--scene spheres --size 160x120 --overlay off", true, folder);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("tessera: note: spheres.builtin-autosave.json holds unsaved edits"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("spheres.autosave"), std::string::npos) << run.output;
+}
+
 // Ctrl+S and a scripted `save` on a built-in scene write NAME.json in the working folder, but
 // never over a NAME.json the session did not write: the first free NAME-N.json instead, which
 // is then the session's file.
