@@ -203,12 +203,46 @@ Sphere bounding_sphere(const Scene& scene) {
   return b;
 }
 
+namespace {
+
+// The scale that maps `bound` onto a unit sphere (a flat or point-like model still gets a
+// finite one).
+float unit_scale(const Sphere& bound) {
+  return 1.0f / std::max(bound.radius, 1e-20f);
+}
+
+// The file's lights, moved with the content to the grid: centred, and scaled so that its
+// bounding sphere covers the grid's (half diagonal), which keeps each light where it was
+// relative to the model. Inverse-square intensities grow with the squared scale so the
+// irradiance on the content is unchanged; ranges and classic attenuation scale with length.
+InstancedLights place_lights(const Scene& content, const Sphere& bound, const GridLayout& g) {
+  const float grid_radius =
+      0.5f * kGridSpacing * std::sqrt(float(g.cols * g.cols + g.rows * g.rows));
+  InstancedLights out{content.lights, grid_radius * unit_scale(bound)};
+  const float k = out.length;
+  for (Light& l : out.lights) {
+    l.position = (l.position - bound.center) * k;
+    if (l.falloff == Falloff::inverse_square && l.kind != LightKind::directional)
+      l.intensity *= k * k;
+    l.range *= k;
+    l.attenuation = {l.attenuation.x, l.attenuation.y / k, l.attenuation.z / (k * k)};
+  }
+  return out;
+}
+
+}  // namespace
+
+InstancedLights instanced_bench_lights(const Scene& content, uint32_t copies, float aspect) {
+  if (copies == 0) throw Error("a benchmark scene needs at least one copy");
+  check_aspect(aspect);
+  return place_lights(content, bounding_sphere(content), grid_layout(copies, aspect));
+}
+
 Scene make_instanced_bench_scene(const Scene& content, uint32_t copies, float aspect) {
   if (copies == 0) throw Error("a benchmark scene needs at least one copy");
   check_aspect(aspect);
   const Sphere bound = bounding_sphere(content);
-  // A flat or point-like model still gets a finite scale.
-  const float scale = 1.0f / std::max(bound.radius, 1e-20f);
+  const float scale = unit_scale(bound);
   const glm::mat4 normalise =
       glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(scale)), -bound.center);
   Scene s = content;
@@ -226,20 +260,7 @@ Scene make_instanced_bench_scene(const Scene& content, uint32_t copies, float as
     add_four_lights(s, std::max(10.0f, g.camera_distance * 0.5f));
     return s;
   }
-  // The file's lights, moved with the content to the grid: centred, and scaled so that its
-  // bounding sphere covers the grid's (half diagonal), which keeps each light where it was
-  // relative to the model. Inverse-square intensities grow with the squared scale so the
-  // irradiance on the content is unchanged; ranges and classic attenuation scale with length.
-  const float grid_radius =
-      0.5f * kGridSpacing * std::sqrt(float(g.cols * g.cols + g.rows * g.rows));
-  const float k = grid_radius * scale;
-  for (Light& l : s.lights) {
-    l.position = (l.position - bound.center) * k;
-    if (l.falloff == Falloff::inverse_square && l.kind != LightKind::directional)
-      l.intensity *= k * k;
-    l.range *= k;
-    l.attenuation = {l.attenuation.x, l.attenuation.y / k, l.attenuation.z / (k * k)};
-  }
+  s.lights = place_lights(content, bound, g).lights;
   return s;
 }
 

@@ -5,6 +5,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/scene.h"
 
@@ -68,5 +69,17 @@ Sphere bounding_sphere(const Scene& scene);
 /// as the grid family's when it has none); the camera is the grid family's. Throws Error for
 /// zero copies, a bad aspect or content without vertices.
 Scene make_instanced_bench_scene(const Scene& content, uint32_t copies, float aspect);
+
+/// The lights make_instanced_bench_scene gives `copies` copies of `content`: the content's,
+/// moved about the centre of its bounding sphere with their positions, ranges and classic
+/// attenuation's lengths (Kl by 1/length, Kq by 1/length^2) scaled by `length`, and
+/// inverse-square intensities by length^2, so that they light each copy as they lit the
+/// content. Scaled, a light within validate_scene's limits can be past them: the bench says so.
+/// Throws as make_instanced_bench_scene does.
+struct InstancedLights {
+  std::vector<Light> lights;
+  float length = 1.0f;
+};
+InstancedLights instanced_bench_lights(const Scene& content, uint32_t copies, float aspect);
 
 }  // namespace tessera

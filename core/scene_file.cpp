@@ -25,6 +25,7 @@
 #include "core/materials.h"
 #include "core/mesh.h"
 #include "core/model_import.h"
+#include "core/model_place.h"
 #include "core/parallel.h"
 #include "core/procedural_textures.h"
 
@@ -686,91 +687,34 @@ void Reader::read_model(const Node& n) {
   models.push_back(std::move(placed));
 }
 
-// A vector as messages print numbers: (2e+15, 0, 1.5).
-std::string point(glm::vec3 p) {
-  std::ostringstream s;
-  s << "(" << p.x << ", " << p.y << ", " << p.z << ")";
-  return s.str();
-}
-
-// "FILE: PLACE: " as the model file's importer names a place in it (glTF: a JSON path; OBJ:
-// 'FILE' line N, or the file alone for line 0).
-std::string model_place(const Model& m, const std::string& place, size_t line = 0) {
-  if (m.obj) return "'" + m.file + "'" + (line ? " line " + std::to_string(line) : "") + ": ";
-  return m.file + ": " + (place.empty() ? "" : place + ": ");
-}
-
 std::string Reader::model_camera_place(const Model& m, size_t camera) const {
   if (camera >= m.places.cameras.size()) return "";
   const auto& [node, path] = m.places.cameras[camera];
-  return model_place(m, node.empty() ? path : node + " (" + path + ")");
+  return model_file_place(m.file, m.obj, node.empty() ? path : node + " (" + path + ")");
 }
 
 // validate_scene's `message` about an object or light that a model brought, with the model
-// file's place of it put before it (and, for an object, the vertex that is out of range after
-// it), after the scene file's place, which the caller adds; "" for the scene file's own.
+// file's place of it (model_part_message), after the scene file's place, which the caller adds;
+// "" for the scene file's own.
 std::string Reader::in_model(const std::string& message) const {
-  const auto index = [&](const std::string& prefix) -> std::optional<size_t> {
-    if (message.rfind(prefix, 0) != 0) return std::nullopt;
-    return std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
+  const auto in = [&](const Model& m, size_t first_object, size_t objects) {
+    return ModelInScene{m.file,  m.obj,        &m.places,     first_object,
+                        objects, m.first_mesh, m.first_light, m.lights};
   };
-  if (const std::optional<size_t> k = index("invalid scene: object ")) {
+  const std::string prefix = "invalid scene: object ";
+  if (message.rfind(prefix, 0) == 0) {
+    // The model instance that made object K.
+    const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
     const auto it = std::upper_bound(
-        model_instances.begin(), model_instances.end(), *k,
+        model_instances.begin(), model_instances.end(), k,
         [](size_t v, const std::pair<size_t, uint32_t>& i) { return v < i.first; });
     if (it == model_instances.begin()) return "";
     const auto [first, model] = *std::prev(it);
-    const Model& m = models[model];
-    const size_t local = *k - first;
-    if (local >= m.objects.size()) return "";
-    // validate_scene tests the corners of the mesh's box; the first vertex out of range is what
-    // the user can find in the model file (none where only a rotated box's corner is).
-    const Object& o = out.scene.objects[*k];
-    const uint32_t mesh = o.mesh - m.first_mesh;
-    const std::vector<glm::vec3>& positions = out.scene.meshes[o.mesh].positions;
-    size_t v = 0;
-    while (v < positions.size() &&
-           within_scene_coordinates(glm::vec3(o.transform * glm::vec4(positions[v], 1.0f))))
-      ++v;
-    if (m.obj) {
-      if (v == positions.size()) return model_place(m, "") + message;
-      const glm::vec3 p = positions[v];
-      size_t line = obj_vertex_line(m.file, [&](glm::vec3 q) { return q == p; });
-      if (!line)
-        line = obj_vertex_line(m.file, [&](glm::vec3 q) {
-          return !within_scene_coordinates(glm::vec3(o.transform * glm::vec4(q, 1.0f)));
-        });
-      return model_place(m, "", line) + message + " (its vertex " + point(p) + " is placed at " +
-             point(glm::vec3(o.transform * glm::vec4(p, 1.0f))) + ")";
-    }
-    if (local >= m.places.objects.size() || mesh >= m.places.meshes.size()) return "";
-    const std::string primitive = m.places.meshes[mesh];
-    std::string tail = " (" + primitive;
-    if (v < positions.size()) {
-      const glm::vec3 p = positions[v];
-      // A flat-shaded primitive's vertices are its triangles' corners, not its elements.
-      tail += ".attributes.POSITION " +
-              (m.places.vertices_are_elements[mesh]
-                   ? "element " + std::to_string(v) + ", " + point(p) + ", is"
-                   : "value " + point(p) + " is") +
-              " placed at " + point(glm::vec3(o.transform * glm::vec4(p, 1.0f)));
-    }
-    return model_place(m, m.places.objects[local]) + message + tail + ")";
+    return model_part_message(out.scene, in(models[model], first, models[model].objects.size()),
+                              message);
   }
-  if (const std::optional<size_t> k = index("invalid scene: light ")) {
-    for (const Model& m : models) {
-      if (*k < m.first_light || *k >= m.first_light + m.lights) continue;
-      if (*k - m.first_light >= m.places.lights.size()) return "";
-      const auto& [node, light] = m.places.lights[*k - m.first_light];
-      // The limits on intensity and range are the light's own; its position, its node's.
-      if (message.find(" range is ") != std::string::npos)
-        return model_place(m, light + ".range") + message;
-      if (message.find(" intensity times color is ") != std::string::npos)
-        return model_place(m, light + ".intensity") + message +
-               " (KHR_lights_punctual's candela or lux divided by 683 lm/W)";
-      return model_place(m, node + " (" + light + ")") + message;
-    }
-  }
+  for (const Model& m : models)
+    if (std::string s = model_part_message(out.scene, in(m, 0, 0), message); !s.empty()) return s;
   return "";
 }
 

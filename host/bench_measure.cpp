@@ -15,6 +15,7 @@
 #include "core/lod.h"
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
+#include "host/bench_content.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 
@@ -170,9 +171,10 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, cons
   const bool file = is_scene_path(a.scene) || is_model_path(a.scene);
   // A scene by name (built in, or NAME.json of the scenes folder) is one point of the sweep.
   const bool builtin = !file && (is_builtin_scene(a.scene) || is_named_scene(a.scene));
-  const Scene fixed = builtin ? load_scene_argument(a.scene, a.strict, a.quiet).scene
-                      : file  ? load_bench_content(a.scene, a.strict, a.quiet)
-                              : Scene{};
+  BenchContent content;
+  if (builtin) content.scene = load_scene_argument(a.scene, a.strict, a.quiet).scene;
+  if (file) content = load_bench_content(a.scene, a.strict, a.quiet);
+  const Scene& fixed = content.scene;
   const std::vector<uint32_t> counts =
       builtin ? std::vector<uint32_t>{uint32_t(fixed.objects.size())} : a.objects;
   // Each count's triangle instances, from one object's or placement's (every family and file
@@ -191,6 +193,11 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, cons
                     std::to_string(0xFFFFFFFFull / per) + " " + (file ? "placements" : "objects") +
                     ")");
     }
+    // The file's lights move and scale with the grid, which grows with the count: a count
+    // that takes one past the scene's limits is refused here, not once the smaller ones are
+    // measured.
+    if (file)
+      for (uint32_t n : counts) check_bench_lights(content, n, aspect);
     // And each count's buffers against the device's maxStorageBufferRange, which set_scene
     // would refuse only at that point, after the sweep's smaller counts: of the arrays only the
     // objects and their group table grow with N (every placement shares the meshes and textures).

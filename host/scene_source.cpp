@@ -63,18 +63,6 @@ bool is_model_path(const std::string& argument) {
   return ext == ".gltf" || ext == ".glb" || ext == ".obj";
 }
 
-Scene load_bench_content(const std::string& path, bool strict, bool quiet) {
-  if (!is_model_path(path)) return load_scene_argument(path, strict, quiet).scene;
-  ImportOptions options;
-  options.strict = strict;
-  ImportedModel model =
-      model_extension(path) == ".obj" ? import_obj(path, options) : import_gltf(path, options);
-  if (!quiet)
-    for (const std::string& w : model.warnings)
-      std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
-  return std::move(model.scene);
-}
-
 void use_model_camera(SceneFile& file, uint32_t index, const std::string& help_command) {
   const size_t count = file.model_cameras.size();
   if (index < count) {

@@ -32,11 +32,6 @@ void check_scene_name(const std::string& name);
 /// True if `argument` names a model file an importer reads: it ends in .gltf, .glb or .obj.
 bool is_model_path(const std::string& argument);
 
-/// The scene of a scene file (load_scene_argument) or of a model file (import_gltf,
-/// import_obj, by extension), for `tessera bench` to place N times. Warnings are printed to
-/// stderr unless `quiet`; with `strict` they are errors. Throws what the loader throws.
-Scene load_bench_content(const std::string& path, bool strict, bool quiet);
-
 /// Loads `name_or_file`: a path (anything with a '/' or ending in .json) is read as a scene
 /// file; a name is NAME.json in the first scene folder that has it, or, when no folder has
 /// it, the built-in scene of that name made in code (the same scene, core/builtin_scenes.h).

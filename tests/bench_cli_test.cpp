@@ -225,6 +225,118 @@ TEST(BenchCli, InstancedCopiesFillGridCells) {
   EXPECT_EQ(s.lights.size(), 4u) << "content without lights gets the grid's four";
 }
 
+// The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0) as glTF `name` (its buffer beside it), placed by
+// nodes[0] at `translation`, with KHR_lights_punctual light `light` on nodes[1] at (0, 0, 2)
+// unless `light` is null.
+std::string write_triangle_gltf(const std::string& name, const nlohmann::json& translation,
+                                const nlohmann::json& light) {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(test::output_path(name + ".bin"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(positions), sizeof positions);
+  nlohmann::json doc = nlohmann::json::parse(R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "buffers": [{"byteLength": 36}]})");
+  doc["buffers"][0]["uri"] = name + ".bin";
+  doc["nodes"][0]["translation"] = translation;
+  if (!light.is_null()) {
+    doc["extensionsUsed"] = nlohmann::json::array({"KHR_lights_punctual"});
+    doc["extensions"]["KHR_lights_punctual"]["lights"] = nlohmann::json::array({light});
+    doc["nodes"].push_back(
+        {{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    doc["scenes"][0]["nodes"].push_back(1);
+  }
+  const std::string path = test::output_path(name);
+  std::ofstream(path) << doc.dump();
+  return path;
+}
+
+// `tessera bench` sweeping `scene` over `objects` at 32x32 with the reference backend: its
+// exit status, and its output in `out`.
+int bench_model(const std::string& scene, const std::string& objects, std::string& out) {
+  return test::run_command(std::string(TESSERA_BINARY) + " bench --device lavapipe --scene " +
+                               scene + " --objects " + objects +
+                               " --size 32x32 --backends reference --repeat 1 --warmup 0 "
+                               "--warmup-ms 0",
+                           out);
+}
+
+// A model file given to bench is held to the scene's limits as a scene file placing it once,
+// unmoved, holds it (SceneFile.ModelsBreakingSceneLimitsAreNamedInTheModelFile): the message
+// names the model file and the place in it. It said "invalid scene: light 0 intensity times
+// color is 9.15081e+27" (the value scaled by the placement) with no file, and accepted a node
+// at 2e15 m, whose vertices the placement then scaled from float rounding.
+TEST(BenchCli, ModelFileBreakingSceneLimitsIsNamedInIt) {
+  std::string out;
+  // 1e30 cd / 683 lm/W = 1.46413e27 W/sr, above 1e26.
+  std::string model =
+      write_triangle_gltf("limit_light.gltf", {0, 0, 0}, {{"type", "point"}, {"intensity", 1e30}});
+  EXPECT_EQ(bench_model(model, "1", out), 1) << out;
+  EXPECT_NE(
+      out.find("tessera: error: " + model +
+               ": extensions.KHR_lights_punctual.lights[0].intensity: invalid scene: light 0 "
+               "intensity times color is 1.46413e+27, above 1e+26 W/sr (KHR_lights_punctual's "
+               "candela or lux divided by 683 lm/W)\n"),
+      std::string::npos)
+      << out;
+  model = write_triangle_gltf("limit_range.gltf", {0, 0, 0},
+                              {{"type", "point"}, {"intensity", 1}, {"range", 2e9}});
+  EXPECT_EQ(bench_model(model, "1", out), 1) << out;
+  EXPECT_NE(out.find("tessera: error: " + model +
+                     ": extensions.KHR_lights_punctual.lights[0].range: invalid scene: light 0 "
+                     "range is 2e+09 m; it must be 0 (no fade) or within [0.001, 1e+09] m\n"),
+            std::string::npos)
+      << out;
+  // No NORMAL: flat normals, so the vertex is named by its value.
+  model = write_triangle_gltf("limit_node.gltf", {2e15, 0, 0}, nullptr);
+  EXPECT_EQ(bench_model(model, "1", out), 1) << out;
+  EXPECT_NE(out.find("tessera: error: " + model +
+                     ": nodes[0]: invalid scene: object 0 reaches outside +-1e+15 m per coordinate "
+                     "in world space (meshes[0].primitives[0].attributes.POSITION value (0, 0, 0) "
+                     "is placed at (2e+15, 0, 0))\n"),
+            std::string::npos)
+      << out;
+  const std::string obj = test::output_path("limit_vertex.obj");
+  std::ofstream(obj) << "# a triangle\nv 0 0 0\nv 2e15 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_EQ(bench_model(obj, "1", out), 1) << out;
+  EXPECT_NE(out.find("tessera: error: '" + obj +
+                     "' line 3: invalid scene: object 0 reaches outside +-1e+15 m per coordinate "
+                     "in world space (its vertex (2e+15, 0, 0) is placed at (2e+15, 0, 0))\n"),
+            std::string::npos)
+      << out;
+}
+
+// A light within the limits in the file can be past them once the bench moves it with the
+// copies: the message names the file and the place, and says by how much the placement scaled
+// the value, before any count is measured. By hand: the triangle's bounding sphere has centre
+// (0.5, 0.5, 0) and radius sqrt(0.5); 1 copy's grid (one cell of 2.5) has half diagonal
+// 0.5 * 2.5 * sqrt(2) = 2.5 sqrt(0.5), 4 copies' (2 x 2) 0.5 * 2.5 * sqrt(8) = 5 sqrt(0.5), so
+// the lights scale by 2.5 and by 5. 6.83e27 cd is 1e25 W/sr: 6.25e25 for 1 copy, within 1e26;
+// 2.5e26 for 4, past it.
+TEST(BenchCli, LightsThePlacementScalesPastTheLimitsAreExplained) {
+  const std::string model = write_triangle_gltf("scaled_light.gltf", {0, 0, 0},
+                                                {{"type", "point"}, {"intensity", 6.83e27}});
+  std::string out;
+  ASSERT_EQ(bench_model(model, "1", out), 0) << out;
+  EXPECT_EQ(bench_model(model, "1,4", out), 1) << out;
+  const std::string place = "tessera: error: --objects 4: " + model +
+                            ": extensions.KHR_lights_punctual.lights[0].intensity: invalid "
+                            "scene: light 0 intensity times color is ";
+  const size_t at = out.find(place);
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_NEAR(std::stod(out.substr(at + place.size())), 2.5e26, 1e21) << out;
+  EXPECT_NE(out.find("; the file's value is within the limits, but the bench scaled it by 25 "
+                     "(5 squared): it moves the file's lights with its 4 copies on the grid, so "
+                     "that they light each copy as they lit the file's objects\n",
+                     at),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("median ms"), std::string::npos) << "refused before measuring: " << out;
+}
+
 // The yardstick family against the issue's formulas worked by hand: side = ceil(sqrt N),
 // centre (((i mod side) + 0.5) / side * 2 - 1) * 3, (((i div side) + 0.5) / side * 2 - 1) * 1.7,
 // radius 0.45 * 3.4 / side = 1.53 / side.
