@@ -181,6 +181,7 @@ Renderer::Renderer(Context& ctx, const RendererOptions& options)
   check_tile_size(ctx, options.tile_size);
   if (options.small_triangle_walk_area == 0)
     throw Error("small-triangle walk area must be at least 1 pixel");
+  if (options.staging_chunk_bytes == 0) throw Error("staging chunk must be at least 1 byte");
   s_->pipelines =
       create_pipelines(ctx, options.tile_size, options.depth_rejection, s_->shade_tiles);
 
@@ -334,18 +335,16 @@ void queue_objects_upload(const Context& ctx, Buffer& buffer, const GpuSceneArra
   queue_changed_range(buffer, object_bytes, prev.group_objects, next.group_objects, copies);
 }
 
-// Bytes of one staging buffer of submit_copies at most: a scene's uploads may exceed the
-// device's maxMemoryAllocationSize (2^30 at least) with a texel buffer near it.
-constexpr VkDeviceSize kStagingChunk = VkDeviceSize(256) << 20;
-
-// Copies `copies` to the GPU (through a staging buffer of at most kStagingChunk bytes, refilled
-// as often as they need) and waits. Returns the bytes copied.
-VkDeviceSize submit_copies(const Context& ctx, const std::vector<PendingCopy>& copies) {
+// Copies `copies` to the GPU (through a staging buffer of at most `chunk` bytes,
+// RendererOptions::staging_chunk_bytes, refilled as often as they need) and waits. Returns the
+// bytes copied.
+VkDeviceSize submit_copies(const Context& ctx, const std::vector<PendingCopy>& copies,
+                           VkDeviceSize chunk) {
   VkDeviceSize total = 0;
   for (const PendingCopy& c : copies) total += c.size;
   if (total == 0) return 0;
-  Buffer staging = create_buffer(ctx, std::min(total, kStagingChunk),
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryKind::upload);
+  Buffer staging = create_buffer(ctx, std::min(total, chunk), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 MemoryKind::upload);
   size_t next = 0;        // the copy being staged
   VkDeviceSize done = 0;  // its bytes staged before
   while (next < copies.size()) {
@@ -425,7 +424,7 @@ void prepare_lod(Renderer::State& s) {
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_UV1), a.uv1s, uv1s, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_LEVELS), a.lod_levels, 0, copies, stats, dirty);
   queue_tail_upload(s.ctx, s.buffer(TS_BINDING_LOD_MESHES), a.lod_meshes, 0, copies, stats, dirty);
-  submit_copies(s.ctx, copies);
+  submit_copies(s.ctx, copies, s.options.staging_chunk_bytes);
   s.lod_uploaded = true;
 }
 
@@ -434,8 +433,10 @@ void restore_objects(Renderer::State& s) {
   if (!s.objects_hold_lod) return;
   const std::vector<gpu::GpuObject>& objects = s.uploaded.objects;
   if (!objects.empty()) {
-    submit_copies(s.ctx, {{s.buffer(TS_BINDING_OBJECTS).buffer, 0, objects.data(),
-                           objects.size() * sizeof(gpu::GpuObject)}});
+    submit_copies(s.ctx,
+                  {{s.buffer(TS_BINDING_OBJECTS).buffer, 0, objects.data(),
+                    objects.size() * sizeof(gpu::GpuObject)}},
+                  s.options.staging_chunk_bytes);
   }
   s.objects_hold_lod = false;
 }
@@ -492,7 +493,7 @@ UploadStats Renderer::set_scene(const Scene& scene) {
     stats.environment_changed = true;
   }
 
-  stats.bytes = submit_copies(s.ctx, copies);
+  stats.bytes = submit_copies(s.ctx, copies, s.options.staging_chunk_bytes);
   if (next.triangle_count != s.uploaded.triangle_count) {
     // Size the batches and raster buffer for this scene (buffers only grow, never shrink).
     s.batch_triangles = 0;

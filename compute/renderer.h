@@ -92,6 +92,12 @@ struct RendererOptions {
   /// Upper bound on each scratch buffer, in bytes, besides the device's maxStorageBufferRange.
   /// Past it the renderer splits the frame into more batches instead of growing.
   uint64_t max_scratch_buffer_bytes = 256ull << 20;
+  /// Largest staging buffer through which set_scene (and level of detail) uploads, in bytes,
+  /// refilled as often as the uploads need: a scene's uploads may exceed the device's
+  /// maxMemoryAllocationSize (2^30 at least) with a texel buffer near it. Any value gives the
+  /// same scene; tests set a few bytes to split every upload. At least 1 (the constructor
+  /// throws Error otherwise).
+  uint64_t staging_chunk_bytes = 256ull << 20;
   /// Specializes the shading pass to the scene: its light counts, the texture maps its
   /// materials use and whether it has an environment (pipelines built on first use of a
   /// combination, then cached). Off, one generic pipeline with every feature decides at run

@@ -38,8 +38,12 @@ std::string number(float v) {
   return out.str();
 }
 
+[[noreturn]] void fail(const std::string& what) {
+  throw Error("invalid scene: " + what);
+}
+
 void require(bool ok, const std::string& what) {
-  if (!ok) throw Error("invalid scene: " + what);
+  if (!ok) fail(what);
 }
 
 void validate_mesh(const Mesh& mesh, size_t m) {
@@ -54,8 +58,8 @@ void validate_mesh(const Mesh& mesh, size_t m) {
           name + " has " + std::to_string(mesh.uvs1.size()) + " uvs of set 1 for " +
               std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
   for (size_t v = 0; v < mesh.uvs1.size(); ++v) {
-    require(finite(mesh.uvs1[v]),
-            name + " vertex " + std::to_string(v) + " has a NaN or infinite uv of set 1");
+    if (!finite(mesh.uvs1[v]))
+      fail(name + " vertex " + std::to_string(v) + " has a NaN or infinite uv of set 1");
   }
   require(mesh.indices.size() % 3 == 0,
           name + " has " + std::to_string(mesh.indices.size()) + " indices, not a multiple of 3");
@@ -63,18 +67,18 @@ void validate_mesh(const Mesh& mesh, size_t m) {
           name + " has " + std::to_string(mesh.tangents.size()) + " tangents for " +
               std::to_string(mesh.positions.size()) + " positions (give none or one per vertex)");
   for (size_t v = 0; v < mesh.tangents.size(); ++v) {
-    require(finite(mesh.tangents[v]),
-            name + " tangent " + std::to_string(v) + " has a NaN or infinite component");
+    if (!finite(mesh.tangents[v]))
+      fail(name + " tangent " + std::to_string(v) + " has a NaN or infinite component");
   }
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    require(finite(mesh.positions[v]) && finite(mesh.normals[v]) &&
-                (mesh.uvs.empty() || finite(mesh.uvs[v])),
-            name + " vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+    if (!finite(mesh.positions[v]) || !finite(mesh.normals[v]) ||
+        (!mesh.uvs.empty() && !finite(mesh.uvs[v])))
+      fail(name + " vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
   }
   for (size_t i = 0; i < mesh.indices.size(); ++i) {
-    require(mesh.indices[i] < mesh.positions.size(),
-            name + " index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
-                ", past its " + std::to_string(mesh.positions.size()) + " vertices");
+    if (mesh.indices[i] >= mesh.positions.size())
+      fail(name + " index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+           ", past its " + std::to_string(mesh.positions.size()) + " vertices");
   }
 }
 
@@ -226,27 +230,30 @@ void validate_scene(const Scene& scene) {
     }
   }
   const std::vector<MeshBox> boxes = mesh_boxes(scene);
+  // Every set_scene checks every object (the viewer's too, after each edit): the messages are
+  // made only for the object that fails, not formatted for each of 90,000 that pass.
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& obj = scene.objects[o];
-    const std::string name = "object " + std::to_string(o);
-    require(obj.mesh < scene.meshes.size(), name + " uses mesh " + std::to_string(obj.mesh) +
-                                                " of " + std::to_string(scene.meshes.size()));
-    require(obj.material < scene.materials.size(), name + " uses material " +
-                                                       std::to_string(obj.material) + " of " +
-                                                       std::to_string(scene.materials.size()));
-    require(finite(obj.transform), name + " has a NaN or infinite transform");
-    require(scene.materials[obj.material].uv1_maps == 0u || !scene.meshes[obj.mesh].uvs1.empty(),
-            name + ": material " + std::to_string(obj.material) + " reads uv set 1, which mesh " +
-                std::to_string(obj.mesh) + " does not have");
+    const auto name = [o] { return "object " + std::to_string(o); };
+    if (obj.mesh >= scene.meshes.size())
+      fail(name() + " uses mesh " + std::to_string(obj.mesh) + " of " +
+           std::to_string(scene.meshes.size()));
+    if (obj.material >= scene.materials.size())
+      fail(name() + " uses material " + std::to_string(obj.material) + " of " +
+           std::to_string(scene.materials.size()));
+    if (!finite(obj.transform)) fail(name() + " has a NaN or infinite transform");
+    if (scene.materials[obj.material].uv1_maps != 0u && scene.meshes[obj.mesh].uvs1.empty())
+      fail(name() + ": material " + std::to_string(obj.material) + " reads uv set 1, which mesh " +
+           std::to_string(obj.mesh) + " does not have");
     // The world-space box of the mesh's box contains every vertex.
     if (scene.meshes[obj.mesh].positions.empty()) continue;
     const auto [lo, hi] = boxes[obj.mesh];
     for (int corner = 0; corner < 8; ++corner) {
       const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
                         (corner & 4) ? hi.z : lo.z);
-      require(within_scene_coordinates(glm::vec3(obj.transform * glm::vec4(p, 1.0f))),
-              name + " reaches outside +-" + number(kMaxSceneCoordinate) +
-                  " m per coordinate in world space");
+      if (!within_scene_coordinates(glm::vec3(obj.transform * glm::vec4(p, 1.0f))))
+        fail(name() + " reaches outside +-" + number(kMaxSceneCoordinate) +
+             " m per coordinate in world space");
     }
   }
   for (size_t l = 0; l < scene.lights.size(); ++l) validate_light(scene.lights[l], l);

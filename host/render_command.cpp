@@ -149,6 +149,9 @@ int run_render(const RenderArgs& given) {
   if (const std::string note = coarse_positions_note(scene, args.scene);
       !note.empty() && !args.quiet && args.device != "reference")
     std::fprintf(stderr, "tessera: %s\n", note.c_str());
+  // The reference floors the distance as the GPU does.
+  if (const std::string note = near_lights_note(scene, args.scene); !note.empty() && !args.quiet)
+    std::fprintf(stderr, "tessera: %s\n", note.c_str());
   // Check outputs before spending time on a render.
   if (std::string why = unwritable_reason(args.out); !why.empty()) {
     throw Error("cannot write output file '" + args.out + "': " + why);

@@ -8,6 +8,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/check.h"
+#include "core/light_floor.h"
 #include "core/model_import.h"
 #include "host/cli.h"
 
@@ -141,6 +142,23 @@ std::string coarse_positions_note(const Scene& scene, const std::string& name) {
          ": the GPU shades it with stripes and a stepped outline, or loses it where that "
          "spacing nears its size (the CPU reference, in double, does not); model the scene "
          "around the origin (docs/scene-format.md)";
+}
+
+std::string near_lights_note(const Scene& scene, const std::string& name) {
+  const NearLights near = lights_within_floor(scene);
+  if (near.count == 0) return "";
+  char distance[64];
+  std::snprintf(distance, sizeof distance, "%g", near.distance);
+  const size_t more = near.count - 1;
+  return "note: light " + std::to_string(near.light) + " of " + name + " lies " + distance +
+         " m from object " + std::to_string(near.object) + " (its bounding box)" +
+         (more ? ", as " + std::to_string(more) +
+                     (more == 1 ? " more light lies" : " more lights lie") +
+                     " within 1 cm of an object"
+               : "") +
+         ": the shading treats distances below 1 cm as 1 cm, so surfaces nearer receive less "
+         "than intensity / d^2, and a scene modelled below centimetre scale renders too "
+         "dark unless scaled up (lengths by k, intensities by k^2; docs/shading.md)";
 }
 
 std::string scene_listing() {

@@ -69,6 +69,12 @@ std::string unlit_scene_note(const Scene& scene, const std::string& name, View v
 /// a scene is valid, only imprecise on the GPU.
 std::string coarse_positions_note(const Scene& scene, const std::string& name);
 
+/// "note: light L of NAME lies D m from object K (its bounding box), ...: the shading treats
+/// distances below 1 cm as 1 cm, ..." when `scene` has lights that lights_within_floor
+/// (core/light_floor.h) finds, else "". A note: a light on a surface is valid, and a scene
+/// modelled below centimetre scale only too dark. The floor is the reference's too.
+std::string near_lights_note(const Scene& scene, const std::string& name);
+
 /// `tessera scenes`: each scene file of the first scene folder found, with its description;
 /// the built-in scenes when there is none.
 std::string scene_listing();

@@ -248,6 +248,8 @@ int run_view(const ViewArgs& args) {
     std::printf("tessera: %s\n", note.c_str());
   if (const std::string note = coarse_positions_note(v.scene, args.scene); !note.empty())
     std::printf("tessera: %s\n", note.c_str());
+  if (const std::string note = near_lights_note(v.scene, args.scene); !note.empty())
+    std::printf("tessera: %s\n", note.c_str());
   v.render_defaults = file.render;
   v.description = file.description;
   v.options_at[v.history.state()] = render_options_of(v.frame);

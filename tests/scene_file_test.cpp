@@ -612,6 +612,49 @@ TEST(SceneFileCli, ObjectsFarFromTheOriginAreNoted) {
   EXPECT_EQ(out.find("note:"), std::string::npos) << out;
 }
 
+// A light nearer than 1 cm to an object meets the shading's distance floor, which leaves a
+// micrometre scene nearly black: `render` notes the first such light with its nearest object and
+// distance (a cube of side 2 um at the origin, lights 3 um above and 4 um before its centre: 2
+// and 3 um from its box) and how many more there are, on the GPU and the reference alike
+// (both floor the distance), and not under --quiet. The same scene a million times larger, its
+// intensities 10^12 times, is lit as 1/d^2 says and not noted.
+TEST(SceneFileCli, LightsWithinTheDistanceFloorAreNoted) {
+  // U: the unit's exponent, I: the intensity.
+  const auto write = [](const std::string& name, const std::string& unit,
+                        const std::string& intensity) {
+    std::string text = R"({"materials": [{"name": "m"}], "meshes": [{"name": "c", "type": "cube"}],
+      "camera": {"position": [0, 0, 8U], "near": 1U},
+      "objects": [{"mesh": "c", "material": "m", "scale": 1U}],
+      "lights": [{"type": "point", "position": [0, 3U, 0], "intensity": I},
+        {"type": "spot", "position": [0, 0, 4U], "direction": [0, 0, -1], "intensity": I}]})";
+    for (size_t at; (at = text.find_first_of("UI")) != std::string::npos;)
+      text.replace(at, 1, text[at] == 'U' ? unit : intensity);
+    const std::string path = test::output_path(name);
+    std::ofstream(path) << text;
+    return path;
+  };
+  const std::string micro = write("micro.json", "e-6", "1e-12"),
+                    metre = write("metre.json", "e0", "1");
+  const std::string render = std::string(TESSERA_BINARY) +
+                             " render --size 16x16 --repeat 1 --out " +
+                             test::output_path("micro.png") + " --scene ";
+  const std::string note =
+      "tessera: note: light 0 of " + micro +
+      " lies 2e-06 m from object 0 (its bounding box), as 1 more light lies within 1 cm of an "
+      "object: the shading treats distances below 1 cm as 1 cm, so surfaces nearer receive less "
+      "than intensity / d^2, and a scene modelled below centimetre scale renders too dark unless "
+      "scaled up (lengths by k, intensities by k^2; docs/shading.md)\n";
+  std::string out;
+  for (const char* device : {" --device lavapipe", " --device reference"}) {
+    EXPECT_EQ(test::run_command(render + micro + device, out), 0) << out;
+    EXPECT_NE(out.find(note), std::string::npos) << device << ":\n" << out;
+  }
+  EXPECT_EQ(test::run_command(render + micro + " --device lavapipe --quiet", out), 0) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+  EXPECT_EQ(test::run_command(render + metre + " --device lavapipe", out), 0) << out;
+  EXPECT_EQ(out.find("note:"), std::string::npos) << out;
+}
+
 // Every scene `tessera scenes` lists renders by its name, and a model file given where a scene
 // file is expected is refused with a message saying where a model belongs.
 TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {

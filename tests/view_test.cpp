@@ -692,6 +692,24 @@ TEST_F(View, UnlitSceneIsNoted) {
   EXPECT_EQ(run.output.find("has no lights"), std::string::npos) << run.output;
 }
 
+// A light within 1 cm of an object is noted as `render` notes it (scene_file_test.cpp): a cube
+// of side 2 um and a light 2 um above its top.
+TEST_F(View, LightsWithinTheDistanceFloorAreNoted) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string micro = output_path("micro.json");
+  std::ofstream(micro) << R"({"materials": [{"name": "m"}],
+    "meshes": [{"name": "c", "type": "cube"}], "objects": [{"mesh": "c", "material": "m",
+    "scale": 1e-6}], "camera": {"position": [0, 0, 8e-6], "near": 1e-6},
+    "lights": [{"type": "point", "position": [0, 3e-6, 0], "intensity": 1e-12}]})";
+  const ViewRun run = run_view("1 exit\n", "--scene " + micro + " --size 32x24");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("tessera: note: light 0 of " + micro +
+                            " lies 2e-06 m from object 0 (its bounding box): the shading treats "
+                            "distances below 1 cm as 1 cm, "),
+            std::string::npos)
+      << run.output;
+}
+
 TEST_F(View, LeavingWithUnsavedEditsWritesAnAutosave) {
   SKIP_WITHOUT_X_SERVER();
   const std::string scene = write_ball_scene();
