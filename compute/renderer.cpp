@@ -1027,6 +1027,28 @@ void probe_hdr_rounding(Renderer::State& s) {
   s.hdr_rounding_probed = true;
 }
 
+// The GPU time of each pass of the attempt just submitted (`query_passes`: the pass that ends
+// at each timestamp after the first) and of the whole attempt, into `stats`.
+void read_pass_times(const Renderer::State& s, const std::vector<Pass>& query_passes,
+                     FrameStats& stats) {
+  const Context& ctx = s.ctx;
+  std::vector<uint64_t> ticks(query_passes.size() + 1);
+  VK_CHECK(vkGetQueryPoolResults(ctx.device, s.queries, 0, uint32_t(ticks.size()),
+                                 ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  const uint64_t mask =
+      ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
+  const double ns_per_tick = ctx.properties.limits.timestampPeriod;
+  for (size_t i = 0; i < query_passes.size(); ++i) {
+    const uint64_t delta = ((ticks[i + 1] & mask) - (ticks[i] & mask)) & mask;
+    if (query_passes[i] != Pass::count)
+      stats.pass_ms[size_t(query_passes[i])] += double(delta) * ns_per_tick * 1e-6;
+  }
+  const uint64_t all = ((ticks.back() & mask) - (ticks.front() & mask)) & mask;
+  stats.gpu_total_ms = double(all) * ns_per_tick * 1e-6;
+  stats.has_timestamps = true;
+}
+
 }  // namespace
 
 FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
@@ -1053,6 +1075,16 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
   FrameStats stats;
   stats.triangles_submitted = total;
   stats.triangles_without_lod = total;
+  // The precomputation runs in a frame's first attempt only: a redone frame keeps its time.
+  double earlier_precompute_ms = 0.0;
+  auto keep_precompute_time = [&](bool timestamps, const std::vector<Pass>& query_passes) {
+    if (!timestamps || std::find(query_passes.begin(), query_passes.end(), Pass::environment) ==
+                           query_passes.end())
+      return;
+    FrameStats attempt;
+    read_pass_times(s, query_passes, attempt);
+    earlier_precompute_ms += attempt.pass_ms[size_t(Pass::environment)];
+  };
   for (uint32_t attempt = 1;; ++attempt) {
     if (attempt > kMaxAttempts) {
       throw Error("the frame still overflowed its buffers after " + std::to_string(kMaxAttempts) +
@@ -1116,6 +1148,7 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
         // raster buffer then grows on demand below, or the batch halves again at its limit.
         s.batch_triangles = uint32_t(std::min<uint64_t>(
             std::max<uint64_t>(s.lod_triangles, s.batch_triangles), s.max_batch()));
+        keep_precompute_time(timestamps, query_passes);
         continue;  // more batches
       }
       s.lod_triangles = counters[0].lod_total;
@@ -1159,7 +1192,10 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
         s.batch_triangles = std::max(1u, s.batch_triangles / 2);
       }
     }
-    if (redo) continue;
+    if (redo) {
+      keep_precompute_time(timestamps, query_passes);
+      continue;
+    }
 
     stats.attempts = attempt;
     stats.batches = batches;
@@ -1186,21 +1222,8 @@ FrameStats Renderer::render(const FrameSettings& settings, Timing timing) {
       stats.background_tiles = counters[0].background_tiles;
     }
     if (timestamps) {
-      std::vector<uint64_t> ticks(query_passes.size() + 1);
-      VK_CHECK(vkGetQueryPoolResults(
-          ctx.device, s.queries, 0, uint32_t(ticks.size()), ticks.size() * sizeof(uint64_t),
-          ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-      const uint64_t mask =
-          ctx.timestamp_valid_bits >= 64 ? ~0ull : (1ull << ctx.timestamp_valid_bits) - 1;
-      const double ns_per_tick = ctx.properties.limits.timestampPeriod;
-      for (size_t i = 0; i < query_passes.size(); ++i) {
-        const uint64_t delta = ((ticks[i + 1] & mask) - (ticks[i] & mask)) & mask;
-        if (query_passes[i] != Pass::count)
-          stats.pass_ms[size_t(query_passes[i])] += double(delta) * ns_per_tick * 1e-6;
-      }
-      const uint64_t all = ((ticks.back() & mask) - (ticks.front() & mask)) & mask;
-      stats.gpu_total_ms = double(all) * ns_per_tick * 1e-6;
-      stats.has_timestamps = true;
+      read_pass_times(s, query_passes, stats);
+      stats.precompute_ms = earlier_precompute_ms + stats.pass_ms[size_t(Pass::environment)];
     }
     return stats;
   }

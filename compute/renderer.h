@@ -199,9 +199,13 @@ enum class Timing {
 
 struct FrameStats {
   bool has_timestamps = false;               // false if the queue cannot write timestamps
-  std::array<double, kPassCount> pass_ms{};  // GPU time per Pass, summed over batches (0 under
-                                             // Timing::frame)
+  std::array<double, kPassCount> pass_ms{};  // GPU time per Pass of the final attempt, summed
+                                             // over batches (0 under Timing::frame)
   double gpu_total_ms = 0.0;
+  // GPU time of the precomputation (Pass::environment) this frame ran, in whichever attempt ran
+  // it: a frame redone after growing a buffer (the first with level of detail, say) ran it in
+  // its first attempt, and pass_ms, of the final attempt, has 0 for it. 0 under Timing::frame.
+  double precompute_ms = 0.0;
   double cpu_record_submit_ms = 0.0;   // recording and submitting the final attempt
   uint64_t triangles_submitted = 0;    // triangle instances set up (after the level of detail)
   uint64_t triangles_without_lod = 0;  // triangle instances of the meshes as they are

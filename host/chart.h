@@ -44,7 +44,10 @@ struct ScatterChart {
   std::vector<std::string> notes;  // lines under the legend (e.g. what was left out, and why)
 };
 
-/// Writes `chart` to `path` (.svg or .png; throws Error otherwise or if it cannot be written).
+/// Writes `chart` to `path` (.svg or .png; throws Error otherwise or if it cannot be written):
+/// 1000 px wide, 600 high or taller where the legend's list needs it. Each point is labelled
+/// beside its mark or at the end of a leader line, clear of the other labels and marks; a label
+/// with no such room is replaced by a number, listed with the label under the legend.
 void write_scatter_chart(const std::string& path, const ScatterChart& chart);
 
 /// Writes `spec` to `path`, which must end in .svg or .png. Throws Error otherwise or if the

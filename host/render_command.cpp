@@ -125,7 +125,7 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   print_pass_times("GPU time, median of " + std::to_string(timed.size()) + " frame" +
                        (timed.size() > 1 ? "s" : "") + " after the first",
                    timed);
-  const double precompute = first.pass_ms[size_t(Pass::environment)];
+  const double precompute = first.precompute_ms;
   if (precompute > 0.0) {
     std::printf(
         "precomputation (the background's colours; DFG tables, irradiance and prefiltered cube "

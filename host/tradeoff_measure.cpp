@@ -179,7 +179,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
       // the other settings ran, by time as `tessera bench` does (core/warmup.h).
       if (round == 0) {
         const FrameStats stats = c.renderer->render(c.setting.frame);
-        c.precompute_ms = stats.pass_ms[size_t(Pass::environment)];
+        c.precompute_ms = stats.precompute_ms;
       }
       WarmupRule rule;
       rule.min_frames = args.warmup;

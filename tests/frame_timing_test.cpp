@@ -1,7 +1,8 @@
 // What a frame's timestamps measure (Timing, compute/renderer.h): per pass, or the frame alone,
 // which `tessera bench` reports as the frame's time because timestamps between the passes add to
 // it. Either way the image is the same, and the per-pass times add up to their frame's total.
-// And timestamps are taken when the command buffer reaches them, also after a render pass.
+// And timestamps are taken when the command buffer reaches them, also after a render pass; and
+// the precomputation's time is kept when a frame is redone.
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -16,6 +17,8 @@
 #include "compute/timestamps.h"
 #include "compute/vk_check.h"
 #include "core/builtin_scenes.h"
+#include "core/environment.h"
+#include "core/mesh.h"
 #include "tests/test_shaders.h"
 #include "tests/vulkan_fixture.h"
 
@@ -52,6 +55,51 @@ TEST_F(FrameTiming, FrameTimingLeavesThePassesOutAndTheImageAlone) {
     EXPECT_EQ(frame.tile_entries, per_pass.tile_entries);
     EXPECT_EQ(renderer.read_hdr().pixels, per_pass_image.pixels);
   }
+}
+
+// The first frame with level of detail is redone: its batch was sized by the scene's own
+// meshes, and a sphere near the camera asks for a level finer than its mesh (tests/lod_test.cpp,
+// BatchesOfANewSceneAreSizedForItsOwnLevels). The environment is precomputed in the first
+// attempt only; the final attempt's passes do not hold it, but the frame's precompute_ms must
+// (`tessera tradeoff` printed no precompute figure on such a lod row, `tessera render --lod auto`
+// no precomputation line).
+TEST_F(FrameTiming, APrecomputationInARedoneFrameIsStillTimed) {
+  Scene scene;
+  scene.camera.position = {0.0f, 0.0f, 2.5f};
+  scene.camera.near_plane = 0.05f;
+  scene.meshes.push_back(make_uv_sphere(32, 16));  // 960 triangles
+  scene.materials.push_back(Material{});
+  scene.objects.push_back({0, 0, glm::mat4(1.0f)});
+  scene.environment =
+      std::make_shared<const Environment>(make_uniform_environment(glm::vec3(0.5f)));
+  FrameSettings fs{.width = 256, .height = 256};
+  fs.lod = Lod::automatic;
+  fs.lod_error_px = 0.25f;
+  RendererOptions options;  // a small cube: the precomputation's size does not matter here
+  options.environment.specular_size = 16;
+  options.environment.specular_samples = 16;
+  options.environment.irradiance_size = 16;
+  Renderer renderer(context(), options);
+  renderer.set_scene(scene);
+  const FrameStats first = renderer.render(fs);
+  ASSERT_TRUE(first.has_timestamps);
+  ASSERT_GT(first.attempts, 1u) << "the frame this test is about is one that is redone";
+  ASSERT_GT(first.triangles_submitted, 960u);
+  EXPECT_EQ(first.pass_ms[size_t(Pass::environment)], 0.0) << "not in the final attempt";
+  EXPECT_GT(first.precompute_ms, 0.0);
+  // Nothing is left to precompute in the next frame, which is not redone.
+  const FrameStats second = renderer.render(fs);
+  EXPECT_EQ(second.attempts, 1u);
+  EXPECT_EQ(second.precompute_ms, 0.0);
+  // A new environment, in a frame without level of detail and done at once: the figure is
+  // its pass's.
+  scene.environment =
+      std::make_shared<const Environment>(make_uniform_environment(glm::vec3(0.25f)));
+  renderer.set_scene(scene);
+  const FrameStats at_once = renderer.render(FrameSettings{.width = 256, .height = 256});
+  ASSERT_EQ(at_once.attempts, 1u);
+  EXPECT_GT(at_once.precompute_ms, 0.0);
+  EXPECT_EQ(at_once.precompute_ms, at_once.pass_ms[size_t(Pass::environment)]);
 }
 
 struct Interval {

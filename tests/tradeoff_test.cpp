@@ -414,6 +414,43 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   EXPECT_NE(chart.find(">  anisotropy<"), std::string::npos) << "named as not measured";
 }
 
+TEST(Tradeoff, EveryLodRowUnderAnEnvironmentHasItsPrecompute) {
+  // One sphere of 224 triangles near the camera, under a sky: at 0.25 to 1 px the levels of
+  // detail are finer than the mesh, and the first frame of those settings is redone with larger
+  // batches (compute/renderer.cpp) after the attempt that precomputed the environment. Every
+  // setting precomputes it once (each has a renderer of its own), and every row must say how
+  // long that took: those rows said nothing (the JSON 0).
+  const std::string base = test::output_path("tradeoff_lod_environment");
+  {
+    std::ofstream scene(base + ".json");
+    scene << R"({"version": 1,
+      "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "vertical_fov_degrees": 40},
+      "environment": {"type": "sky", "width": 64},
+      "meshes": [{"name": "sphere", "type": "sphere", "segments": 16, "rings": 8}],
+      "materials": [{"name": "m", "base_color": [0.9, 0.9, 0.9], "roughness": 0.3}],
+      "objects": [{"name": "s", "mesh": "sphere", "material": "m"}]})";
+  }
+  std::string out;
+  const std::string command = std::string(TESSERA_BINARY) + " tradeoff --device lavapipe --scene " +
+                              base + ".json --knob lod --size 64x64 --repeat 1 --rounds 1 " +
+                              "--warmup 0 --warmup-ms 0 --truth-samples 1 --truth-env-samples 16 " +
+                              "--json " + base + "_out.json";
+  ASSERT_EQ(test::run_command(command, out), 0) << out;
+  std::ifstream f(base + "_out.json");
+  const nlohmann::json j = nlohmann::json::parse(f);
+  ASSERT_EQ(j["points"].size(), 6u) << "off, then auto at 5 bounds";
+  for (const auto& p : j["points"]) {
+    EXPECT_GT(p["environment_precompute_ms"].get<double>(), 0.0) << p["setting"] << "\n" << out;
+    // The table's row says it too.
+    const std::string label = p["setting"];
+    const size_t row = out.find("lod   " + label + " ");
+    ASSERT_NE(row, std::string::npos) << label << "\n" << out;
+    EXPECT_NE(out.substr(row, out.find('\n', row) - row).find("precompute"), std::string::npos)
+        << label << "\n"
+        << out;
+  }
+}
+
 TEST(Tradeoff, NothingToMeasureIsAnErrorNamingEachKnobsReason) {
   std::string out;
   const std::string command =
