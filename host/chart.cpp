@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 #include "core/image.h"
 #include "host/label_layout.h"
 
@@ -352,8 +353,7 @@ void draw_scatter(Canvas& c, double width, double height, const ScatterChart& ch
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return has_extension(s, suffix);
 }
 
 }  // namespace
