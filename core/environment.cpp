@@ -9,6 +9,7 @@
 #include <stb/stb_image.h>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 #include "core/mapped_file.h"
 #include "core/radiance_check.h"
 
@@ -19,14 +20,6 @@ constexpr double kPi = std::numbers::pi;
 
 // Largest Radiance file read (a 16384 x 8192 map, uncompressed, is 512 MiB).
 constexpr uint64_t kMaxHdrBytes = uint64_t(1) << 30;
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  if (s.size() < suffix.size()) return false;
-  std::string tail = s.substr(s.size() - suffix.size());
-  std::transform(tail.begin(), tail.end(), tail.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return tail == suffix;
-}
 
 }  // namespace
 
@@ -65,9 +58,9 @@ Environment load_environment(const std::string& path) {
   // Before it is opened: a FIFO would block the open until a writer came.
   require_regular_file(path);
   Environment env;
-  if (ends_with(path, ".pfm")) {
+  if (has_extension(path, ".pfm")) {
     env.radiance = read_pfm(path);
-  } else if (ends_with(path, ".hdr")) {
+  } else if (has_extension(path, ".hdr")) {
     std::error_code ec;
     // stb_image's own reason ("can't fopen") would not say which.
     if (!std::filesystem::is_regular_file(path, ec))

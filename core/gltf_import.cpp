@@ -571,6 +571,15 @@ void instantiate_nodes(const Context& ctx, const json& doc, const tinygltf::Mode
     }
     if (node.skin) ctx.warn(where + ".skin", "skins are ignored (bind pose)");
   }
+  // Valid glTF, but a model is placed to be drawn: an empty image was otherwise unexplained,
+  // where a scene file's model that no object places is warned about.
+  // A file of lights or cameras alone is a use of its own.
+  if (out.scene.objects.empty() && out.scene.lights.empty() && camera_placements.empty()) {
+    ctx.warn(at("scenes", scene_index),
+             roots.empty() ? "has no nodes, so the model places nothing and draws nothing"
+                           : "places no meshes, lights or cameras (none of its nodes has one), "
+                             "so the model draws nothing");
+  }
   out.cameras = make_cameras(ctx, doc, camera_placements, out.places);
 }
 

@@ -171,6 +171,41 @@ std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> v) {
   return out;
 }
 
+// Triangle t's face normal times twice its area, in double (no overflow from float positions).
+glm::dvec3 area_normal(const Mesh& mesh, size_t t) {
+  const uint32_t* tri = &mesh.indices[3 * t];
+  const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]), c(mesh.positions[tri[2]]);
+  return glm::cross(b - a, c - a);
+}
+
+// `n` made unit length, or +z where it has no direction: what it is the normal of (a
+// degenerate triangle, a vertex only such triangles use) covers no pixel, so any unit normal
+// will do; this one keeps NaN out.
+glm::vec3 unit_or_z(const glm::dvec3& n) {
+  const double length = glm::length(n);
+  return length > 0.0 && std::isfinite(length) ? glm::vec3(n / length) : glm::vec3(0, 0, 1);
+}
+
+// Normals for the vertices whose given NORMAL is the zero vector (`flagged`), which has no
+// direction: the area-weighted sum of the face normals of the triangles that use the vertex,
+// as OBJ's import makes them for a smoothing group. A glTF mesh splits its vertices where it
+// wants a hard edge, so at one (a box's corner) this is the face's own normal, and on a smooth
+// surface the surface's.
+void generate_flagged_normals(Mesh& mesh, const std::vector<bool>& flagged) {
+  std::vector<glm::dvec3> sums(mesh.positions.size(), glm::dvec3(0.0));
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t* tri = &mesh.indices[3 * t];
+    if (!flagged[tri[0]] && !flagged[tri[1]] && !flagged[tri[2]]) continue;
+    const glm::dvec3 n = area_normal(mesh, t);
+    for (int k = 0; k < 3; ++k) {
+      if (flagged[tri[k]]) sums[tri[k]] += n;
+    }
+  }
+  for (size_t i = 0; i < flagged.size(); ++i) {
+    if (flagged[i]) mesh.normals[i] = unit_or_z(sums[i]);
+  }
+}
+
 // Flat normals, as the specification requires when NORMAL is absent: every triangle gets its
 // own three vertices carrying its face normal.
 void make_flat(Mesh& mesh) {
@@ -183,13 +218,7 @@ void make_flat(Mesh& mesh) {
   if (!mesh.uvs1.empty()) reserve_populated(flat.uvs1, corners);
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
-    const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]),
-        c(mesh.positions[tri[2]]);
-    const glm::dvec3 n = glm::cross(b - a, c - a);
-    const double length = glm::length(n);
-    // A degenerate triangle covers no pixel, so any unit normal will do; this one keeps NaN out.
-    const glm::vec3 normal =
-        length > 0.0 && std::isfinite(length) ? glm::vec3(n / length) : glm::vec3(0, 0, 1);
+    const glm::vec3 normal = unit_or_z(area_normal(mesh, t));
     for (int k = 0; k < 3; ++k) {
       flat.indices.push_back(uint32_t(flat.positions.size()));
       flat.positions.push_back(mesh.positions[tri[k]]);
@@ -363,7 +392,8 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
         const double length = std::sqrt(x * x + y * y + z * z);
         finite_ &= std::isfinite(x) & std::isfinite(y) & std::isfinite(z);
         zero_ = !(length > 0.0) ? std::min(zero_, i) : zero_;
-        renormalized_ |= std::abs(length - 1.0) > 1e-3;
+        // A zero normal is not renormalized but replaced (below), and warned about as such.
+        renormalized_ |= (length > 0.0) & (std::abs(length - 1.0) > 1e-3);
         // One division, not three: x * (1 / length) is within an ulp of x / length in double,
         // so the two round to different floats only where a float rounding boundary falls in
         // that ulp (a chance of about 2^-29 a value): no stored normal of the 79 glTF files of
@@ -377,9 +407,28 @@ Mesh convert_primitive(const Context& ctx, const tinygltf::Model& model, int mes
       finite_normals = finite_;
       zero = zero_;
     });
+    // A NaN or infinite normal is an error, as every non-finite number of a model is (an OBJ's
+    // `vn` too): it is damage, not a direction left out. A zero one is what an exporter writes
+    // for a vertex it found no direction for (a degenerate face), which OBJ's import fills in
+    // with a warning: the same here, for the vertices that have one.
     if (!finite_normals) require_finite(ctx, normals, attributes + "NORMAL");
     if (zero != n) {
-      ctx.fail(attributes + "NORMAL", "element " + std::to_string(zero) + " is the zero vector");
+      std::vector<bool> flagged(n, false);
+      size_t count = 0;
+      visit(normals, [&](auto values) {
+        for (size_t i = zero; i < n; ++i) {
+          const bool z = values[3 * i] == 0 && values[3 * i + 1] == 0 && values[3 * i + 2] == 0;
+          flagged[i] = z;
+          count += z;
+        }
+      });
+      generate_flagged_normals(mesh, flagged);
+      ctx.warn(attributes + "NORMAL",
+               "element " + std::to_string(zero) + " is the zero vector, which has no direction (" +
+                   std::to_string(count) + (count == 1 ? " such element" : " such elements") +
+                   "); " +
+                   (count == 1 ? "its vertex gets a normal" : "their vertices get normals") +
+                   " generated from the triangles that use " + (count == 1 ? "it" : "them"));
     }
     if (renormalized) {
       ctx.warn(attributes + "NORMAL", "has normals that are not unit length; normalized");

@@ -765,9 +765,35 @@ void explain_tinygltf_failure(const Context& ctx, std::string_view text) {
   }
 }
 
+namespace {
+
+// A glTF 1.0 document differs from 2.0 throughout (objects keyed by id where 2.0 has arrays,
+// "scene" a string), so it is named by its version before the 2.0 schema refuses the first
+// property it meets ("scene: must be an integer >= 0 (found a string)"). Its asset.version is
+// "1.0" (a string, as in 2.0), or the number 1 that some 1.0 exporters wrote.
+void refuse_gltf_1(const Context& ctx, const json& doc) {
+  const auto asset = doc.find("asset");
+  if (asset == doc.end() || !asset->is_object()) return;
+  const auto version = asset->find("version");
+  if (version == asset->end()) return;
+  const bool one =
+      version->is_string()
+          ? *version == "1" || version->get<std::string>().rfind("1.", 0) == 0
+          : version->is_number() && version->get<double>() >= 1.0 && version->get<double>() < 2.0;
+  if (one) {
+    ctx.fail("asset.version",
+             "is " + version->dump() +
+                 ": this is a glTF 1.0 file, which Tessera does not read (only glTF 2.0 is "
+                 "supported; re-export or convert the model to glTF 2.0)");
+  }
+}
+
+}  // namespace
+
 void check_document(const Context& ctx, const json& doc) {
   if (!doc.is_object()) ctx.fail("", "the JSON document is not an object");
   if (!doc.contains("asset")) ctx.fail("asset", "is missing (every glTF file has one)");
+  refuse_gltf_1(ctx, doc);
   check_fields(ctx, doc, "", document_schema());
   const std::string version = doc["asset"].value("version", "");
   if (version.rfind("2.", 0) != 0) {

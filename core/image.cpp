@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
@@ -17,14 +18,6 @@
 #include <stb/stb_image.h>
 
 namespace tessera {
-namespace {
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-}  // namespace
 
 void write_png(const std::string& path, const Image8& image) {
   TESSERA_CHECK(image.pixels.size() == size_t(image.width) * image.height);
@@ -50,7 +43,7 @@ Image8 read_png(const std::string& path) {
 void write_hdr_image(const std::string& path, const ImageF& image) {
   TESSERA_CHECK(image.pixels.size() == size_t(image.width) * image.height);
   std::vector<float> rgb(size_t(image.width) * image.height * 3);
-  if (ends_with(path, ".hdr")) {
+  if (has_extension(path, ".hdr")) {
     for (size_t i = 0; i < image.pixels.size(); ++i) {
       for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = image.pixels[i][c];
     }
@@ -59,7 +52,7 @@ void write_hdr_image(const std::string& path, const ImageF& image) {
     }
     return;
   }
-  if (!ends_with(path, ".pfm")) {
+  if (!has_extension(path, ".pfm")) {
     throw Error("HDR output '" + path + "' must end in .pfm or .hdr");
   }
   // PFM stores rows bottom to top; a negative scale means little-endian.

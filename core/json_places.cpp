@@ -111,7 +111,7 @@ struct Scanner {
       while (peek() != '}' && pos < text.size()) {
         const size_t key_at = pos;
         const std::string key = string();
-        if (!seen.insert(key).second) fail(key_at, "key '" + key + "' is given twice");
+        if (!seen.insert(key).second) throw JsonDuplicateKey(place(key_at), pointer, key);
         const std::string child = pointer + "/" + json_pointer_token(key);
         out.keys[child] = place(key_at);
         skip_space();

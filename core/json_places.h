@@ -46,10 +46,26 @@ struct JsonNumberOverflow : Error {
   std::string reason;   // the message without the place
 };
 
+/// What index_json_places throws for a key given twice in one object: "LINE:COLUMN: key 'K'
+/// is given twice", with the object's JSON pointer and the key, for a caller that names the
+/// value by its path (materials.gold.roughness).
+struct JsonDuplicateKey : Error {
+  JsonDuplicateKey(JsonPlace place, std::string object, std::string key)
+      : Error(std::to_string(place.line) + ":" + std::to_string(place.column) + ": key '" + key +
+              "' is given twice"),
+        place(place),
+        object(std::move(object)),
+        key(std::move(key)) {}
+  JsonPlace place;     // where the second one is
+  std::string object;  // the RFC 6901 JSON pointer of the object that has it twice
+  std::string key;
+};
+
 /// Indexes every value of `text`, which nlohmann-json has parsed (or refused only for a number
 /// out of double's range). Throws Error("LINE:COLUMN: ...") for what the parser lets through
 /// but a scene file must not have: a number that overflows a double (1e999, as
-/// JsonNumberOverflow), a key given twice in one object, nesting deeper than `max_depth`.
+/// JsonNumberOverflow), a key given twice in one object (as JsonDuplicateKey), nesting deeper than
+/// `max_depth`.
 JsonPlaces index_json_places(std::string_view text, size_t max_depth = 64);
 
 /// `token` escaped for use in a JSON pointer (~ as ~0, / as ~1).

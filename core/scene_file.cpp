@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/check.h"
+#include "core/closest_name.h"
 #include "core/json_places.h"
 #include "core/mapped_file.h"
 #include "core/materials.h"
@@ -187,7 +188,9 @@ struct Reader {
       for (const char* k : known) found = found || key == k;
       if (found) continue;
       const Node c = child(n, key);
-      const std::string message = where(c, true) + "unknown key '" + key + "'";
+      const std::string near = closest_name(key, known);
+      const std::string message = where(c, true) + "unknown key '" + key + "'" +
+                                  (near.empty() ? "" : ", did you mean '" + near + "'?");
       if (options.strict) throw Error(message + " (an error with --strict)");
       out.warnings.push_back(message + " (ignored)");
     }
@@ -260,7 +263,10 @@ struct Reader {
   }
   template <class E>
   E choice(const Node& n, std::initializer_list<std::pair<const char*, E>> options) const {
-    const std::string s = string(n);
+    // Names are spelt with '_' here and with '-' on the command line (blinn_phong,
+    // --brdf blinn-phong); either is taken in both places.
+    std::string s = string(n);
+    std::replace(s.begin(), s.end(), '-', '_');
     std::string known;
     for (const auto& [name, value] : options) {
       if (s == name) return value;
@@ -1080,6 +1086,13 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
     if (whole.is_discarded()) throw Error(name + ":" + e.what());
     reader.places.values[e.pointer] = e.place;
     throw Error(reader.where(reader.node_at({&whole, "", ""}, e.pointer)) + e.reason);
+  } catch (const JsonDuplicateKey& e) {
+    // Named by its path, as other errors are (nlohmann-json keeps the last value of the key),
+    // unless the text held no document (a number out of range besides).
+    if (root.is_null()) throw Error(name + ":" + e.what());
+    const Node key = reader.child(reader.node_at({&root, "", ""}, e.object), e.key);
+    reader.places.keys[key.pointer] = e.place;
+    throw Error(reader.where(key, true) + "key '" + e.key + "' is given twice");
   } catch (const Error& e) {
     throw Error(name + ":" + e.what());
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 #include "core/image.h"
 
 #pragma GCC diagnostic push
@@ -129,8 +130,7 @@ struct PngCanvas : Canvas {
 };
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return has_extension(s, suffix);
 }
 
 }  // namespace

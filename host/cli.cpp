@@ -766,11 +766,22 @@ const T* first_repeated(const std::vector<T>& list) {
 
 }  // namespace
 
+std::string version_text() {
+  return "tessera " TESSERA_VERSION;
+}
+
 CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (args.empty()) {
     throw UsageError("a command is required: " + list_of_choices(kCommands), "tessera --help");
   }
   const std::string& command = args.front();
+  if (command == "--version") {
+    if (args.size() > 1) throw UsageError("--version takes nothing after it", "tessera --help");
+    CommandLine line;
+    line.command = Command::help;  // a text to print, and success
+    line.help = version_text() + "\n";
+    return line;
+  }
   const bool asks_help = command == "--help" || command == "-h" || command == "help";
   if (!asks_help && std::find(kCommands.begin(), kCommands.end(), command) == kCommands.end()) {
     throw UsageError(
@@ -784,6 +795,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   // Names of up to 28 characters, descriptions of up to 49: 80 columns.
   app.get_formatter()->column_width(31);
   app.require_subcommand(1);
+  // Answered above; declared for the help text.
+  app.set_version_flag("--version", version_text(), "print the version and exit");
   CLI::App* render = app.add_subcommand("render", "render a scene to a PNG");
   add_render_options(*render, line.render);
   CLI::App* bench =

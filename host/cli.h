@@ -160,6 +160,10 @@ constexpr int kExitUsageError = 2;       // a UsageError
 constexpr int kExitValidationError = 3;  // --validate and the validation layer reported
 
 /// Parses the arguments after the program name (argv[1..]). Throws UsageError.
+/// "tessera 0.1 (git v0.1-12-gabcdef)": the project's version (CMakeLists.txt) and, where the
+/// source was a git checkout when configured, `git describe` then (`tessera --version`).
+std::string version_text();
+
 CommandLine parse_command_line(const std::vector<std::string>& args);
 
 }  // namespace tessera

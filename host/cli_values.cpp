@@ -1,9 +1,11 @@
 #include "host/cli_values.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 #include "core/image.h"
 #include "shaders/shared/gpu_types.h"
 
@@ -59,8 +61,15 @@ CLI::Validator finite_number(double min, double max) {
 CLI::Validator one_of(const std::vector<std::string>& names) {
   return CLI::Validator(
       [names](std::string& text) -> std::string {
+        // Names are spelt with '-' here and with '_' in scene files (--brdf blinn-phong,
+        // "brdf": "blinn_phong"); either is taken in both places, as the name given here.
+        std::string spelled = text;
+        std::replace(spelled.begin(), spelled.end(), '_', '-');
         for (const std::string& name : names) {
-          if (name == text) return "";
+          if (name == spelled) {
+            text = name;
+            return "";
+          }
         }
         return "expects " + list_of_choices(names) + ", got " + in_quotes(text);
       },
@@ -96,7 +105,7 @@ CLI::Validator file_with_suffix(const std::vector<std::string>& suffixes,
           if (text == word) return "";
         }
         for (const std::string& suffix : suffixes) {
-          if (text.size() > suffix.size() && text.ends_with(suffix)) return "";
+          if (has_extension(text, suffix)) return "";
         }
         std::vector<std::string> choices;
         for (const std::string& suffix : suffixes) choices.push_back("a " + suffix + " file");

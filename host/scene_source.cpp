@@ -9,15 +9,44 @@
 #include "core/builtin_scenes.h"
 #include "core/check.h"
 #include "core/light_floor.h"
+#include "core/file_extension.h"
 #include "core/model_import.h"
 #include "host/cli.h"
 
 namespace tessera {
 namespace fs = std::filesystem;
 
+std::string scenes_variable_problem() {
+  const char* env = std::getenv("TESSERA_SCENES");
+  if (!env || !*env) return "";
+  std::error_code ec;
+  std::string why;
+  if (!fs::exists(env, ec)) {
+    why = "does not exist";
+  } else if (!fs::is_directory(env, ec)) {
+    why = "is not a folder";
+  } else {
+    fs::directory_iterator(env, ec);
+    if (ec) why = "cannot be read (" + ec.message() + ")";
+  }
+  if (why.empty()) return "";
+  return "TESSERA_SCENES is '" + std::string(env) + "', which " + why +
+         "; scenes are looked for in the other scene folders";
+}
+
 std::vector<std::string> scene_folders() {
   std::vector<std::string> folders;
-  if (const char* env = std::getenv("TESSERA_SCENES"); env && *env) folders.push_back(env);
+  if (const char* env = std::getenv("TESSERA_SCENES"); env && *env) {
+    // Said once per run: a misspelt folder was passed over without a word, and the scenes of
+    // the next folder listed and loaded as if they were the ones asked for.
+    static const bool warned = [] {
+      if (const std::string problem = scenes_variable_problem(); !problem.empty())
+        std::fprintf(stderr, "tessera: warning: %s\n", problem.c_str());
+      return true;
+    }();
+    (void)warned;
+    folders.push_back(env);
+  }
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) folders.push_back((exe.parent_path().parent_path() / "share/tessera/scenes").string());
@@ -26,7 +55,7 @@ std::vector<std::string> scene_folders() {
 }
 
 bool is_scene_path(const std::string& argument) {
-  return argument.find('/') != std::string::npos || fs::path(argument).extension() == ".json";
+  return argument.find('/') != std::string::npos || has_extension(argument, ".json");
 }
 
 bool is_named_scene(const std::string& name) {
@@ -115,6 +144,10 @@ SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool
 
 std::string unlit_scene_note(const Scene& scene, const std::string& name, View view,
                              bool env_removed) {
+  // Valid (a scene being built, a background alone), so a note; and not "its objects are
+  // black", which spoke of objects there are none of.
+  if (scene.objects.empty())
+    return "note: " + name + " has no objects: the image shows only the background";
   if (view != View::shaded || has_light(scene)) return "";
   if (env_removed)
     return "note: --env none removed the environment that lit " + name +
@@ -161,6 +194,22 @@ std::string near_lights_note(const Scene& scene, const std::string& name) {
          "dark unless scaled up (lengths by k, intensities by k^2; docs/shading.md)";
 }
 
+std::string scene_file_summary(const std::string& path) {
+  // Loaded, not only parsed: a file that parses can still fail to load (a missing model, a
+  // value out of range), and a listed scene that then fails surprised. Warnings are dropped:
+  // loading the scene says them.
+  try {
+    load_scene_file(path);
+  } catch (const Error& e) {
+    // The path is the listing's heading; the error after it (line and column, what is wrong).
+    std::string message = e.what();
+    if (message.starts_with(path + ":"))
+      message = fs::path(path).filename().string() + message.substr(path.size());
+    return "(cannot be loaded: " + message + ")";
+  }
+  return read_scene_description(path);
+}
+
 std::string scene_listing() {
   for (const std::string& folder : scene_folders()) {
     std::error_code ec;
@@ -172,9 +221,8 @@ std::string scene_listing() {
     std::string out = "scene files in " + folder + ":\n";
     for (const fs::path& f : files) {
       char line[512];
-      std::snprintf(line, sizeof line, "%-12s %s\n", f.stem().string().c_str(),
-                    read_scene_description(f.string()).c_str());
-      out += line;
+      std::snprintf(line, sizeof line, "%-12s ", f.stem().string().c_str());
+      out += line + scene_file_summary(f.string()) + "\n";
     }
     return out;
   }

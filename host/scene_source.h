@@ -11,8 +11,17 @@
 namespace tessera {
 
 /// The folders searched for built-in scene files, in order: $TESSERA_SCENES, the installed
-/// folder (../share/tessera/scenes beside the executable), the source tree's scenes/.
+/// folder (../share/tessera/scenes beside the executable), the source tree's scenes/. The first
+/// call prints scenes_variable_problem() to stderr as a warning, where there is one.
 std::vector<std::string> scene_folders();
+
+/// "TESSERA_SCENES is 'X', which does not exist; ..." (or "is not a folder", or "cannot be
+/// read (why)") when the variable is set but names no readable folder, else "".
+std::string scenes_variable_problem();
+
+/// What `tessera scenes` says of the scene file `path`: its description, or, where it cannot
+/// be loaded (load_scene_file), "(cannot be loaded: FILE:LINE:COLUMN: what is wrong)".
+std::string scene_file_summary(const std::string& path);
 
 /// True if `argument` names a file rather than a scene: it has a '/' or ends in .json.
 bool is_scene_path(const std::string& argument);
@@ -56,11 +65,12 @@ void apply_render_defaults(const RenderDefaults& defaults, FrameSettings& frame,
                            bool exposure_given, bool tonemap_given, bool brdf_given,
                            bool view_given = false);
 
-/// "note: NAME has no lights, ...: its objects are black" when `scene` has nothing to light it
-/// (has_light) and `view` is the shaded one (debug views need no light), else "". A note, not a
-/// warning: such a scene is valid, so --strict does not make it an error. `env_removed`: the
-/// file had an environment that `--env none` took away, which the note then says rather than
-/// that the file has none.
+/// "note: NAME has no objects: the image shows only the background" when `scene` has no
+/// objects, in any view; else "note: NAME has no lights, ...: its objects are black" when
+/// `scene` has nothing to light it (has_light) and `view` is the shaded one (debug views need no
+/// light), else "". A note, not a warning: such a scene is valid, so --strict does not make it an
+/// error. `env_removed`: the file had an environment that `--env none` took away, which the note
+/// then says rather than that the file has none.
 std::string unlit_scene_note(const Scene& scene, const std::string& name, View view,
                              bool env_removed = false);
 
@@ -75,8 +85,8 @@ std::string coarse_positions_note(const Scene& scene, const std::string& name);
 /// modelled below centimetre scale only too dark. The floor is the reference's too.
 std::string near_lights_note(const Scene& scene, const std::string& name);
 
-/// `tessera scenes`: each scene file of the first scene folder found, with its description;
-/// the built-in scenes when there is none.
+/// `tessera scenes`: each scene file of the first scene folder found, with its
+/// scene_file_summary; the built-in scenes when there is none.
 std::string scene_listing();
 
 }  // namespace tessera

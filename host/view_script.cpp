@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/file_extension.h"
 #include "core/mapped_file.h"
 #include "core/materials.h"
 #include "core/scene.h"
@@ -61,8 +63,11 @@ struct Line {
   // One of `choices` (its index), or a failure listing them.
   uint32_t choice(const char* what, const std::vector<std::string>& choices) {
     const std::string& w = word(what);
+    // As on the command line: blinn_phong, the scene files' spelling, is blinn-phong.
+    std::string spelled = w;
+    std::replace(spelled.begin(), spelled.end(), '_', '-');
     for (size_t i = 0; i < choices.size(); ++i)
-      if (w == choices[i]) return uint32_t(i);
+      if (spelled == choices[i]) return uint32_t(i);
     std::string list;
     for (const std::string& c : choices) list += (list.empty() ? "" : ", ") + c;
     fail("unknown " + std::string(what) + " '" + w + "' (" + list + ")");
@@ -182,7 +187,7 @@ InputEvent parse_event(Line& line) {
   } else if (kind == "screenshot") {
     e.kind = EventKind::screenshot;
     e.path = line.word("PNG path");
-    if (!e.path.ends_with(".png"))
+    if (!has_extension(e.path, ".png"))
       line.fail("screenshot expects a .png path, got '" + e.path + "'");
     line.end();
   } else if (kind == "save") {

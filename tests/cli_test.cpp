@@ -104,6 +104,40 @@ TEST(Cli, ParsesEveryRenderOption) {
   EXPECT_EQ(a.frame.view, View::uv);
 }
 
+// `tessera --version`: the project's version from CMakeLists.txt (project(Tessera VERSION ...)).
+TEST(Cli, VersionIsTheProjectVersion) {
+  std::ifstream cmake(std::filesystem::path(TESSERA_README).parent_path() / "CMakeLists.txt");
+  const std::string text{std::istreambuf_iterator<char>(cmake), {}};
+  const size_t at = text.find("project(Tessera VERSION ");
+  ASSERT_NE(at, std::string::npos);
+  const size_t from = at + std::string("project(Tessera VERSION ").size();
+  const std::string version = text.substr(from, text.find_first_of(" )", from) - from);
+  const CommandLine line = parse_command_line({"--version"});
+  EXPECT_EQ(line.command, Command::help);
+  EXPECT_TRUE(line.help.starts_with("tessera " + version + "\n") ||
+              line.help.starts_with("tessera " + version + " (git "))
+      << line.help;
+  EXPECT_NE(usage_error({"--version", "render"}).find("--version takes nothing after it"),
+            std::string::npos);
+  EXPECT_NE(help_of({"--help"}).find("--version"), std::string::npos);
+}
+
+// Output files are told by their extension in any case, as model files are (x.GLB): x.PNG was
+// refused as "expects a .png file" (a new user's trial). A choice spelt with '_' for '-' is the
+// same choice (scene files write blinn_phong).
+TEST(Cli, ExtensionsInAnyCaseAndChoicesWithUnderscores) {
+  const CommandLine line = parse_command_line({"render", "--out", "x.PNG", "--hdr-out", "x.Pfm",
+                                               "--env", "SKY.HDR", "--brdf", "blinn_phong"});
+  EXPECT_EQ(line.render.out, "x.PNG");
+  EXPECT_EQ(line.render.hdr_out, "x.Pfm");
+  EXPECT_EQ(line.render.frame.brdf, Brdf::blinn_phong);
+  EXPECT_EQ(usage_error({"tradeoff", "--chart", "c.SVG"}).find("--chart"), std::string::npos);
+  EXPECT_NE(usage_error({"render", "--out", "x.jpg"}).find("expects a .png file"),
+            std::string::npos);
+  EXPECT_NE(usage_error({"render", "--out", ".PNG"}).find("expects a .png file"),
+            std::string::npos);
+}
+
 TEST(Cli, DefaultsAreTheDocumentedOnes) {
   const RenderArgs a = parse_command_line({"render"}).render;
   EXPECT_EQ(a.scene, "spheres");

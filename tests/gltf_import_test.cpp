@@ -2,6 +2,7 @@
 // their specific Error; good files import to the counts, bounds and transforms read by hand
 // from their JSON; BoxTextured, 2CylinderEngine and the asset generator's triangle modes render
 // the same with the compute path and the reference renderer, and are kept as golden images.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -76,6 +77,70 @@ TEST(GltfImport, AssimpBrokenFilesGiveSpecificErrors) {
   EXPECT_IMPORT_ERROR(kModels + "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb",
                       "attributes.POSITION", "NaN or infinite");
   EXPECT_IMPORT_ERROR(kModels + "TestNoRootNode/NoScene.gltf", "no scene");
+}
+
+// glTF 1.0 files are named as such, by their asset.version (the string "1.0", or the number 1
+// that CesiumMilkTruck's exporter wrote), not by the first 1.0 property the 2.0 schema refuses:
+// these two were refused as "scene: must be an integer >= 0 (found a string)" and
+// "asset.version: must be a string (found an integer)" (a new user's trial).
+TEST(GltfImport, Gltf1FilesAreRefusedByVersion) {
+  const std::string v1 = "/usr/share/assimp/models/glTF/";
+  EXPECT_IMPORT_ERROR(v1 + "BoxTextured-glTF/BoxTextured.gltf", "BoxTextured.gltf: asset.version",
+                      "is \"1.0\"", "glTF 1.0", "only glTF 2.0 is supported");
+  EXPECT_IMPORT_ERROR(v1 + "CesiumMilkTruck/CesiumMilkTruck.gltf",
+                      "asset.version: is 1:", "glTF 1.0", "only glTF 2.0 is supported");
+  // The binary form is refused by its header, as before.
+  EXPECT_IMPORT_ERROR(v1 + "BoxTextured-glTF-Binary/BoxTextured.glb",
+                      "is a binary glTF of version 1, not 2");
+  // Any other version that is not 2.x keeps its own message.
+  const std::string three = ::testing::TempDir() + "version3.gltf";
+  std::ofstream(three) << R"({"asset": {"version": "3.0"}, "scenes": [{}]})";
+  EXPECT_IMPORT_ERROR(three, "asset.version", "is '3.0'; only glTF 2.x is supported");
+}
+
+// A zero normal has no direction: the vertex gets one generated from its triangles, with a
+// warning naming the accessor, the first such element and their count, as OBJ's import does
+// for `vn 0 0 0` (it was an error here). BoxBadNormals' elements 0 to 3 are zero; they are the
+// corners of the box's face at z = +0.5, whose outward normal is +z. Its elements 4 to 7,
+// (0, -0.1, 0), are renormalized to -y as before.
+TEST(GltfImport, ZeroNormalsAreGeneratedWithAWarning) {
+  const std::string path = kModels + "BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
+  const ImportedModel model = import_gltf(path);
+  ASSERT_EQ(model.scene.meshes.size(), 1u);
+  const Mesh& mesh = model.scene.meshes[0];
+  ASSERT_EQ(mesh.normals.size(), 24u);  // vertices kept shared: none split
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(mesh.normals[i], glm::vec3(0, 0, 1)) << "vertex " << i;
+  }
+  for (int i = 4; i < 8; ++i) EXPECT_EQ(mesh.normals[i], glm::vec3(0, -1, 0)) << "vertex " << i;
+  const std::string warning = path +
+                              ": meshes[0].primitives[0].attributes.NORMAL: element 0 is the zero "
+                              "vector, which has no direction (4 such elements); their vertices "
+                              "get normals generated from the triangles that use them";
+  EXPECT_NE(std::find(model.warnings.begin(), model.warnings.end(), warning), model.warnings.end())
+      << ::testing::PrintToString(model.warnings);
+  // Each fault once: the zero normals are not also "not unit length".
+  EXPECT_EQ(std::count_if(model.warnings.begin(), model.warnings.end(),
+                          [](const std::string& w) { return w.find("not unit length") != w.npos; }),
+            1);
+  // An error in strict import, as OBJ's warning is.
+  ImportOptions strict;
+  strict.strict = true;
+  EXPECT_NE(import_error(path, strict).find("zero vector, which has no direction"),
+            std::string::npos);
+}
+
+// A valid file that places no meshes (SceneWithoutNodes: a scene without nodes) drew nothing
+// without a word, where a scene file's model that no object places is warned about.
+TEST(GltfImport, ModelThatPlacesNothingIsWarnedAbout) {
+  const std::string path = kModels + "TestNoRootNode/SceneWithoutNodes.gltf";
+  const ImportedModel model = import_gltf(path);
+  EXPECT_TRUE(model.scene.objects.empty());
+  EXPECT_EQ(model.warnings, std::vector<std::string>{
+                                path + ": scenes[0]: has no nodes, so the model places nothing and "
+                                       "draws nothing"});
+  // A file of lights alone places something.
+  EXPECT_TRUE(import_gltf(kData + "/lamp.gltf").warnings.empty());
 }
 
 // Each tests/data/bad/NAME.gltf must fail with the text of NAME.expected in its message.

@@ -421,6 +421,39 @@ TEST(SceneFile, UnknownKeysWarnAndFailWhenStrict) {
             std::string::npos);
 }
 
+// A misspelt key gets the nearest known one, where one is a slip away ("light" for "lights",
+// one edit; "metalic" for "metallic", one); a key near none gets no guess.
+TEST(SceneFile, UnknownKeysSuggestTheNearestKnownOne) {
+  const SceneFile f = load(R"({"light": [],
+ "materials": [{"name": "m", "metalic": 1, "shine": 2}]})");
+  ASSERT_EQ(f.warnings.size(), 3u);
+  EXPECT_EQ(f.warnings[0],
+            "test.json:1:2: light: unknown key 'light', did you mean 'lights'? (ignored)");
+  EXPECT_NE(f.warnings[1].find("materials.m.metalic: unknown key 'metalic', did you mean "
+                               "'metallic'? (ignored)"),
+            std::string::npos)
+      << f.warnings[1];
+  EXPECT_NE(f.warnings[2].find("materials.m.shine: unknown key 'shine' (ignored)"),
+            std::string::npos)
+      << f.warnings[2];
+  EXPECT_NE(load_error(R"({"light": []})", {.strict = true})
+                .find("unknown key 'light', did you mean 'lights'? (an error with --strict)"),
+            std::string::npos);
+}
+
+// The BRDF is spelt blinn_phong in scene files and blinn-phong on the command line; each place
+// takes both (a new user's trial wrote the command line's).
+TEST(SceneFile, ChoicesTakeHyphenOrUnderscore) {
+  for (const char* name : {"blinn_phong", "blinn-phong"}) {
+    const SceneFile f = load(std::string(R"({"render": {"brdf": ")") + name + R"("}})");
+    ASSERT_TRUE(f.render.brdf) << name;
+    EXPECT_EQ(*f.render.brdf, Brdf::blinn_phong) << name;
+  }
+  EXPECT_NE(load_error(R"({"render": {"brdf": "phong"}})")
+                .find("'phong' is not one of classic, filament, blinn_phong"),
+            std::string::npos);
+}
+
 TEST(SceneFile, LimitsAreOptions) {
   const std::string grid =
       R"({"materials": [{"name": "a"}], "meshes": [{"name": "s", "type": "cube"}],
@@ -684,6 +717,63 @@ TEST(SceneFileCli, ListedScenesRenderByNameAndModelsAreRedirected) {
   EXPECT_NE(out.find("features.gltf: a model file (glTF or OBJ), not a scene file"),
             std::string::npos)
       << out;
+}
+
+// `tessera scenes` lists a file that cannot load with its error, not with a blank description;
+// a TESSERA_SCENES that names no folder is said once, not passed over in silence (both from a
+// new user's trial).
+TEST(SceneFileCli, ScenesListsBrokenFilesAndAMissingFolder) {
+  const std::filesystem::path dir = test::output_path("listed_scenes");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "empty.json").flush();
+  std::ofstream(dir / "plain.json") << R"({"description": "a plain scene"})";
+  std::string out;
+  EXPECT_EQ(
+      test::run_command("TESSERA_SCENES=" + dir.string() + " " + TESSERA_BINARY + " scenes", out),
+      0);
+  EXPECT_NE(out.find("scene files in " + dir.string()), std::string::npos) << out;
+  EXPECT_NE(out.find("empty        (cannot be loaded: empty.json:1:1: JSON syntax error"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("plain        a plain scene\n"), std::string::npos) << out;
+  const std::string missing = (dir / "nowhere").string();
+  EXPECT_EQ(test::run_command("TESSERA_SCENES=" + missing + " " + TESSERA_BINARY +
+                                  " render --scene nosuch --out x.png",
+                              out),
+            2);
+  const std::string warning = "tessera: warning: TESSERA_SCENES is '" + missing +
+                              "', which does not exist; scenes are looked for in the other "
+                              "scene folders";
+  const size_t at = out.find(warning);
+  EXPECT_NE(at, std::string::npos) << out;
+  EXPECT_EQ(out.find(warning, at + 1), std::string::npos) << "said twice: " << out;
+  EXPECT_EQ(
+      test::run_command(
+          std::string("TESSERA_SCENES=") + TESSERA_BINARY + " " + TESSERA_BINARY + " scenes", out),
+      0);
+  EXPECT_NE(out.find("which is not a folder"), std::string::npos) << out;
+}
+
+// A scene without objects renders its background; the note says so, and not that "its objects
+// are black" (a new user's trial), whether or not it has lights.
+TEST(SceneFileCli, SceneWithoutObjectsIsNoted) {
+  const std::string png = test::output_path("no_objects.png");
+  for (const char* text : {"{}", R"({"lights": [{"type": "point", "position": [0, 1, 0]}]})"}) {
+    const std::string file = test::output_path("no_objects.json");
+    std::ofstream(file) << text;
+    std::string out;
+    EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                    " render --device lavapipe --size 16x16 --strict --scene " +
+                                    file + " --out " + png,
+                                out),
+              0)
+        << out;
+    EXPECT_NE(out.find("tessera: note: " + file +
+                       " has no objects: the image shows only the background\n"),
+              std::string::npos)
+        << text << ": " << out;
+    EXPECT_EQ(out.find("black"), std::string::npos) << out;
+  }
 }
 
 class SceneFileRender : public test::VulkanTest {};
