@@ -849,6 +849,46 @@ TEST_F(View, SaveUnderAnotherNameMakesThatFileTheSessions) {
   EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
 }
 
+// The X server going away (here: killed while the viewer runs a script that has edited) ends
+// the session as an error does: the unsaved edits go to the autosave, and the error says what
+// happened. Xlib's own handler would have exited at once ("XIO: fatal IO error ..."). The
+// viewer runs on an Xvfb of this test's own (-displayfd picks a free display), so that the
+// server alone can be killed.
+TEST_F(View, LosingTheXServerWritesTheAutosave) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = std::filesystem::absolute(fresh_folder()).string();
+  const std::string scene = std::filesystem::absolute(write_ball_scene()).string();
+  const std::string script = folder + "/script.txt";
+  std::ofstream(script) << "1 click 32 24\n2 key Delete\n1000000 exit\n";
+  // Waits (at most 600 s, a guard against a hang, not a measurement) for the display, then for
+  // the deletion to be on screen; kills the server, and gives the viewer's exit status.
+  const std::string command =
+      "cd " + folder +
+      " && (Xvfb -displayfd 3 -nolisten tcp -screen 0 640x480x24 3>display 2>server.log & "
+      "echo $! > server) && n=0; until [ -s display ] || [ $n -ge 6000 ]; do sleep 0.1; "
+      "n=$((n+1)); done; DISPLAY=:$(head -n 1 display) XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} " +
+      TESSERA_BINARY " view --device lavapipe --vsync off --overlay off --size 64x48 --script " +
+      script + " --scene " + scene +
+      " > log 2>&1 & viewer=$!; n=0; until grep -q 'delete object 0:' log || "
+      "! kill -0 $viewer 2>/dev/null || [ $n -ge 6000 ]; do sleep 0.1; n=$((n+1)); done; "
+      "kill $(cat server); wait $viewer; echo $? > status; cat log";
+  std::string output;
+  run_command(command, output);
+  int status = -1;
+  std::ifstream(folder + "/status") >> status;
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("frame 2: delete object 0: uploaded"), std::string::npos) << output;
+  const std::string autosave = folder + "/ball.autosave.json";
+  EXPECT_NE(output.find("tessera: note: unsaved edits written to " + autosave), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("tessera: error: lost the connection to the X server (display \":"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("XIO"), std::string::npos) << output;
+  ASSERT_TRUE(std::filesystem::exists(autosave)) << output;
+  EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());
+}
+
 TEST_F(View, AThousandFramesLeaveMemoryFlat) {
   SKIP_WITHOUT_X_SERVER();
   const std::string scene = write_ball_scene();
