@@ -849,6 +849,43 @@ TEST_F(View, SaveUnderAnotherNameMakesThatFileTheSessions) {
   EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
 }
 
+// A camera move that leaves the camera where it was is no change: no log line, no upload. The
+// ball's viewport is 64 x 48, so a drag turns pi / 48 per pixel of height (core/orbit_camera.h):
+// 40 px down raises the eye by 2.6 rad, past the 89 degrees pitch is clamped to, and a second
+// such drag finds it there.
+TEST_F(View, CameraMovesThatChangeNothingAreNoChange) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view(
+      "1 drag left 10 5 10 5\n2 wheel 0\n3 drag left 10 5 10 45\n4 drag left 10 5 10 45\n"
+      "5 exit\n",
+      "--scene " + scene + " --size 64x48 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("frame 3: camera position"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("frame 3: camera: uploaded"), std::string::npos) << run.output;
+  for (const std::string frame : {"frame 1: ", "frame 2: ", "frame 4: "})
+    EXPECT_EQ(run.output.find(frame), std::string::npos) << frame << " in\n" << run.output;
+  // At the pole: pitch 89 degrees, the eye 4 m from the target.
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  EXPECT_NEAR(camera.position.y, 4.0f * std::sin(glm::radians(89.0f)), 1e-5f);
+}
+
+// A scripted click outside the window (here 64 x 64: x and y run 0..63) picks nothing and is a
+// script command that cannot be carried out.
+TEST_F(View, ClickOutsideTheWindowFailsTheScript) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view("1 click 500 500\n2 click 64 10\n3 click 63 63\n4 exit\n",
+                               "--scene " + scene + " --size 64x64 --overlay off");
+  EXPECT_EQ(run.status, 1) << run.output;
+  for (const std::string said : {"frame 1: click at 500 500: outside the 64x64 window\n",
+                                 "frame 2: click at 64 10: outside the 64x64 window\n",
+                                 "frame 3: click at 63 63: nothing under the cursor\n",
+                                 "tessera: error: 2 script commands failed (said above)\n"})
+    EXPECT_NE(run.output.find(said), std::string::npos) << said << " in\n" << run.output;
+}
+
 // The X server going away (here: killed while the viewer runs a script that has edited) ends
 // the session as an error does: the unsaved edits go to the autosave, and the error says what
 // happened. Xlib's own handler would have exited at once ("XIO: fatal IO error ..."). The
