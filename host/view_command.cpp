@@ -75,7 +75,20 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   }
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
+  // A light added (or a BRDF, ... not drawn before this session) respecializes the shading
+  // pass: on a CPU device the window stalls for seconds. Said before, in the log and the title,
+  // so that the wait is not taken for a hang. lavapipe keeps no pipeline cache worth saving
+  // between sessions (its VkPipelineCache data is the 32-byte header alone).
+  const bool specializes = v.scene_changed && v.renderer->builds_shading_pipeline(v.frame);
+  if (specializes) {
+    std::printf("frame %" PRIu64
+                ": %s: specializing the shaders to the new set of lights and options (seconds "
+                "on a CPU device; once a session for each set)...\n",
+                v.frame_number, v.change.c_str());
+    set_window_title(*v.window, v.title + " (specializing shaders...)");
+  }
   v.last_stats = v.renderer->render(v.frame);
+  if (specializes) set_window_title(*v.window, v.title);
   Image8 shot;
   const bool wants_shot = !v.screenshots.empty();
   bool overlay_drawn = false;

@@ -849,6 +849,30 @@ TEST_F(View, SaveUnderAnotherNameMakesThatFileTheSessions) {
   EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
 }
 
+// A change that needs a shading pipeline not built before in the session (a light added, a
+// BRDF not drawn yet) stalls a CPU device for seconds; the viewer says so before the frame.
+// Undo and redo go back to light sets already built: nothing to say. The ball has one point
+// light, drawn with the classic BRDF at the start.
+TEST_F(View, NewLightSetsAreSaidToBeSpecialized) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view("1 light add\n2 key Z ctrl\n3 key Y ctrl\n4 brdf filament\n5 exit\n",
+                               "--scene " + scene + " --size 32x24 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string specializing =
+      ": specializing the shaders to the new set of lights and "
+      "options (seconds on a CPU device; once a session for each "
+      "set)...\n";
+  EXPECT_NE(run.output.find("frame 1: add light" + specializing), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("frame 4: BRDF filament" + specializing), std::string::npos)
+      << run.output;
+  size_t said = 0;
+  for (size_t at = run.output.find("specializing"); at != std::string::npos;
+       at = run.output.find("specializing", at + 1))
+    said++;
+  EXPECT_EQ(said, 2u) << run.output;
+}
+
 // A camera move that leaves the camera where it was is no change: no log line, no upload. The
 // ball's viewport is 64 x 48, so a drag turns pi / 48 per pixel of height (core/orbit_camera.h):
 // 40 px down raises the eye by 2.6 rad, past the 89 degrees pitch is clamped to, and a second
