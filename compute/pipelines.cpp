@@ -188,17 +188,31 @@ VkPipeline build_compute_pipeline(const Context& ctx, VkPipelineLayout layout,
   return pipeline;
 }
 
+// PipelineCache::compute's key. Specialization is 4-byte members only (specialization_entries
+// checks it): no padding, so its bytes name the constants.
+std::string pipeline_key(std::string_view shader, const Specialization& values) {
+  std::string key(shader);
+  key.push_back('\0');
+  key.append(reinterpret_cast<const char*>(&values), sizeof(values));
+  return key;
+}
+
 }  // namespace
+
+bool has_compute_pipeline(const Context& ctx, std::string_view shader, Specialization values) {
+  TESSERA_CHECK(ctx.pipeline_cache);
+  PipelineCache& cache = *ctx.pipeline_cache;
+  const std::string key = pipeline_key(shader, values);
+  std::lock_guard lock(cache.mutex);
+  const auto it = cache.compute.find(key);
+  return it != cache.compute.end() && it->second != VK_NULL_HANDLE;
+}
 
 VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
                                    Specialization values) {
   TESSERA_CHECK(ctx.pipeline_cache);
   PipelineCache& cache = *ctx.pipeline_cache;
-  // Specialization is 4-byte members only (specialization_entries checks it): no padding, so
-  // its bytes name the constants.
-  std::string key(shader);
-  key.push_back('\0');
-  key.append(reinterpret_cast<const char*>(&values), sizeof(values));
+  const std::string key = pipeline_key(shader, values);
   std::lock_guard lock(cache.mutex);
   VkPipeline& pipeline = cache.compute[key];
   if (!pipeline) pipeline = build_compute_pipeline(ctx, cached_layout(ctx, cache), shader, values);

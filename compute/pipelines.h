@@ -97,6 +97,10 @@ std::vector<VkSpecializationMapEntry> specialization_entries();
 VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
                                    Specialization values);
 
+/// Whether the context has built the pipeline create_compute_pipeline(ctx, shader, values)
+/// returns (else that call builds it: up to seconds on a CPU device).
+bool has_compute_pipeline(const Context& ctx, std::string_view shader, Specialization values);
+
 /// The shading pipeline for `variant` (create_compute_pipeline).
 VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& variant);
 

@@ -833,6 +833,16 @@ VkPipeline raster_shade_pipeline(Renderer::State& s, const FrameSettings& settin
   return it->second;
 }
 
+bool Renderer::builds_shading_pipeline(const FrameSettings& settings) const {
+  const State& s = *s_;
+  if (!s.options.specialize_lights) return false;
+  // The variant shade_pipeline takes for the pass itself (the background's is one for all).
+  ShadeVariant v = shade_variant(s, settings);
+  v.shade_tiles = s.shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF;
+  v.tile_size = s.options.tile_size;
+  return !has_compute_pipeline(s.ctx, "shade", shade_specialization(v));
+}
+
 VkPipeline shade_pipeline(Renderer::State& s, const FrameSettings& settings, uint32_t tiles) {
   const bool compensate = compensates(settings);
   if (s.options.specialize_lights) {

@@ -31,9 +31,15 @@ Viewport viewport_of(const Viewer& v) {
   return {uint32_t(std::max(w, 1)), uint32_t(std::max(h, 1))};
 }
 
-// The renderer takes the camera with the scene (set_scene uploads only what changed).
-void camera_moved(Viewer& v) {
-  v.scene.camera = to_camera(v.orbit);
+// The renderer takes the camera with the scene (set_scene uploads only what changed). A move
+// that leaves the camera where it was (a drag of no length, wheel 0, an orbit at the pole) is
+// no change: nothing to upload, log or redraw. The orbit `before` is compared, not the scene's
+// camera, which until the first move is the scene file's and may differ from to_camera of its
+// orbit by a rounding.
+void camera_moved(Viewer& v, const OrbitCamera& before) {
+  const Camera moved = to_camera(v.orbit);
+  if (moved == to_camera(before)) return;
+  v.scene.camera = moved;
   mark_changed(v, "camera");
   const Camera& c = v.scene.camera;
   std::printf("frame %" PRIu64 ": camera position %.9g %.9g %.9g target %.9g %.9g %.9g\n",
@@ -60,6 +66,20 @@ bool pixel_under(const Viewer& v, glm::vec2 at, uint32_t& x, uint32_t& y) {
   x = uint32_t(at.x * float(v.chain.extent.width) / float(window.width));
   y = uint32_t(at.y * float(v.chain.extent.height) / float(window.height));
   return x < v.chain.extent.width && y < v.chain.extent.height;
+}
+
+// A scripted click can be given anywhere; one outside the window (as it is now: a resize
+// may have shrunk it) picks nothing and is a script command that cannot be carried out.
+bool inside_window(Viewer& v, const InputEvent& e) {
+  const Viewport window = viewport_of(v);
+  if (e.from.x >= 0.0f && e.from.y >= 0.0f && e.from.x < float(window.width) &&
+      e.from.y < float(window.height))
+    return true;
+  char text[128];
+  std::snprintf(text, sizeof(text), "click at %g %g: outside the %ux%u window", e.from.x, e.from.y,
+                window.width, window.height);
+  refuse(v, text);
+  return false;
 }
 
 void pick(Viewer& v, glm::vec2 at) {
@@ -314,6 +334,7 @@ float aspect_of(const Viewer& v) {
 
 void handle_key(Viewer& v, const InputEvent& e) {
   const uint32_t selected = uint32_t(v.selected);
+  const OrbitCamera before = v.orbit;
   FlyKeys fly_keys;
   switch (e.key) {
     case GLFW_KEY_W:
@@ -328,19 +349,19 @@ void handle_key(Viewer& v, const InputEvent& e) {
         fly_keys = {e.key == GLFW_KEY_W, e.key == GLFW_KEY_S, e.key == GLFW_KEY_A,
                     e.key == GLFW_KEY_D, e.key == GLFW_KEY_Q, e.key == GLFW_KEY_E};
         fly(v.orbit, fly_keys, kScriptedFlySeconds);
-        camera_moved(v);
+        camera_moved(v, before);
       }
       break;
     case GLFW_KEY_F:
       if (!e.shift) {
         if (frame_scene(v.orbit, v.scene, aspect_of(v))) {
-          camera_moved(v);
+          camera_moved(v, before);
         } else {
           refuse(v, "nothing to frame: the scene has no vertex");
         }
       } else if (has_selection(v, "frame")) {
         if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v))) {
-          camera_moved(v);
+          camera_moved(v, before);
         } else {
           refuse(v, "nothing to frame: the selected object's mesh has no vertex");
         }
@@ -348,7 +369,7 @@ void handle_key(Viewer& v, const InputEvent& e) {
       break;
     case GLFW_KEY_HOME:
       v.orbit = from_camera(v.home_camera);
-      camera_moved(v);
+      camera_moved(v, before);
       break;
     case GLFW_KEY_Z:
       if (e.ctrl) undo_or_redo(v, e.shift);
@@ -444,13 +465,15 @@ bool fly_keys_held(const Viewer& v) {
 
 void fly_held_keys(Viewer& v, float seconds) {
   if (!fly_keys_held(v)) return;
+  const OrbitCamera before = v.orbit;
   fly(v.orbit, held_fly_keys(v), seconds);
-  camera_moved(v);
+  camera_moved(v, before);
 }
 
 namespace {
 
 void handle_event_kind(Viewer& v, const InputEvent& e) {
+  const OrbitCamera before = v.orbit;
   switch (e.kind) {
     case EventKind::key:
       handle_key(v, e);
@@ -465,17 +488,17 @@ void handle_event_kind(Viewer& v, const InputEvent& e) {
         orbit(v.orbit, d.x, d.y, viewport_of(v));
       }
       v.pointer = e.to;
-      camera_moved(v);
+      camera_moved(v, before);
       break;
     }
     case EventKind::click:
-      if (scripted_on_panel(v, e)) break;
+      if (scripted_on_panel(v, e) || !inside_window(v, e)) break;
       v.pointer = e.from;
       pick(v, e.from);
       break;
     case EventKind::wheel:
       zoom(v.orbit, e.wheel);
-      camera_moved(v);
+      camera_moved(v, before);
       break;
     case EventKind::resize:
       set_window_size(*v.window, e.width, e.height);

@@ -5,6 +5,7 @@
 #include <cinttypes>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <GLFW/glfw3.h>
@@ -74,7 +75,20 @@ bool draw(Viewer& v, uint32_t width, uint32_t height) {
   }
   v.frame.width = v.chain.extent.width;
   v.frame.height = v.chain.extent.height;
+  // A light added (or a BRDF, ... not drawn before this session) respecializes the shading
+  // pass: on a CPU device the window stalls for seconds. Said before, in the log and the title,
+  // so that the wait is not taken for a hang. lavapipe keeps no pipeline cache worth saving
+  // between sessions (its VkPipelineCache data is the 32-byte header alone).
+  const bool specializes = v.scene_changed && v.renderer->builds_shading_pipeline(v.frame);
+  if (specializes) {
+    std::printf("frame %" PRIu64
+                ": %s: specializing the shaders to the new set of lights and options (seconds "
+                "on a CPU device; once a session for each set)...\n",
+                v.frame_number, v.change.c_str());
+    set_window_title(*v.window, v.title + " (specializing shaders...)");
+  }
   v.last_stats = v.renderer->render(v.frame);
+  if (specializes) set_window_title(*v.window, v.title);
   Image8 shot;
   const bool wants_shot = !v.screenshots.empty();
   bool overlay_drawn = false;
@@ -159,6 +173,32 @@ void catch_stop_signals() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+}
+
+// The session whose unsaved edits a lost X server must not take with it; null once the
+// session has written its autosave itself.
+Viewer* g_session = nullptr;
+
+// Sets g_session for the guard's life; declared after the Viewer, so that it ends first.
+struct SessionGuard {
+  explicit SessionGuard(Viewer& v) { g_session = &v; }
+  ~SessionGuard() { g_session = nullptr; }
+  SessionGuard(const SessionGuard&) = delete;
+  SessionGuard& operator=(const SessionGuard&) = delete;
+};
+
+// Xlib's I/O error handler (on_window_system_lost), called from inside a GLFW call of the
+// frame loop: between events, so the scene is whole. Writing the autosave is CPU work only
+// (the scene to JSON); no Vulkan or Xlib call can be made now. _Exit, not exit: static
+// destructors would tear down the Vulkan loader under a live device and driver threads.
+[[noreturn]] void on_x_server_lost(const std::string& display) {
+  if (g_session) autosave_if_unsaved(*g_session);
+  std::fprintf(stderr,
+               "tessera: error: lost the connection to the X server (display \"%s\": the server "
+               "stopped or closed the connection)\n",
+               display.c_str());
+  std::fflush(nullptr);
+  std::_Exit(kExitRuntimeError);
 }
 
 // Interactive frames after the last input, so that ImGui's hover and animations settle.
@@ -279,6 +319,8 @@ int run_view(const ViewArgs& args) {
   } catch (const ImageSizeError& e) {
     throw_image_size_error(e, args.size_given, v.render_defaults.size_place, "tessera view --help");
   }
+  const SessionGuard guard(v);
+  on_window_system_lost(on_x_server_lost);
   v.window = open_window(v.frame.width, v.frame.height, "tessera view: " + args.scene);
   v.chain.surface = create_window_surface(v.ctx->instance, *v.window);
   create_presenter(*v.ctx, v.presenter);
@@ -299,9 +341,11 @@ int run_view(const ViewArgs& args) {
     run_loop(v);
   } catch (const Error&) {
     // The session ends with the error, but not with the user's edits.
+    g_session = nullptr;
     autosave_if_unsaved(v);
     throw;
   }
+  g_session = nullptr;
   bool lost = !autosave_if_unsaved(v);
   for (const Viewer::Screenshot& screenshot : v.screenshots) {
     std::printf("frame %" PRIu64

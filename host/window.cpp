@@ -2,6 +2,8 @@
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+// Last: Xlib's macros (None, Bool, Status, ...) would clash with names in the headers above.
+#include <X11/Xlib.h>
 
 #include "compute/vk_check.h"
 #include "core/check.h"
@@ -111,7 +113,22 @@ void on_framebuffer(GLFWwindow* handle, int, int) {
   of(handle).activity++;
 }
 
+WindowSystemLost g_window_system_lost = nullptr;
+
+// Xlib calls this once the connection is broken; no Xlib call may be made from it, and Xlib
+// exits the process if it returns.
+int on_io_error(Display* display) {
+  const char* name = display ? DisplayString(display) : nullptr;
+  g_window_system_lost(name ? name : "");
+  return 0;
+}
+
 }  // namespace
+
+void on_window_system_lost(WindowSystemLost handler) {
+  g_window_system_lost = handler;
+  XSetIOErrorHandler(handler ? on_io_error : nullptr);
+}
 
 Window::~Window() {
   if (handle) glfwDestroyWindow(handle);

@@ -60,6 +60,14 @@ void framebuffer_size(const Window& window, uint32_t& width, uint32_t& height);
 /// moves the input received into the returned list.
 std::vector<InputEvent> poll_window(Window& window, double wait_seconds);
 
+/// Called when the connection to the X server is lost (the server stopped or went away) with
+/// what Xlib says of it (the display's name); it must not return. GLFW's X11 platform leaves
+/// this to Xlib, whose default handler prints a line and exits the process at once.
+using WindowSystemLost = void (*)(const std::string& display);
+/// Installs `handler` for the process (Xlib's I/O error handler is global); null puts Xlib's
+/// default back.
+void on_window_system_lost(WindowSystemLost handler);
+
 /// Wakes a poll_window that is waiting (from any thread).
 void wake_window();
 

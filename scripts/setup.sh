@@ -9,7 +9,7 @@ packages=(
   libglm-dev libstb-dev libtinygltf-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   libtinyobjloader-dev assimp-testmodels nlohmann-json3-dev libmeshoptimizer-dev
   # tessera view: the window, its overlay, and the X server its tests run under
-  libglfw3-dev libimgui-dev libfreetype-dev xvfb
+  libglfw3-dev libx11-dev libimgui-dev libfreetype-dev xvfb
   # scripts/fuzz.sh: libFuzzer and the sanitizer runtimes
   clang-14 libclang-rt-14-dev
 )

@@ -910,6 +910,107 @@ TEST_F(View, SaveUnderAnotherNameMakesThatFileTheSessions) {
   EXPECT_FALSE(std::filesystem::exists(folder + "/ball.autosave.json"));
 }
 
+// A change that needs a shading pipeline not built before in the session (a light added, a
+// BRDF not drawn yet) stalls a CPU device for seconds; the viewer says so before the frame.
+// Undo and redo go back to light sets already built: nothing to say. The ball has one point
+// light, drawn with the classic BRDF at the start.
+TEST_F(View, NewLightSetsAreSaidToBeSpecialized) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view("1 light add\n2 key Z ctrl\n3 key Y ctrl\n4 brdf filament\n5 exit\n",
+                               "--scene " + scene + " --size 32x24 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string specializing =
+      ": specializing the shaders to the new set of lights and "
+      "options (seconds on a CPU device; once a session for each "
+      "set)...\n";
+  EXPECT_NE(run.output.find("frame 1: add light" + specializing), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("frame 4: BRDF filament" + specializing), std::string::npos)
+      << run.output;
+  size_t said = 0;
+  for (size_t at = run.output.find("specializing"); at != std::string::npos;
+       at = run.output.find("specializing", at + 1))
+    said++;
+  EXPECT_EQ(said, 2u) << run.output;
+}
+
+// A camera move that leaves the camera where it was is no change: no log line, no upload. The
+// ball's viewport is 64 x 48, so a drag turns pi / 48 per pixel of height (core/orbit_camera.h):
+// 40 px down raises the eye by 2.6 rad, past the 89 degrees pitch is clamped to, and a second
+// such drag finds it there.
+TEST_F(View, CameraMovesThatChangeNothingAreNoChange) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view(
+      "1 drag left 10 5 10 5\n2 wheel 0\n3 drag left 10 5 10 45\n4 drag left 10 5 10 45\n"
+      "5 exit\n",
+      "--scene " + scene + " --size 64x48 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("frame 3: camera position"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("frame 3: camera: uploaded"), std::string::npos) << run.output;
+  for (const std::string frame : {"frame 1: ", "frame 2: ", "frame 4: "})
+    EXPECT_EQ(run.output.find(frame), std::string::npos) << frame << " in\n" << run.output;
+  // At the pole: pitch 89 degrees, the eye 4 m from the target.
+  Camera camera;
+  ASSERT_TRUE(last_camera(run.output, camera)) << run.output;
+  EXPECT_NEAR(camera.position.y, 4.0f * std::sin(glm::radians(89.0f)), 1e-5f);
+}
+
+// A scripted click outside the window (here 64 x 64: x and y run 0..63) picks nothing and is a
+// script command that cannot be carried out.
+TEST_F(View, ClickOutsideTheWindowFailsTheScript) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene = write_ball_scene();
+  const ViewRun run = run_view("1 click 500 500\n2 click 64 10\n3 click 63 63\n4 exit\n",
+                               "--scene " + scene + " --size 64x64 --overlay off");
+  EXPECT_EQ(run.status, 1) << run.output;
+  for (const std::string said : {"frame 1: click at 500 500: outside the 64x64 window\n",
+                                 "frame 2: click at 64 10: outside the 64x64 window\n",
+                                 "frame 3: click at 63 63: nothing under the cursor\n",
+                                 "tessera: error: 2 script commands failed (said above)\n"})
+    EXPECT_NE(run.output.find(said), std::string::npos) << said << " in\n" << run.output;
+}
+
+// The X server going away (here: killed while the viewer runs a script that has edited) ends
+// the session as an error does: the unsaved edits go to the autosave, and the error says what
+// happened. Xlib's own handler would have exited at once ("XIO: fatal IO error ..."). The
+// viewer runs on an Xvfb of this test's own (-displayfd picks a free display), so that the
+// server alone can be killed.
+TEST_F(View, LosingTheXServerWritesTheAutosave) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string folder = std::filesystem::absolute(fresh_folder()).string();
+  const std::string scene = std::filesystem::absolute(write_ball_scene()).string();
+  const std::string script = folder + "/script.txt";
+  std::ofstream(script) << "1 click 32 24\n2 key Delete\n1000000 exit\n";
+  // Waits (at most 600 s, a guard against a hang, not a measurement) for the display, then for
+  // the deletion to be on screen; kills the server, and gives the viewer's exit status.
+  const std::string command =
+      "cd " + folder +
+      " && (Xvfb -displayfd 3 -nolisten tcp -screen 0 640x480x24 3>display 2>server.log & "
+      "echo $! > server) && n=0; until [ -s display ] || [ $n -ge 6000 ]; do sleep 0.1; "
+      "n=$((n+1)); done; DISPLAY=:$(head -n 1 display) XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} " +
+      TESSERA_BINARY " view --device lavapipe --vsync off --overlay off --size 64x48 --script " +
+      script + " --scene " + scene +
+      " > log 2>&1 & viewer=$!; n=0; until grep -q 'delete object 0:' log || "
+      "! kill -0 $viewer 2>/dev/null || [ $n -ge 6000 ]; do sleep 0.1; n=$((n+1)); done; "
+      "kill $(cat server); wait $viewer; echo $? > status; cat log";
+  std::string output;
+  run_command(command, output);
+  int status = -1;
+  std::ifstream(folder + "/status") >> status;
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("frame 2: delete object 0: uploaded"), std::string::npos) << output;
+  const std::string autosave = folder + "/ball.autosave.json";
+  EXPECT_NE(output.find("tessera: note: unsaved edits written to " + autosave), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("tessera: error: lost the connection to the X server (display \":"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("XIO"), std::string::npos) << output;
+  ASSERT_TRUE(std::filesystem::exists(autosave)) << output;
+  EXPECT_TRUE(load_scene_file(autosave).scene.objects.empty());
+}
+
 TEST_F(View, AThousandFramesLeaveMemoryFlat) {
   SKIP_WITHOUT_X_SERVER();
   const std::string scene = write_ball_scene();
