@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cinttypes>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,6 +15,7 @@
 #include "core/image.h"
 #include "host/report.h"
 #include "host/scene_source.h"
+#include "host/stop_signal.h"
 #include "host/viewer.h"
 
 namespace tessera {
@@ -143,24 +143,6 @@ bool renderable_size(Viewer& v, uint32_t width, uint32_t height) {
   return true;
 }
 
-// SIGINT or SIGTERM received: the loop leaves as if the window were closed.
-volatile std::sig_atomic_t g_signal = 0;
-
-void on_signal(int signal) {
-  g_signal = signal;
-}
-
-// Ctrl+C and SIGTERM end the session normally (autosave, summary); a second one, with the
-// handler reset, ends the process at once.
-void catch_stop_signals() {
-  struct sigaction action {};
-  action.sa_handler = on_signal;
-  action.sa_flags = SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
 // Interactive frames after the last input, so that ImGui's hover and animations settle.
 constexpr int kSettleFrames = 3;
 // An idle interactive viewer sleeps in the window system up to this long between checks of the
@@ -193,9 +175,9 @@ void run_loop(Viewer& v) {
       seen_activity = v.window->activity;
       settle = kSettleFrames;
     }
-    if (g_signal) {
+    if (const int signal = stop_signal()) {
       std::printf("frame %" PRIu64 ": %s received: leaving as if the window were closed\n",
-                  v.frame_number, g_signal == SIGINT ? "SIGINT" : "SIGTERM");
+                  v.frame_number, stop_signal_name(signal));
       break;
     }
     while (v.next_script_event < v.script.size() &&
@@ -227,8 +209,6 @@ void run_loop(Viewer& v) {
 }  // namespace
 
 int run_view(const ViewArgs& args) {
-  // Messages reach a log file or a pipe as they happen, not when a buffer fills.
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Viewer v;
   v.args = args;
   v.frame = args.frame;
@@ -292,6 +272,7 @@ int run_view(const ViewArgs& args) {
   } catch (const SceneSizeError& e) {
     throw Error(args.scene + ": " + e.what());  // which scene is too large for this device
   }
+  // Ctrl+C and SIGTERM end the session normally (autosave, summary).
   catch_stop_signals();
   try {
     run_loop(v);
