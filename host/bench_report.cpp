@@ -73,6 +73,19 @@ static std::string frames_phrase(uint32_t repeat) {
   return repeat == 1 ? "one frame each" : "medians of " + std::to_string(repeat) + " frames";
 }
 
+// The frames each series' figures are of: the CPU reference times at most kReferenceMaxFrames
+// (measure_reference), so beside a GPU backend with more it is named with its own.
+static std::string chart_frames_phrase(const BenchArgs& a) {
+  const auto has = [&](const char* backend) {
+    return std::find(a.backends.begin(), a.backends.end(), backend) != a.backends.end();
+  };
+  const uint32_t reference = std::min(a.repeat, kReferenceMaxFrames);
+  if (!has("reference")) return frames_phrase(a.repeat);
+  if (!has("compute") && !has("hardware")) return frames_phrase(reference);
+  if (reference == a.repeat) return frames_phrase(a.repeat);
+  return frames_phrase(a.repeat) + "; reference: " + frames_phrase(reference);
+}
+
 // How the figures were taken: frames, warm-up rule and runs, for the backends measured (the
 // CPU reference times fewer frames, without a warm-up: measure_reference).
 static std::string method_phrase(const BenchArgs& a) {
@@ -346,11 +359,7 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
                std::to_string(a.height) +
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
                coverage_phrase(a) + (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " +
-               results.device + " (" +
-               // The reference alone times fewer frames (kReferenceMaxFrames).
-               frames_phrase(a.backends == std::vector<std::string>{"reference"}
-                                 ? std::min(a.repeat, kReferenceMaxFrames)
-                                 : a.repeat) +
+               results.device + " (" + chart_frames_phrase(a) +
                (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")" +
                (results.interrupted
                     ? ", interrupted (" + std::to_string(results.measurements_made) + " of " +
