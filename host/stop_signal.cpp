@@ -1,6 +1,7 @@
 #include "host/stop_signal.h"
 
 #include <csignal>
+#include <initializer_list>
 
 namespace tessera {
 namespace {
