@@ -49,9 +49,12 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
   }
   // Each row is printed as its point is measured; Ctrl+C or SIGTERM stops the sweep at the next
   // point, and what it measured is printed and written as a whole sweep's would be.
-  if (!a.quiet)
-    print_bench_heading(ctx ? ctx->properties.deviceName : BenchResults{}.device,
-                        ctx ? ctx->driver : "", a);
+  // The heading once the counts have passed their checks: a count refused is refused alone.
+  const auto print_heading = [&] {
+    if (!a.quiet)
+      print_bench_heading(ctx ? ctx->properties.deviceName : BenchResults{}.device,
+                          ctx ? ctx->driver : "", a);
+  };
   size_t printed = 0;
   const auto print_row = [&](const BenchRow& row) {
     if (!a.quiet) print_bench_row(row, a);
@@ -59,7 +62,7 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
   };
   BenchResults results;
   try {
-    results = measure_bench(ctx.get(), a, print_row);
+    results = measure_bench(ctx.get(), a, print_heading, print_row);
   } catch (const ImageSizeError& e) {
     throw_image_size_error(e, a.size_given, "", "tessera bench --help");
   }

@@ -162,9 +162,11 @@ struct Sweep {
 
 // One whole sweep: a row per (object count, backend); `run` (from 0) labels the progress bar.
 // `max_range`: the device's maxStorageBufferRange (0 without a renderer). `measured` is called
-// with each row as it is measured. A stop signal ends it before the next scene or point: never
-// inside a frame, whose submission is waited for.
+// with each row as it is measured, `checked` when the counts have passed their checks. A stop
+// signal ends it before the next scene or point: never inside a frame, whose submission is waited
+// for.
 Sweep measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a, uint32_t run,
+                    const std::function<void()>& checked,
                     const std::function<void(const BenchRow&)>& measured) {
   Sweep sweep;
   std::vector<BenchRow>& rows = sweep.rows;
@@ -226,6 +228,7 @@ Sweep measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a, 
       }
     }
   }
+  checked();
   sweep.points = counts.size() * a.backends.size();
   Progress progress(sweep.points, !a.quiet);
   const std::string run_label =
@@ -351,7 +354,7 @@ RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& a) {
   return options;
 }
 
-BenchResults measure_bench(Context* ctx, const BenchArgs& a,
+BenchResults measure_bench(Context* ctx, const BenchArgs& a, const std::function<void()>& started,
                            const std::function<void(const BenchRow&)>& row_done) {
   BenchResults results;
   std::unique_ptr<Renderer> renderer;
@@ -374,7 +377,10 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a,
       }
       ++point;
     };
-    Sweep sweep = measure_sweep(renderer.get(), max_range, a, run, measured);
+    const auto checked = [&] {
+      if (run == 0 && started) started();
+    };
+    Sweep sweep = measure_sweep(renderer.get(), max_range, a, run, checked, measured);
     runs.push_back(std::move(sweep.rows));
     results.measurements_planned = sweep.points * run_count;
     results.measurements_made += runs.back().size();

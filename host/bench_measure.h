@@ -77,12 +77,13 @@ RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& args
 
 /// Runs the sweep `args` describes, `args.runs` times over (whole sweeps, one after the other),
 /// and merges the runs per point. `ctx` is the device for the compute and hardware backends
-/// (null when only the reference runs; it must outlive the call). `row_done`, if given, is
-/// called with each point's row as soon as it is final (in the last run), in the order of
-/// BenchResults::rows. After stop_signal() (host/stop_signal.h) no further point is measured:
-/// the results hold those measured so far (BenchResults::interrupted). Throws Error for a scene
-/// or size the renderer rejects.
+/// (null when only the reference runs; it must outlive the call). `started`, if given, is called
+/// once the counts have been checked, before the first point is measured; `row_done` with each
+/// point's row as soon as it is final (in the last run), in the order of BenchResults::rows. After
+/// stop_signal() (host/stop_signal.h) no further point is measured: the results hold those measured
+/// so far (BenchResults::interrupted). Throws Error for a scene or size the renderer rejects.
 BenchResults measure_bench(Context* ctx, const BenchArgs& args,
+                           const std::function<void()>& started = {},
                            const std::function<void(const BenchRow&)>& row_done = {});
 
 }  // namespace tessera
