@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <memory>
 
 #include <unistd.h>
@@ -18,6 +19,7 @@
 #include "host/bench_content.h"
 #include "host/report.h"
 #include "host/scene_source.h"
+#include "host/stop_signal.h"
 
 namespace tessera {
 namespace {
@@ -35,9 +37,11 @@ class Progress {
     std::fflush(stderr);
     ++done_;
   }
-  ~Progress() {
+  // Erases the bar, for a line of the table printed on the same terminal.
+  void clear() {
     if (enabled_) std::fprintf(stderr, "\r%80s\r", "");
   }
+  ~Progress() { clear(); }
 
  private:
   size_t total_, done_ = 0;
@@ -150,11 +154,23 @@ std::vector<std::pair<uint32_t, double>> compute_over_hardware(const std::vector
   return ratios;
 }
 
-// One whole sweep: a row per (object count, backend); `run` (from 0) labels the progress bar.
-// `max_range`: the device's maxStorageBufferRange (0 without a renderer).
-std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a,
-                                    uint32_t run) {
+// One sweep's rows, in order; `complete` false where a stop signal ended it early.
+struct Sweep {
   std::vector<BenchRow> rows;
+  size_t points = 0;  // (object count, backend) pairs the sweep measures when it runs to its end
+  bool complete = true;
+};
+
+// One whole sweep: a row per (object count, backend); `run` (from 0) labels the progress bar.
+// `max_range`: the device's maxStorageBufferRange (0 without a renderer). `measured` is called
+// with each row as it is measured, `checked` when the counts have passed their checks. A stop
+// signal ends it before the next scene or point: never inside a frame, whose submission is waited
+// for.
+Sweep measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a, uint32_t run,
+                    const std::function<void()>& checked,
+                    const std::function<void(const BenchRow&)>& measured) {
+  Sweep sweep;
+  std::vector<BenchRow>& rows = sweep.rows;
   FrameSettings fs;
   fs.width = a.width;
   fs.height = a.height;
@@ -219,10 +235,16 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, cons
       }
     }
   }
-  Progress progress(counts.size() * a.backends.size(), !a.quiet);
+  checked();
+  sweep.points = counts.size() * a.backends.size();
+  Progress progress(sweep.points, !a.quiet);
   const std::string run_label =
       a.runs > 1 ? "run " + std::to_string(run + 1) + "/" + std::to_string(a.runs) + ", " : "";
   for (uint32_t n : counts) {
+    if (stop_signal()) {
+      sweep.complete = false;
+      return sweep;
+    }
     const Scene scene = builtin ? fixed
                         : file  ? make_instanced_bench_scene(fixed, n, aspect)
                                 : make_bench_scene(a.scene, n, a.segments, aspect);
@@ -241,6 +263,10 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, cons
             *std::min_element(keys.begin() + p, keys.begin() + p + fs.samples) != ~0ull;
     }
     for (const std::string& backend : a.backends) {
+      if (stop_signal()) {
+        sweep.complete = false;
+        return sweep;
+      }
       progress.step(run_label + "objects " + std::to_string(n) + ", " + backend);
       BenchRow row;
       if (backend == "compute") {
@@ -257,52 +283,59 @@ std::vector<BenchRow> measure_sweep(Renderer* renderer, uint64_t max_range, cons
       row.triangles_submitted = triangles;
       row.pixels_shaded = pixels_shaded;
       rows.push_back(row);
+      progress.clear();
+      measured(row);
     }
   }
-  return rows;
+  return sweep;
 }
 
-// One row per point from the runs' rows (the same points in the same order): figures are
-// medians over the runs, extremes the extremes, warm-ups add up.
-std::vector<BenchRow> merge_runs(const std::vector<std::vector<BenchRow>>& runs) {
-  std::vector<BenchRow> merged = runs.front();
-  for (size_t i = 0; i < merged.size(); ++i) {
-    BenchRow& m = merged[i];
-    std::vector<double> cpu, per_pass_total;
-    m.run_ms.clear();
-    for (const std::vector<BenchRow>& run : runs) {
-      const BenchRow& r = run[i];
-      TESSERA_CHECK(r.objects == m.objects && r.backend == m.backend);
-      m.run_ms.push_back(r.total_ms);
-      cpu.push_back(r.cpu_record_ms);
-      per_pass_total.push_back(r.per_pass_total_ms);
-      m.min_ms = std::min(m.min_ms, r.min_ms);
-      m.max_ms = std::max(m.max_ms, r.max_ms);
-      if (&run != &runs.front()) {
-        m.warmup.frames += r.warmup.frames;
-        m.warmup.ms += r.warmup.ms;
-        m.warmup.stable = m.warmup.stable && r.warmup.stable;
-      }
-    }
-    m.total_ms = median(m.run_ms);
-    m.cpu_record_ms = median(cpu);
-    m.per_pass_total_ms = median(per_pass_total);
-    // Counts come from the first run; a run that split the frame differently is named, since
-    // each batch is a whole sequence of passes (one sphere once ran in 17 batches after 10^6).
-    bool batches_differ = false;
-    std::string batches;
-    for (const std::vector<BenchRow>& run : runs) {
-      batches += (batches.empty() ? "" : ", ") + std::to_string(run[i].batches);
-      batches_differ = batches_differ || run[i].batches != m.batches;
-    }
-    if (batches_differ) m.note += (m.note.empty() ? "" : "; ") + ("batches per run: " + batches);
-    for (size_t p = 0; p < kPassCount; ++p) {
-      std::vector<double> v;
-      for (const std::vector<BenchRow>& run : runs) v.push_back(run[i].pass_ms[p]);
-      m.pass_ms[p] = median(v);
+// One point's row from its row in each run that measured it, in run order: figures are medians
+// over the runs, extremes the extremes, warm-ups add up.
+BenchRow merge_point(const std::vector<BenchRow>& runs) {
+  BenchRow m = runs.front();
+  std::vector<double> cpu, per_pass_total;
+  m.run_ms.clear();
+  for (const BenchRow& r : runs) {
+    TESSERA_CHECK(r.objects == m.objects && r.backend == m.backend);
+    m.run_ms.push_back(r.total_ms);
+    cpu.push_back(r.cpu_record_ms);
+    per_pass_total.push_back(r.per_pass_total_ms);
+    m.min_ms = std::min(m.min_ms, r.min_ms);
+    m.max_ms = std::max(m.max_ms, r.max_ms);
+    if (&r != &runs.front()) {
+      m.warmup.frames += r.warmup.frames;
+      m.warmup.ms += r.warmup.ms;
+      m.warmup.stable = m.warmup.stable && r.warmup.stable;
     }
   }
-  return merged;
+  m.total_ms = median(m.run_ms);
+  m.cpu_record_ms = median(cpu);
+  m.per_pass_total_ms = median(per_pass_total);
+  // Counts come from the first run; a run that split the frame differently is named, since
+  // each batch is a whole sequence of passes (one sphere once ran in 17 batches after 10^6).
+  bool batches_differ = false;
+  std::string batches;
+  for (const BenchRow& r : runs) {
+    batches += (batches.empty() ? "" : ", ") + std::to_string(r.batches);
+    batches_differ = batches_differ || r.batches != m.batches;
+  }
+  if (batches_differ) m.note += (m.note.empty() ? "" : "; ") + ("batches per run: " + batches);
+  for (size_t p = 0; p < kPassCount; ++p) {
+    std::vector<double> v;
+    for (const BenchRow& r : runs) v.push_back(r.pass_ms[p]);
+    m.pass_ms[p] = median(v);
+  }
+  return m;
+}
+
+// Point `i`'s rows of the runs that measured it (an interrupted run may not have).
+std::vector<BenchRow> point_rows(const std::vector<std::vector<BenchRow>>& runs, size_t i) {
+  std::vector<BenchRow> out;
+  for (const std::vector<BenchRow>& run : runs) {
+    if (i < run.size()) out.push_back(run[i]);
+  }
+  return out;
 }
 
 }  // namespace
@@ -328,7 +361,8 @@ RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& a) {
   return options;
 }
 
-BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
+BenchResults measure_bench(Context* ctx, const BenchArgs& a, const std::function<void()>& started,
+                           const std::function<void(const BenchRow&)>& row_done) {
   BenchResults results;
   std::unique_ptr<Renderer> renderer;
   if (ctx) {
@@ -336,11 +370,34 @@ BenchResults measure_bench(Context* ctx, const BenchArgs& a) {
     results.device = ctx->properties.deviceName;
     results.driver = ctx->driver;
   }
+  const uint32_t run_count = std::max(a.runs, 1u);
+  const uint64_t max_range = ctx ? ctx->properties.limits.maxStorageBufferRange : 0;
   std::vector<std::vector<BenchRow>> runs;
-  for (uint32_t run = 0; run < std::max(a.runs, 1u); ++run)
-    runs.push_back(measure_sweep(renderer.get(),
-                                 ctx ? ctx->properties.limits.maxStorageBufferRange : 0, a, run));
-  results.rows = merge_runs(runs);
+  for (uint32_t run = 0; run < run_count; ++run) {
+    // A point's row is final once the last run has measured it.
+    size_t point = 0;
+    const auto measured = [&](const BenchRow& row) {
+      if (run + 1 == run_count && row_done) {
+        std::vector<BenchRow> rows = point_rows(runs, point);
+        rows.push_back(row);
+        row_done(merge_point(rows));
+      }
+      ++point;
+    };
+    const auto checked = [&] {
+      if (run == 0 && started) started();
+    };
+    Sweep sweep = measure_sweep(renderer.get(), max_range, a, run, checked, measured);
+    runs.push_back(std::move(sweep.rows));
+    results.measurements_planned = sweep.points * run_count;
+    results.measurements_made += runs.back().size();
+    if (!sweep.complete) {
+      results.interrupted = stop_signal();
+      break;
+    }
+  }
+  for (size_t i = 0; i < runs.front().size(); ++i)
+    results.rows.push_back(merge_point(point_rows(runs, i)));
   results.compute_over_hardware = compute_over_hardware(results.rows);
   return results;
 }

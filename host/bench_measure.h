@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +63,11 @@ struct BenchResults {
   std::vector<std::pair<uint32_t, double>> compute_over_hardware;  // (objects, time ratio)
   std::string device = "reference (CPU)";
   std::string driver;
+  /// The signal (SIGINT, SIGTERM: host/stop_signal.h) that stopped the sweep before its end, 0
+  /// when it ran to the end. `rows` then holds the points measured in at least one run.
+  int interrupted = 0;
+  size_t measurements_planned = 0;  // points x runs
+  size_t measurements_made = 0;
 };
 
 /// The renderer options of the compute backend: `args`' rasterizer settings (the device's
@@ -71,8 +77,13 @@ RendererOptions bench_renderer_options(const Context& ctx, const BenchArgs& args
 
 /// Runs the sweep `args` describes, `args.runs` times over (whole sweeps, one after the other),
 /// and merges the runs per point. `ctx` is the device for the compute and hardware backends
-/// (null when only the reference runs; it must outlive the call). Throws Error for a scene or
-/// size the renderer rejects.
-BenchResults measure_bench(Context* ctx, const BenchArgs& args);
+/// (null when only the reference runs; it must outlive the call). `started`, if given, is called
+/// once the counts have been checked, before the first point is measured; `row_done` with each
+/// point's row as soon as it is final (in the last run), in the order of BenchResults::rows. After
+/// stop_signal() (host/stop_signal.h) no further point is measured: the results hold those measured
+/// so far (BenchResults::interrupted). Throws Error for a scene or size the renderer rejects.
+BenchResults measure_bench(Context* ctx, const BenchArgs& args,
+                           const std::function<void()>& started = {},
+                           const std::function<void(const BenchRow&)>& row_done = {});
 
 }  // namespace tessera

@@ -73,6 +73,19 @@ static std::string frames_phrase(uint32_t repeat) {
   return repeat == 1 ? "one frame each" : "medians of " + std::to_string(repeat) + " frames";
 }
 
+// The frames each series' figures are of: the CPU reference times at most kReferenceMaxFrames
+// (measure_reference), so beside a GPU backend with more it is named with its own.
+static std::string chart_frames_phrase(const BenchArgs& a) {
+  const auto has = [&](const char* backend) {
+    return std::find(a.backends.begin(), a.backends.end(), backend) != a.backends.end();
+  };
+  const uint32_t reference = std::min(a.repeat, kReferenceMaxFrames);
+  if (!has("reference")) return frames_phrase(a.repeat);
+  if (!has("compute") && !has("hardware")) return frames_phrase(reference);
+  if (reference == a.repeat) return frames_phrase(a.repeat);
+  return frames_phrase(a.repeat) + "; reference: " + frames_phrase(reference);
+}
+
 // How the figures were taken: frames, warm-up rule and runs, for the backends measured (the
 // CPU reference times fewer frames, without a warm-up: measure_reference).
 static std::string method_phrase(const BenchArgs& a) {
@@ -146,39 +159,51 @@ static std::string raster_phrase(const BenchArgs& a) {
                           : "for small frames");
 }
 
-void print_bench_table(const BenchResults& results, const BenchArgs& a) {
+void print_bench_heading(const std::string& device, const std::string& driver, const BenchArgs& a) {
   std::printf("scene %s, %ux%u, %u sample%s per pixel%s%s%s, device '%s'%s,\n%s\n", a.scene.c_str(),
               a.width, a.height, a.samples, a.samples == 1 ? "" : "s", coverage_phrase(a).c_str(),
-              segments_phrase(a).c_str(), raster_phrase(a).c_str(), results.device.c_str(),
-              results.driver.empty() ? "" : (" (" + results.driver + ")").c_str(),
-              method_phrase(a).c_str());
+              segments_phrase(a).c_str(), raster_phrase(a).c_str(), device.c_str(),
+              driver.empty() ? "" : (" (" + driver + ")").c_str(), method_phrase(a).c_str());
   std::printf("%9s %9s %10s %10s %10s %10s %10s %8s %11s %8s  %s\n", "objects", "backend",
               "triangles", "rasterized", "median ms", "min ms", "max ms", "spread", "triangles/s",
               "cpu ms", "warm-up");
-  for (const BenchRow& r : results.rows) {
-    if (r.skipped) {
-      std::printf("%9u %9s %10s  skipped (over --reference-max-triangles)\n", r.objects,
-                  r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str());
-      continue;
-    }
-    char spread[16] = "-";
-    if (r.run_ms.size() > 1)
-      std::snprintf(spread, sizeof(spread), "%.1f %%", r.run_spread_percent());
-    // The reference records no command buffer and has no warm-up.
-    const bool reference = r.backend == "reference";
-    char cpu[32] = "-";
-    if (!reference) std::snprintf(cpu, sizeof(cpu), "%.3f", r.cpu_record_ms);
-    std::printf("%9u %9s %10s %10s %10.3f %10.3f %10.3f %8s %11s %8s  %s\n", r.objects,
-                r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str(),
-                r.triangles_rasterized ? human_count(double(r.triangles_rasterized)).c_str() : "-",
-                r.total_ms, r.min_ms, r.max_ms, spread,
-                human_count(r.triangles_per_second()).c_str(), cpu,
-                reference ? "-" : warmup_text(r, a).c_str());
+}
+
+void print_bench_row(const BenchRow& r, const BenchArgs& a) {
+  if (r.skipped) {
+    std::printf("%9u %9s %10s  skipped (over --reference-max-triangles)\n", r.objects,
+                r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str());
+    return;
   }
+  char spread[16] = "-";
+  if (r.run_ms.size() > 1) std::snprintf(spread, sizeof(spread), "%.1f %%", r.run_spread_percent());
+  // The reference records no command buffer and has no warm-up.
+  const bool reference = r.backend == "reference";
+  char cpu[32] = "-";
+  if (!reference) std::snprintf(cpu, sizeof(cpu), "%.3f", r.cpu_record_ms);
+  // A point an interruption left with fewer runs than asked says how many it has.
+  const std::string runs =
+      r.run_ms.size() < a.runs && !r.run_ms.empty()
+          ? "  (" + std::to_string(r.run_ms.size()) + " of " + std::to_string(a.runs) + " runs)"
+          : "";
+  std::printf("%9u %9s %10s %10s %10.3f %10.3f %10.3f %8s %11s %8s  %s%s\n", r.objects,
+              r.backend.c_str(), human_count(double(r.triangles_submitted)).c_str(),
+              r.triangles_rasterized ? human_count(double(r.triangles_rasterized)).c_str() : "-",
+              r.total_ms, r.min_ms, r.max_ms, spread, human_count(r.triangles_per_second()).c_str(),
+              cpu, reference ? "-" : warmup_text(r, a).c_str(), runs.c_str());
+}
+
+void print_bench_ratios(const BenchResults& results) {
   for (const auto& [n, ratio] : results.compute_over_hardware) {
     std::printf("objects %u: compute / hardware = %.3f (compute %.2fx %s)\n", n, ratio,
                 ratio < 1 ? 1 / ratio : ratio, ratio < 1 ? "faster" : "slower");
   }
+}
+
+void print_bench_table(const BenchResults& results, const BenchArgs& a) {
+  print_bench_heading(results.device, results.driver, a);
+  for (const BenchRow& r : results.rows) print_bench_row(r, a);
+  print_bench_ratios(results);
 }
 
 void write_bench_csv(const std::string& path, const BenchResults& results, const BenchArgs& a) {
@@ -258,7 +283,10 @@ void write_bench_json(const std::string& path, const BenchResults& results, cons
     << ",\n  \"generic_shading\": " << (a.generic_shading ? "true" : "false")
     << ",\n  \"frames\": " << a.repeat << ",\n  \"runs\": " << a.runs
     << ",\n  \"warmup\": {\"min_frames\": " << a.warmup << ", \"min_ms\": " << a.warmup_ms
-    << "},\n  \"statistic\": \"median\",\n  \"results\": [";
+    << "},\n  \"statistic\": \"median\",\n  \"interrupted\": "
+    << (results.interrupted ? "true" : "false")
+    << ",\n  \"measurements_planned\": " << results.measurements_planned
+    << ",\n  \"measurements_made\": " << results.measurements_made << ",\n  \"results\": [";
   bool first = true;
   for (const BenchRow& r : results.rows) {
     if (r.skipped) continue;
@@ -331,12 +359,12 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
                std::to_string(a.height) +
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
                coverage_phrase(a) + (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " +
-               results.device + " (" +
-               // The reference alone times fewer frames (kReferenceMaxFrames).
-               frames_phrase(a.backends == std::vector<std::string>{"reference"}
-                                 ? std::min(a.repeat, kReferenceMaxFrames)
-                                 : a.repeat) +
-               (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")";
+               results.device + " (" + chart_frames_phrase(a) +
+               (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")" +
+               (results.interrupted
+                    ? ", interrupted (" + std::to_string(results.measurements_made) + " of " +
+                          std::to_string(results.measurements_planned) + " measured)"
+                    : "");
   spec.x_label = "objects";
   spec.y_label = "frame time (ms)";
   for (const std::string& backend : a.backends) {

@@ -815,6 +815,10 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "Exit status: 0 success, 1 a failure while running, 2 a bad command line,\n"
       "3 reports of the validation layer (--validate).";
   app.footer("Run `tessera COMMAND --help` for a command's options.\n" + exit_statuses);
+  // A sweep stopped by a signal keeps what it measured (host/stop_signal.h).
+  const std::string stopped_status =
+      "\n130 (SIGINT, Ctrl+C) or 143 (SIGTERM): stopped early; what was measured\n"
+      "is printed and written, marked as interrupted (a second signal ends at once).";
   for (CLI::App* sub : {render, bench, view, tradeoff, devices, scenes}) {
     sub->allow_extras();
     sub->footer(exit_statuses);
@@ -829,7 +833,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "reference.\n"
       "With --runs K, the median of the K runs' medians and their spread,\n"
       "(max - min) / median.\n" +
-      exit_statuses);
+      exit_statuses + stopped_status);
+  tradeoff->footer(exit_statuses + stopped_status);
 
   // CLI11 takes the arguments last first.
   std::vector<std::string> reversed(args.rbegin(), args.rend());

@@ -64,6 +64,9 @@ int run(const tessera::CommandLine& line, const std::string& command_line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Each line reaches a log file or a pipe when it is printed (a bench row as its point is
+  // measured), not when a buffer fills or the command ends.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   const std::vector<std::string> args(argv + 1, argv + argc);
   std::string command_line = "tessera";
   for (const std::string& arg : args) command_line += " " + arg;

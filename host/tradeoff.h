@@ -78,7 +78,8 @@ struct TradeoffPoint {
   /// GPU time of the environment's precomputation (the first frame after set_scene only): what
   /// the env-size and env-samples knobs cost, which the per-frame time does not show.
   double precompute_ms = 0.0;
-  /// The warm-up before each round's timed frames (core/warmup.h; `--warmup`, `--warmup-ms`).
+  /// The warm-up before each round's timed frames (core/warmup.h; `--warmup`, `--warmup-ms`):
+  /// one per round measured, fewer than --rounds where an interruption stopped the rounds.
   std::vector<WarmupStats> warmups;
 };
 
@@ -116,6 +117,12 @@ struct TradeoffResults {
   std::string truth;                  // how the ground truth was made, in words
   double truth_seconds = 0.0;         // CPU wall time of the ground truth
   std::vector<TradeoffPoint> points;  // by knob in the order asked, then by setting
+  /// The signal (SIGINT, SIGTERM: host/stop_signal.h) that stopped the rounds before their
+  /// end, 0 when they ran to the end. `points` then holds the settings measured in at least one
+  /// round, against their ground truth.
+  int interrupted = 0;
+  size_t measurements_planned = 0;  // settings x rounds
+  size_t measurements_made = 0;
 };
 
 /// The renderer options every knob's settings start from: `ctx`'s device's (tuned_for_device)
@@ -125,8 +132,10 @@ RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& ar
 
 /// Renders every setting of every knob of `args` that can matter for `scene` (the others are
 /// listed in TradeoffResults::skipped) on `ctx` (rounds interleave the settings so that a clock
-/// change affects them alike) and the ground truth on the CPU. Throws Error for a bad knob,
-/// ImageSizeError for a size the device cannot take.
+/// change affects them alike) and the ground truth on the CPU. After stop_signal()
+/// (host/stop_signal.h) no further setting is timed: the ground truth is rendered for those
+/// timed so far (TradeoffResults::interrupted). Throws Error for a bad knob, ImageSizeError for
+/// a size the device cannot take.
 TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
                                  const TradeoffScene& scene);
 

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -5,6 +6,7 @@
 #include "core/check.h"
 #include "core/image.h"
 #include "host/report.h"
+#include "host/stop_signal.h"
 #include "host/tradeoff.h"
 
 namespace tessera {
@@ -24,6 +26,9 @@ int run_tradeoff(const TradeoffArgs& args, const std::string& command_line) {
     throw Error("nothing to measure: no knob asked for can matter for scene '" + args.scene +
                 "':" + why);
   }
+  // Ctrl+C or SIGTERM stops the rounds at the next setting; the settings timed so far are
+  // finished against their ground truth, printed and written as a whole run's would be.
+  catch_stop_signals();
   ContextOptions options;
   options.device = args.device;
   options.validation = args.validate;
@@ -35,12 +40,40 @@ int run_tradeoff(const TradeoffArgs& args, const std::string& command_line) {
     // A command-line size is a bad command line; a scene file's is reported at its place.
     throw_image_size_error(e, args.size_given, scene.size_place, "tessera tradeoff --help");
   }
-  if (!args.quiet) print_tradeoff_table(results, args);
-  if (!args.json.empty()) write_tradeoff_json(args.json, results, args, command_line);
-  if (!args.chart.empty()) write_tradeoff_chart(args.chart, results, args);
-  if (!args.quiet) {
-    for (const std::string* p : {&args.json, &args.chart})
-      if (!p->empty()) std::printf("wrote %s\n", p->c_str());
+  const bool any = !results.points.empty();
+  if (!args.quiet && any) print_tradeoff_table(results, args);
+  std::string written;
+  if (any) {
+    if (!args.json.empty()) write_tradeoff_json(args.json, results, args, command_line);
+    if (!args.chart.empty()) write_tradeoff_chart(args.chart, results, args);
+    for (const std::string* p : {&args.json, &args.chart}) {
+      if (p->empty()) continue;
+      if (!args.quiet) std::printf("wrote %s\n", p->c_str());
+      written += (written.empty() ? "" : ", ") + *p;
+    }
+  }
+  if (results.interrupted) {
+    std::string message = "tessera: interrupted by " +
+                          std::string(stop_signal_name(results.interrupted)) + " after " +
+                          std::to_string(results.measurements_made) + " of " +
+                          std::to_string(results.measurements_planned) + " measurements (" +
+                          std::to_string(results.measurements_planned / args.rounds) +
+                          " settings x " + std::to_string(args.rounds) + " rounds)";
+    if (!any) {
+      message += "; no setting was timed, no file written";
+    } else {
+      const size_t fewer = size_t(
+          std::count_if(results.points.begin(), results.points.end(),
+                        [&](const TradeoffPoint& p) { return p.warmups.size() < args.rounds; }));
+      message += "; " + std::string(written.empty() ? "printed" : "wrote") + " the " +
+                 std::to_string(results.points.size()) +
+                 (results.points.size() == 1 ? " setting timed" : " settings timed") +
+                 (fewer > 0 ? " (" + std::to_string(fewer) + " in fewer rounds)" : "") +
+                 (written.empty() ? "" : " to " + written);
+    }
+    std::fprintf(stderr, "%s\n", message.c_str());
+    const int status = validation_exit_status(ctx.get());
+    return status != 0 ? status : interrupted_exit_status(results.interrupted);
   }
   return validation_exit_status(ctx.get());
 }

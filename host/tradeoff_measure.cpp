@@ -16,6 +16,7 @@
 #include "core/reference_renderer.h"
 #include "core/warmup.h"
 #include "host/scene_source.h"
+#include "host/stop_signal.h"
 #include "host/tradeoff.h"
 
 namespace tessera {
@@ -158,22 +159,35 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
   }
   const RendererOptions options = tradeoff_base_options(ctx, args);
 
-  std::vector<Candidate> candidates;
+  std::vector<KnobSetting> settings;
   for (const std::string& knob : measured) {
-    for (KnobSetting& s : knob_settings(knob, frame, options, &scene)) {
-      Candidate c;
-      c.scene = with_sphere_segments(scene, s.sphere_segments);
-      c.setting = std::move(s);
-      c.renderer = std::make_unique<Renderer>(ctx, c.setting.renderer);
-      c.renderer->set_scene(c.scene);
-      candidates.push_back(std::move(c));
-    }
+    for (KnobSetting& s : knob_settings(knob, frame, options, &scene)) settings.push_back(s);
   }
-  const size_t total = candidates.size() * args.rounds;
+  results.measurements_planned = settings.size() * args.rounds;
+  // A stop signal is heeded between settings, never inside a frame: then only the settings
+  // timed so far go on to the ground truth, and nothing at all before the first is timed.
+  std::vector<Candidate> candidates;
+  for (KnobSetting& s : settings) {
+    if (stop_signal()) {
+      results.interrupted = stop_signal();
+      return results;
+    }
+    Candidate c;
+    c.scene = with_sphere_segments(scene, s.sphere_segments);
+    c.setting = std::move(s);
+    c.renderer = std::make_unique<Renderer>(ctx, c.setting.renderer);
+    c.renderer->set_scene(c.scene);
+    candidates.push_back(std::move(c));
+  }
+  const size_t total = results.measurements_planned;
   const bool progress_in_place = !args.quiet && isatty(fileno(stderr));
-  size_t done = 0;
-  for (uint32_t round = 0; round < args.rounds; ++round) {
+  size_t& done = results.measurements_made;
+  for (uint32_t round = 0; round < args.rounds && !results.interrupted; ++round) {
     for (Candidate& c : candidates) {
+      if (stop_signal()) {
+        results.interrupted = stop_signal();
+        break;
+      }
       // The first round's first frame pays for pipeline compilation and the environment's
       // precomputation, which warm_up's clock leaves out; every round warms up again after
       // the other settings ran, by time as `tessera bench` does (core/warmup.h).
@@ -196,15 +210,25 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
         c.times.push_back(stats.gpu_total_ms);
         c.triangles = stats.raster_triangles;
       }
-      // Rewritten in place on a terminal; into a log, only the last count.
+      // Rewritten in place on a terminal; into a log, a line per round.
       ++done;
       if (progress_in_place) std::fprintf(stderr, "\rmeasured %zu of %zu", done, total);
     }
+    if (!progress_in_place && !args.quiet && !results.interrupted)
+      std::fprintf(stderr, "measured %zu of %zu\n", done, total);
   }
-  if (progress_in_place) {
-    std::fprintf(stderr, "\n");
-  } else if (!args.quiet) {
-    std::fprintf(stderr, "measured %zu of %zu\n", done, total);
+  if (progress_in_place) std::fprintf(stderr, "\n");
+  if (results.interrupted) {
+    // A setting the rounds never reached has no time: it is left out, and said to be.
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [](const Candidate& c) { return c.warmups.empty(); }),
+                     candidates.end());
+    if (candidates.empty()) return results;
+    std::fprintf(stderr,
+                 "tessera: %s received after %zu of %zu measurements: the ground truth for the "
+                 "%zu setting%s timed follows (a second one ends at once)\n",
+                 stop_signal_name(results.interrupted), done, total, candidates.size(),
+                 candidates.size() == 1 ? "" : "s");
   }
 
   // The ground truths: exact spheres, N x N samples per pixel, the environment integrated by

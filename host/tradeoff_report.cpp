@@ -92,6 +92,9 @@ std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& a
     if (p.setting.is_default) marks += "default ";
     if (p.on_front) marks += "front ";
     if (p.precompute_ms > 0) marks += format("precompute %.3f ms ", p.precompute_ms);
+    // A setting an interruption left with fewer rounds than asked.
+    if (p.warmups.size() < args.rounds)
+      marks += format("(%zu of %u rounds) ", p.warmups.size(), args.rounds);
     if (p.setting.speed_only)
       marks +=
           p.identical_to_default ? "(image identical to default)" : "(IMAGE DIFFERS FROM DEFAULT)";
@@ -143,6 +146,9 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
   j["width"] = results.width;
   j["height"] = results.height;
   j["rounds"] = args.rounds;
+  j["interrupted"] = results.interrupted != 0;
+  j["measurements_planned"] = results.measurements_planned;
+  j["measurements_made"] = results.measurements_made;
   j["frames_per_round"] = args.repeat;
   j["warmup"] = {{"min_frames", args.warmup}, {"min_ms", args.warmup_ms}};
   j["hdr_format"] = args.frame.hdr_format == HdrFormat::fp32 ? "fp32" : "fp16";
@@ -175,6 +181,7 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
                       {"speed_only", p.setting.speed_only},
                       {"identical_to_default", p.identical_to_default},
                       {"pareto_front", p.on_front},
+                      {"rounds", p.warmups.size()},
                       {"warmups", warmups}});
   }
   j["points"] = points;
@@ -187,7 +194,11 @@ void write_tradeoff_chart(const std::string& path, const TradeoffResults& result
                           const TradeoffArgs& args) {
   ScatterChart chart;
   chart.title = "speed against accuracy: '" + args.scene + "', " + std::to_string(results.width) +
-                "x" + std::to_string(results.height) + ", " + results.device;
+                "x" + std::to_string(results.height) + ", " + results.device +
+                (results.interrupted
+                     ? ", interrupted (" + std::to_string(results.measurements_made) + " of " +
+                           std::to_string(results.measurements_planned) + " measured)"
+                     : "");
   // The knobs left out, under the legend, as the table says why.
   if (!results.skipped.empty()) {
     chart.notes = {"", "not measured (cannot matter", "for this scene):"};

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cinttypes>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +16,7 @@
 #include "core/image.h"
 #include "host/report.h"
 #include "host/scene_source.h"
+#include "host/stop_signal.h"
 #include "host/viewer.h"
 
 namespace tessera {
@@ -157,24 +157,6 @@ bool renderable_size(Viewer& v, uint32_t width, uint32_t height) {
   return true;
 }
 
-// SIGINT or SIGTERM received: the loop leaves as if the window were closed.
-volatile std::sig_atomic_t g_signal = 0;
-
-void on_signal(int signal) {
-  g_signal = signal;
-}
-
-// Ctrl+C and SIGTERM end the session normally (autosave, summary); a second one, with the
-// handler reset, ends the process at once.
-void catch_stop_signals() {
-  struct sigaction action {};
-  action.sa_handler = on_signal;
-  action.sa_flags = SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
 // The session whose unsaved edits a lost X server must not take with it; null once the
 // session has written its autosave itself.
 Viewer* g_session = nullptr;
@@ -233,9 +215,9 @@ void run_loop(Viewer& v) {
       seen_activity = v.window->activity;
       settle = kSettleFrames;
     }
-    if (g_signal) {
+    if (const int signal = stop_signal()) {
       std::printf("frame %" PRIu64 ": %s received: leaving as if the window were closed\n",
-                  v.frame_number, g_signal == SIGINT ? "SIGINT" : "SIGTERM");
+                  v.frame_number, stop_signal_name(signal));
       break;
     }
     while (v.next_script_event < v.script.size() &&
@@ -267,8 +249,6 @@ void run_loop(Viewer& v) {
 }  // namespace
 
 int run_view(const ViewArgs& args) {
-  // Messages reach a log file or a pipe as they happen, not when a buffer fills.
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Viewer v;
   v.args = args;
   v.frame = args.frame;
@@ -336,6 +316,7 @@ int run_view(const ViewArgs& args) {
   } catch (const SceneSizeError& e) {
     throw Error(args.scene + ": " + e.what());  // which scene is too large for this device
   }
+  // Ctrl+C and SIGTERM end the session normally (autosave, summary).
   catch_stop_signals();
   try {
     run_loop(v);

@@ -796,6 +796,25 @@ TEST(BenchCli, HeadingListsOnlyTheSettingsOfTheBackendsMeasured) {
     EXPECT_NE(heading(out).find(setting), std::string::npos) << setting << "\n" << out;
 }
 
+// The chart's title says how many frames each series' medians are of: the CPU reference times
+// at most 3 (kReferenceMaxFrames) of the 5 asked, so a title of 5 alone was untrue of its series.
+TEST(BenchCli, ChartTitleSaysTheReferencesFewerFrames) {
+  const std::string chart = test::output_path("bench.svg");
+  const std::string base = std::string(TESSERA_BINARY) +
+                           " bench --device lavapipe --scene grid --objects 1 --size 24x16 "
+                           "--segments 6 --repeat 5 --warmup 0 --warmup-ms 0 --quiet --chart " +
+                           chart + " --backends ";
+  std::string out;
+  ASSERT_EQ(test::run_command(base + "compute,reference", out), 0) << out;
+  EXPECT_NE(read_text(chart).find("(medians of 5 frames; reference: medians of 3 frames)"),
+            std::string::npos)
+      << read_text(chart);
+  ASSERT_EQ(test::run_command(base + "reference", out), 0) << out;
+  EXPECT_NE(read_text(chart).find("(medians of 3 frames)"), std::string::npos) << read_text(chart);
+  ASSERT_EQ(test::run_command(base + "compute", out), 0) << out;
+  EXPECT_NE(read_text(chart).find("(medians of 5 frames)"), std::string::npos) << read_text(chart);
+}
+
 // The CSV and JSON say, point by point, whether the compute path's timed frames were rasterized
 // and shaded in one pass: on lavapipe only when asked for and with shading by tiles off (one
 // sphere at 32x32 is far below the pass's limits), never for the other backends.
