@@ -64,7 +64,8 @@ int run_bench(const BenchArgs& given, const std::string& command_line) {
   try {
     results = measure_bench(ctx.get(), a, print_heading, print_row);
   } catch (const ImageSizeError& e) {
-    throw_image_size_error(e, a.size_given, "", "tessera bench --help");
+    throw_image_size_error(with_samples_source(e, a.quality, a.samples_given, a.samples),
+                           a.size_given, "", "tessera bench --help");
   }
   if (!a.quiet) {
     // An interrupted run's points measured in fewer runs than asked.

@@ -834,7 +834,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "With --runs K, the median of the K runs' medians and their spread,\n"
       "(max - min) / median.\n" +
       exit_statuses + stopped_status);
-  tradeoff->footer(exit_statuses + stopped_status);
+  // What the charts' errors are against (truth_shading): a reader would take one truth for all.
+  tradeoff->footer(
+      "The ground truth is the CPU reference (exact spheres, --truth-samples).\n"
+      "The brdf knob is measured against the filament BRDF with energy\n"
+      "compensation, every other knob against the settings' BRDF (--quality's,\n"
+      "else the scene file's, else classic), so that its error is its own and\n"
+      "not the BRDF's: the knobs are not measured against one truth, and their\n"
+      "errors do not add up (docs/tradeoffs.md, \"The ground truth\").\n\n" +
+      exit_statuses + stopped_status);
 
   // CLI11 takes the arguments last first.
   std::vector<std::string> reversed(args.rbegin(), args.rend());
@@ -856,6 +864,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.size_given = render->count("--size") > 0;
   r.camera_given = render->count("--camera") > 0;
   r.exposure_given = render->count("--exposure") > 0;
+  r.samples_given = render->count("--samples") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;
   apply_quality(r.quality, given_in(*render), &r.frame, &r.env_options, &r.tile_size, nullptr);
   r.brdf_given = render->count("--brdf") > 0 || r.quality != Quality::none;
@@ -883,6 +892,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     b.hdr_format = preset.hdr_format;
   }
   b.size_given = bench->count("--size") > 0;
+  b.samples_given = bench->count("--samples") > 0;
   b.small_triangle_area_given = bench->count("--small-triangle-area") > 0;
   b.depth_rejection_given = bench->count("--depth-rejection") > 0;
   b.shade_tiles_given = bench->count("--shade-tiles") > 0;
@@ -912,16 +922,25 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   check_aa_walk_steps(b.aa_coverage, b.silhouette_steps, help_command);
   const bool hardware =
       std::find(b.backends.begin(), b.backends.end(), "hardware") != b.backends.end();
-  // What the hardware baseline cannot render leaves it out of the default backends.
+  // What the hardware baseline cannot render leaves it out of the default backends. A preset's
+  // value is named as the preset's, with the option that overrides it.
+  const bool samples_given = b.samples_given;
+  const bool hdr_given = bench->count("--hdr-format") > 0;
   const std::string compute_only =
-      b.samples > 1 ? "--samples " + std::to_string(b.samples) +
-                          ": the hardware backend renders 1 sample per pixel"
+      b.samples > 1
+          ? option_source(b.quality, samples_given, "--samples", std::to_string(b.samples)) +
+                ": the hardware backend renders 1 sample per pixel"
       : b.hdr_format != HdrFormat::fp16
-          ? std::string("--hdr-format fp32: the hardware backend renders into an fp16 image")
+          ? option_source(b.quality, hdr_given, "--hdr-format", "fp32") +
+                ": the hardware backend renders into an fp16 image"
           : std::string();
+  const std::string override_preset = b.samples > 1
+                                          ? (samples_given ? "" : ", or add --samples 1")
+                                          : (hdr_given ? "" : ", or add --hdr-format fp16");
   if (!compute_only.empty() && hardware) {
     if (bench->count("--backends") > 0)
-      throw UsageError(compute_only + "; leave it out of --backends", help_command);
+      throw UsageError(compute_only + "; leave it out of --backends" + override_preset,
+                       help_command);
     b.backends = {"compute"};
   }
   TradeoffArgs& t = line.tradeoff;

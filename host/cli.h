@@ -43,7 +43,7 @@ struct RenderArgs {
   // Which frame options the command line gave: the others come from the scene file's
   // "render" block when it has them.
   bool size_given = false, exposure_given = false, tonemap_given = false, brdf_given = false,
-       view_given = false;
+       view_given = false, samples_given = false;
   // --depth-rejection and --shade-tiles given: else the device's (raster_tuning,
   // compute/renderer.h).
   bool depth_rejection_given = false, shade_tiles_given = false, tile_lists_given = false,
@@ -55,9 +55,10 @@ struct BenchArgs {
   std::vector<uint32_t> objects = {1, 10, 100};  // object counts, the sweep
   uint32_t width = 512;
   uint32_t height = 512;
-  bool size_given = false;  // --size given
-  uint32_t segments = 32;   // sphere tessellation: 960 triangles per sphere
-  uint32_t samples = 1;     // FrameSettings::samples (compute and reference backends)
+  bool size_given = false;     // --size given
+  bool samples_given = false;  // --samples given: else 1 or --quality's
+  uint32_t segments = 32;      // sphere tessellation: 960 triangles per sphere
+  uint32_t samples = 1;        // FrameSettings::samples (compute and reference backends)
   AaCoverage aa_coverage = AaCoverage::count;  // FrameSettings::aa_coverage
   uint32_t silhouette_steps = 0;               // FrameSettings::silhouette_steps
   std::string device = "auto";

@@ -1,5 +1,7 @@
 #include "host/quality.h"
 
+#include <cstdio>
+
 #include "core/check.h"
 
 namespace tessera {
@@ -54,6 +56,56 @@ const QualityPreset& quality_preset(Quality quality) {
   }
   TESSERA_CHECK(!"quality_preset needs a preset");
   return draft;
+}
+
+const char* brdf_name(Brdf brdf) {
+  return brdf == Brdf::classic ? "classic" : brdf == Brdf::filament ? "filament" : "blinn-phong";
+}
+
+const char* quality_name(Quality quality) {
+  switch (quality) {
+    case Quality::draft:
+      return "draft";
+    case Quality::balanced:
+      return "balanced";
+    case Quality::reference:
+      return "reference";
+    case Quality::none:
+      break;
+  }
+  return "";
+}
+
+std::string option_source(Quality quality, bool given, const std::string& option,
+                          const std::string& value) {
+  const std::string set = option + " " + value;
+  if (given || quality == Quality::none) return set;
+  return "--quality " + std::string(quality_name(quality)) + " sets " + set;
+}
+
+std::string quality_settings_line(Quality quality, const FrameSettings& frame,
+                                  const EnvironmentOptions* env, uint32_t tile_size) {
+  if (quality == Quality::none) return "";
+  // Blinn-Phong has no energy compensation (shaders/lighting.glsl).
+  const bool ec = frame.energy_compensation && frame.brdf != Brdf::blinn_phong;
+  std::string out = "--quality " + std::string(quality_name(quality)) + ": " +
+                    brdf_name(frame.brdf) + " BRDF" + (ec ? " with energy compensation" : "") +
+                    ", " + std::to_string(frame.samples) +
+                    (frame.samples == 1 ? " sample" : " samples") + " per pixel";
+  if (frame.samples > 1)
+    out += std::string(" (") + aa_coverage_name(frame.aa_coverage) + " coverage)";
+  char lod[48];
+  std::snprintf(lod, sizeof(lod), "auto at %g px", double(frame.lod_error_px));
+  out += ", level of detail " + std::string(frame.lod == Lod::automatic ? lod : "off");
+  out += frame.max_anisotropy == 1
+             ? ", trilinear texture filtering"
+             : ", " + std::to_string(frame.max_anisotropy) + "x anisotropic texture filtering";
+  if (env)
+    out += ", environment cube of " + std::to_string(env->specular_size) + " px and " +
+           std::to_string(env->specular_samples) + " samples per texel";
+  out += frame.hdr_format == HdrFormat::fp32 ? ", fp32 HDR" : ", fp16 HDR";
+  if (env) out += ", tiles of " + std::to_string(tile_size) + " px";
+  return out;
 }
 
 bool preset_sets_small_triangle_area(VkPhysicalDeviceType type) {

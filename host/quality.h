@@ -39,6 +39,25 @@ struct QualityPreset {
 /// which on a CPU device is that tuning.
 bool preset_sets_small_triangle_area(VkPhysicalDeviceType type);
 
+/// The model's name as --brdf takes it: "classic", "filament", "blinn-phong".
+const char* brdf_name(Brdf brdf);
+
+/// The preset's name as --quality takes it: "draft", "balanced", "reference" ("" for none).
+const char* quality_name(Quality quality);
+
+/// `option value` as a message names it: as given, or "--quality reference sets --samples 16"
+/// where the command line did not give `option` and `quality` set it: a message about a value
+/// the user never typed must say where it came from.
+std::string option_source(Quality quality, bool given, const std::string& option,
+                          const std::string& value);
+
+/// The settings a preset governs as a frame uses them (`frame`, and `env` and `tile_size` where
+/// `env` is given: the compute path's), after the options given and the scene file: "--quality
+/// reference: filament BRDF with energy compensation, 16 samples per pixel, ...", for `tessera
+/// render` to print, since nothing else shows what a preset chose. "" for Quality::none.
+std::string quality_settings_line(Quality quality, const FrameSettings& frame,
+                                  const EnvironmentOptions* env, uint32_t tile_size);
+
 /// The settings of preset `quality` (not Quality::none).
 const QualityPreset& quality_preset(Quality quality);
 

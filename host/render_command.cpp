@@ -44,10 +44,17 @@ void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr)
   if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
 }
 
-void print_written(const RenderArgs& args, const std::string& device) {
+// The settings of --quality's preset, as the frame used them (the options given and the scene
+// file included): nothing else shows what the preset chose. The CPU reference (`compute`
+// false) has no prefiltered environment or tiles.
+void print_written(const RenderArgs& args, const std::string& device, bool compute) {
   std::printf("wrote %s (%ux%u, scene '%s', device '%s')\n", args.out.c_str(), args.frame.width,
               args.frame.height, args.scene.c_str(), device.c_str());
   if (!args.hdr_out.empty()) std::printf("wrote %s (linear HDR)\n", args.hdr_out.c_str());
+  if (args.quality != Quality::none)
+    std::printf("%s\n", quality_settings_line(args.quality, args.frame,
+                                              compute ? &args.env_options : nullptr, args.tile_size)
+                            .c_str());
 }
 
 // The CPU reference renderer (core/reference_renderer.h): same options, same files.
@@ -67,7 +74,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   }
   write_outputs(args, frame.ldr, frame.hdr);
   if (!args.quiet) {
-    print_written(args, "reference (CPU, double precision)");
+    print_written(args, "reference (CPU, double precision)", false);
     std::printf("triangles: %llu rasterized\n", (unsigned long long)frame.raster_triangles);
     const Summary time = summarize(times);
     std::printf("CPU time, median of %zu frame%s: %.1f ms", time.count, time.count > 1 ? "s" : "",
@@ -81,7 +88,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
 void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& first,
                   const std::vector<FrameStats>& timed) {
   const FrameStats& last = timed.back();
-  print_written(args, ctx.properties.deviceName);
+  print_written(args, ctx.properties.deviceName, true);
   // A frame rasterized and shaded in one pass sorts nothing into small and binned triangles
   // (RendererOptions::raster_shade).
   if (last.rasterized_and_shaded) {
@@ -188,7 +195,9 @@ int run_render(const RenderArgs& given) {
   try {
     first = renderer.render(settings);
   } catch (const ImageSizeError& e) {
-    throw_image_size_error(e, args.size_given, size_place, "tessera render --help");
+    throw_image_size_error(
+        with_samples_source(e, args.quality, args.samples_given, settings.samples), args.size_given,
+        size_place, "tessera render --help");
   }
   std::vector<FrameStats> timed;
   for (uint32_t i = 0; i < args.repeat; ++i) timed.push_back(renderer.render(settings));

@@ -31,6 +31,14 @@ void print_pass_times(const std::string& label, const std::vector<FrameStats>& f
   std::printf("\n");
 }
 
+ImageSizeError with_samples_source(const ImageSizeError& e, Quality quality, bool samples_given,
+                                   uint32_t samples) {
+  if (samples <= 1 || samples_given || quality == Quality::none) return e;
+  return ImageSizeError(
+      e.width, e.height,
+      e.reason + " (" + option_source(quality, false, "--samples", std::to_string(samples)) + ")");
+}
+
 void throw_image_size_error(const ImageSizeError& e, bool size_given, const std::string& file_place,
                             const std::string& help_command) {
   const std::string size = std::to_string(e.width) + "x" + std::to_string(e.height);

@@ -9,6 +9,7 @@
 
 #include "compute/context.h"
 #include "compute/renderer.h"
+#include "host/quality.h"
 
 namespace tessera {
 
@@ -19,6 +20,12 @@ std::array<double, kPassCount> pass_medians(const std::vector<FrameStats>& frame
 /// totals, in ms, and with more than one frame the fastest and slowest totals.
 /// `frames` must not be empty and must have timestamps.
 void print_pass_times(const std::string& label, const std::vector<FrameStats>& frames);
+
+/// `e` with " (--quality reference sets --samples 16)" after its reason where the preset set the
+/// frame's `samples` (above 1, where the reason names them) and the command line did not: the
+/// size may fit at the samples the user meant.
+ImageSizeError with_samples_source(const ImageSizeError& e, Quality quality, bool samples_given,
+                                   uint32_t samples);
 
 /// Reports `e`, a size the device cannot render: as a bad command line (UsageError "--size WxH:
 /// why", whose usage `help_command` shows) when the command line gave the size

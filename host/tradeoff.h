@@ -64,11 +64,26 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
 /// differ; "" where the scene draws no sphere.
 std::string scene_sphere_tessellation(const Scene& scene);
 
+/// The BRDF the ground truth of a knob shades with. The brdf knob's truth is the most faithful
+/// model, filament with energy compensation, so that the knob shows each model's error; every
+/// other knob's truth shades with `frame`'s BRDF (the settings'), so that its error is its own
+/// and not the BRDF's. The knobs' errors are therefore not against one truth.
+struct TruthShading {
+  Brdf brdf;
+  bool energy_compensation;
+};
+TruthShading truth_shading(const std::string& knob, const FrameSettings& frame);
+
+/// `shading` named as the brdf knob's settings are: "filament+ec", "classic", "blinn-phong".
+std::string brdf_label(TruthShading shading);
+
 /// One measured setting.
 struct TradeoffPoint {
   KnobSetting setting;
   Summary gpu_ms;    // GPU time of a frame, over every timed frame of every round
-  TruthError error;  // against the ground truth
+  TruthError error;  // against the ground truth of its knob (truth_shading)
+  /// The BRDF of that truth (brdf_label), or "" where no BRDF shades the scene.
+  std::string truth_brdf;
   /// Mean relative error over the pixels the truth shows a single object (or only the
   /// background) in all its samples: the shading's error, apart from the edges'.
   double interior_mean_relative = 0.0;
@@ -115,7 +130,7 @@ struct TradeoffResults {
   uint32_t width = 0, height = 0;     // the image size measured (the command line's or the file's)
   std::vector<SkippedKnob> skipped;   // knobs asked for that cannot matter for the scene
   std::string truth;                  // how the ground truth was made, in words
-  double truth_seconds = 0.0;         // CPU wall time of the ground truth
+  double truth_seconds = 0.0;         // CPU wall time of the ground truths, all together
   std::vector<TradeoffPoint> points;  // by knob in the order asked, then by setting
   /// The signal (SIGINT, SIGTERM: host/stop_signal.h) that stopped the rounds before their
   /// end, 0 when they ran to the end. `points` then holds the settings measured in at least one

@@ -15,6 +15,7 @@
 #include "core/pick.h"
 #include "core/reference_renderer.h"
 #include "core/warmup.h"
+#include "host/report.h"
 #include "host/scene_source.h"
 #include "host/stop_signal.h"
 #include "host/tradeoff.h"
@@ -61,6 +62,11 @@ Ownership by_scene_object(Ownership ownership, const Scene& scene) {
   return ownership;
 }
 
+// Blinn-Phong has none (shaders/lighting.glsl).
+bool has_energy_compensation(TruthShading s) {
+  return s.energy_compensation && s.brdf != Brdf::blinn_phong;
+}
+
 struct Candidate {
   KnobSetting setting;
   Scene scene;
@@ -94,8 +100,17 @@ TradeoffScene load_tradeoff_scene(const TradeoffArgs& args) {
   }
   validate_scene(out.scene);
   for (const std::string& knob : args.knobs) {
-    if (std::string why = knob_cannot_matter(knob, out.scene, out.frame); !why.empty())
-      out.skipped.push_back({knob, std::move(why)});
+    std::string why = knob_cannot_matter(knob, out.scene, out.frame);
+    // Its frames' samples and level of detail are a preset's where --quality gave it (tradeoff
+    // has no option for either, and a scene file's "render" block sets neither).
+    if (knob == "raster-shade" && !why.empty() && args.quality != Quality::none)
+      why += " (" +
+             std::string(out.frame.samples != 1
+                             ? option_source(args.quality, false, "--samples",
+                                             std::to_string(out.frame.samples))
+                             : option_source(args.quality, false, "--lod", "auto")) +
+             ")";
+    if (!why.empty()) out.skipped.push_back({knob, std::move(why)});
   }
   return out;
 }
@@ -115,21 +130,25 @@ std::string describe_truth(const Scene& scene, const FrameSettings& frame,
            " environment directions per lobe and pixel";
   // Without lights or an environment no BRDF shades anything: the truth names none.
   if (!knob_cannot_matter("brdf", scene, frame).empty()) return out;
-  auto brdf_name = [](Brdf brdf, bool ec) {
-    const std::string name = brdf == Brdf::classic    ? "classic"
-                             : brdf == Brdf::filament ? "filament"
-                                                      : "blinn-phong";
-    // Blinn-Phong has no energy compensation (shaders/lighting.glsl).
-    return "the " + name + " BRDF" +
-           (ec && brdf != Brdf::blinn_phong ? " with energy compensation" : "");
+  auto described = [](TruthShading s) {
+    return "the " + std::string(brdf_name(s.brdf)) + " BRDF" +
+           (has_energy_compensation(s) ? " with energy compensation" : "");
   };
-  const std::string faithful = brdf_name(Brdf::filament, true);
-  const std::string given = brdf_name(frame.brdf, frame.energy_compensation);
+  const std::string faithful = described(truth_shading("brdf", frame));
+  const std::string given = described(truth_shading("", frame)) + " (the settings')";
   const bool brdf_knob = std::find(knobs.begin(), knobs.end(), "brdf") != knobs.end();
   if (!brdf_knob) return out + "; " + given;
   if (knobs.size() == 1) return out + "; " + faithful;
-  return out + "; the brdf knob against " + faithful + ", the others against " + given +
-         " (the settings')";
+  return out + "; the brdf knob against " + faithful + ", the others against " + given;
+}
+
+TruthShading truth_shading(const std::string& knob, const FrameSettings& frame) {
+  if (knob == "brdf") return {Brdf::filament, true};
+  return {frame.brdf, frame.energy_compensation};
+}
+
+std::string brdf_label(TruthShading s) {
+  return brdf_name(s.brdf) + std::string(has_energy_compensation(s) ? "+ec" : "");
 }
 
 RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& args) {
@@ -192,8 +211,14 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
       // precomputation, which warm_up's clock leaves out; every round warms up again after
       // the other settings ran, by time as `tessera bench` does (core/warmup.h).
       if (round == 0) {
-        const FrameStats stats = c.renderer->render(c.setting.frame);
-        c.precompute_ms = stats.precompute_ms;
+        try {
+          const FrameStats stats = c.renderer->render(c.setting.frame);
+          c.precompute_ms = stats.precompute_ms;
+        } catch (const ImageSizeError& e) {
+          // The samples knob's own samples are the knob's; the others' are --quality's.
+          if (c.setting.knob == "samples" || c.setting.frame.samples != frame.samples) throw;
+          throw with_samples_source(e, args.quality, false, frame.samples);
+        }
       }
       WarmupRule rule;
       rule.min_frames = args.warmup;
@@ -232,9 +257,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
   }
 
   // The ground truths: exact spheres, N x N samples per pixel, the environment integrated by
-  // Monte Carlo. The BRDF knob is measured against the most faithful shading model (filament
-  // with energy compensation); every other knob against the command line's model, so that its
-  // chart shows what the knob itself costs in accuracy.
+  // Monte Carlo, and each knob's BRDF (truth_shading).
   ReferenceSettings truth;
   truth.frame = frame;
   truth.frame.max_anisotropy = 16;
@@ -255,8 +278,8 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
   };
   std::map<std::pair<Brdf, bool>, Truth> truths;
   auto truth_key = [&](const KnobSetting& s) {
-    return s.knob == "brdf" ? std::pair{Brdf::filament, true}
-                            : std::pair{frame.brdf, frame.energy_compensation};
+    const TruthShading t = truth_shading(s.knob, frame);
+    return std::pair{t.brdf, t.energy_compensation};
   };
   // Without lights or an environment the BRDF shades nothing: the message names none.
   const bool lit = knob_cannot_matter("brdf", scene, frame).empty();
@@ -267,11 +290,10 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
     if (!args.quiet && !lit) {
       std::fprintf(stderr, "rendering the ground truth\n");
     } else if (!args.quiet) {
-      const char* brdf = key.first == Brdf::classic    ? "classic"
-                         : key.first == Brdf::filament ? "filament"
-                                                       : "blinn-phong";
-      std::fprintf(stderr, "rendering the ground truth for the %s BRDF%s\n", brdf,
-                   key.second ? " with energy compensation" : "");
+      const TruthShading shading{key.first, key.second};
+      std::fprintf(stderr, "rendering the ground truth for the %s BRDF%s\n",
+                   brdf_name(shading.brdf),
+                   has_energy_compensation(shading) ? " with energy compensation" : "");
     }
     ReferenceSettings settings = truth;
     settings.frame.brdf = key.first;
@@ -300,6 +322,7 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
     p.setting = c.setting;
     p.gpu_ms = summarize(c.times);
     p.triangles_rasterized = c.triangles;
+    if (lit) p.truth_brdf = brdf_label(truth_shading(c.setting.knob, frame));
     p.precompute_ms = c.precompute_ms;
     p.warmups = c.warmups;
     const Truth& t = truths.at(truth_key(c.setting));

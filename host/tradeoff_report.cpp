@@ -31,12 +31,19 @@ std::string format(const char* f, T... values) {
   return out;
 }
 
+// "12.3 s", "45 ms", "under 1 ms" of CPU wall time: a small truth takes a fraction of a second,
+// which one decimal of seconds would show as 0.0.
+std::string wall_time(double seconds) {
+  if (seconds >= 0.95) return format("%.1f s of CPU wall time", seconds);
+  if (seconds >= 0.001) return format("%.0f ms of CPU wall time", seconds * 1000.0);
+  return "under 1 ms of CPU wall time";
+}
+
 std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
   std::string out;
   out += format("scene '%s', %ux%u, device '%s' (%s)\n", args.scene.c_str(), results.width,
                 results.height, results.device.c_str(), results.driver.c_str());
-  out +=
-      format("truth: %s (%.1f s of CPU wall time)\n", results.truth.c_str(), results.truth_seconds);
+  out += "truth: " + results.truth + " (" + wall_time(results.truth_seconds) + ")\n";
   if (!results.skipped.empty()) {
     out += "not measured, as they cannot matter for this scene:\n";
     for (const SkippedKnob& s : results.skipped) out += "  " + s.knob + ": " + s.reason + "\n";
@@ -95,7 +102,8 @@ std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& a
     // A setting an interruption left with fewer rounds than asked.
     if (p.warmups.size() < args.rounds)
       marks += format("(%zu of %u rounds) ", p.warmups.size(), args.rounds);
-    if (p.setting.speed_only)
+    // The default is what the others are compared with: that it equals itself says nothing.
+    if (p.setting.speed_only && !p.setting.is_default)
       marks +=
           p.identical_to_default ? "(image identical to default)" : "(IMAGE DIFFERS FROM DEFAULT)";
     while (!marks.empty() && marks.back() == ' ') marks.pop_back();
@@ -178,6 +186,8 @@ void write_tradeoff_json(const std::string& path, const TradeoffResults& results
                       {"p99_relative_error", finite_or_null(p.error.p99_relative)},
                       {"psnr_db", finite_or_null(p.error.psnr_db)},
                       {"silhouette_px", finite_or_null(p.error.silhouette_px)},
+                      {"truth_brdf", p.truth_brdf.empty() ? nlohmann::json(nullptr)
+                                                          : nlohmann::json(p.truth_brdf)},
                       {"speed_only", p.setting.speed_only},
                       {"identical_to_default", p.identical_to_default},
                       {"pareto_front", p.on_front},
@@ -204,8 +214,19 @@ void write_tradeoff_chart(const std::string& path, const TradeoffResults& result
     chart.notes = {"", "not measured (cannot matter", "for this scene):"};
     for (const SkippedKnob& s : results.skipped) chart.notes.push_back("  " + s.knob);
   }
+  // The brdf knob's truth shades with filament+ec, the others' with the settings' BRDF
+  // (truth_shading): said under the legend, so that no one reads the errors as against one truth.
+  std::string brdf_truth, others_truth;
+  for (const TradeoffPoint& p : results.points)
+    (p.setting.knob == "brdf" ? brdf_truth : others_truth) = p.truth_brdf;
+  if (!brdf_truth.empty() || !others_truth.empty()) {
+    chart.notes.insert(chart.notes.end(), {"", "truth's BRDF:"});
+    if (!brdf_truth.empty()) chart.notes.push_back("  brdf knob: " + brdf_truth);
+    if (!others_truth.empty())
+      chart.notes.push_back((brdf_truth.empty() ? "  " : "  other knobs: ") + others_truth);
+  }
   chart.x_label = "GPU time per frame, ms (median)";
-  chart.y_label = "mean relative error against the truth";
+  chart.y_label = "mean relative error against the knob's truth";
   for (const TradeoffPoint& p : results.points) {
     if (chart.series.empty() || chart.series.back().name != p.setting.knob)
       chart.series.push_back({p.setting.knob, {}});

@@ -12,6 +12,9 @@
 #include <gtest/gtest.h>
 
 #include "host/cli.h"
+#include "host/report.h"
+#include "host/tradeoff.h"
+#include "tests/vulkan_fixture.h"
 
 namespace tessera {
 namespace {
@@ -137,6 +140,104 @@ TEST(Quality, BenchAndTradeoffTakeTheirShare) {
   EXPECT_EQ(tradeoff.tradeoff.env_options.specular_size, draft.env_options.specular_size);
   EXPECT_EQ(tradeoff.tradeoff.tile_size, draft.tile_size);
   EXPECT_THROW(parse_command_line({"render", "--quality", "best"}), UsageError);
+}
+
+std::string usage_error(const std::vector<std::string>& args) {
+  try {
+    parse_command_line(args);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// A value the user never typed is named as the preset's, with the option that overrides it.
+TEST(Quality, ErrorsFromAPresetsValueNameThePreset) {
+  EXPECT_NE(usage_error({"bench", "--quality", "reference", "--backends", "compute,hardware"})
+                .find("--quality reference sets --samples 16: the hardware backend renders 1 "
+                      "sample per pixel; leave it out of --backends, or add --samples 1"),
+            std::string::npos)
+      << usage_error({"bench", "--quality", "reference", "--backends", "compute,hardware"});
+  // Given by hand, the option is named as given.
+  const std::string given = usage_error({"bench", "--samples", "16", "--backends", "hardware"});
+  EXPECT_NE(given.find("--samples 16: the hardware backend renders 1 sample per pixel; leave it "
+                       "out of --backends"),
+            std::string::npos)
+      << given;
+  EXPECT_EQ(given.find("--quality"), std::string::npos) << given;
+  const std::string hdr =
+      usage_error({"bench", "--quality", "reference", "--samples", "1", "--backends", "hardware"});
+  EXPECT_NE(hdr.find("--quality reference sets --hdr-format fp32: the hardware backend renders "
+                     "into an fp16 image; leave it out of --backends, or add --hdr-format fp16"),
+            std::string::npos)
+      << hdr;
+  // A size too large at the preset's samples (render, bench, tradeoff report it alike).
+  const ImageSizeError e(2048, 2048, "at 16 samples needs more");
+  EXPECT_EQ(with_samples_source(e, Quality::reference, false, 16).reason,
+            "at 16 samples needs more (--quality reference sets --samples 16)");
+  EXPECT_EQ(with_samples_source(e, Quality::reference, true, 16).reason, e.reason);
+  EXPECT_EQ(with_samples_source(e, Quality::none, false, 16).reason, e.reason);
+  std::string out;
+  EXPECT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --quality reference --size 2048x2048 "
+                                  "--out " +
+                                  test::output_path("quality_too_large.png"),
+                              out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--size 2048x2048: at 16 samples"), std::string::npos) << out;
+  EXPECT_NE(out.find("(--quality reference sets --samples 16)"), std::string::npos) << out;
+  // tradeoff has no --samples or --lod: a preset's make raster-shade unable to matter.
+  const CommandLine balanced = parse_command_line(
+      {"tradeoff", "--quality", "balanced", "--knob", "raster-shade,brdf", "--size", "8x8"});
+  const TradeoffScene scene = load_tradeoff_scene(balanced.tradeoff);
+  ASSERT_EQ(scene.skipped.size(), 1u);
+  EXPECT_EQ(scene.skipped[0].reason,
+            "the frames are at 4 samples, and only frames at 1 take the one pass (--quality "
+            "balanced sets --samples 4)");
+  const CommandLine draft = parse_command_line(
+      {"tradeoff", "--quality", "draft", "--knob", "raster-shade,brdf", "--size", "8x8"});
+  ASSERT_EQ(load_tradeoff_scene(draft.tradeoff).skipped.size(), 1u);
+  EXPECT_EQ(load_tradeoff_scene(draft.tradeoff).skipped[0].reason,
+            "the frames have level of detail, and only frames without take the one pass "
+            "(--quality draft sets --lod auto)");
+}
+
+TEST(Quality, RenderSaysWhatThePresetChose) {
+  // The settings as the table of docs/tradeoffs.md, "Presets", gives reference's.
+  const RenderArgs reference = render_args({"--quality", "reference"});
+  EXPECT_EQ(quality_settings_line(Quality::reference, reference.frame, &reference.env_options,
+                                  reference.tile_size),
+            "--quality reference: filament BRDF with energy compensation, 16 samples per pixel "
+            "(count coverage), level of detail off, 16x anisotropic texture filtering, "
+            "environment cube of 256 px and 512 samples per texel, fp32 HDR, tiles of 16 px");
+  // An option given wins, and the line says what the frame used.
+  const RenderArgs draft = render_args({"--quality", "draft", "--anisotropy", "8"});
+  EXPECT_EQ(quality_settings_line(Quality::draft, draft.frame, nullptr, draft.tile_size),
+            "--quality draft: classic BRDF with energy compensation, 1 sample per pixel, level "
+            "of detail auto at 0.5 px, 8x anisotropic texture filtering, fp16 HDR");
+  EXPECT_EQ(quality_settings_line(Quality::none, draft.frame, nullptr, 16), "");
+  // The tool prints it once, with its other lines, and not under --quiet.
+  const std::string png = test::output_path("quality_render.png");
+  std::string out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --quality draft --size 16x16 "
+                                  "--repeat 1 --out " +
+                                  png,
+                              out),
+            0)
+      << out;
+  const std::string line = "--quality draft: classic BRDF with energy compensation";
+  ASSERT_NE(out.find(line), std::string::npos) << out;
+  EXPECT_EQ(out.find(line, out.find(line) + 1), std::string::npos) << "once:\n" << out;
+  ASSERT_EQ(test::run_command(std::string(TESSERA_BINARY) +
+                                  " render --device lavapipe --quality draft --size 16x16 "
+                                  "--repeat 1 --quiet --out " +
+                                  png,
+                              out),
+            0)
+      << out;
+  EXPECT_EQ(out.find("--quality"), std::string::npos) << out;
 }
 
 }  // namespace

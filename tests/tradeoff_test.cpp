@@ -242,11 +242,17 @@ TEST(Tradeoff, TheTruthIsDescribedAsConfiguredForTheScene) {
             full +
                 "; the brdf knob against the filament BRDF with energy compensation, the others "
                 "against the classic BRDF (the settings')");
+  // Each knob's truth by itself: the brdf knob's the most faithful, the others' the settings'.
+  EXPECT_EQ(brdf_label(truth_shading("brdf", frame)), "filament+ec");
+  EXPECT_EQ(brdf_label(truth_shading("tessellation", frame)), "classic");
   EXPECT_EQ(describe_truth(scene, frame, {"brdf"}, 8, 1024),
             full + "; the filament BRDF with energy compensation");
   frame.energy_compensation = true;
   EXPECT_EQ(describe_truth(scene, frame, {"samples"}, 8, 1024),
-            full + "; the classic BRDF with energy compensation");
+            full + "; the classic BRDF with energy compensation (the settings')");
+  EXPECT_EQ(brdf_label(truth_shading("samples", frame)), "classic+ec");
+  frame.brdf = Brdf::blinn_phong;  // which has no energy compensation (shaders/lighting.glsl)
+  EXPECT_EQ(brdf_label(truth_shading("samples", frame)), "blinn-phong");
 }
 
 TEST(Tradeoff, TableColumnsLineUpWhateverTheirWidths) {
@@ -306,6 +312,42 @@ TEST(Tradeoff, TableColumnsLineUpWhateverTheirWidths) {
   EXPECT_NE(table.find("64x32"), std::string::npos) << table;
 }
 
+// The default row is what "image identical to default" compares with: it says so of no one. A
+// truth of 12 ms is 12 ms, not "0.0 s".
+TEST(Tradeoff, TableMarksAndTruthTime) {
+  TradeoffResults results;
+  results.truth = "T";
+  results.truth_seconds = 0.012;
+  TradeoffPoint def;
+  def.setting.knob = "tile-size";
+  def.setting.label = "16 px";
+  def.setting.speed_only = def.setting.is_default = def.identical_to_default = true;
+  TradeoffPoint other = def;
+  other.setting.label = "8 px";
+  other.setting.is_default = false;
+  TradeoffPoint differs = other;
+  differs.setting.label = "4 px";
+  differs.identical_to_default = false;
+  results.points = {def, other, differs};
+  TradeoffArgs args;
+  const std::string table = tradeoff_table(results, args);
+  auto row = [&](const std::string& label) {
+    const size_t at = table.find("tile-size  " + label);
+    return at == std::string::npos ? "" : table.substr(at, table.find('\n', at) - at);
+  };
+  EXPECT_EQ(row("16 px").find("image identical"), std::string::npos) << table;
+  EXPECT_NE(row("16 px").find("default"), std::string::npos) << table;
+  EXPECT_NE(row("8 px").find("(image identical to default)"), std::string::npos) << table;
+  EXPECT_NE(row("4 px").find("(IMAGE DIFFERS FROM DEFAULT)"), std::string::npos) << table;
+  EXPECT_NE(table.find("truth: T (12 ms of CPU wall time)\n"), std::string::npos) << table;
+  results.truth_seconds = 0.0004;
+  EXPECT_NE(tradeoff_table(results, args).find("truth: T (under 1 ms of CPU wall time)\n"),
+            std::string::npos);
+  results.truth_seconds = 2.34;
+  EXPECT_NE(tradeoff_table(results, args).find("truth: T (2.3 s of CPU wall time)\n"),
+            std::string::npos);
+}
+
 TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
   const CommandLine line = parse_command_line({"tradeoff", "--scene", "grid", "--objects", "49",
                                                "--knob", "brdf,small-triangle", "--size", "64x32",
@@ -348,6 +390,16 @@ TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
             std::string::npos);
   EXPECT_EQ(message({"tradeoff", "--knob", "brdf", "--scene", "yardstick", "--objects", "10"}),
             "no error");
+  // The --help says what the truths are, and that the knobs' errors do not add up.
+  const std::string help = parse_command_line({"tradeoff", "--help"}).help;
+  EXPECT_NE(help.find("The brdf knob is measured against the filament BRDF with energy\n"
+                      "compensation, every other knob against the settings' BRDF"),
+            std::string::npos)
+      << help;
+  EXPECT_NE(help.find("the knobs are not measured against one truth, and their\nerrors do not "
+                      "add up"),
+            std::string::npos)
+      << help;
 }
 
 TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
@@ -391,6 +443,10 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   }
   EXPECT_LT(filament_ec, lowest_other) << out;
   EXPECT_LT(filament_ec, 0.5 * blinn) << out;
+  // Each point names its truth's BRDF: the brdf knob's filament+ec, the others' the settings'
+  // (classic, the default), and the chart says so under its legend.
+  for (const auto& p : points)
+    EXPECT_EQ(p["truth_brdf"], p["knob"] == "brdf" ? "filament+ec" : "classic") << p.dump();
   // The small-triangle threshold, the tile size, depth rejection and shading by tiles trade
   // speed only: every image equals the default's.
   for (const auto& p : points) {
@@ -412,6 +468,8 @@ TEST(Tradeoff, ShortRunOrdersTheBrdfsAndKeepsSpeedOnlyImages) {
   EXPECT_NE(chart.find("Pareto front"), std::string::npos);
   EXPECT_NE(chart.find("filament+ec"), std::string::npos);
   EXPECT_NE(chart.find(">  anisotropy<"), std::string::npos) << "named as not measured";
+  EXPECT_NE(chart.find(">  brdf knob: filament+ec<"), std::string::npos);
+  EXPECT_NE(chart.find(">  other knobs: classic<"), std::string::npos);
 }
 
 TEST(Tradeoff, EveryLodRowUnderAnEnvironmentHasItsPrecompute) {
