@@ -187,4 +187,14 @@ bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect) {
   return frame_sphere(camera, scene_bounds(scene), aspect);
 }
 
+Camera framed_camera(const Scene& scene, float aspect) {
+  OrbitCamera orbit = from_camera(Camera{});
+  const BoundingSphere bounds = scene_bounds(scene);
+  if (!frame_sphere(orbit, bounds, aspect)) return Camera{};
+  // No gap where the distance was clamped (a model over 10^8 m across): the default then.
+  const float gap = orbit.distance - bounds.radius;
+  if (gap > 0.0f) orbit.near_plane = std::min(orbit.near_plane, 0.5f * gap);
+  return to_camera(orbit);
+}
+
 }  // namespace tessera

@@ -122,4 +122,11 @@ bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspec
 /// vertex.
 bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect);
 
+/// The camera of a model file given as a scene (`tessera render --scene model.glb`): the
+/// default Camera's view (from +z down -z, y up, 45 degrees; a glTF model's front) moved by
+/// frame_scene at `aspect`, with the near plane brought to min(0.1 m, (distance - radius) / 2)
+/// so that a model smaller than the default near distance is not clipped away. The default
+/// Camera when the scene has no vertex.
+Camera framed_camera(const Scene& scene, float aspect);
+
 }  // namespace tessera

@@ -127,7 +127,12 @@ struct Reader {
   std::vector<std::pair<size_t, std::string>> light_sources;
   std::string camera_source;
 
+  // Set for load_model_scene, whose scene text no one wrote: a place in it would mislead, and
+  // the messages of a model's parts name the model file and their place in it already.
+  bool model_only = false;
+
   std::string where(const Node& n, bool at_key = false) const {
+    if (model_only) return "";
     const auto& index = at_key ? places.keys : places.values;
     const auto it = index.find(n.pointer);
     std::string s = file;
@@ -1035,6 +1040,33 @@ void Reader::read(const Node& root) {
   if (has(root, "render")) read_render(child(root, "render"));
 }
 
+// validate_scene of what `reader` read, its message placed at the entry that made the object,
+// light or camera it names.
+void validate_read(const Reader& reader, const std::string& name) {
+  try {
+    validate_scene(reader.out.scene);
+  } catch (const Error& e) {
+    // "invalid scene: object K: ..." is placed at the objects entry that made object K, "light
+    // K" at the lights entry, "the camera" at the camera.
+    const std::string message = e.what();
+    const auto placed = [&](const std::string& prefix,
+                            const std::vector<std::pair<size_t, std::string>>& sources) {
+      if (message.rfind(prefix, 0) != 0) return;
+      const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
+      const auto it = std::upper_bound(sources.begin(), sources.end(), k,
+                                       [](size_t v, const auto& s) { return v < s.first; });
+      if (it == sources.begin()) return;
+      const std::string in_model = reader.in_model(message);
+      throw Error(std::prev(it)->second + (in_model.empty() ? message : in_model));
+    };
+    placed("invalid scene: object ", reader.object_sources);
+    placed("invalid scene: light ", reader.light_sources);
+    if (message.rfind("invalid scene: the camera", 0) == 0 && !reader.camera_source.empty())
+      throw Error(reader.camera_source + message);
+    throw Error(name + ": " + message);
+  }
+}
+
 }  // namespace
 
 float uniform_float(uint32_t x) {
@@ -1098,27 +1130,25 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   }
   TESSERA_CHECK(!root.is_discarded());
   reader.read({&root, "", ""});
+  validate_read(reader, name);
+  return out;
+}
+
+SceneFile load_model_scene(const std::string& path, const SceneFileOptions& options) {
+  const std::string name = std::filesystem::path(path).filename().string();
+  const Json root = {{"models", Json::array({Json::object({{"name", name}, {"file", path}})})},
+                     {"objects", Json::array({Json::object({{"model", name}})})}};
+  SceneFile out;
+  Reader reader{path, "", options, {}, out};
+  reader.model_only = true;
   try {
-    validate_scene(out.scene);
+    reader.read({&root, "", ""});
+    validate_read(reader, path);
   } catch (const Error& e) {
-    // "invalid scene: object K: ..." is placed at the objects entry that made object K, "light
-    // K" at the lights entry, "the camera" at the camera.
+    // The messages that name no place (an object count over the limit) name the file.
     const std::string message = e.what();
-    const auto placed = [&](const std::string& prefix,
-                            const std::vector<std::pair<size_t, std::string>>& sources) {
-      if (message.rfind(prefix, 0) != 0) return;
-      const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
-      const auto it = std::upper_bound(sources.begin(), sources.end(), k,
-                                       [](size_t v, const auto& s) { return v < s.first; });
-      if (it == sources.begin()) return;
-      const std::string in_model = reader.in_model(message);
-      throw Error(std::prev(it)->second + (in_model.empty() ? message : in_model));
-    };
-    placed("invalid scene: object ", reader.object_sources);
-    placed("invalid scene: light ", reader.light_sources);
-    if (message.rfind("invalid scene: the camera", 0) == 0 && !reader.camera_source.empty())
-      throw Error(reader.camera_source + message);
-    throw Error(name + ": " + message);
+    if (message.find(path) == std::string::npos) throw Error(path + ": " + message);
+    throw;
   }
   return out;
 }

@@ -61,6 +61,13 @@ SceneFile load_scene_file(const std::string& path, const SceneFileOptions& optio
 SceneFile load_scene_text(const std::string& text, const std::string& name,
                           const std::string& base_dir, const SceneFileOptions& options = {});
 
+/// A model file (.gltf, .glb or .obj, in either case) as a scene: the scene of a scene file
+/// whose "models" entry names `path` and whose one object places it as it is, with the model's
+/// lights and cameras (SceneFile::model_cameras) and the default camera, background and
+/// ambient. Messages name the model file and the place in it, not that scene file, which no
+/// one wrote. Throws Error as load_scene_file does.
+SceneFile load_model_scene(const std::string& path, const SceneFileOptions& options = {});
+
 /// The "description" of the scene file at `path` without loading the scene ("" if it has
 /// none, or if the file cannot be read or parsed: for listings).
 std::string read_scene_description(const std::string& path);

@@ -53,11 +53,9 @@ void check_scene_file_exists(const std::string& path) {
 // them).
 CLI::Validator builtin_scene() {
   return checked_by([](const std::string& name) {
-    // A model's file name, even without a folder, is a file, not an unknown scene; these
-    // commands show scene files, and say where a model goes.
+    // A model's file name, even without a folder, is a file, not an unknown scene.
     if (is_scene_path(name) || is_model_path(name)) {
       check_scene_file_exists(name);
-      if (is_model_path(name)) refuse_model_as_scene(name);
     } else {
       check_scene_name(name);
     }
@@ -324,8 +322,9 @@ void add_chart(CLI::App& app, std::string& chart, const std::string& help) {
 void add_camera_option(CLI::App& app, uint32_t& camera) {
   app.add_option("--camera", camera,
                  "view through camera N (from 0) of the scene\n"
-                 "file's models (glTF cameras, placed as their\n"
-                 "model's first instance) instead of its own")
+                 "file's models or of the model file (glTF\n"
+                 "cameras, placed as their model's first\n"
+                 "instance) instead of the scene's camera")
       ->type_name("N")
       ->check(checked_by([](const std::string& text) {
         parse_count(text,
@@ -340,7 +339,9 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "`tessera scenes`) or a scene file\n"
                  "(docs/scene-format.md), whose \"render\" block\n"
                  "sets size, exposure, tone map and BRDF unless\n"
-                 "given here")
+                 "given here; or a .gltf/.glb/.obj model, seen\n"
+                 "from +z with its bounds framed, lit by its own\n"
+                 "lights or, having none, by a default sun")
       ->type_name("NAME|FILE")
       ->check(builtin_scene());
   add_size(app, a.frame.width, a.frame.height,
@@ -582,7 +583,9 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
                  "`tessera scenes`) or a scene file; Ctrl+S\n"
                  "saves it; unsaved edits at exit go to\n"
                  "FILE.autosave.json beside it, or\n"
-                 "NAME.builtin-autosave.json here")
+                 "NAME.builtin-autosave.json here; or a\n"
+                 ".gltf/.glb/.obj model, framed and lit as by\n"
+                 "render (Ctrl+S: FILE.json)")
       ->type_name("NAME|FILE")
       ->check(builtin_scene());
   app.add_option("--device", a.device,
@@ -631,8 +634,9 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
 void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--scene", a.scene,
                  "built-in scene (default spheres), scene file,\n"
-                 "or a benchmark family: grid, scatter, huge,\n"
-                 "yardstick")
+                 ".gltf/.glb/.obj model (framed and lit as by\n"
+                 "render), or a benchmark family: grid,\n"
+                 "scatter, huge, yardstick")
       ->type_name("S")
       ->check(bench_scene());
   app.add_option("--objects", a.objects,

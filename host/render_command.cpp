@@ -27,6 +27,8 @@ Scene scene_of(RenderArgs& args, std::string& size_place, bool& env_removed) {
   apply_render_defaults(file.render, args.frame, args.size_given, args.exposure_given,
                         args.tonemap_given, args.brdf_given, args.view_given);
   if (!args.size_given) size_place = file.render.size_place;
+  frame_model_camera(file.scene, args.scene, args.camera_given, args.frame.width,
+                     args.frame.height);
   Scene scene = std::move(file.scene);
   if (args.env == "none") {
     env_removed = scene.environment != nullptr;

@@ -11,6 +11,7 @@
 #include "core/light_floor.h"
 #include "core/file_extension.h"
 #include "core/model_import.h"
+#include "core/orbit_camera.h"
 #include "host/cli.h"
 
 namespace tessera {
@@ -112,16 +113,38 @@ void use_model_camera(SceneFile& file, uint32_t index, const std::string& help_c
       help_command);
 }
 
-void refuse_model_as_scene(const std::string& name) {
-  throw Error(name +
-              ": a model file (glTF or OBJ), not a scene file: place it under \"models\" in "
-              "a scene file (docs/scene-format.md), or sweep it with `tessera bench --scene`");
+void frame_model_camera(Scene& scene, const std::string& name, bool camera_given, uint32_t width,
+                        uint32_t height) {
+  if (!is_model_path(name) || camera_given) return;
+  scene.camera = framed_camera(scene, float(width) / float(height));
+}
+
+std::string light_unlit_model(Scene& scene, const std::string& name) {
+  if (!scene.lights.empty()) return "";
+  // A directional light, unlike a point light, lights a model of any size alike.
+  Light sun;
+  sun.kind = LightKind::directional;
+  sun.direction = glm::normalize(glm::vec3(-0.5f, -0.8f, -0.6f));
+  sun.intensity = 2.5f;
+  scene.lights.push_back(sun);
+  scene.ambient = glm::max(scene.ambient, glm::vec3(0.08f));
+  return "note: " + name +
+         " has no lights: lit by the sun of the built-in scene 'textured' (directional, "
+         "intensity 2.5, from above, right and front) and its ambient light 0.08";
 }
 
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet) {
-  if (is_model_path(name_or_file)) refuse_model_as_scene(name_or_file);
   SceneFileOptions options;
   options.strict = strict;
+  if (is_model_path(name_or_file)) {
+    SceneFile file = load_model_scene(name_or_file, options);
+    if (!quiet)
+      for (const std::string& w : file.warnings)
+        std::fprintf(stderr, "tessera: warning: %s\n", w.c_str());
+    const std::string note = light_unlit_model(file.scene, name_or_file);
+    if (!note.empty() && !quiet) std::fprintf(stderr, "tessera: %s\n", note.c_str());
+    return file;
+  }
   std::string path = is_scene_path(name_or_file) ? name_or_file : "";
   for (const std::string& folder : scene_folders()) {
     if (!path.empty()) break;

@@ -41,16 +41,28 @@ void check_scene_name(const std::string& name);
 /// True if `argument` names a model file an importer reads: it ends in .gltf, .glb or .obj.
 bool is_model_path(const std::string& argument);
 
-/// Loads `name_or_file`: a path (anything with a '/' or ending in .json) is read as a scene
-/// file; a name is NAME.json in the first scene folder that has it, or, when no folder has
-/// it, the built-in scene of that name made in code (the same scene, core/builtin_scenes.h).
-/// Throws Error for an unknown name (listing the known ones) and anything load_scene_file
-/// refuses. Warnings are printed to stderr unless `quiet`.
+/// Loads `name_or_file`: a model file (is_model_path) is the scene load_model_scene makes of
+/// it, lit by light_unlit_model where it brings no lights (its note printed to stderr unless
+/// `quiet`), its camera still the default one (frame_model_camera frames it); any other path
+/// (anything with a '/' or ending in .json) is read as a scene file; a name is NAME.json in
+/// the first scene folder that has it, or, when no folder has it, the built-in scene of that
+/// name made in code (the same scene, core/builtin_scenes.h). Throws Error for an unknown name
+/// (listing the known ones) and anything load_scene_file or the importers refuse. Warnings are
+/// printed to stderr unless `quiet`.
 SceneFile load_scene_argument(const std::string& name_or_file, bool strict, bool quiet);
 
-/// Throws Error "NAME: a model file (glTF or OBJ), not a scene file: place it under
-/// \"models\" ...": what render and view say of a model given as their scene.
-[[noreturn]] void refuse_model_as_scene(const std::string& name);
+/// A model brings no lights more often than not (OBJ has none): where `scene` has none, adds
+/// the sun of the built-in scene 'textured' (directional, intensity 2.5, travelling along
+/// (-0.5, -0.8, -0.6), so lighting the front of the framed view from above right) and raises
+/// the ambient light to at least 0.08, and returns "note: NAME has no lights: lit by ...";
+/// else changes nothing and returns "".
+std::string light_unlit_model(Scene& scene, const std::string& name);
+
+/// For a model file given as --scene (is_model_path(name)) and no --camera: sets the scene's
+/// camera to framed_camera (core/orbit_camera.h) for an image of `width` x `height`.
+/// Changes nothing otherwise: a scene file's camera is its own.
+void frame_model_camera(Scene& scene, const std::string& name, bool camera_given, uint32_t width,
+                        uint32_t height);
 
 /// `--camera N`: sets file.scene.camera to the file's model camera N (SceneFile::model_cameras,
 /// numbered from 0). Throws UsageError "--camera N: ..." (a bad command line, whose usage

@@ -96,6 +96,7 @@ TradeoffScene load_tradeoff_scene(const TradeoffArgs& args) {
     apply_render_defaults(file.render, out.frame, args.size_given, false, false, args.brdf_given,
                           true);
     if (!args.size_given) out.size_place = file.render.size_place;
+    frame_model_camera(file.scene, args.scene, false, out.frame.width, out.frame.height);
     out.scene = std::move(file.scene);
   }
   validate_scene(out.scene);

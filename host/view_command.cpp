@@ -263,6 +263,7 @@ int run_view(const ViewArgs& args) {
   SceneFile file = load_scene_argument(args.scene, args.strict, false);
   if (args.camera_given) use_model_camera(file, args.camera, "tessera view --help");
   apply_render_defaults(file.render, v.frame, args.size_given, false, false, false);
+  frame_model_camera(file.scene, args.scene, args.camera_given, v.frame.width, v.frame.height);
   v.scene = std::move(file.scene);
   if (const std::string note = unlit_scene_note(v.scene, args.scene, v.frame.view); !note.empty())
     std::printf("tessera: %s\n", note.c_str());
@@ -273,7 +274,8 @@ int run_view(const ViewArgs& args) {
   v.render_defaults = file.render;
   v.description = file.description;
   v.options_at[v.history.state()] = render_options_of(v.frame);
-  if (is_scene_path(args.scene)) v.scene_file = args.scene;
+  // Ctrl+S never writes JSON over a model file: its scene goes to a new FILE.json beside it.
+  if (is_scene_path(args.scene) && !is_model_path(args.scene)) v.scene_file = args.scene;
   for (const std::string& autosave : earlier_autosaves(v)) {
     std::printf(
         "tessera: note: %s holds unsaved edits of an earlier session (open it with --scene %s)\n",

@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
 # Installs what is missing, then configures and builds Tessera (Release) in build/.
 # Incremental: a second run rebuilds only what changed. Uses ccache when it is installed.
+# `--target T` first builds only T and what it needs (scripts/render.sh: `tessera`, without
+# the test suite); other arguments go to CMake's configure step.
 # Says on stderr what it is doing, one line a step, so that callers that hide the build's own
 # output (scripts/render.sh) do not look stuck during a first build of several minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # ccache caches the tests' precompiled-header compilations only with this (tests/CMakeLists.txt).
 export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
+target=()
+if [[ ${1:-} == --target ]]; then
+  (($# >= 2)) || { echo "build.sh: --target needs a target name" >&2; exit 2; }
+  target=(--target "$2")
+  shift 2
+fi
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 if [[ ! -f build/CMakeCache.txt ]]; then
@@ -28,7 +36,7 @@ fi
 # In a first build whose own output is hidden (stdout not a terminal, as in scripts/render.sh),
 # its progress also goes to stderr every tenth, so that the build does not look stuck.
 last=0
-cmake --build build -j "$jobs" | while IFS= read -r line; do
+cmake --build build -j "$jobs" "${target[@]}" | while IFS= read -r line; do
   printf '%s\n' "$line"
   if ((progress)) && [[ ! -t 1 && $line =~ ^\[\ *([0-9]+)%\] ]]; then
     step=$((BASH_REMATCH[1] / 10 * 10))

@@ -176,5 +176,91 @@ TEST(OrbitCamera, FrameSceneFitsTheBoundingSphere) {
   EXPECT_THROW(frame_scene(o, s, 0.0f), Error);
 }
 
+// A scene of one box from `lo` to `hi`, its 8 corners the mesh's vertices (as a model file
+// would give them: no transform to widen its bounding sphere).
+Scene box_scene(glm::vec3 lo, glm::vec3 hi) {
+  Mesh box;
+  for (int i = 0; i < 8; ++i) {
+    box.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+    box.normals.push_back({0, 0, 1});
+    box.uvs.push_back({0, 0});
+  }
+  box.indices = {0, 1, 3, 0, 3, 2};
+  Scene s;
+  s.meshes = {box};
+  s.materials = {Material{}};
+  s.objects = {Object{}};
+  return s;
+}
+
+// The largest |x| and |y| in normalized device coordinates of the box's corners, as the
+// renderers project them (core/scene.h).
+glm::vec2 projected_extent(const Scene& s, const Camera& c, float aspect) {
+  const glm::mat4 clip = projection_matrix(c, aspect) * view_matrix(c);
+  glm::vec2 extent(0.0f);
+  for (glm::vec3 p : s.meshes[0].positions) {
+    const glm::vec4 q = clip * glm::vec4(p, 1.0f);
+    EXPECT_GT(q.w, c.near_plane) << "corner in front of the near plane";
+    extent = glm::max(extent, glm::abs(glm::vec2(q) / q.w));
+  }
+  return extent;
+}
+
+// A model given as a scene is seen from +z with its bounding sphere just inside the narrower
+// field of view. Expected distances are the sphere's radius over sin(22.5 degrees) =
+// 0.38268343, worked out by hand for each box.
+TEST(OrbitCamera, FramedCameraFitsBoxesOfEveryShape) {
+  // A unit cube about the origin: radius sqrt(0.75) = 0.8660254, distance 2.2630334. Its
+  // front face (z = 0.5, depth 1.7630334) reaches 0.5 / (1.7630334 tan 22.5 deg) = 0.6846761
+  // of the way to each edge of a square image.
+  Scene s = box_scene(glm::vec3(-0.5f), glm::vec3(0.5f));
+  Camera c = framed_camera(s, 1.0f);
+  expect_near(c.target, glm::vec3(0.0f), 1e-6f);
+  expect_near(c.position, {0, 0, 2.2630334f}, 1e-5f);
+  EXPECT_EQ(c.up, glm::vec3(0, 1, 0));
+  EXPECT_NEAR(c.vertical_fov, glm::radians(45.0f), 1e-7f);
+  EXPECT_EQ(c.near_plane, 0.1f);  // the default: the cube is 1.4 m beyond it
+  glm::vec2 extent = projected_extent(s, c, 1.0f);
+  EXPECT_NEAR(extent.x, 0.6846761f, 1e-4f);
+  EXPECT_NEAR(extent.y, 0.6846761f, 1e-4f);
+
+  // Off centre, from (1, 2, -1) to (3, 4, 1): centre (2, 3, 0), radius sqrt(3) = 1.7320508,
+  // distance 4.5260669 along +z from the centre.
+  s = box_scene({1, 2, -1}, {3, 4, 1});
+  c = framed_camera(s, 1.0f);
+  expect_near(c.target, {2, 3, 0}, 1e-6f);
+  expect_near(c.position, {2, 3, 4.5260669f}, 1e-5f);
+  extent = projected_extent(s, c, 1.0f);
+  EXPECT_NEAR(extent.x, 0.6846761f, 1e-4f);  // the unit cube's view, twice as large and far
+
+  // 100 m long and 1 m thick along x: radius sqrt(50^2 + 0.5^2 + 0.5^2) = 50.0049998,
+  // distance 130.6693615; its ends, at depth 130.1693615, are at x = +-0.9273356 of the
+  // width: within the image, not cut off.
+  s = box_scene({-50, -0.5f, -0.5f}, {50, 0.5f, 0.5f});
+  c = framed_camera(s, 1.0f);
+  expect_near(c.position, {0, 0, 130.6693615f}, 1e-3f);
+  extent = projected_extent(s, c, 1.0f);
+  EXPECT_NEAR(extent.x, 0.9273356f, 1e-4f);
+  EXPECT_LT(extent.y, 0.01f);
+  // In a portrait image (aspect 0.5) the horizontal half angle atan(tan(22.5 deg) / 2) =
+  // 11.7010 deg, sine 0.2028010, is the narrower: distance 246.5693171.
+  c = framed_camera(s, 0.5f);
+  expect_near(c.position, {0, 0, 246.5693171f}, 1e-2f);
+  EXPECT_LT(projected_extent(s, c, 0.5f).x, 1.0f);
+
+  // A 2 mm cube would lie inside the default near plane (0.1 m): radius 0.0017321, distance
+  // 0.0045261, so the near plane is half the gap between eye and sphere, 0.0013970.
+  s = box_scene(glm::vec3(-0.001f), glm::vec3(0.001f));
+  c = framed_camera(s, 1.0f);
+  expect_near(c.position, {0, 0, 0.0045261f}, 1e-7f);
+  EXPECT_NEAR(c.near_plane, 0.0013970f, 1e-7f);
+  extent = projected_extent(s, c, 1.0f);
+  EXPECT_NEAR(extent.x, 0.6846761f, 1e-3f);
+
+  // Nothing to frame: the default camera.
+  s.objects.clear();
+  EXPECT_EQ(framed_camera(s, 1.0f), Camera{});
+}
+
 }  // namespace
 }  // namespace tessera
