@@ -62,14 +62,11 @@ CLI::Validator one_of(const std::vector<std::string>& names) {
   return CLI::Validator(
       [names](std::string& text) -> std::string {
         // Names are spelt with '-' here and with '_' in scene files (--brdf blinn-phong,
-        // "brdf": "blinn_phong"); either is taken in both places, as the name given here.
+        // "brdf": "blinn_phong"); either is taken in both places (add_choice's setter too).
         std::string spelled = text;
         std::replace(spelled.begin(), spelled.end(), '_', '-');
         for (const std::string& name : names) {
-          if (name == spelled) {
-            text = name;
-            return "";
-          }
+          if (name == spelled) return "";
         }
         return "expects " + list_of_choices(names) + ", got " + in_quotes(text);
       },

@@ -3,6 +3,7 @@
 // one value before CLI11 converts it, and names what was expected and what was given; CLI11
 // prefixes the option's name ("--size: ..."). Parsing and error reporting are in host/cli.cpp.
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -56,7 +57,9 @@ CLI::Option* add_choice(CLI::App& app, const std::string& name, T& value,
     names.push_back(choice.first);
     type += (type.empty() ? "" : "|") + choice.first;
   }
-  auto set = [&value, choices](const std::string& text) {
+  // '_' for '-' as one_of takes it (blinn_phong, the scene files' spelling).
+  auto set = [&value, choices](std::string text) {
+    std::replace(text.begin(), text.end(), '_', '-');
     for (const auto& [choice, v] : choices) {
       if (choice == text) value = v;
     }

@@ -126,12 +126,20 @@ TEST(Cli, VersionIsTheProjectVersion) {
 // refused as "expects a .png file" (a new user's trial). A choice spelt with '_' for '-' is the
 // same choice (scene files write blinn_phong).
 TEST(Cli, ExtensionsInAnyCaseAndChoicesWithUnderscores) {
-  const CommandLine line = parse_command_line({"render", "--out", "x.PNG", "--hdr-out", "x.Pfm",
-                                               "--env", "SKY.HDR", "--brdf", "blinn_phong"});
+  const CommandLine line = parse_command_line(
+      {"render", "--out", "x.PNG", "--hdr-out", "x.Pfm", "--brdf", "blinn_phong"});
   EXPECT_EQ(line.render.out, "x.PNG");
   EXPECT_EQ(line.render.hdr_out, "x.Pfm");
   EXPECT_EQ(line.render.frame.brdf, Brdf::blinn_phong);
   EXPECT_EQ(usage_error({"tradeoff", "--chart", "c.SVG"}).find("--chart"), std::string::npos);
+  // An environment map in upper case passes the extension check and is looked for.
+  try {
+    parse_command_line({"render", "--env", "NO_SUCH_SKY.HDR"});
+    ADD_FAILURE() << "a missing --env file was taken";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("no file 'NO_SUCH_SKY.HDR'"), std::string::npos)
+        << e.what();
+  }
   EXPECT_NE(usage_error({"render", "--out", "x.jpg"}).find("expects a .png file"),
             std::string::npos);
   EXPECT_NE(usage_error({"render", "--out", ".PNG"}).find("expects a .png file"),
