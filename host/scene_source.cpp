@@ -8,8 +8,8 @@
 
 #include "core/builtin_scenes.h"
 #include "core/check.h"
-#include "core/light_floor.h"
 #include "core/file_extension.h"
+#include "core/light_floor.h"
 #include "core/model_import.h"
 #include "core/orbit_camera.h"
 #include "host/cli.h"
