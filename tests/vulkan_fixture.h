@@ -3,7 +3,8 @@
 // validation layer and synchronization validation on, one for all the tests of the process
 // (vulkan_fixture.cpp says why). A test fails if the layer reports any warning or error while
 // it runs; the test program fails if it reports any as the device is destroyed at its end
-// (objects a test leaked).
+// (objects a test leaked). TESSERA_TEST_VALIDATION=0 leaves the layer out (the sanitizers' run,
+// vulkan_fixture.cpp says why).
 
 #include <memory>
 
