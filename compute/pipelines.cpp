@@ -246,6 +246,17 @@ void destroy_pipeline_cache(Context& ctx) {
   cache.set_layout = VK_NULL_HANDLE;
 }
 
+Specialization pass_specialization(const PassInfo& row, uint32_t tile_size, bool depth_rejection,
+                                   bool shade_tiles) {
+  // Every pass gets the tile size and the rejection and tile-shading switches; only those
+  // that bin, rasterize or list by tiles read them.
+  Specialization spec = row.spec;
+  spec.tile_size = tile_size;
+  spec.depth_rejection = depth_rejection ? VK_TRUE : VK_FALSE;
+  spec.shade_tiles = shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF;
+  return spec;
+}
+
 Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection,
                            bool shade_tiles) {
   TESSERA_CHECK(ctx.pipeline_cache);
@@ -261,31 +272,11 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
     if (row.shader == nullptr || row.variants == Variants::shading ||
         row.variants == Variants::silhouette || row.variants == Variants::raster_shade)
       continue;
-    // Every pass gets the tile size and the rejection and tile-shading switches; only those
-    // that bin, rasterize or list by tiles read them.
-    PassInfo pass = row;
-    pass.spec.tile_size = tile_size;
-    pass.spec.depth_rejection = depth_rejection ? VK_TRUE : VK_FALSE;
-    pass.spec.shade_tiles = shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF;
-    p.passes[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, pass.spec);
-    if (pass.variants == Variants::debug_coverage) {
-      Specialization coverage = pass.spec;
-      coverage.debug_coverage = VK_TRUE;
-      p.coverage[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, coverage);
-    }
-    if (pass.variants == Variants::lod) {
-      Specialization lod = pass.spec;
-      lod.lod = VK_TRUE;
-      p.lod[size_t(pass.pass)] = create_compute_pipeline(ctx, pass.shader, lod);
-    }
-    if (pass.pass == Pass::setup) {
-      Specialization inline_clip = pass.spec;
-      inline_clip.object_clip_inline = VK_TRUE;
-      p.setup_object_clip_inline = create_compute_pipeline(ctx, pass.shader, inline_clip);
-      Specialization raster_only = inline_clip;
-      raster_only.raster_only = VK_TRUE;
-      p.setup_raster_only = create_compute_pipeline(ctx, pass.shader, raster_only);
-    }
+    // The debug-coverage, level-of-detail and setup variants are built on first use
+    // (pass_variant_pipeline): most renderers never run them, and each costs a CPU device
+    // about as much as the pass itself.
+    p.passes[size_t(row.pass)] = create_compute_pipeline(
+        ctx, row.shader, pass_specialization(row, tile_size, depth_rejection, shade_tiles));
   }
   for (const PipelineInfo& info : kPipelines) {
     // The generic shading pipelines are the largest shaders (each costs lavapipe about as much

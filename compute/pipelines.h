@@ -44,8 +44,9 @@ void destroy_pipeline_cache(Context& ctx);
 struct Pipelines {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  std::array<VkPipeline, kPassCount> passes{};    // per pass that dispatches (all but
-                                                  // Variants::shading and ::raster_shade)
+  std::array<VkPipeline, kPassCount> passes{};  // per pass that dispatches (all but
+                                                // Variants::shading and ::raster_shade)
+  // Null until the renderer first needs them (pass_variant_pipeline, renderer.cpp):
   std::array<VkPipeline, kPassCount> coverage{};  // TS_SPEC_DEBUG_COVERAGE on (::debug_coverage)
   std::array<VkPipeline, kPassCount> lod{};       // TS_SPEC_LOD on (Variants::lod)
   VkPipeline setup_object_clip_inline = VK_NULL_HANDLE;         // TS_SPEC_OBJECT_CLIP_INLINE on
@@ -104,12 +105,17 @@ bool has_compute_pipeline(const Context& ctx, std::string_view shader, Specializ
 /// The shading pipeline for `variant` (create_compute_pipeline).
 VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& variant);
 
-/// The layouts and every pipeline of kPasses and kPipelines from the embedded SPIR-V, built
-/// unless the context has them (create_compute_pipeline), the passes specialized to tiles of
-/// `tile_size` pixels per side (validate_tile_size) and to hierarchical depth rejection on or
-/// off (`depth_rejection`, RendererOptions) and to marking drawn tiles or not (`shade_tiles`),
-/// except the generic shading pipelines of kPipelines (shader "shade"), left null for the
-/// renderer to get on first use.
+/// The specialization of pass `row` (a kPasses row) to tiles of `tile_size` pixels per side
+/// (validate_tile_size), hierarchical depth rejection on or off (`depth_rejection`,
+/// RendererOptions) and marking drawn tiles or not (`shade_tiles`); its variants (debug
+/// coverage, level of detail, setup's) set their constants on top.
+Specialization pass_specialization(const PassInfo& row, uint32_t tile_size, bool depth_rejection,
+                                   bool shade_tiles);
+
+/// The layouts and the pipelines of kPasses (pass_specialization) and kPipelines from the
+/// embedded SPIR-V, built unless the context has them (create_compute_pipeline). Left null
+/// for the renderer to get on first use: the generic shading pipelines of kPipelines (shader
+/// "shade"), and the passes' debug-coverage, level-of-detail and setup variants.
 Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection,
                            bool shade_tiles);
 /// Forgets `pipelines`; their handles stay with the context.

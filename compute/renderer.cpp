@@ -1337,6 +1337,21 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
 namespace {
 
 // The pipeline `pass` binds this frame.
+// Pass `pass`'s one-sample specialization for this renderer, as create_pipelines built it.
+Specialization pass_variant_specialization(const Renderer::State& s, const PassInfo& pass) {
+  return pass_specialization(pass, s.options.tile_size, s.options.depth_rejection, s.shade_tiles);
+}
+
+// `slot`, a variant's pipeline in s.pipelines (null until first used): built now if it is
+// null, specialized to `spec`. Building it on first use spares the renderers that never run the
+// variant its cost (on lavapipe about as much as the pass's own pipeline); the frame that first
+// runs it pays it, as with the shading pipelines.
+VkPipeline pass_variant_pipeline(Renderer::State& s, VkPipeline& slot, const PassInfo& pass,
+                                 const Specialization& spec) {
+  if (!slot) slot = create_compute_pipeline(s.ctx, pass.shader, spec);
+  return slot;
+}
+
 VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
   if (settings.samples > 1 && pass.variants != Variants::shading) {
     // As create_pipelines specializes the single-sample ones (the table's row has the defaults).
@@ -1350,21 +1365,34 @@ VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSe
     if (pass.variants == Variants::silhouette) spec.silhouette_steps = settings.silhouette_steps;
     return sampled_pipeline(s, size_t(pass.pass), pass.shader, spec, settings.samples);
   }
-  if (pass.pass == Pass::setup && s.object_clip_inline)
-    return s.raster_shade_frame ? s.pipelines.setup_raster_only
-                                : s.pipelines.setup_object_clip_inline;
+  if (pass.pass == Pass::setup && s.object_clip_inline) {
+    Specialization spec = pass_variant_specialization(s, pass);
+    spec.object_clip_inline = VK_TRUE;
+    if (!s.raster_shade_frame)
+      return pass_variant_pipeline(s, s.pipelines.setup_object_clip_inline, pass, spec);
+    spec.raster_only = VK_TRUE;
+    return pass_variant_pipeline(s, s.pipelines.setup_raster_only, pass, spec);
+  }
   switch (pass.variants) {
     case Variants::plain:
       break;
     case Variants::debug_coverage:
-      if (s.options.debug_coverage) return s.pipelines.coverage[size_t(pass.pass)];
+      if (s.options.debug_coverage) {
+        Specialization spec = pass_variant_specialization(s, pass);
+        spec.debug_coverage = VK_TRUE;
+        return pass_variant_pipeline(s, s.pipelines.coverage[size_t(pass.pass)], pass, spec);
+      }
       break;
     case Variants::shading:
       return shade_pipeline(s, settings, s.shade_tiles ? TS_SHADE_TILES_DRAWN : TS_SHADE_TILES_OFF);
     case Variants::raster_shade:
       return raster_shade_pipeline(s, settings);
     case Variants::lod:
-      if (settings.lod == Lod::automatic) return s.pipelines.lod[size_t(pass.pass)];
+      if (settings.lod == Lod::automatic) {
+        Specialization spec = pass_variant_specialization(s, pass);
+        spec.lod = VK_TRUE;
+        return pass_variant_pipeline(s, s.pipelines.lod[size_t(pass.pass)], pass, spec);
+      }
       break;
     case Variants::silhouette:
       TESSERA_CHECK(false);  // recorded only at several samples (above)
