@@ -1336,7 +1336,6 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
 
 namespace {
 
-// The pipeline `pass` binds this frame.
 // Pass `pass`'s one-sample specialization for this renderer, as create_pipelines built it.
 Specialization pass_variant_specialization(const Renderer::State& s, const PassInfo& pass) {
   return pass_specialization(pass, s.options.tile_size, s.options.depth_rejection, s.shade_tiles);
@@ -1352,6 +1351,7 @@ VkPipeline pass_variant_pipeline(Renderer::State& s, VkPipeline& slot, const Pas
   return slot;
 }
 
+// The pipeline `pass` binds this frame.
 VkPipeline pass_pipeline(Renderer::State& s, const PassInfo& pass, const FrameSettings& settings) {
   if (settings.samples > 1 && pass.variants != Variants::shading) {
     // As create_pipelines specializes the single-sample ones (the table's row has the defaults).
