@@ -1131,6 +1131,13 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   TESSERA_CHECK(!root.is_discarded());
   reader.read({&root, "", ""});
   validate_read(reader, name);
+  // Each light's entry: the last source that starts at or before it (light_sources is in
+  // light order, as validate_read's search takes it).
+  for (size_t k = 0, s = 0; k < out.scene.lights.size(); ++k) {
+    while (s + 1 < reader.light_sources.size() && reader.light_sources[s + 1].first <= k) ++s;
+    out.light_places.push_back(reader.light_sources.empty() ? name + ": "
+                                                            : reader.light_sources[s].second);
+  }
   return out;
 }
 

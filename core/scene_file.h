@@ -47,6 +47,10 @@ struct SceneFile {
   /// instead with --camera N.
   std::vector<Camera> model_cameras;
   std::vector<std::string> model_camera_names;
+  /// Where each of scene.lights comes from, "FILE:LINE:COLUMN: PATH: " (its "lights" entry, or
+  /// the "models" entry of the model that brought it): for a command that moves the lights
+  /// (`tessera bench`) to place a message about one. Empty for load_model_scene.
+  std::vector<std::string> light_places;
 };
 
 /// Reads the scene file at `path`. Files it names (textures, models, environments) are found

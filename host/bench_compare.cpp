@@ -77,6 +77,13 @@ SavedRun read_bench_json(const std::string& path) {
   run.path = path;
   if (doc.contains("device") && doc["device"].is_string()) run.device = doc["device"];
   if (doc.contains("date") && doc["date"].is_string()) run.date = doc["date"];
+  if (const auto it = doc.find("interrupted"); it != doc.end() && it->is_boolean())
+    run.interrupted = it->get<bool>();
+  for (const auto& [key, count] : {std::pair{"measurements_planned", &run.measurements_planned},
+                                   {"measurements_made", &run.measurements_made}}) {
+    if (const auto it = doc.find(key); it != doc.end() && it->is_number_unsigned())
+      *count = it->get<uint64_t>();
+  }
   for (const auto& [key, value] : bench_settings(BenchArgs{})) {
     if (const auto it = doc.find(key); it != doc.end()) run.settings.emplace_back(key, it->dump());
   }
@@ -176,6 +183,18 @@ void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& po
         "tessera: warning: the base was measured on device '%s', this run on '%s': the ratios "
         "compare devices\n",
         base.device.c_str(), device.c_str());
+  }
+  if (base.interrupted) {
+    // Its missing points show below as "only in this run", which alone reads as a sweep that
+    // was never asked for them.
+    const std::string counts = base.measurements_planned > 0
+                                   ? " after " + std::to_string(base.measurements_made) + " of " +
+                                         std::to_string(base.measurements_planned) + " measurements"
+                                   : "";
+    std::printf(
+        "tessera: warning: the base's sweep was interrupted%s: it lacks the points it did not "
+        "reach, and its last points may be medians of fewer runs than it asked\n",
+        counts.c_str());
   }
   const bool any_matched =
       std::any_of(points.begin(), points.end(), [](const ComparedPoint& c) { return c.matched(); });

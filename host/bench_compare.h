@@ -30,6 +30,11 @@ struct SavedRun {
   // A compute point lacks per_pass_total_ms: the file is from before `tessera bench` timed the
   // compute frames whole, so its compute times include the timestamps between passes.
   bool compute_timed_by_pass = false;
+  // The base's sweep was stopped by a signal (its "interrupted"): it lacks points it planned,
+  // and its last points may come from fewer runs than it asked. Its measurement counts as
+  // recorded (0 in a file from before they were).
+  bool interrupted = false;
+  uint64_t measurements_planned = 0, measurements_made = 0;
 };
 
 /// The settings of a bench run that change what a frame computes, by the keys its `--json`
@@ -63,7 +68,8 @@ std::vector<ComparedPoint> compare_runs(const SavedRun& base, const BenchResults
 /// Prints the comparison table: old ms, new ms, new / old, and the unmatched points by name;
 /// first a warning naming the settings that differ from the base's (`differing`), whose ratios
 /// then compare unlike frames, one when the base was measured on another device than this
-/// run's `device`, and one when no point of this run is in the base (another scene or size).
+/// run's `device`, one when the base's sweep was interrupted (SavedRun::interrupted), and one
+/// when no point of this run is in the base (another scene or size).
 void print_comparison(const SavedRun& base, const std::vector<ComparedPoint>& points,
                       const std::vector<std::string>& differing, const std::string& device);
 

@@ -52,7 +52,9 @@ BenchContent load_bench_content(const std::string& path, bool strict, bool quiet
   BenchContent c;
   c.file = path;
   if (!is_model_path(path)) {
-    c.scene = load_scene_argument(path, strict, quiet).scene;
+    SceneFile file = load_scene_argument(path, strict, quiet);
+    c.scene = std::move(file.scene);
+    c.light_places = std::move(file.light_places);
     return c;
   }
   ImportOptions options;
@@ -89,7 +91,11 @@ void check_bench_lights(const BenchContent& content, uint32_t copies, float aspe
     if (message.rfind(prefix, 0) == 0)
       k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
     const Light& light = content.scene.lights[k < content.scene.lights.size() ? k : 0];
-    throw Error("--objects " + std::to_string(copies) + ": " + placed(content, lights, message) +
+    // A scene file's light is named by its entry's line, as load_scene_file names it.
+    const std::string where = !content.model && k < content.light_places.size()
+                                  ? content.light_places[k] + message
+                                  : placed(content, lights, message);
+    throw Error("--objects " + std::to_string(copies) + ": " + where +
                 "; the file's value is within the limits, but the bench " +
                 scaled(message, light, moved.length) + ": it moves the file's lights with its " +
                 std::to_string(copies) + " cop" + (copies == 1 ? "y" : "ies") +

@@ -16,6 +16,8 @@ struct BenchContent {
   bool model = false;     // a model file (else a scene file)
   bool obj = false;       // an OBJ model
   ImportedPlaces places;  // a model's, for messages
+  // A scene file's: where each light is given, "FILE:LINE:COLUMN: PATH: " (SceneFile).
+  std::vector<std::string> light_places;
 };
 
 /// The scene of a scene file (load_scene_argument) or of a model file (import_gltf,

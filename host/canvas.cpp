@@ -139,6 +139,10 @@ Colour palette(size_t k) {
   return kPalette[k % std::size(kPalette)];
 }
 
+bool series_hollow(size_t k) {
+  return (k / 10) % 2 == 1;
+}
+
 TextWidth text_width_for(const std::string& path) {
   return ends_with(path, ".svg") ? svg_text_width : png_text_width;
 }

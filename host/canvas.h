@@ -12,14 +12,23 @@ struct Colour {
   uint8_t r, g, b;
 };
 
+// The first ten are the common "category10" colours; the next ten are hues and shades apart
+// from them, for charts with more series (`tradeoff --knob` takes fifteen knobs).
 inline constexpr Colour kPalette[] = {
-    {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
-    {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+    {31, 119, 180},  {255, 127, 14},  {44, 160, 44},   {214, 39, 40},   {148, 103, 189},
+    {140, 86, 75},   {227, 119, 194}, {127, 127, 127}, {188, 189, 34},  {23, 190, 207},
+    {0, 0, 128},     {128, 0, 0},     {0, 128, 128},   {255, 200, 0},   {200, 0, 200},
+    {150, 190, 240}, {250, 160, 120}, {0, 90, 40},     {210, 180, 140}, {90, 90, 150}};
 inline constexpr Colour kInk{40, 40, 40};
 inline constexpr Colour kGrid{220, 220, 220};
 
-/// The colour of series `k`.
+/// The colour of series `k`: distinct for the first 20 series, then repeating (a chart with more
+/// also tells series apart by shape: series_hollow).
 Colour palette(size_t k);
+
+/// Whether series `k`'s marks are drawn as outlines rather than filled: every other run of ten,
+/// so that series whose colours look alike (or, past 20, repeat) differ in shape too.
+bool series_hollow(size_t k);
 
 /// A drawing surface with the few primitives the charts need, in pixels (y down).
 struct Canvas {

@@ -161,6 +161,20 @@ ScatterLayout layout_scatter(const ScatterChart& chart, TextWidth text_width) {
   return out;
 }
 
+// A series' mark or legend swatch: filled, or an outline for series_hollow's series.
+void mark(Canvas& c, double x, double y, double w, double h, size_t series) {
+  const Colour colour = palette(series);
+  if (!series_hollow(series)) {
+    c.rect(x, y, w, h, colour);
+    return;
+  }
+  const double t = 1.5;  // the outline's width, as the fronts' lines
+  c.rect(x, y, w, t, colour);
+  c.rect(x, y + h - t, w, t, colour);
+  c.rect(x, y, t, h, colour);
+  c.rect(x + w - t, y, t, h, colour);
+}
+
 void draw_scatter(Canvas& c, const ScatterChart& chart, const ScatterLayout& layout) {
   c.rect(0, 0, kWidth, layout.height, {255, 255, 255});
   c.text(kWidth / 2, 22, chart.title, 16, kInk, 1);
@@ -174,12 +188,12 @@ void draw_scatter(Canvas& c, const ScatterChart& chart, const ScatterLayout& lay
             [](const PointLabel* p, const PointLabel* q) { return p->order < q->order; });
   for (const PointLabel* l : marks) {
     const double r = l->request.mark;
-    c.rect(l->request.x - r, l->request.y - r, 2 * r, 2 * r, palette(l->series));
+    mark(c, l->request.x - r, l->request.y - r, 2 * r, 2 * r, l->series);
   }
   for (const Join& j : layout.joins)
     c.line(j.line.x0, j.line.y0, j.line.x1, j.line.y1, palette(j.series), 1.5);
   for (size_t k = 0; k < chart.series.size(); ++k) {
-    c.rect(b.x + b.w + 20, b.y + 18 * k, 14, 10, palette(k));
+    mark(c, b.x + b.w + 20, b.y + 18 * k, 14, 10, k);
     c.text(b.x + b.w + 40, b.y + 5 + 18 * k, chart.series[k].name, 12, kInk, 0);
   }
   for (const PointLabel& l : layout.labels) {

@@ -335,6 +335,22 @@ TEST(BenchCli, LightsThePlacementScalesPastTheLimitsAreExplained) {
             std::string::npos)
       << out;
   EXPECT_EQ(out.find("median ms"), std::string::npos) << "refused before measuring: " << out;
+  // A scene file's light is named by the line of its entry, as the file's own errors are; the
+  // second light (line 6) is the one past the limit, the first is dim.
+  const std::string file = test::output_path("scaled_light.json");
+  std::ofstream(file)
+      << "{\"meshes\": [{\"name\": \"s\", \"type\": \"sphere\"}],\n"
+         " \"materials\": [{\"name\": \"m\"}],\n"
+         " \"objects\": [{\"mesh\": \"s\", \"material\": \"m\"}],\n"
+         " \"lights\": [\n"
+         "   {\"type\": \"point\", \"position\": [0, 0, 2], \"intensity\": 1},\n"
+         "   {\"type\": \"point\", \"position\": [0, 0, 2], \"intensity\": 1e25}]}\n";
+  ASSERT_EQ(bench_model(file, "1", out), 0) << out;
+  EXPECT_EQ(bench_model(file, "1,1000", out), 1) << out;
+  EXPECT_NE(out.find("tessera: error: --objects 1000: " + file +
+                     ":6:4: lights[1]: invalid scene: light 1 intensity times color is "),
+            std::string::npos)
+      << out;
 }
 
 // The yardstick family against the issue's formulas worked by hand: side = ceil(sqrt N),
@@ -921,6 +937,33 @@ TEST(BenchCli, CompareMatchesPointsAndComputesNewOverOld) {
   const std::vector<ComparedPoint> other = compare_runs(base, results, a);
   EXPECT_EQ(other.size(), 6u);
   for (const ComparedPoint& p : other) EXPECT_FALSE(p.matched());
+}
+
+// A base whose sweep a signal stopped lacks the points it did not reach: the comparison says
+// so, rather than listing them as "only in this run" as if the base had never planned them.
+TEST(BenchCli, CompareWarnsOfAnInterruptedBase) {
+  const std::string path = test::output_path("base_interrupted.json");
+  std::ofstream(path) << R"({"scene": "grid", "width": 32, "height": 32, "interrupted": true,
+      "measurements_planned": 6, "measurements_made": 2,
+      "results": [{"objects": 1, "backend": "compute", "total_ms": 2.0}]})";
+  const SavedRun base = read_bench_json(path);
+  EXPECT_TRUE(base.interrupted);
+  EXPECT_EQ(base.measurements_planned, 6u);
+  EXPECT_EQ(base.measurements_made, 2u);
+  testing::internal::CaptureStdout();
+  print_comparison(base, {}, {}, base.device);
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_NE(out.find("tessera: warning: the base's sweep was interrupted after 2 of 6 "
+                     "measurements: it lacks the points it did not reach"),
+            std::string::npos)
+      << out;
+  // A complete run, and a file from before the flag was recorded, are not so marked.
+  const std::string whole = test::output_path("base_whole.json");
+  std::ofstream(whole) << kBase;
+  testing::internal::CaptureStdout();
+  print_comparison(read_bench_json(whole), {}, {}, "hand");
+  const std::string quiet = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(quiet.find("interrupted"), std::string::npos) << quiet;
 }
 
 TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {

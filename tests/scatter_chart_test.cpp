@@ -3,6 +3,7 @@
 // cluster leaves no room for it, as a number (or a pile's range of numbers) beside the mark
 // that the list under the legend pairs with the label. The list makes the chart taller rather
 // than run off it.
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "core/image.h"
+#include "host/canvas.h"
 #include "host/chart.h"
 #include "tests/vulkan_fixture.h"
 
@@ -121,6 +123,34 @@ TEST(ScatterChart, ASparseChartKeepsItsSizeAndLabels) {
   EXPECT_NE(svg.find(">classic</text>"), std::string::npos);
   EXPECT_NE(svg.find(">filament</text>"), std::string::npos);
   EXPECT_EQ(svg.find("numbered"), std::string::npos) << "no list where every label fits";
+}
+
+// `tradeoff --knob` takes fifteen knobs: each series keeps a look of its own. The first 20
+// colours differ, and series 10 to 19 are outlined, so that a colour near one of the first
+// ten's still reads as another series.
+TEST(ScatterChart, FifteenSeriesLookDistinct) {
+  for (size_t i = 0; i < 20; ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const Colour a = palette(i), b = palette(j);
+      const int distance = std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b);
+      EXPECT_GE(distance, 60) << "series " << j << " and " << i;
+    }
+    EXPECT_EQ(series_hollow(i), i >= 10) << i;
+  }
+  ScatterChart chart;
+  for (int k = 0; k < 15; ++k) {
+    chart.series.push_back(
+        {"knob" + std::to_string(k), {{1.0 + k, 0.1 / (1 + k), "s" + std::to_string(k), true}}});
+  }
+  const std::string path = test::output_path("scatter_chart_fifteen") + ".svg";
+  write_scatter_chart(path, chart);
+  std::ifstream f(path);
+  const std::string svg(std::istreambuf_iterator<char>(f), {});
+  // Series 0's legend swatch is one filled 14 x 10 rectangle; series 10's (navy, #000080) is
+  // four thin sides, none of them 14 x 10.
+  EXPECT_NE(svg.find("width='14' height='10' fill='#1f77b4'"), std::string::npos);
+  EXPECT_EQ(svg.find("width='14' height='10' fill='#000080'"), std::string::npos);
+  EXPECT_NE(svg.find("width='14' height='1.5' fill='#000080'"), std::string::npos);
 }
 
 }  // namespace
