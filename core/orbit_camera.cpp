@@ -171,29 +171,32 @@ BoundingSphere object_bounds(const Scene& scene, uint32_t object) {
   return s.radius < 0.0f ? s : placed_sphere(s, o.transform);
 }
 
-bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect) {
+bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect,
+                  float preferred_near) {
   if (!(std::isfinite(aspect) && aspect > 0.0f))
     throw Error("framing needs an aspect ratio > 0, not " + std::to_string(aspect));
+  if (!(std::isfinite(preferred_near) && preferred_near > 0.0f))
+    throw Error("framing needs a near plane > 0, not " + std::to_string(preferred_near));
   if (bounds.radius < 0.0f) return false;
   const float half_vertical = 0.5f * camera.vertical_fov;
   const float half_horizontal = std::atan(std::tan(half_vertical) * aspect);
   camera.target = bounds.centre;
   camera.distance =
       clamp_distance(bounds.radius / std::sin(std::min(half_vertical, half_horizontal)));
+  // No gap where the distance was clamped (a model over 10^8 m across): the preferred near
+  // plane then. Half the gap leaves the sphere's front well beyond it.
+  const float gap = camera.distance - bounds.radius;
+  camera.near_plane = gap > 0.0f ? std::min(preferred_near, 0.5f * gap) : preferred_near;
   return true;
 }
 
-bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect) {
-  return frame_sphere(camera, scene_bounds(scene), aspect);
+bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect, float preferred_near) {
+  return frame_sphere(camera, scene_bounds(scene), aspect, preferred_near);
 }
 
 Camera framed_camera(const Scene& scene, float aspect) {
   OrbitCamera orbit = from_camera(Camera{});
-  const BoundingSphere bounds = scene_bounds(scene);
-  if (!frame_sphere(orbit, bounds, aspect)) return Camera{};
-  // No gap where the distance was clamped (a model over 10^8 m across): the default then.
-  const float gap = orbit.distance - bounds.radius;
-  if (gap > 0.0f) orbit.near_plane = std::min(orbit.near_plane, 0.5f * gap);
+  if (!frame_scene(orbit, scene, aspect, Camera{}.near_plane)) return Camera{};
   return to_camera(orbit);
 }
 

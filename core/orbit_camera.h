@@ -114,19 +114,24 @@ BoundingSphere object_bounds(const Scene& scene, uint32_t object);
 /// Keeps yaw, pitch and up, moves the target to `bounds.centre` and sets the distance so that
 /// the sphere just fits the narrower of the two fields of view: distance = radius /
 /// sin(min(vertical_fov, horizontal_fov) / 2), horizontal_fov = 2 atan(tan(vertical_fov / 2)
-/// aspect), clamped to [kMinOrbitDistance, kMaxOrbitDistance]. `aspect` = width / height > 0
-/// (throws Error otherwise). Returns false, changing nothing, if the radius is < 0.
-bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect);
+/// aspect), clamped to [kMinOrbitDistance, kMaxOrbitDistance]. The near plane becomes
+/// min(`preferred_near`, (distance - radius) / 2), so that it never cuts into the sphere (a
+/// model smaller than the preferred near distance would vanish), and `preferred_near` again
+/// where there is room (framing a large scene after a small one); `preferred_near` where the
+/// distance was clamped. `aspect` = width / height > 0 and `preferred_near` > 0 (throws Error
+/// otherwise). Returns false, changing nothing, if the radius is < 0.
+bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspect,
+                  float preferred_near);
 
 /// F key: frame_sphere of scene_bounds. Returns false, changing nothing, if the scene has no
 /// vertex.
-bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect);
+bool frame_scene(OrbitCamera& camera, const Scene& scene, float aspect, float preferred_near);
 
 /// The camera of a model file given as a scene (`tessera render --scene model.glb`): the
 /// default Camera's view (from +z down -z, y up, 45 degrees; a glTF model's front) moved by
-/// frame_scene at `aspect`, with the near plane brought to min(0.1 m, (distance - radius) / 2)
-/// so that a model smaller than the default near distance is not clipped away. The default
-/// Camera when the scene has no vertex.
+/// frame_scene at `aspect`, with the default near plane (0.1 m) preferred: min(0.1 m, (distance
+/// - radius) / 2), so that a model smaller than the default near distance is not clipped away.
+/// The default Camera when the scene has no vertex.
 Camera framed_camera(const Scene& scene, float aspect);
 
 }  // namespace tessera

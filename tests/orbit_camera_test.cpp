@@ -148,32 +148,55 @@ TEST(OrbitCamera, FrameSceneFitsTheBoundingSphere) {
   OrbitCamera o;
   o.yaw = 0.4f;
   o.vertical_fov = glm::radians(45.0f);
-  ASSERT_TRUE(frame_scene(o, s, 16.0f / 9.0f));
+  ASSERT_TRUE(frame_scene(o, s, 16.0f / 9.0f, 0.1f));
   // A unit sphere just fits the vertical field of view at 1 / sin(fov / 2).
   EXPECT_NEAR(o.distance, 1.0f / std::sin(glm::radians(22.5f)), 1e-5f);
   expect_near(o.target, glm::vec3(0.0f), 1e-6f);
   EXPECT_EQ(o.yaw, 0.4f);
   // Portrait: the horizontal half angle atan(tan(22.5 deg) / 2) is the narrower.
-  ASSERT_TRUE(frame_scene(o, s, 0.5f));
+  ASSERT_TRUE(frame_scene(o, s, 0.5f, 0.1f));
   EXPECT_NEAR(o.distance, 1.0f / std::sin(std::atan(std::tan(glm::radians(22.5f)) * 0.5f)), 1e-5f);
   // Two spheres of radius 1 at x = -2 and x = 2 make one of radius 3 about the origin.
   s.objects = {Object{.transform = glm::translate(glm::mat4(1.0f), {-2, 0, 0})},
                Object{.transform = glm::translate(glm::mat4(1.0f), {2, 0, 0})}};
-  ASSERT_TRUE(frame_scene(o, s, 1.0f));
+  ASSERT_TRUE(frame_scene(o, s, 1.0f, 0.1f));
   EXPECT_NEAR(o.distance, 3.0f / std::sin(glm::radians(22.5f)), 1e-4f);
   expect_near(o.target, glm::vec3(0.0f), 1e-6f);
   // Scaled by 2 and moved: radius 2 about (3, 0, 0).
   s.objects = {
       Object{.transform = glm::scale(glm::translate(glm::mat4(1.0f), {3, 0, 0}), glm::vec3(2.0f))}};
-  ASSERT_TRUE(frame_scene(o, s, 1.0f));
+  ASSERT_TRUE(frame_scene(o, s, 1.0f, 0.1f));
   EXPECT_NEAR(o.distance, 2.0f / std::sin(glm::radians(22.5f)), 1e-4f);
   expect_near(o.target, {3, 0, 0}, 1e-5f);
   // Nothing to frame: unchanged.
   s.objects.clear();
   const OrbitCamera kept = o;
-  EXPECT_FALSE(frame_scene(o, s, 1.0f));
+  EXPECT_FALSE(frame_scene(o, s, 1.0f, 0.1f));
   EXPECT_EQ(o.distance, kept.distance);
-  EXPECT_THROW(frame_scene(o, s, 0.0f), Error);
+  EXPECT_THROW(frame_scene(o, s, 0.0f, 0.1f), Error);
+  EXPECT_THROW(frame_scene(o, s, 1.0f, 0.0f), Error);
+}
+
+// F in the viewer: the near plane never cuts into what is framed, and returns to the one
+// preferred (the scene's camera's) where there is room. Worked by hand at a 45 degree field
+// of view, 1 / sin(22.5 deg) = 2.6131259: a unit sphere is framed from 2.6131259, a gap of
+// 1.6131259, and half of it is beyond 0.1 m; a sphere of radius 1 mm from 0.0026131, a gap of
+// 0.0016131, so the near plane is 0.00080656.
+TEST(OrbitCamera, FramingKeepsTheNearPlaneInFrontOfTheSphere) {
+  OrbitCamera o;
+  o.vertical_fov = glm::radians(45.0f);
+  ASSERT_TRUE(frame_sphere(o, {glm::vec3(0.0f), 1.0f}, 1.0f, 0.1f));
+  EXPECT_EQ(o.near_plane, 0.1f);
+  ASSERT_TRUE(frame_sphere(o, {glm::vec3(5.0f), 0.001f}, 1.0f, 0.1f));
+  EXPECT_NEAR(o.distance, 0.0026131259f, 1e-8f);
+  EXPECT_NEAR(o.near_plane, 0.00080656f, 1e-8f);
+  // The sphere's nearest point, distance - radius, is beyond the near plane.
+  EXPECT_GT(o.distance - 0.001f, o.near_plane);
+  ASSERT_TRUE(frame_sphere(o, {glm::vec3(0.0f), 1.0f}, 1.0f, 0.1f));
+  EXPECT_EQ(o.near_plane, 0.1f);
+  // A scene camera's own near plane is kept where there is room.
+  ASSERT_TRUE(frame_sphere(o, {glm::vec3(0.0f), 1.0f}, 1.0f, 0.5f));
+  EXPECT_EQ(o.near_plane, 0.5f);
 }
 
 // A scene of one box from `lo` to `hi`, its 8 corners the mesh's vertices (as a model file

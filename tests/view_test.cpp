@@ -486,6 +486,29 @@ TEST_F(View, FKeyFramesTheWholeScene) {
   EXPECT_NEAR(camera.position.z, distance, 1e-4f);
 }
 
+// F on a model smaller than the scene camera's near distance (a ball of radius 2 mm, near plane
+// 0.1 m): framed from 0.002 / sin(22.5 degrees) = 5.2 mm, the near plane comes in to half the
+// gap (1.6 mm), so the ball fills the middle of the image rather than being clipped away to
+// the background (it was, before the F key moved the near plane).
+TEST_F(View, FKeyFramesAModelInsideTheNearDistance) {
+  SKIP_WITHOUT_X_SERVER();
+  const std::string scene_path = output_path("tiny_ball.json");
+  std::ofstream(scene_path) << R"({"version": 1, "background": [0, 0, 0],
+    "camera": {"position": [0, 0, 4], "target": [0, 0, 0]},
+    "materials": [{"name": "red", "base_color": [0.8, 0.1, 0.1], "roughness": 1}],
+    "meshes": [{"name": "ball", "type": "sphere", "segments": 8}],
+    "objects": [{"mesh": "ball", "material": "red", "scale": 0.002}],
+    "lights": [{"type": "directional", "direction": [0, 0, -1], "intensity": 3}]})";
+  const std::string png = output_path("tiny_ball.png");
+  const ViewRun run = run_view("1 key F\n2 screenshot " + png + "\n3 exit\n",
+                               "--scene " + scene_path + " --size 64x48 --overlay off");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const Image8 shown = read_png(png);
+  const auto centre = shown.at(32, 24);
+  EXPECT_GT(centre.r, 100) << "the ball is lit red in the middle, not the black background";
+  EXPECT_LT(centre.g, centre.r / 2);
+}
+
 // Shift+F frames the selected object alone and Home goes back to the scene's camera. In the
 // two balls' scene framed by F (target (1.25, 0, 0), distance 2.25 / sin(22.5 degrees) =
 // 5.8796, looking down -z), the small ball's centre (3, 0, 0) is 1.75 m right of the target, so
