@@ -13,6 +13,7 @@
 #include "host/cli_values.h"
 #include "host/scene_source.h"
 #include "host/tradeoff.h"
+#include "tessera_version.h"  // generated at build time (cmake/version_header.cmake)
 
 namespace tessera {
 namespace {
