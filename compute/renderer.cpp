@@ -700,6 +700,22 @@ glm::dmat4 clip_from_world(const Renderer::State& s) {
   return glm::dmat4(projection_matrix(s.camera, aspect)) * glm::dmat4(view_matrix(s.camera));
 }
 
+// GpuFrame::camera_rays: from clip_from_world's inverse with the view's translation left out
+// (the same rotation and projection, so that the rays go through the points rasterized), the
+// far plane's point relative to the eye, which is linear in NDC x and y: its two slopes and
+// its value at the centre, worked out in double.
+glm::dmat4 camera_rays(const Renderer::State& s) {
+  const float aspect = float(s.width) / float(s.height);
+  glm::dmat4 view(view_matrix(s.camera));
+  view[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  const glm::dmat4 eye_from_clip =
+      glm::inverse(glm::dmat4(projection_matrix(s.camera, aspect)) * view);
+  // On the far plane (NDC z = 1) w is the same for every x and y.
+  const glm::dvec4 centre = eye_from_clip * glm::dvec4(0.0, 0.0, 1.0, 1.0);
+  return glm::dmat4(eye_from_clip[0] / centre.w, eye_from_clip[1] / centre.w, centre / centre.w,
+                    glm::dvec4(0.0));
+}
+
 // NDC range whose pixel coordinates stay within +-TS_GUARD_BAND_PX.
 glm::vec2 guard_band(const Renderer::State& s) {
   return glm::vec2(float(2.0 * TS_GUARD_BAND_PX / s.width - 1.0),
@@ -1293,7 +1309,7 @@ void Renderer::write_frame_constants(const FrameSettings& settings) {
       settings.hdr_format == HdrFormat::fp16 ? s.hdr_half_rounding : TS_HDR_ROUNDING_AS_IS;
   const gpu::GpuFrame f{
       .view_proj = glm::mat4(view_proj),
-      .inv_view_proj = glm::mat4(glm::inverse(view_proj)),
+      .camera_rays = glm::mat4(camera_rays(s)),
       .camera_position = camera.position,
       .near_plane = camera.near_plane,
       .background = s.background,

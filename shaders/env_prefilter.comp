@@ -70,7 +70,9 @@ void main() {
       float NoL = dot(R, L);
       if (NoL <= 0.0) continue;
       // pdf of L with N = V: D(h) / 4; the sample stands for 1 / (n pdf) steradians.
-      float pdf = D_GGX(cos_h, alpha) * 0.25;
+      // 1 - cos2 without its cancellation: alpha^2 u / (1 + (alpha^2 - 1) u).
+      float sin2 = alpha * alpha * u.x / (1.0 + (alpha * alpha - 1.0) * u.x);
+      float pdf = D_GGX(cos_h, sin2, alpha) * 0.25;
       float sample_solid_angle = 1.0 / (float(n) * pdf);
       float lod = max(0.5 * log2(sample_solid_angle / texel_solid_angle) + 1.0, 0.0);
       sum += environment_at(L, lod) * NoL;

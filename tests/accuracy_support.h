@@ -15,10 +15,10 @@ namespace tessera::test {
 constexpr double kSnapAmbiguityPx = 1.0 / 256.0;
 // Largest relative depth gap that float depth (from float vertex transforms) cannot order.
 constexpr double kDepthAmbiguity = 1e-5;
-// Largest 8-bit error allowed on any pixel. 2 holds up to 1024x1024; at 4096x4096 the default
-// scene has one pixel off by 3, on a silhouette where N.V ~ 0.01 magnifies the float camera
-// ray's 1e-7 error into 4 % of radiance (docs/accuracy.md). Within 1 level: >= 99.99 %.
-constexpr double kMaxLevelError = 3.0;
+// Largest 8-bit error allowed on any pixel: the 2 levels the accuracy issue asked for. Every
+// scene measures within 1 since D_GGX's bracket avoids its cancellation (docs/accuracy.md);
+// before, a roughness-0 highlight peak at 4096x4096 was off by 3. Within 1 level: >= 99.99 %.
+constexpr double kMaxLevelError = 2.0;
 constexpr double kMaxFractionOverOneLevel = 1e-4;
 
 struct AccuracyReport {

@@ -243,6 +243,25 @@ std::vector<StabilityCase> stability_cases() {
          }
          return s;
        }});
+  // A planet: a sphere of radius 10^6 m seen from 3 * 10^6 m with the default 0.1 m near
+  // plane. Camera rays built as a far-plane point minus the camera's position lost their
+  // direction to float rounding there (0.25 m steps on a 100 m far plane), and the compute
+  // path shaded every facet (68 levels off the reference).
+  cases.push_back({"far_from_the_origin_with_a_near_plane_of_0_1_m",
+                   [] {
+                     Scene s = bare_scene();
+                     s.camera.position = {0.0f, 0.0f, 3e6f};
+                     s.camera.target = {0.0f, 0.0f, 0.0f};
+                     s.lights.clear();
+                     Light sun;
+                     sun.kind = LightKind::directional;
+                     sun.direction = glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f));
+                     sun.intensity = 3.0f;
+                     s.lights.push_back(sun);
+                     return with_mesh(s, make_uv_sphere(64, 32),
+                                      glm::scale(glm::mat4(1.0f), glm::vec3(1e6f)));
+                   },
+                   96, 96});
   cases.push_back({"triangles_on_tile_boundaries", [] {
                      Scene s = bare_scene();
                      // Camera so that world x = px / 40 - 2, y = 1.5 - py / 40 on the plane z = -2.

@@ -292,8 +292,11 @@ struct GpuLight {
 
 // Per-frame constants (uniform block, std140).
 struct GpuFrame {
-  mat4 view_proj;        // world -> clip; clip.w is the view-space distance along the view axis
-  mat4 inv_view_proj;    // clip -> world, for the shading pass's camera rays
+  mat4 view_proj;  // world -> clip; clip.w is the view-space distance along the view axis
+  // The camera rays: (NDC x, NDC y, 1, 0) -> a point of the far plane relative to the eye,
+  // in world axes (columns: its slopes along x and y, its value at the centre, 0). No camera
+  // position to subtract, which lost the direction to float rounding far from the origin.
+  mat4 camera_rays;
   vec3 camera_position;  // world
   float near_plane;      // distance of the near plane
   vec3 background;       // linear HDR colour of pixels no triangle covers
@@ -513,7 +516,7 @@ static_assert(offsetof(GpuLight, attenuation) == 48);
 static_assert(offsetof(GpuLight, cone_scale) == 60);
 static_assert(offsetof(GpuLight, cone_offset) == 64);
 static_assert(sizeof(GpuFrame) == 288);
-static_assert(offsetof(GpuFrame, inv_view_proj) == 64);
+static_assert(offsetof(GpuFrame, camera_rays) == 64);
 static_assert(offsetof(GpuFrame, camera_position) == 128);
 static_assert(offsetof(GpuFrame, near_plane) == 140);
 static_assert(offsetof(GpuFrame, background) == 144);
