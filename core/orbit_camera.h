@@ -25,9 +25,12 @@ namespace tessera {
 /// view axis. 89 degrees keeps the right axis well conditioned.
 inline constexpr float kMaxOrbitPitch = glm::radians(89.0f);
 /// orbit distance limits (m) kept by zoom() and frame_scene(): > 0 so the eye never reaches
-/// the target, and small enough that positions stay far inside kMaxSceneCoordinate.
-inline constexpr float kMinOrbitDistance = 1e-4f;
-inline constexpr float kMaxOrbitDistance = 1e9f;
+/// the target, and small enough that positions stay far inside kMaxSceneCoordinate (1e15 m).
+/// Framing fits spheres of radius 1e-7 sin(fov / 2) to 1e14 sin(fov / 2): at 45 degrees from
+/// 38 nm to 3.8e13 m (limits of 1e-4 and 1e9 m left a model 10 um across small in the view and
+/// put the camera inside one of radius 1e9 m, which then drew nothing).
+inline constexpr float kMinOrbitDistance = 1e-7f;
+inline constexpr float kMaxOrbitDistance = 1e14f;
 
 struct OrbitCamera {
   glm::vec3 target{0.0f};

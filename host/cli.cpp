@@ -860,6 +860,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     line.command = Command::help;
     line.help = app.help();
     return line;
+  } catch (const CLI::CallForVersion&) {
+    // `tessera --help --version`: the version, as `tessera --version` prints it.
+    line.command = Command::help;
+    line.help = version_text() + "\n";
+    return line;
   } catch (const CLI::ParseError& e) {
     throw UsageError(message_of(e), help_command);
   }

@@ -1,6 +1,8 @@
 // tessera: the command-line tool. Every failure is reported as one line, "tessera: error: ...",
 // with the exit statuses of host/cli.h.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -71,7 +73,15 @@ int main(int argc, char** argv) {
   std::string command_line = "tessera";
   for (const std::string& arg : args) command_line += " " + arg;
   try {
-    return run(tessera::parse_command_line(args), command_line);
+    const int status = run(tessera::parse_command_line(args), command_line);
+    // A full disk or a closed pipe loses what was printed (a table, --version): a failure,
+    // not a success with nothing written.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::fprintf(stderr, "tessera: error: cannot write the standard output: %s\n",
+                   std::strerror(errno));
+      return status != 0 ? status : tessera::kExitRuntimeError;
+    }
+    return status;
   } catch (const tessera::UsageError& e) {
     std::fprintf(stderr, "tessera: error: %s\nRun '%s' for the options.\n", e.what(),
                  e.help_command.c_str());

@@ -119,6 +119,15 @@ TEST(Cli, VersionIsTheProjectVersion) {
       << line.help;
   EXPECT_NE(usage_error({"--version", "render"}).find("--version takes nothing after it"),
             std::string::npos);
+  // A lost write is a failure: standard output on a full device (errors still reach stderr).
+  std::string out;
+  EXPECT_EQ(
+      test::run_command("(" + std::string(TESSERA_BINARY) + " --version 2>&1 >/dev/full)", out), 1);
+  EXPECT_NE(out.find("tessera: error: cannot write the standard output"), std::string::npos) << out;
+  // After --help too it prints the version and succeeds (it was "tessera: error: tessera 0.1").
+  const CommandLine after_help = parse_command_line({"--help", "--version"});
+  EXPECT_EQ(after_help.command, Command::help);
+  EXPECT_EQ(after_help.help, line.help);
   EXPECT_NE(help_of({"--help"}).find("--version"), std::string::npos);
 }
 

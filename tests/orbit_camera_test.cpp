@@ -280,6 +280,16 @@ TEST(OrbitCamera, FramedCameraFitsBoxesOfEveryShape) {
   extent = projected_extent(s, c, 1.0f);
   EXPECT_NEAR(extent.x, 0.6846761f, 1e-3f);
 
+  // A 20 um cube (radius 1.7320508e-5, distance 4.5260669e-5) and a 2e9 m one (radius
+  // 1.7320508e9, distance 4.5260669e9) are framed as the unit cube is, not held at the old
+  // orbit limits of 1e-4 m (small in the view) and 1e9 m (the eye inside the model).
+  for (const float half : {1e-5f, 1e9f}) {
+    s = box_scene(glm::vec3(-half), glm::vec3(half));
+    c = framed_camera(s, 1.0f);
+    EXPECT_NEAR(c.position.z / half, 4.5260669f, 1e-5f) << half;
+    EXPECT_NEAR(projected_extent(s, c, 1.0f).x, 0.6846761f, 1e-3f) << half;
+  }
+
   // Nothing to frame: the default camera.
   s.objects.clear();
   EXPECT_EQ(framed_camera(s, 1.0f), Camera{});
