@@ -87,6 +87,24 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   return 0;
 }
 
+// A scene whose objects all fell to culling draws only the background, with status 0: a black
+// or empty image is otherwise a puzzle (a flat model seen edge-on, a mesh wound the other way,
+// a camera looking away).
+std::string nothing_drawn_note(const FrameStats& frame, const std::string& name) {
+  if (frame.triangles_submitted == 0 || frame.raster_triangles > 0) return "";
+  std::string why;
+  const auto add = [&](uint64_t count, const char* what) {
+    if (count == 0) return;
+    why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+  };
+  add(frame.culled_backface, "back-facing (a material's double_sided draws them)");
+  add(frame.culled_frustum, "outside the view");
+  add(frame.culled_empty, "empty (no pixel centre inside, or zero area: seen edge-on)");
+  return "note: no triangle of " + name + " was drawn, of " +
+         std::to_string(frame.triangles_submitted) + " submitted: " + why +
+         "; the image shows only the background";
+}
+
 void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& first,
                   const std::vector<FrameStats>& timed) {
   const FrameStats& last = timed.back();
@@ -205,7 +223,11 @@ int run_render(const RenderArgs& given) {
   for (uint32_t i = 0; i < args.repeat; ++i) timed.push_back(renderer.render(settings));
 
   write_outputs(args, renderer.read_ldr(), args.hdr_out.empty() ? ImageF{} : renderer.read_hdr());
-  if (!args.quiet) print_frames(args, *ctx, first, timed);
+  if (!args.quiet) {
+    print_frames(args, *ctx, first, timed);
+    if (const std::string note = nothing_drawn_note(timed.back(), args.scene); !note.empty())
+      std::fprintf(stderr, "tessera: %s\n", note.c_str());
+  }
   return validation_exit_status(ctx.get());
 }
 
