@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "core/builtin_scenes.h"
@@ -71,13 +72,9 @@ std::vector<std::string> known_scene_names() {
   for (const std::string& folder : scene_folders()) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) continue;
-    bool any = false;
     for (const auto& e : fs::directory_iterator(folder, ec)) {
-      if (e.path().extension() != ".json") continue;
-      names.insert(e.path().stem().string());
-      any = true;
+      if (e.path().extension() == ".json") names.insert(e.path().stem().string());
     }
-    if (any) break;  // the folder scene_listing() shows
   }
   return {names.begin(), names.end()};
 }
@@ -234,6 +231,10 @@ std::string scene_file_summary(const std::string& path) {
 }
 
 std::string scene_listing() {
+  // Every folder `--scene NAME` searches, in its order: TESSERA_SCENES listed alone hid the
+  // built-in scenes that still load. A name an earlier folder also holds is found there.
+  std::string out;
+  std::map<std::string, std::string> first_folder;  // scene name -> the folder it loads from
   for (const std::string& folder : scene_folders()) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) continue;
@@ -241,15 +242,19 @@ std::string scene_listing() {
     for (const auto& e : fs::directory_iterator(folder, ec))
       if (e.path().extension() == ".json") files.insert(e.path());
     if (files.empty()) continue;
-    std::string out = "scene files in " + folder + ":\n";
+    out += (out.empty() ? "" : "\n") + std::string("scene files in ") + folder + ":\n";
     for (const fs::path& f : files) {
       char line[512];
-      std::snprintf(line, sizeof line, "%-12s ", f.stem().string().c_str());
-      out += line + scene_file_summary(f.string()) + "\n";
+      const std::string name = f.stem().string();
+      std::snprintf(line, sizeof line, "%-12s ", name.c_str());
+      const auto [it, first] = first_folder.emplace(name, folder);
+      out += line +
+             (first ? scene_file_summary(f.string())
+                    : "(not loaded by name: " + it->second + " has '" + name + "' first)") +
+             "\n";
     }
-    return out;
   }
-  std::string out;
+  if (!out.empty()) return out;
   for (const auto& s : builtin_scenes()) {
     char line[512];
     std::snprintf(line, sizeof line, "%-12s %s\n", std::string(s.name).c_str(),

@@ -97,8 +97,9 @@ std::string coarse_positions_note(const Scene& scene, const std::string& name);
 /// modelled below centimetre scale only too dark. The floor is the reference's too.
 std::string near_lights_note(const Scene& scene, const std::string& name);
 
-/// `tessera scenes`: each scene file of the first scene folder found, with its
-/// scene_file_summary; the built-in scenes when there is none.
+/// `tessera scenes`: the scene files of every scene folder, in the order `--scene NAME` searches
+/// them, each with its scene_file_summary, or marked where an earlier folder's file of the same
+/// name is the one that loads; the built-in scenes when no folder has one.
 std::string scene_listing();
 
 }  // namespace tessera

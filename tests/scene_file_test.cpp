@@ -718,11 +718,22 @@ TEST(SceneFileCli, ScenesListsBrokenFilesAndAMissingFolder) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "empty.json").flush();
   std::ofstream(dir / "plain.json") << R"({"description": "a plain scene"})";
+  std::ofstream(dir / "metals.json") << R"({"description": "my metals"})";
   std::string out;
   EXPECT_EQ(
       test::run_command("TESSERA_SCENES=" + dir.string() + " " + TESSERA_BINARY + " scenes", out),
       0);
   EXPECT_NE(out.find("scene files in " + dir.string()), std::string::npos) << out;
+  // The built-in scenes, which still load by name, are listed after it (they were hidden), and
+  // the one its metals.json comes before is marked.
+  const size_t builtin = out.find("scene files in ", out.find("scene files in ") + 1);
+  ASSERT_NE(builtin, std::string::npos) << out;
+  EXPECT_NE(out.find("\nspheres      ", builtin), std::string::npos) << out;
+  EXPECT_NE(out.find("metals       (not loaded by name: " + dir.string() + " has 'metals' first)",
+                     builtin),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("metals       my metals\n"), std::string::npos) << out;
   EXPECT_NE(out.find("empty        (cannot be loaded: empty.json:1:1: JSON syntax error"),
             std::string::npos)
       << out;
