@@ -43,7 +43,22 @@ Scene scene_of(RenderArgs& args, std::string& size_place, bool& env_removed) {
 
 void write_outputs(const RenderArgs& args, const Image8& ldr, const ImageF& hdr) {
   write_png(args.out, ldr);
-  if (!args.hdr_out.empty()) write_hdr_image(args.hdr_out, hdr);
+  if (args.hdr_out.empty()) return;
+  write_hdr_image(args.hdr_out, hdr);
+  // fp16 saturates at its largest finite value: the file holds exactly what the image held, but
+  // a radiance brighter than that is lost (a new user's trial found most of an image clamped).
+  if (args.frame.hdr_format != HdrFormat::fp16 || args.quiet) return;
+  constexpr float kHalfMax = 65504.0f;
+  size_t clamped = 0;
+  for (const glm::vec4& p : hdr.pixels)
+    for (int c = 0; c < 3; ++c) clamped += p[c] >= kHalfMax;
+  if (clamped > 0) {
+    std::fprintf(stderr,
+                 "tessera: note: %zu of %zu colour values of %s are 65504, the largest an fp16 "
+                 "HDR image holds: brighter radiance was clamped there (--hdr-format fp32 keeps "
+                 "it, or lower the lights)\n",
+                 clamped, hdr.pixels.size() * 3, args.hdr_out.c_str());
+  }
 }
 
 // The settings of --quality's preset, as the frame used them (the options given and the scene

@@ -520,6 +520,29 @@ TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
 }
 
 // An index past the devices present names each of them, as `tessera devices` lists them.
+// fp16 HDR saturates at 65504: --hdr-out says how many values were clamped there (a new
+// user's trial: most of a brightly lit image was, without a word). A light of 1e9 W/sr 1 m
+// in front of a plane of the default material (the xy plane, facing the camera) gives it about
+// 1e9 / pi W/m^2/sr times its albedo, far past 65504; with fp32 nothing is.
+TEST(Cli, ClampedHdrValuesAreNoted) {
+  const std::string scene = test::output_path("bright.json");
+  std::ofstream(scene) << R"({"camera": {"position": [0, 0, 3], "target": [0, 0, 0]},
+      "meshes": [{"name": "p", "type": "plane"}], "materials": [{"name": "m"}],
+      "objects": [{"mesh": "p", "material": "m", "scale": 10}],
+      "lights": [{"type": "point", "position": [0, 0, 1], "intensity": 1e9}]})";
+  const std::string base = tool() + " render --device reference --size 8x8 --scene " + scene +
+                           " --out " + test::output_path("bright.png") + " --hdr-out " +
+                           test::output_path("bright.pfm");
+  std::string out;
+  ASSERT_EQ(test::run_command(base, out), 0) << out;
+  EXPECT_NE(out.find(" colour values of " + test::output_path("bright.pfm") +
+                     " are 65504, the largest an fp16 HDR image holds"),
+            std::string::npos)
+      << out;
+  ASSERT_EQ(test::run_command(base + " --hdr-format fp32", out), 0) << out;
+  EXPECT_EQ(out.find("65504"), std::string::npos) << out;
+}
+
 TEST(Cli, DeviceIndexPastTheDevicesNamesThem) {
   const std::vector<DeviceInfo> devices = list_devices();
   ASSERT_FALSE(devices.empty());  // lavapipe, where the tests run
