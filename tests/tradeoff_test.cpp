@@ -218,6 +218,20 @@ TEST(Tradeoff, TessellationDefaultNamesTheScenesSpheres) {
   EXPECT_EQ(own({big}, {0}), "scene's own (48 triangles)");
   // Without a scene (the command line's checks), the plain label.
   EXPECT_EQ(knob_settings("tessellation", frame, options).at(0).label, "scene's own");
+  // Spheres of one of the knob's tessellations are measured once, as the scene's own: 64
+  // slices and 32 stacks is the scene's, so the settings are it, 8, 16, 32 and 128 slices.
+  Scene sixty_four;
+  sixty_four.meshes = {make_uv_sphere(64, 32)};
+  sixty_four.materials = {Material{}};
+  sixty_four.objects = {Object{}};
+  std::vector<std::string> labels;
+  for (const KnobSetting& s : knob_settings("tessellation", frame, options, &sixty_four))
+    labels.push_back(s.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"scene's own (64 slices)", "8 slices", "16 slices",
+                                              "32 slices", "128 slices"}));
+  // 24 slices is none of them: all five are measured beside it.
+  sixty_four.meshes = {uv24};
+  EXPECT_EQ(knob_settings("tessellation", frame, options, &sixty_four).size(), 6u);
 }
 
 TEST(Tradeoff, TheTruthIsDescribedAsConfiguredForTheScene) {
