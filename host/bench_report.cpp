@@ -360,7 +360,12 @@ void write_bench_chart(const std::string& path, const BenchResults& results, con
                (a.samples > 1 ? ", " + std::to_string(a.samples) + " samples" : "") +
                coverage_phrase(a) + (a.lod == Lod::automatic ? ", --lod auto" : "") + ", " +
                results.device + " (" + chart_frames_phrase(a) +
-               (a.runs > 1 ? ", median of " + std::to_string(a.runs) + " runs" : "") + ")" +
+               // An interrupted sweep's last points come from fewer runs (its table says how
+               // many).
+               (a.runs > 1 ? std::string(", median of ") + (results.interrupted ? "up to " : "") +
+                                 std::to_string(a.runs) + " runs"
+                           : "") +
+               ")" +
                (results.interrupted
                     ? ", interrupted (" + std::to_string(results.measurements_made) + " of " +
                           std::to_string(results.measurements_planned) + " measured)"

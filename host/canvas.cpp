@@ -192,6 +192,26 @@ LogAxes log_axes(Box b, double xmin, double xmax, double ymin, double ymax) {
   return a;
 }
 
+void draw_title(Canvas& c, double width, const std::string& title) {
+  constexpr double kSize = 16;
+  const double room = width - 20;
+  if (c.text_width(title, kSize) <= room) {
+    c.text(width / 2, 22, title, kSize, kInk, 1);
+    return;
+  }
+  size_t best = std::string::npos;
+  for (size_t at = title.find(", "); at != std::string::npos; at = title.find(", ", at + 1)) {
+    const auto gap = [&](size_t i) { return std::abs(double(i) - double(title.size()) / 2); };
+    if (best == std::string::npos || gap(at) < gap(best)) best = at;
+  }
+  if (best == std::string::npos) {  // nowhere to break: one line, as small as it must be
+    c.text(width / 2, 22, title, kSize, kInk, 1);
+    return;
+  }
+  c.text(width / 2, 11, title.substr(0, best + 1), kSize, kInk, 1);
+  c.text(width / 2, 28, title.substr(best + 2), kSize, kInk, 1);
+}
+
 void draw_log_axes(Canvas& c, const LogAxes& a, const std::string& x_label,
                    const std::string& y_label) {
   const Box& b = a.b;

@@ -68,6 +68,11 @@ struct LogAxes {
 };
 LogAxes log_axes(Box b, double xmin, double xmax, double ymin, double ymax);
 
+/// A chart's title centred across `width` above plots that start 60 px down: one line of 16 px
+/// text where it fits in width - 20 px, else two, broken at the ", " nearest the middle (a
+/// long title drawn on one line was shrunk to a quarter of its size to fit).
+void draw_title(Canvas& c, double width, const std::string& title);
+
 /// Grid lines, ticks, axis lines and the axes' titles.
 void draw_log_axes(Canvas& c, const LogAxes& a, const std::string& x_label,
                    const std::string& y_label);

@@ -83,7 +83,7 @@ void draw_bars(Canvas& c, Box b, const ChartSpec& spec) {
 
 void draw(Canvas& c, double width, double height, const ChartSpec& spec) {
   c.rect(0, 0, width, height, {255, 255, 255});
-  c.text(width / 2, 22, spec.title, 16, kInk, 1);
+  draw_title(c, width, spec.title);
   const bool two = !spec.bars.categories.empty();
   const double panel = two ? (width - 80) / 2 : width - 80;
   draw_lines(c, {80, 60, panel - 60, height - 130}, spec);

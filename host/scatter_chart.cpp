@@ -177,7 +177,7 @@ void mark(Canvas& c, double x, double y, double w, double h, size_t series) {
 
 void draw_scatter(Canvas& c, const ScatterChart& chart, const ScatterLayout& layout) {
   c.rect(0, 0, kWidth, layout.height, {255, 255, 255});
-  c.text(kWidth / 2, 22, chart.title, 16, kInk, 1);
+  draw_title(c, kWidth, chart.title);
   if (layout.empty) return;
   const LogAxes& a = layout.axes;
   const Box& b = a.b;

@@ -153,5 +153,29 @@ TEST(ScatterChart, FifteenSeriesLookDistinct) {
   EXPECT_NE(svg.find("width='14' height='1.5' fill='#000080'"), std::string::npos);
 }
 
+// A title too long for one line is broken in two at a ", " near its middle, each line at full
+// size (an interrupted sweep's title was drawn on one line, shrunk to a quarter of its size).
+TEST(ScatterChart, ALongTitleTakesTwoLines) {
+  ScatterChart chart = crowded_chart();
+  chart.title =
+      "speed against accuracy: 'a scene with a long name', 1920x1080, a device with a "
+      "long name (LLVM 15.0.6, 256 bits), interrupted (8 of 24 measured)";
+  const std::string path = test::output_path("scatter_chart_title") + ".svg";
+  write_scatter_chart(path, chart);
+  std::ifstream f(path);
+  const std::string svg(std::istreambuf_iterator<char>(f), {});
+  const std::vector<SvgText> texts = texts_of(svg);
+  ASSERT_GE(texts.size(), 2u);
+  EXPECT_EQ(texts[0].text + " " + texts[1].text, chart.title);
+  EXPECT_EQ(texts[0].text.back(), ',');
+  EXPECT_NE(svg.find("font-size='16' fill='#282828' text-anchor='middle' "
+                     "dominant-baseline='middle'>" +
+                     texts[1].text),
+            std::string::npos)
+      << "full size: " << svg.substr(0, 600);
+  EXPECT_LT(texts[0].y, texts[1].y);
+  EXPECT_LE(texts[1].y + 8, 60.0) << "above the plot";
+}
+
 }  // namespace
 }  // namespace tessera
