@@ -882,6 +882,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   r.depth_rejection_given = render->count("--depth-rejection") > 0;
   r.shade_tiles_given = render->count("--shade-tiles") > 0;
   r.raster_shade_given = render->count("--raster-shade") > 0;
+  r.lod_error_given = render->count("--lod-error") > 0;
+  r.anisotropy_given = render->count("--anisotropy") > 0;
+  r.env_size_given = render->count("--env-size") > 0;
+  r.env_samples_given = render->count("--env-samples") > 0;
+  r.env_reference_samples_given = render->count("--env-reference-samples") > 0;
   r.tile_lists_given = render->count("--tile-lists") > 0;
   check_aa_coverage(*render, r.frame.samples, r.quality, help_command);
   check_aa_walk_steps(r.frame.aa_coverage, r.frame.silhouette_steps, help_command);

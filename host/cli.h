@@ -48,6 +48,10 @@ struct RenderArgs {
   // compute/renderer.h).
   bool depth_rejection_given = false, shade_tiles_given = false, tile_lists_given = false,
        raster_shade_given = false;
+  // Options that act only with some scenes or settings, given on the command line: warned
+  // about where they do nothing (render_command.cpp, ignored_options).
+  bool lod_error_given = false, anisotropy_given = false, env_size_given = false,
+       env_samples_given = false, env_reference_samples_given = false;
 };
 
 struct BenchArgs {

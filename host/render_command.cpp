@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "compute/context.h"
@@ -14,6 +15,7 @@
 #include "core/statistics.h"
 #include "host/report.h"
 #include "host/scene_source.h"
+#include "host/tradeoff.h"
 
 namespace tessera {
 namespace {
@@ -176,6 +178,36 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   }
 }
 
+// The options given that this render does not use, each with why: they were accepted without
+// a word (a new user's trial), so a value typed in to change the image changed nothing.
+std::vector<std::string> ignored_options(const RenderArgs& a, const Scene& scene) {
+  std::vector<std::string> out;
+  if (a.lod_error_given && a.frame.lod != Lod::automatic)
+    out.push_back("--lod-error: level of detail is off for this render (--lod auto turns it on)");
+  const auto unused = [&](bool given, const char* option, const char* knob) {
+    if (!given) return;
+    if (const std::string why = knob_cannot_matter(knob, scene, a.frame); !why.empty())
+      out.push_back(std::string(option) + ": " + why);
+  };
+  unused(a.anisotropy_given, "--anisotropy", "anisotropy");
+  unused(a.env_size_given, "--env-size", "env-size");
+  unused(a.env_samples_given, "--env-samples", "env-samples");
+  unused(a.env_reference_samples_given, "--env-reference-samples", "env-samples");
+  if (!scene.environment) return out;
+  // The reference integrates the environment by sampling; the compute path prefilters it.
+  const bool reference = a.device == "reference";
+  if (a.env_reference_samples_given && !reference)
+    out.push_back("--env-reference-samples: only --device reference samples the environment");
+  for (const auto& [given, option] :
+       {std::pair{a.env_size_given, "--env-size"}, {a.env_samples_given, "--env-samples"}}) {
+    if (given && reference)
+      out.push_back(std::string(option) +
+                    ": --device reference samples the environment itself "
+                    "(--env-reference-samples)");
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& given) {
@@ -194,6 +226,9 @@ int run_render(const RenderArgs& given) {
   // The reference floors the distance as the GPU does.
   if (const std::string note = near_lights_note(scene, args.scene); !note.empty() && !args.quiet)
     std::fprintf(stderr, "tessera: %s\n", note.c_str());
+  if (!args.quiet)
+    for (const std::string& why : ignored_options(args, scene))
+      std::fprintf(stderr, "tessera: warning: %s; the option changes nothing\n", why.c_str());
   // Check outputs before spending time on a render.
   if (std::string why = unwritable_reason(args.out); !why.empty()) {
     throw Error("cannot write output file '" + args.out + "': " + why);

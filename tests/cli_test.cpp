@@ -543,6 +543,35 @@ TEST(Cli, ClampedHdrValuesAreNoted) {
   EXPECT_EQ(out.find("65504"), std::string::npos) << out;
 }
 
+// Options a render does not use are said to change nothing, each with why (a new user's
+// trial: they were accepted without a word). The default scene has no textures and no
+// environment, and its level of detail is off; with an environment, the reference takes its
+// own sample count and the compute path's prefiltering options do nothing.
+TEST(Cli, OptionsThatChangeNothingAreWarnedAbout) {
+  const std::string base =
+      tool() + " render --device reference --size 8x8 --out " + test::output_path("ignored.png");
+  std::string out;
+  ASSERT_EQ(test::run_command(base + " --lod-error 2 --anisotropy 16 --env-samples 4", out), 0)
+      << out;
+  for (const char* line :
+       {"tessera: warning: --lod-error: level of detail is off for this render (--lod auto turns "
+        "it on); the option changes nothing\n",
+        "tessera: warning: --anisotropy: no material the scene draws with has a texture map, the "
+        "only thing it filters; the option changes nothing\n",
+        "tessera: warning: --env-samples: the scene has no environment; the option changes "
+        "nothing\n"})
+    EXPECT_NE(out.find(line), std::string::npos) << line << " in\n" << out;
+  ASSERT_EQ(
+      test::run_command(base + " --scene environment --env-size 64 --env-reference-samples 2", out),
+      0)
+      << out;
+  EXPECT_NE(out.find("tessera: warning: --env-size: --device reference samples the environment "
+                     "itself (--env-reference-samples); the option changes nothing\n"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("--env-reference-samples:"), std::string::npos) << out;
+}
+
 TEST(Cli, DeviceIndexPastTheDevicesNamesThem) {
   const std::vector<DeviceInfo> devices = list_devices();
   ASSERT_FALSE(devices.empty());  // lavapipe, where the tests run
