@@ -643,7 +643,7 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--objects", a.objects,
                  "objects of a benchmark family (grid, scatter,\nhuge, yardstick; default 100)")
       ->type_name("N")
-      ->check(whole_number(1, 100'000'000));
+      ->check(whole_number(1, 1u << 24));  // as bench's --objects
   app.add_option("--knob", a.knobs,
                  "the knobs to sweep, e.g. brdf,tessellation:\n"
                  "brdf, tessellation, lod, anisotropy, env-size,\n"

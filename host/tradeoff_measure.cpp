@@ -83,8 +83,20 @@ TradeoffScene load_tradeoff_scene(const TradeoffArgs& args) {
   TradeoffScene out;
   out.frame = args.frame;
   if (is_bench_family(args.scene)) {
-    out.scene = make_bench_scene(args.scene, args.objects ? args.objects : 100, 32,
-                                 float(out.frame.width) / float(out.frame.height));
+    const uint32_t n = args.objects ? args.objects : 100;
+    const float aspect = float(out.frame.width) / float(out.frame.height);
+    // Every family grows linearly with N: a count past what the renderer can number is refused
+    // from one object's triangles, before a scene that can take a minute to build (as bench
+    // does, bench_measure.cpp).
+    const Scene one = make_bench_scene(args.scene, 1, 32, aspect);
+    uint64_t per = 0;
+    for (const Object& o : one.objects) per += one.meshes[o.mesh].triangle_count();
+    if (per * n > 0xFFFFFFFFull)
+      throw Error("--objects " + std::to_string(n) + ": " + std::to_string(per) +
+                  " triangles per object make " + std::to_string(per * n) +
+                  " triangle instances, more than the 2^32 - 1 Tessera can number (at most " +
+                  std::to_string(0xFFFFFFFFull / per) + " objects)");
+    out.scene = make_bench_scene(args.scene, n, 32, aspect);
   } else {
     // The command line refuses --objects here (cli.cpp); a caller that sets it gets the same.
     if (args.objects) {
@@ -196,7 +208,13 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
     c.scene = with_sphere_segments(scene, s.sphere_segments);
     c.setting = std::move(s);
     c.renderer = std::make_unique<Renderer>(ctx, c.setting.renderer);
-    c.renderer->set_scene(c.scene);
+    try {
+      c.renderer->set_scene(c.scene);
+    } catch (const SceneSizeError& e) {
+      // A family's count is the option that made the buffer too large.
+      if (!args.objects) throw;
+      throw Error("--objects " + std::to_string(args.objects) + ": " + e.what());
+    }
     candidates.push_back(std::move(c));
   }
   const size_t total = results.measurements_planned;

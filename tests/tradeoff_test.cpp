@@ -384,6 +384,24 @@ TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
   };
   EXPECT_NE(message({"tradeoff"}).find("--knob is required"), std::string::npos)
       << message({"tradeoff"});
+  // --objects has bench's limit (it took up to 10^8 and failed after building the scene), and
+  // a count whose triangles Tessera cannot number is refused, naming it, before the scene is
+  // built: 960 triangles a grid sphere, 4473924 * 960 < 2^32 <= 4473925 * 960.
+  EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--objects", "16777217"})
+                .find("--objects: expects a whole number from 1 to 16777216"),
+            std::string::npos);
+  TradeoffArgs many = line.tradeoff;
+  many.objects = 4473925;
+  try {
+    load_tradeoff_scene(many);
+    ADD_FAILURE() << "4473925 grid spheres accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--objects 4473925: 960 triangles per object make "
+                                         "4294968000 triangle instances, more than the 2^32 - 1 "
+                                         "Tessera can number (at most 4473924 objects)"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_NE(message({"tradeoff", "--knob", "speed"}).find("unknown knob 'speed'"),
             std::string::npos);
   EXPECT_NE(message({"tradeoff", "--knob", "brdf", "--truth-samples", "64"})
