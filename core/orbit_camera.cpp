@@ -183,7 +183,7 @@ bool frame_sphere(OrbitCamera& camera, const BoundingSphere& bounds, float aspec
   camera.target = bounds.centre;
   camera.distance =
       clamp_distance(bounds.radius / std::sin(std::min(half_vertical, half_horizontal)));
-  // No gap where the distance was clamped (a model over 10^8 m across): the preferred near
+  // No gap where the distance was clamped (a model over about 7.6e13 m across): the preferred near
   // plane then. Half the gap leaves the sphere's front well beyond it.
   const float gap = camera.distance - bounds.radius;
   camera.near_plane = gap > 0.0f ? std::min(preferred_near, 0.5f * gap) : preferred_near;
