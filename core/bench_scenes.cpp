@@ -105,6 +105,15 @@ std::string bench_family_names() {
   return names;
 }
 
+void check_triangle_numbering(uint64_t per_copy, uint32_t copies, const std::string& copy_name,
+                              const std::string& copies_name) {
+  if (per_copy * copies <= 0xFFFFFFFFull) return;
+  throw Error("--objects " + std::to_string(copies) + ": " + std::to_string(per_copy) +
+              " triangles per " + copy_name + " make " + std::to_string(per_copy * copies) +
+              " triangle instances, more than the 2^32 - 1 Tessera can number (at most " +
+              std::to_string(0xFFFFFFFFull / per_copy) + " " + copies_name + ")");
+}
+
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect) {
   if (objects == 0) throw Error("a benchmark scene needs at least one object");
   if (segments < 4)

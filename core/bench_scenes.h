@@ -39,6 +39,13 @@ std::string bench_family_names();
 ///    of the 7 x 7 palette. It ignores `aspect` (its layout is fixed in world units).
 Scene make_bench_scene(std::string_view family, uint32_t objects, uint32_t segments, float aspect);
 
+/// Refuses `copies` copies of something of `per_copy` triangles where their triangle instances
+/// would pass the 2^32 - 1 Tessera can number: throws Error "--objects N: P triangles per
+/// `copy_name` make T triangle instances, more than ... (at most M `copies_name`)". For checking
+/// a sweep's counts from one copy, before a scene that can take a minute to build.
+void check_triangle_numbering(uint64_t per_copy, uint32_t copies, const std::string& copy_name,
+                              const std::string& copies_name);
+
 /// Where the yardstick family puts sphere `i` (< `objects`) of `objects`: on a side x side grid,
 /// side = ceil(sqrt(objects)), centre (((i mod side) + 0.5) / side * 2 - 1) * 3,
 /// (((i div side) + 0.5) / side * 2 - 1) * 1.7, 0) and radius 0.45 * min(6, 3.4) / side (world

@@ -1040,6 +1040,14 @@ void Reader::read(const Node& root) {
   if (has(root, "render")) read_render(child(root, "render"));
 }
 
+// The place of the entry that made item `k` (an object or light): the last of `sources` (in
+// item order) that starts at or before it; null if none does.
+const std::string* source_of(const std::vector<std::pair<size_t, std::string>>& sources, size_t k) {
+  const auto it = std::upper_bound(sources.begin(), sources.end(), k,
+                                   [](size_t v, const auto& s) { return v < s.first; });
+  return it == sources.begin() ? nullptr : &std::prev(it)->second;
+}
+
 // validate_scene of what `reader` read, its message placed at the entry that made the object,
 // light or camera it names.
 void validate_read(const Reader& reader, const std::string& name) {
@@ -1052,12 +1060,11 @@ void validate_read(const Reader& reader, const std::string& name) {
     const auto placed = [&](const std::string& prefix,
                             const std::vector<std::pair<size_t, std::string>>& sources) {
       if (message.rfind(prefix, 0) != 0) return;
-      const size_t k = std::strtoull(message.c_str() + prefix.size(), nullptr, 10);
-      const auto it = std::upper_bound(sources.begin(), sources.end(), k,
-                                       [](size_t v, const auto& s) { return v < s.first; });
-      if (it == sources.begin()) return;
+      const std::string* source =
+          source_of(sources, std::strtoull(message.c_str() + prefix.size(), nullptr, 10));
+      if (!source) return;
       const std::string in_model = reader.in_model(message);
-      throw Error(std::prev(it)->second + (in_model.empty() ? message : in_model));
+      throw Error(*source + (in_model.empty() ? message : in_model));
     };
     placed("invalid scene: object ", reader.object_sources);
     placed("invalid scene: light ", reader.light_sources);
@@ -1131,12 +1138,9 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
   TESSERA_CHECK(!root.is_discarded());
   reader.read({&root, "", ""});
   validate_read(reader, name);
-  // Each light's entry: the last source that starts at or before it (light_sources is in
-  // light order, as validate_read's search takes it).
-  for (size_t k = 0, s = 0; k < out.scene.lights.size(); ++k) {
-    while (s + 1 < reader.light_sources.size() && reader.light_sources[s + 1].first <= k) ++s;
-    out.light_places.push_back(reader.light_sources.empty() ? name + ": "
-                                                            : reader.light_sources[s].second);
+  for (size_t k = 0; k < out.scene.lights.size(); ++k) {
+    const std::string* source = source_of(reader.light_sources, k);
+    out.light_places.push_back(source ? *source : name + ": ");
   }
   return out;
 }

@@ -200,15 +200,9 @@ Sweep measure_sweep(Renderer* renderer, uint64_t max_range, const BenchArgs& a, 
     const Scene one = file ? make_instanced_bench_scene(fixed, 1, aspect)
                            : make_bench_scene(a.scene, 1, a.segments, aspect);
     const uint64_t per = lod_triangle_count(one, {}, FrameSettings{});
-    for (uint32_t n : counts) {
-      if (per * n > 0xFFFFFFFFull)
-        throw Error("--objects " + std::to_string(n) + ": " + std::to_string(per) +
-                    " triangles per " + (file ? "placement of '" + a.scene + "'" : "object") +
-                    " make " + std::to_string(per * n) +
-                    " triangle instances, more than the 2^32 - 1 Tessera can number (at most " +
-                    std::to_string(0xFFFFFFFFull / per) + " " + (file ? "placements" : "objects") +
-                    ")");
-    }
+    for (uint32_t n : counts)
+      check_triangle_numbering(per, n, file ? "placement of '" + a.scene + "'" : "object",
+                               file ? "placements" : "objects");
     // The file's lights move and scale with the grid, which grows with the count: a count
     // that takes one past the scene's limits is refused here, not once the smaller ones are
     // measured.

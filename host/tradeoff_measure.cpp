@@ -10,6 +10,7 @@
 
 #include "core/bench_scenes.h"
 #include "core/check.h"
+#include "core/lod.h"
 #include "core/mesh.h"
 #include "core/pareto.h"
 #include "core/pick.h"
@@ -85,17 +86,10 @@ TradeoffScene load_tradeoff_scene(const TradeoffArgs& args) {
   if (is_bench_family(args.scene)) {
     const uint32_t n = args.objects ? args.objects : 100;
     const float aspect = float(out.frame.width) / float(out.frame.height);
-    // Every family grows linearly with N: a count past what the renderer can number is refused
-    // from one object's triangles, before a scene that can take a minute to build (as bench
-    // does, bench_measure.cpp).
-    const Scene one = make_bench_scene(args.scene, 1, 32, aspect);
-    uint64_t per = 0;
-    for (const Object& o : one.objects) per += one.meshes[o.mesh].triangle_count();
-    if (per * n > 0xFFFFFFFFull)
-      throw Error("--objects " + std::to_string(n) + ": " + std::to_string(per) +
-                  " triangles per object make " + std::to_string(per * n) +
-                  " triangle instances, more than the 2^32 - 1 Tessera can number (at most " +
-                  std::to_string(0xFFFFFFFFull / per) + " objects)");
+    // Every family grows linearly with N: checked from one object, as bench checks its counts.
+    check_triangle_numbering(
+        lod_triangle_count(make_bench_scene(args.scene, 1, 32, aspect), {}, FrameSettings{}), n,
+        "object", "objects");
     out.scene = make_bench_scene(args.scene, n, 32, aspect);
   } else {
     // The command line refuses --objects here (cli.cpp); a caller that sets it gets the same.
