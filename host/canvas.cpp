@@ -194,17 +194,14 @@ LogAxes log_axes(Box b, double xmin, double xmax, double ymin, double ymax) {
 
 void draw_title(Canvas& c, double width, const std::string& title) {
   constexpr double kSize = 16;
-  const double room = width - 20;
-  if (c.text_width(title, kSize) <= room) {
-    c.text(width / 2, 22, title, kSize, kInk, 1);
-    return;
-  }
+  // The ", " nearest the middle, where the title does not fit on one line.
   size_t best = std::string::npos;
-  for (size_t at = title.find(", "); at != std::string::npos; at = title.find(", ", at + 1)) {
+  if (c.text_width(title, kSize) > width - 20) {
     const auto gap = [&](size_t i) { return std::abs(double(i) - double(title.size()) / 2); };
-    if (best == std::string::npos || gap(at) < gap(best)) best = at;
+    for (size_t at = title.find(", "); at != std::string::npos; at = title.find(", ", at + 1))
+      if (best == std::string::npos || gap(at) < gap(best)) best = at;
   }
-  if (best == std::string::npos) {  // nowhere to break: one line, as small as it must be
+  if (best == std::string::npos) {  // it fits, or has nowhere to break: one line
     c.text(width / 2, 22, title, kSize, kInk, 1);
     return;
   }
