@@ -41,15 +41,27 @@ bool has_map(uint bit, uint index) {
   return (TEXTURE_MAPS & bit) != 0u && index != TS_NO_TEXTURE;
 }
 
+// The texture of material m's map `bit` (one TS_MAP_* bit), or TS_NO_TEXTURE.
+uint map_index(GpuMaterial m, uint bit) {
+  if (bit == TS_MAP_BASE_COLOR) return m.base_color_map;
+  if (bit == TS_MAP_METALLIC_ROUGHNESS) return m.metallic_roughness_map;
+  if (bit == TS_MAP_NORMAL) return m.normal_map;
+  if (bit == TS_MAP_OCCLUSION) return m.occlusion_map;
+  return m.emissive_map;
+}
+
 // True if the material's map `bit` reads uv set 1 (glTF texCoord 1).
 bool reads_uv1(GpuMaterial m, uint bit) {
   return (UV1_MAPS & bit) != 0u && (m.uv1_maps & bit) != 0u;
 }
 
-// Map `bit` (texture `index`) of material m at g, through the uv set it reads.
+// Map `bit` (texture `index`) of material m at g, through the uv set it reads. One call of
+// sample_texture, not one per set: drivers inline every call site before specialization
+// removes the maps a pipeline leaves out (sample_texture says why that matters).
 vec4 sample_map(GpuMaterial m, uint bit, uint index, SurfaceGeometry g) {
-  if (reads_uv1(m, bit)) return sample_texture(index, g.uv1, g.duv1_dx, g.duv1_dy);
-  return sample_texture(index, g.uv, g.duv_dx, g.duv_dy);
+  bool set1 = reads_uv1(m, bit);
+  return sample_texture(index, set1 ? g.uv1 : g.uv, set1 ? g.duv1_dx : g.duv_dx,
+                        set1 ? g.duv1_dy : g.duv_dy);
 }
 
 // Tangent-space normal `local` (unit-ish) to world, around the geometric frame of g.
@@ -90,23 +102,24 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   s.occlusion = m.occlusion;
   s.emissive = m.emissive;
   s.N = g.N;
-  if (has_map(TS_MAP_BASE_COLOR, m.base_color_map)) {
-    s.base_color *= sample_map(m, TS_MAP_BASE_COLOR, m.base_color_map, g).rgb;
-  }
-  if (has_map(TS_MAP_METALLIC_ROUGHNESS, m.metallic_roughness_map)) {
-    vec4 t = sample_map(m, TS_MAP_METALLIC_ROUGHNESS, m.metallic_roughness_map, g);
-    roughness *= t.g;
-    metallic *= t.b;
-  }
-  if (has_map(TS_MAP_OCCLUSION, m.occlusion_map)) {
-    s.occlusion *= sample_map(m, TS_MAP_OCCLUSION, m.occlusion_map, g).r;
-  }
-  if (has_map(TS_MAP_EMISSIVE, m.emissive_map)) {
-    s.emissive *= sample_map(m, TS_MAP_EMISSIVE, m.emissive_map, g).rgb;
-  }
-  if (has_map(TS_MAP_NORMAL, m.normal_map)) {
-    vec3 local = sample_map(m, TS_MAP_NORMAL, m.normal_map, g).rgb * 2.0 - 1.0;
-    s.N = apply_normal_map(g, local, m.normal_scale, V);
+  // The maps in one loop around one call of sample_map, for the reason sample_texture gives
+  // (texture.glsl); each map changes a different field, so their order does not matter.
+  for (uint bit = TS_MAP_BASE_COLOR; bit <= TS_MAP_EMISSIVE; bit <<= 1u) {
+    uint map = map_index(m, bit);
+    if (!has_map(bit, map)) continue;
+    vec4 t = sample_map(m, bit, map, g);
+    if (bit == TS_MAP_BASE_COLOR) {
+      s.base_color *= t.rgb;
+    } else if (bit == TS_MAP_METALLIC_ROUGHNESS) {
+      roughness *= t.g;
+      metallic *= t.b;
+    } else if (bit == TS_MAP_NORMAL) {
+      s.N = apply_normal_map(g, t.rgb * 2.0 - 1.0, m.normal_scale, V);
+    } else if (bit == TS_MAP_OCCLUSION) {
+      s.occlusion *= t.r;
+    } else {
+      s.emissive *= t.rgb;
+    }
   }
   s.pixel = metallic_roughness_params(s.base_color, metallic, roughness);
   return s;

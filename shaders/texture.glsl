@@ -64,15 +64,24 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
   float l0 = floor(lod);
   uint i0 = uint(l0);
   float f = lod - l0;
-  vec4 a = bilinear(tex, i0, uv);
   // The finer level alone when the blend weight is 0 (level 0 up close, the coarsest far).
-  return f > 0.0 ? mix(a, bilinear(tex, min(i0 + 1u, levels - 1u), uv), f) : a;
+  // One call site of bilinear, for the reason sample_texture gives.
+  vec4 result = vec4(0.0);
+  for (uint k = 0u; k < (f > 0.0 ? 2u : 1u); ++k) {
+    vec4 level = bilinear(tex, min(i0 + k, levels - 1u), uv);
+    result = k == 0u ? level : mix(result, level, f);
+  }
+  return result;
 }
 
 // Filtered lookup of texture `index` at uv with the screen-space derivatives of one pixel step
 // (see sample_texture in core/texture.h): trilinear at log2 of the footprint's longer axis in
 // texels, or, with anisotropy > 1 (GpuFrame.anisotropy), up to that many trilinear probes along
 // the longer axis at a finer level.
+// trilinear is called from one place: drivers inline each call site whole before
+// specialization constants remove the maps a pipeline does not sample, and lavapipe (Mesa
+// 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating three call sites in each of
+// the ten sample_texture calls (docs/development.md, "Measured CI time").
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   uvec3 info = uvec3(textures[index].size, textures[index].levels);
   vec2 size = vec2(info.xy);
@@ -81,17 +90,22 @@ vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   float ly = length(duv_dy * size);
   float major = max(lx, ly);
   float minor = min(lx, ly);
-  // An infinite or NaN footprint (a triangle seen edge-on): the coarsest level.
-  if (!(major <= 3.0e38)) return trilinear(index, levels, uv, float(levels - 1u));
+  // An infinite or NaN footprint (a triangle seen edge-on): one probe of the coarsest level.
   float probes = 1.0;
-  uint anisotropy = frame.anisotropy;
-  if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
-  float lod = log2(major / probes);
-  if (probes == 1.0) return trilinear(index, levels, uv, lod);
-  vec2 axis = lx >= ly ? duv_dx : duv_dy;
+  float lod = float(levels - 1u);
+  vec2 axis = vec2(0.0);
+  if (major <= 3.0e38) {
+    uint anisotropy = frame.anisotropy;
+    if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
+    lod = log2(major / probes);
+    axis = lx >= ly ? duv_dx : duv_dy;
+  }
+  // One probe is the trilinear lookup itself (not 0 + it, which would turn -0 into +0).
   vec4 sum = vec4(0.0);
   for (int i = 0; i < int(probes); ++i) {
-    sum += trilinear(index, levels, uv + axis * ((float(i) + 0.5) / probes - 0.5), lod);
+    vec2 at = probes == 1.0 ? uv : uv + axis * ((float(i) + 0.5) / probes - 0.5);
+    vec4 probe = trilinear(index, levels, at, lod);
+    sum = probes == 1.0 ? probe : sum + probe;
   }
-  return sum / probes;
+  return probes == 1.0 ? sum : sum / probes;
 }
