@@ -233,11 +233,49 @@ int64_t floor_shift(int64_t v) {
   return floor_div(v, kSubpixelOne);
 }
 
-// Where a triangle's samples are: the compute path's, one at each pixel centre, or the ground
-// truth's N x N per pixel (GroundTruthOptions) on a finer grid.
+// The samples of a pixel: their positions from its top-left corner in fixed-point units, `one`
+// units per pixel (the triangles' snapping grid).
+struct SamplePattern {
+  int64_t one = kSubpixelOne;
+  std::vector<FixedPoint> offsets;
+  // Position of sample s of pixel (x, y), in pixels.
+  dvec2 point(int64_t x, int64_t y, size_t s) const {
+    return {double(x) + double(offsets[s].x) / double(one),
+            double(y) + double(offsets[s].y) / double(one)};
+  }
+};
+
+// The compute path's anti-aliasing pattern of `samples` per pixel (TS_SAMPLES_*, constants.h),
+// on its 1/256 px grid.
+SamplePattern msaa_pattern(uint32_t samples) {
+  std::vector<glm::ivec2> grid;
+  switch (samples) {
+    case 4:
+      grid = {TS_SAMPLES_4(glm::ivec2)};
+      break;
+    case 8:
+      grid = {TS_SAMPLES_8(glm::ivec2)};
+      break;
+    case 16:
+      grid = {TS_SAMPLES_16(glm::ivec2)};
+      break;
+    default:
+      grid = {TS_SAMPLES_1(glm::ivec2)};
+      break;
+  }
+  TESSERA_CHECK(grid.size() == samples);
+  SamplePattern p{kSubpixelOne, {}};
+  const int64_t scale = kSubpixelOne / TS_SAMPLE_GRID;
+  for (glm::ivec2 g : grid) p.offsets.push_back({g.x * scale, g.y * scale});
+  return p;
+}
+
+// Where a triangle's samples are: the compute path's (`compute`, one at each pixel centre or its
+// anti-aliasing pattern), or, with `compute` null, the ground truth's N x N per pixel
+// (GroundTruthOptions) on a finer grid.
 struct SampleGrid {
   int64_t one = kSubpixelOne;  // fixed-point units per pixel
-  bool centres = true;
+  const SamplePattern* compute = nullptr;
 };
 
 struct RasterTriangle {
@@ -279,19 +317,44 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   t.id = id;
   int64_t lo_x = std::min({v[0].x, v[1].x, v[2].x}), hi_x = std::max({v[0].x, v[1].x, v[2].x});
   int64_t lo_y = std::min({v[0].y, v[1].y, v[2].y}), hi_y = std::max({v[0].y, v[1].y, v[2].y});
-  if (!grid.centres) {  // any pixel the snapped box touches
+  if (!grid.compute) {  // any pixel the snapped box touches
     t.box_min_x = std::max<int64_t>(floor_div(lo_x, grid.one), 0);
     t.box_min_y = std::max<int64_t>(floor_div(lo_y, grid.one), 0);
     t.box_max_x = std::min<int64_t>(floor_div(hi_x, grid.one), int64_t(cam.width) - 1);
     t.box_max_y = std::min<int64_t>(floor_div(hi_y, grid.one), int64_t(cam.height) - 1);
     return t.box_min_x <= t.box_max_x && t.box_min_y <= t.box_max_y;
   }
-  const int64_t half = kSubpixelOne / 2;
-  t.box_min_x = std::max<int64_t>(floor_shift(lo_x - half + kSubpixelOne - 1), 0);
-  t.box_min_y = std::max<int64_t>(floor_shift(lo_y - half + kSubpixelOne - 1), 0);
-  t.box_max_x = std::min<int64_t>(floor_shift(hi_x - half), int64_t(cam.width) - 1);
-  t.box_max_y = std::min<int64_t>(floor_shift(hi_y - half), int64_t(cam.height) - 1);
-  return t.box_min_x <= t.box_max_x && t.box_min_y <= t.box_max_y;
+  // The compute path's box and its test of small boxes (prepare_triangle, setup_common.glsl),
+  // so that both count the same raster triangles (ReferenceFrame::raster_triangles): pixel x
+  // holds samples from x * one + first to x * one + last.
+  const std::vector<FixedPoint>& offsets = grid.compute->offsets;
+  FixedPoint first = offsets[0], last = offsets[0];
+  for (const FixedPoint& o : offsets) {
+    first = {std::min(first.x, o.x), std::min(first.y, o.y)};
+    last = {std::max(last.x, o.x), std::max(last.y, o.y)};
+  }
+  t.box_min_x = std::max<int64_t>(floor_shift(lo_x - last.x + kSubpixelOne - 1), 0);
+  t.box_min_y = std::max<int64_t>(floor_shift(lo_y - last.y + kSubpixelOne - 1), 0);
+  t.box_max_x = std::min<int64_t>(floor_shift(hi_x - first.x), int64_t(cam.width) - 1);
+  t.box_max_y = std::min<int64_t>(floor_shift(hi_y - first.y), int64_t(cam.height) - 1);
+  if (t.box_min_x > t.box_max_x || t.box_min_y > t.box_max_y) return false;
+  if (t.box_max_x - t.box_min_x > 1 || t.box_max_y - t.box_min_y > 1) return true;
+  // A box of up to 2 x 2 pixels: kept only if it covers a sample (slivers and sub-pixel
+  // triangles often cover none), as rasterize_rows and rasterize_samples test them.
+  const int64_t th0 = edge_threshold(t.v[1], t.v[2]);
+  const int64_t th1 = edge_threshold(t.v[2], t.v[0]);
+  const int64_t th2 = edge_threshold(t.v[0], t.v[1]);
+  for (int64_t y = t.box_min_y; y <= t.box_max_y; ++y) {
+    for (int64_t x = t.box_min_x; x <= t.box_max_x; ++x) {
+      for (const FixedPoint& o : offsets) {
+        const FixedPoint p{x * kSubpixelOne + o.x, y * kSubpixelOne + o.y};
+        if (edge(t.v[1], t.v[2], p) >= th0 && edge(t.v[2], t.v[0], p) >= th1 &&
+            edge(t.v[0], t.v[1], p) >= th2)
+          return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::array<dvec4, 3> clip_coords(const CameraModel& cam, const Instance& inst, uint64_t id) {
@@ -659,6 +722,19 @@ dvec3 miss_radiance(const Scene& scene, const ReferenceSettings& settings, dvec3
 // guard band (2^28 units) stay within int64.
 constexpr int64_t kTruthOne = 4096;
 
+// The ground truth's N x N grid: sample (i, j) at ((i + 0.5) / N, (j + 0.5) / N) rounded to
+// 1/kTruthOne px, numbered j * N + i.
+SamplePattern truth_pattern(uint32_t n) {
+  SamplePattern p{kTruthOne, {}};
+  std::vector<int64_t> steps(n);
+  for (uint32_t i = 0; i < n; ++i)
+    steps[i] = int64_t(std::floor((i + 0.5) / n * double(kTruthOne) + 0.5));
+  for (uint32_t j = 0; j < n; ++j) {
+    for (uint32_t i = 0; i < n; ++i) p.offsets.push_back({steps[i], steps[j]});
+  }
+  return p;
+}
+
 // An object drawn as the exact ellipsoid its transform makes of its mesh's sphere.
 struct AnalyticObject {
   const Instance* inst;
@@ -791,56 +867,6 @@ bool keep_nearest(SampleHit& h, double depth, uint32_t id, uint32_t slot) {
   h.slot = slot;
   h.analytic = -1;
   return true;
-}
-
-// The samples of a pixel: their positions from its top-left corner in fixed-point units, `one`
-// units per pixel (the triangles' snapping grid).
-struct SamplePattern {
-  int64_t one = kSubpixelOne;
-  std::vector<FixedPoint> offsets;
-  // Position of sample s of pixel (x, y), in pixels.
-  dvec2 point(int64_t x, int64_t y, size_t s) const {
-    return {double(x) + double(offsets[s].x) / double(one),
-            double(y) + double(offsets[s].y) / double(one)};
-  }
-};
-
-// The ground truth's N x N grid: sample (i, j) at ((i + 0.5) / N, (j + 0.5) / N) rounded to
-// 1/kTruthOne px, numbered j * N + i.
-SamplePattern truth_pattern(uint32_t n) {
-  SamplePattern p{kTruthOne, {}};
-  std::vector<int64_t> steps(n);
-  for (uint32_t i = 0; i < n; ++i)
-    steps[i] = int64_t(std::floor((i + 0.5) / n * double(kTruthOne) + 0.5));
-  for (uint32_t j = 0; j < n; ++j) {
-    for (uint32_t i = 0; i < n; ++i) p.offsets.push_back({steps[i], steps[j]});
-  }
-  return p;
-}
-
-// The compute path's anti-aliasing pattern of `samples` per pixel (TS_SAMPLES_*, constants.h),
-// on its 1/256 px grid.
-SamplePattern msaa_pattern(uint32_t samples) {
-  std::vector<glm::ivec2> grid;
-  switch (samples) {
-    case 4:
-      grid = {TS_SAMPLES_4(glm::ivec2)};
-      break;
-    case 8:
-      grid = {TS_SAMPLES_8(glm::ivec2)};
-      break;
-    case 16:
-      grid = {TS_SAMPLES_16(glm::ivec2)};
-      break;
-    default:
-      grid = {TS_SAMPLES_1(glm::ivec2)};
-      break;
-  }
-  TESSERA_CHECK(grid.size() == samples);
-  SamplePattern p{kSubpixelOne, {}};
-  const int64_t scale = kSubpixelOne / TS_SAMPLE_GRID;
-  for (glm::ivec2 g : grid) p.offsets.push_back({g.x * scale, g.y * scale});
-  return p;
 }
 
 // Rasterizes every triangle into the samples of pixel row y (hits[x * n + s] is sample s of
@@ -1160,11 +1186,11 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
 
-  // Anti-aliasing snaps like the compute path; its boxes hold every pixel the snapped box
-  // touches, as samples lie anywhere in a pixel.
-  const SampleGrid grid = ground_truth ? SampleGrid{kTruthOne, false}
-                          : msaa       ? SampleGrid{kSubpixelOne, false}
-                                       : SampleGrid{};
+  // One sample and anti-aliasing snap and box triangles like the compute path; the ground
+  // truth snaps to its finer grid, its boxes every pixel the snapped box touches.
+  const SamplePattern compute_samples = msaa_pattern(msaa ? settings.frame.samples : 1);
+  const SampleGrid grid =
+      ground_truth ? SampleGrid{kTruthOne, nullptr} : SampleGrid{kSubpixelOne, &compute_samples};
   std::vector<RasterTriangle> tris;
   std::vector<AnalyticObject> analytic;
   for (const Instance& inst : instances) {

@@ -67,7 +67,10 @@ struct ReferenceFrame {
   std::vector<uint32_t> owner;  // triangle-instance id per pixel, kNoTriangle where empty
   std::vector<double> depth;    // the owner's near / w at the pixel centre, 0 where empty
   std::vector<uint32_t> coverage;  // samples covered per pixel, over all triangles not culled
-  uint64_t raster_triangles = 0;   // triangles after culling and clipping
+  /// Triangles after culling and clipping, less those whose box of at most 2 x 2 pixels covers
+  /// no sample: the compute path's FrameStats::raster_triangles (the ground truth's options
+  /// drop none of them).
+  uint64_t raster_triangles = 0;
   /// How the frame numbered its triangle instances: number_objects(scene), or under level of
   /// detail (FrameSettings::lod) the same slots numbered through the levels chosen.
   ObjectNumbering numbering;
