@@ -9,8 +9,9 @@
 # that itself, docs/performance.md). With HARDWARE set, the base binary's grid (HW_GRID) against
 # the hardware baseline in one run. Then renders IMAGES (scene files or names) with each
 # binary and hashes the HDR and display images: a variant that should change no bit must give
-# the base's. RENDER_ARGS are added to every render (e.g. "--tile-lists counted"), and ROUNDS
-# repeats the scatter points, the binaries in turn.
+# the base's. RENDER_ARGS are added to every render (e.g. "--tile-lists counted"), each image is
+# rendered once more with EXTRA_RENDER_ARGS if set (e.g. "--anisotropy 16"), TIMED names more
+# scenes to time (compute only), and ROUNDS repeats the scatter points, the binaries in turn.
 # Every result is appended to $OUT/log.txt and $OUT/points.jsonl as it is made, and every
 # command has a time limit, so that a run cut short still returns what it measured.
 # Pass carry [".gl", ".device-build", ".device-variants"].
@@ -76,6 +77,10 @@ fi
 for b in "${binaries[@]}"; do
   point "${b%%:*}_spheres" "${b#*:}" --scene spheres --repeat "$repeat" --backends compute
   point "${b%%:*}_spheres4" "${b#*:}" --scene spheres --samples 4 --repeat "$repeat" --backends compute
+  for scene in ${TIMED:-}; do
+    point "${b%%:*}_$(basename "$scene" .json)" "${b#*:}" --scene "$scene" --repeat "$repeat" \
+      --backends compute
+  done
 done
 # The first binary against the hardware baseline, in one run: compute / hardware ratios.
 if [[ -n ${HARDWARE:-} ]]; then
@@ -94,13 +99,15 @@ for b in "${binaries[@]}"; do
   for scene in $images; do
     tag=$(basename "$scene" .json)
     for s in 1 4; do
-      f=$work/img_${name}_${tag}_s$s
-      if timeout "$limit" "$exe" render --device "$device" --scene "$scene" --size "$size" \
-          --samples $s --out "$f.png" --hdr-out "$f.pfm" ${RENDER_ARGS:-} > /dev/null; then
-        say "image ${name}_${tag}_s$s hdr $(sha256sum < "$f.pfm" | cut -c1-16) display $(sha256sum < "$f.png" | cut -c1-16)"
-      else
-        say "image ${name}_${tag}_s$s FAILED or timed out"
-      fi
+      for extra in "" ${EXTRA_RENDER_ARGS:+"$EXTRA_RENDER_ARGS"}; do
+        f=$work/img_${name}_${tag}_s$s${extra:+_extra}
+        if timeout "$limit" "$exe" render --device "$device" --scene "$scene" --size "$size" \
+            --samples $s --out "$f.png" --hdr-out "$f.pfm" ${RENDER_ARGS:-} $extra > /dev/null; then
+          say "image ${name}_${tag}_s$s${extra:+ $extra} hdr $(sha256sum < "$f.pfm" | cut -c1-16) display $(sha256sum < "$f.png" | cut -c1-16)"
+        else
+          say "image ${name}_${tag}_s$s${extra:+ $extra} FAILED or timed out"
+        fi
+      done
     done
   done
 done

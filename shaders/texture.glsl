@@ -78,10 +78,11 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
 // (see sample_texture in core/texture.h): trilinear at log2 of the footprint's longer axis in
 // texels, or, with anisotropy > 1 (GpuFrame.anisotropy), up to that many trilinear probes along
 // the longer axis at a finer level.
-// trilinear is called from one place: drivers inline each call site whole before
-// specialization constants remove the maps a pipeline does not sample, and lavapipe (Mesa
-// 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating three call sites in each of
-// the ten sample_texture calls (docs/development.md, "Measured CI time").
+// trilinear is called from one place, and bilinear from one place in it: drivers inline each
+// call site whole before specialization constants remove the maps a pipeline does not sample,
+// and lavapipe (Mesa 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating the 60
+// bilinear lookups that ten sample_texture calls (two per map) of three trilinear calls each
+// made (docs/development.md, "Measured CI time").
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   uvec3 info = uvec3(textures[index].size, textures[index].levels);
   vec2 size = vec2(info.xy);
