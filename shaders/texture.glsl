@@ -65,24 +65,21 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
   uint i0 = uint(l0);
   float f = lod - l0;
   // The finer level alone when the blend weight is 0 (level 0 up close, the coarsest far).
-  // One call site of bilinear, for the reason sample_texture gives.
-  vec4 result = vec4(0.0);
-  for (uint k = 0u; k < (f > 0.0 ? 2u : 1u); ++k) {
-    vec4 level = bilinear(tex, min(i0 + k, levels - 1u), uv);
-    result = k == 0u ? level : mix(result, level, f);
-  }
-  return result;
+  vec4 a = bilinear(tex, i0, uv);
+  return f > 0.0 ? mix(a, bilinear(tex, min(i0 + 1u, levels - 1u), uv), f) : a;
 }
 
 // Filtered lookup of texture `index` at uv with the screen-space derivatives of one pixel step
 // (see sample_texture in core/texture.h): trilinear at log2 of the footprint's longer axis in
 // texels, or, with anisotropy > 1 (GpuFrame.anisotropy), up to that many trilinear probes along
 // the longer axis at a finer level.
-// trilinear is called from one place, and bilinear from one place in it: drivers inline each
-// call site whole before specialization constants remove the maps a pipeline does not sample,
-// and lavapipe (Mesa 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating the 60
-// bilinear lookups that ten sample_texture calls (two per map) of three trilinear calls each
-// made (docs/development.md, "Measured CI time").
+// trilinear is called from one place: drivers inline each call site whole before
+// specialization constants remove the maps a pipeline does not sample, and lavapipe (Mesa
+// 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating the 60 bilinear lookups
+// that ten sample_texture calls (two per map) of three trilinear calls each made. trilinear
+// keeps its two calls of bilinear: one call in a loop of one or two levels built 0.06 s
+// faster on lavapipe, but made the H200's shading pass 4 % slower on the textured scene
+// (docs/development.md, "Measured CI time").
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   uvec3 info = uvec3(textures[index].size, textures[index].levels);
   vec2 size = vec2(info.xy);
