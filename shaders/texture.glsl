@@ -64,8 +64,8 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
   float l0 = floor(lod);
   uint i0 = uint(l0);
   float f = lod - l0;
-  // The finer level alone when the blend weight is 0 (level 0 up close, the coarsest far).
   vec4 a = bilinear(tex, i0, uv);
+  // The finer level alone when the blend weight is 0 (level 0 up close, the coarsest far).
   return f > 0.0 ? mix(a, bilinear(tex, min(i0 + 1u, levels - 1u), uv), f) : a;
 }
 
@@ -73,13 +73,12 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
 // (see sample_texture in core/texture.h): trilinear at log2 of the footprint's longer axis in
 // texels, or, with anisotropy > 1 (GpuFrame.anisotropy), up to that many trilinear probes along
 // the longer axis at a finer level.
-// trilinear is called from one place: drivers inline each call site whole before
-// specialization constants remove the maps a pipeline does not sample, and lavapipe (Mesa
-// 22.3) spent about 0.5 s of a 0.6 s shading pipeline translating the 60 bilinear lookups
-// that ten sample_texture calls (two per map) of three trilinear calls each made. trilinear
-// keeps its two calls of bilinear: one call in a loop of one or two levels built 0.06 s
-// faster on lavapipe, but made the H200's shading pass 4 % slower on the textured scene
-// (docs/development.md, "Measured CI time").
+// Its three calls of trilinear (coarsest level, one probe, several) and trilinear's two calls of
+// bilinear are inlined whole at each of the five sample_map calls (material.glsl) before
+// specialization removes the maps a pipeline leaves out. One call of each, in loops, built a
+// shading pipeline 0.2 s faster on lavapipe (0.70 against 0.90 s for a 16x16 render), but made
+// the H200's shading pass 3 % and its hardware baseline 5.6 % slower on the textured scene:
+// kept as it is (docs/development.md, "Measured CI time").
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   uvec3 info = uvec3(textures[index].size, textures[index].levels);
   vec2 size = vec2(info.xy);
@@ -88,22 +87,17 @@ vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   float ly = length(duv_dy * size);
   float major = max(lx, ly);
   float minor = min(lx, ly);
-  // An infinite or NaN footprint (a triangle seen edge-on): one probe of the coarsest level.
+  // An infinite or NaN footprint (a triangle seen edge-on): the coarsest level.
+  if (!(major <= 3.0e38)) return trilinear(index, levels, uv, float(levels - 1u));
   float probes = 1.0;
-  float lod = float(levels - 1u);
-  vec2 axis = vec2(0.0);
-  if (major <= 3.0e38) {
-    uint anisotropy = frame.anisotropy;
-    if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
-    lod = log2(major / probes);
-    axis = lx >= ly ? duv_dx : duv_dy;
-  }
-  // One probe is the trilinear lookup itself (not 0 + it, which would turn -0 into +0).
+  uint anisotropy = frame.anisotropy;
+  if (anisotropy > 1u && major > minor) probes = min(ceil(major / max(minor, 1e-20)), float(anisotropy));
+  float lod = log2(major / probes);
+  if (probes == 1.0) return trilinear(index, levels, uv, lod);
+  vec2 axis = lx >= ly ? duv_dx : duv_dy;
   vec4 sum = vec4(0.0);
   for (int i = 0; i < int(probes); ++i) {
-    vec2 at = probes == 1.0 ? uv : uv + axis * ((float(i) + 0.5) / probes - 0.5);
-    vec4 probe = trilinear(index, levels, at, lod);
-    sum = probes == 1.0 ? probe : sum + probe;
+    sum += trilinear(index, levels, uv + axis * ((float(i) + 0.5) / probes - 0.5), lod);
   }
-  return probes == 1.0 ? sum : sum / probes;
+  return sum / probes;
 }
