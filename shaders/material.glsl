@@ -96,9 +96,9 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   // One call of sample_map per map, not a loop around one call, although each call site is
   // inlined whole before specialization removes the maps a pipeline leaves out: lavapipe (Mesa
   // 22.3) keeps such a loop and runs every branch of a varying condition under a mask, so a loop
-  // sampled every map and applied each map's result five times a pixel. Its frames ran 650 M
-  // instructions with these calls (textured scene, 512x512, graphics baseline) against 814 M
-  // with the loop, for about 50 ms more pipeline build (docs/development.md, "Measured CI time").
+  // sampled every map and applied each map's result five times a pixel: the textured scene's
+  // graphics frame ran 814 M instructions with the loop against 650 M with these calls, which
+  // cost about 50 ms more to build (docs/development.md, "Measured CI time").
   if (has_map(TS_MAP_BASE_COLOR, m.base_color_map)) {
     s.base_color *= sample_map(m, TS_MAP_BASE_COLOR, m.base_color_map, g).rgb;
   }
