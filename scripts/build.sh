@@ -17,7 +17,9 @@ if [[ ${1:-} == --target ]]; then
 fi
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-if [[ ! -f build/CMakeCache.txt ]]; then
+# A cache without the generator's file is a configure that was cut short (Ctrl+C, or another
+# configure at the same moment): configure again rather than build nothing.
+if [[ ! -f build/CMakeCache.txt || ! ( -f build/Makefile || -f build/build.ninja ) ]]; then
   echo "build: configuring build/ (Release)" >&2
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)

@@ -13,7 +13,9 @@ shift || true
 
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-if [[ ! -f build-fuzz/CMakeCache.txt ]]; then
+# A cache without the generator's file is a configure that was cut short (Ctrl+C, or another
+# configure at the same moment): configure again rather than build nothing.
+if [[ ! -f build-fuzz/CMakeCache.txt || ! ( -f build-fuzz/Makefile || -f build-fuzz/build.ninja ) ]]; then
   cmake -S . -B build-fuzz -DTESSERA_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 "${launcher[@]}" >/dev/null
 fi

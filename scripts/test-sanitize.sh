@@ -10,7 +10,9 @@ cd "$(dirname "$0")/.."
 export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros}
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-if [[ ! -f build-asan/CMakeCache.txt ]]; then
+# A cache without the generator's file is a configure that was cut short (Ctrl+C, or another
+# configure at the same moment): configure again rather than build nothing.
+if [[ ! -f build-asan/CMakeCache.txt || ! ( -f build-asan/Makefile || -f build-asan/build.ninja ) ]]; then
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   # -O1 -g1: AddressSanitizer's documentation asks for -O1 or higher for reasonable speed; it
