@@ -24,18 +24,23 @@ double distance_to_placed_box(const MeshBox& box, const glm::dmat4& world_from_o
                               glm::dvec3 point);
 
 /// The point and spot lights of the inverse-square falloff that lie nearer than
-/// kLightDistanceFloor to some object's placed box (mesh_box and the object's transform),
-/// leaving out objects whose mesh has no triangles and, for a light with a range, objects
-/// beyond it (it does not reach them). Classic lights floor their denominator, not the
-/// distance, and directional lights have none: neither is counted.
+/// kLightDistanceFloor to some object's triangles (placed by its transform), leaving out
+/// objects whose mesh has no triangles and, for a light with a range, objects beyond it (it
+/// does not reach them). Classic lights floor their denominator, not the distance, and
+/// directional lights have none: neither is counted.
 struct NearLights {
   size_t count = 0;       // such lights; 0: none, and the rest is unset
   size_t light = 0;       // the first of them, by index into Scene::lights
   size_t object = 0;      // the object nearest to it (the first of equals), into Scene::objects
-  double distance = 0.0;  // from that light to that object's box, in m
+  double distance = 0.0;  // from that light to that object's surface (or box: `exact`), in m
+  /// False where the triangles to measure ran past a budget (2^24 in all): some distances are
+  /// then to the object's placed box (mesh_box and its transform), which its surface may lie
+  /// well beyond (a light inside a room's box), and count such lights too.
+  bool exact = true;
 };
 /// Assumes a scene validate_scene accepts. O(lights x objects), each pair a test of the
-/// object's world-space bounds first.
+/// object's world-space bounds, then of its placed box, and only where that lies within the
+/// floor, of its triangles.
 NearLights lights_within_floor(const Scene& scene);
 
 }  // namespace tessera

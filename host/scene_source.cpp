@@ -204,7 +204,8 @@ std::string near_lights_note(const Scene& scene, const std::string& name) {
   std::snprintf(distance, sizeof distance, "%g", near.distance);
   const size_t more = near.count - 1;
   return "note: light " + std::to_string(near.light) + " of " + name + " lies " + distance +
-         " m from object " + std::to_string(near.object) + " (its bounding box)" +
+         " m from object " + std::to_string(near.object) +
+         (near.exact ? "" : " (its bounding box: too many triangles to measure them all)") +
          (more ? ", as " + std::to_string(more) +
                      (more == 1 ? " more light lies" : " more lights lie") +
                      " within 1 cm of an object"

@@ -141,6 +141,39 @@ TEST(LightFloor, FindsTheLightsNearerThanOneCentimetre) {
   EXPECT_NEAR(rest.distance, 2e-6, 1e-12);
 }
 
+// Inside an object's box is not near its surface: a lamp in the middle of a room (a cube of
+// side 10 m, its walls 5 m away), a light inside a unit sphere's box at (0.7, 0.7, 0.7), 0.21 m
+// outside the sphere (|p| = 1.212 m, and the mesh's faces lie within the sphere), are not
+// noted; a light 5 mm inside a unit sphere's surface is, at 5 mm less the mesh's sag (its
+// faces lie up to 1 - cos(pi / 32) = 0.0048 m inside the sphere at the equator's segments).
+TEST(LightFloor, InsideTheBoxIsNotNearTheSurface) {
+  Scene scene;
+  scene.meshes.push_back(make_cube());
+  scene.meshes.push_back(make_uv_sphere(64, 32));
+  scene.materials.push_back(Material{});
+  Object room;
+  room.mesh = 0;
+  room.transform = glm::scale(glm::mat4(1.0f), glm::vec3(5.0f));
+  scene.objects.push_back(room);
+  Object ball;
+  ball.mesh = 1;
+  ball.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -3.0f, 0.0f));
+  scene.objects.push_back(ball);
+  scene.lights.push_back(point_at({0.0f, 0.0f, 0.0f}));
+  scene.lights.push_back(point_at({0.7f, -2.3f, 0.7f}));
+  validate_scene(scene);
+  EXPECT_EQ(lights_within_floor(scene).count, 0u);
+  scene.lights.push_back(point_at({0.995f, -3.0f, 0.0f}));
+  const NearLights near = lights_within_floor(scene);
+  EXPECT_EQ(near.count, 1u);
+  EXPECT_EQ(near.light, 2u);
+  EXPECT_EQ(near.object, 1u);
+  EXPECT_TRUE(near.exact);
+  EXPECT_GT(near.distance, 0.0);
+  EXPECT_LE(near.distance, 0.005 + 1e-6);
+  EXPECT_GE(near.distance, 0.005 - (1.0 - std::cos(glm::pi<double>() / 32)) - 1e-6);
+}
+
 // A light inside an object that draws nothing (its mesh has no triangles) lights nothing of it.
 TEST(LightFloor, ObjectsWithoutTrianglesAreLeftOut) {
   Scene scene = micro_scene();

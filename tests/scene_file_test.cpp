@@ -673,7 +673,7 @@ TEST(SceneFileCli, LightsWithinTheDistanceFloorAreNoted) {
                              test::output_path("micro.png") + " --scene ";
   const std::string note =
       "tessera: note: light 0 of " + micro +
-      " lies 2e-06 m from object 0 (its bounding box), as 1 more light lies within 1 cm of an "
+      " lies 2e-06 m from object 0, as 1 more light lies within 1 cm of an "
       "object: the shading treats distances below 1 cm as 1 cm, so surfaces nearer receive less "
       "than intensity / d^2, and a scene modelled below centimetre scale renders too dark unless "
       "scaled up (lengths by k, intensities by k^2; docs/shading.md)\n";

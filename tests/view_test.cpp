@@ -727,7 +727,7 @@ TEST_F(View, LightsWithinTheDistanceFloorAreNoted) {
   const ViewRun run = run_view("1 exit\n", "--scene " + micro + " --size 32x24");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("tessera: note: light 0 of " + micro +
-                            " lies 2e-06 m from object 0 (its bounding box): the shading treats "
+                            " lies 2e-06 m from object 0: the shading treats "
                             "distances below 1 cm as 1 cm, "),
             std::string::npos)
       << run.output;
