@@ -81,6 +81,14 @@ std::vector<std::string> known_scene_names() {
 
 void check_scene_name(const std::string& name) {
   if (is_builtin_scene(name) || is_named_scene(name)) return;
+  // A file of a format Tessera does not read ("box.fbx" in the working folder) is not a
+  // misspelt scene name: say what it reads.
+  std::error_code ec;
+  if (fs::is_regular_file(name, ec)) {
+    throw Error("'" + name +
+                "' is a file of a format Tessera does not read: give a scene file (.json) or a "
+                "model (.gltf, .glb or .obj)");
+  }
   std::string known;
   for (const std::string& n : known_scene_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "' (known scenes: " + known + "; or a scene file's path)");

@@ -611,6 +611,17 @@ TEST(Cli, MissingSceneFileIsABadCommandLine) {
   }
   std::string out;
   EXPECT_EQ(test::run_command(tool() + " render --scene nosuch.json", out), 2) << out;
+  // A file of a format Tessera does not read, named as a scene would be, is not a misspelt
+  // scene name.
+  std::ofstream(test::output_path("box.fbx")) << "Kaydara FBX Binary";
+  EXPECT_EQ(test::run_command("cd " + std::filesystem::path(test::output_path("")).string() +
+                                  " && " + tool() + " render --scene box.fbx",
+                              out),
+            2);
+  EXPECT_NE(out.find("tessera: error: --scene: 'box.fbx' is a file of a format Tessera does not "
+                     "read: give a scene file (.json) or a model (.gltf, .glb or .obj)"),
+            std::string::npos)
+      << out;
 }
 
 // `--device gpu` where only CPU devices are present (as here, on lavapipe) says so and names the
