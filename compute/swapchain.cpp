@@ -166,7 +166,7 @@ void create_swapchain(const Context& ctx, Swapchain& chain, uint32_t width, uint
     // VK_IMAGE_CREATE_EXTENDED_USAGE_BIT, so storage use through the UNORM view is allowed),
     // but the validation layer the tests run with reports it as
     // VUID-VkSwapchainCreateInfoKHR-imageFormat-01778; the copy costs one image copy.
-    obstacle = "sRGB images are copied into unless --present direct is asked for";
+    obstacle = "sRGB swapchain images take the copy path unless --present direct is given";
   }
   if (options.path == PresentPath::direct && !obstacle.empty()) {
     throw Error("cannot present directly (--present direct): " + obstacle);

@@ -357,14 +357,14 @@ void handle_key(Viewer& v, const InputEvent& e) {
         if (frame_scene(v.orbit, v.scene, aspect_of(v), v.home_camera.near_plane)) {
           camera_moved(v, before);
         } else {
-          refuse(v, "nothing to frame: the scene has no vertex");
+          refuse(v, "nothing to frame: the scene has no vertices");
         }
       } else if (has_selection(v, "frame")) {
         if (frame_sphere(v.orbit, object_bounds(v.scene, selected), aspect_of(v),
                          v.home_camera.near_plane)) {
           camera_moved(v, before);
         } else {
-          refuse(v, "nothing to frame: the selected object's mesh has no vertex");
+          refuse(v, "nothing to frame: the selected object's mesh has no vertices");
         }
       }
       break;
