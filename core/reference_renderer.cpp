@@ -276,7 +276,20 @@ SamplePattern msaa_pattern(uint32_t samples) {
 struct SampleGrid {
   int64_t one = kSubpixelOne;  // fixed-point units per pixel
   const SamplePattern* compute = nullptr;
+  // With `compute`: the smallest and largest of its offsets on each axis, the reach of a
+  // pixel's samples that setup's boxes use.
+  FixedPoint first{0, 0}, last{0, 0};
 };
+
+// The compute path's grid of `pattern` (which must outlive it).
+SampleGrid compute_grid(const SamplePattern& pattern) {
+  SampleGrid grid{kSubpixelOne, &pattern, pattern.offsets[0], pattern.offsets[0]};
+  for (const FixedPoint& o : pattern.offsets) {
+    grid.first = {std::min(grid.first.x, o.x), std::min(grid.first.y, o.y)};
+    grid.last = {std::max(grid.last.x, o.x), std::max(grid.last.y, o.y)};
+  }
+  return grid;
+}
 
 struct RasterTriangle {
   FixedPoint v[3];  // positively oriented
@@ -327,12 +340,7 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   // The compute path's box and its test of small boxes (prepare_triangle, setup_common.glsl),
   // so that both count the same raster triangles (ReferenceFrame::raster_triangles): pixel x
   // holds samples from x * one + first to x * one + last.
-  const std::vector<FixedPoint>& offsets = grid.compute->offsets;
-  FixedPoint first = offsets[0], last = offsets[0];
-  for (const FixedPoint& o : offsets) {
-    first = {std::min(first.x, o.x), std::min(first.y, o.y)};
-    last = {std::max(last.x, o.x), std::max(last.y, o.y)};
-  }
+  const FixedPoint first = grid.first, last = grid.last;
   t.box_min_x = std::max<int64_t>(floor_shift(lo_x - last.x + kSubpixelOne - 1), 0);
   t.box_min_y = std::max<int64_t>(floor_shift(lo_y - last.y + kSubpixelOne - 1), 0);
   t.box_max_x = std::min<int64_t>(floor_shift(hi_x - first.x), int64_t(cam.width) - 1);
@@ -346,7 +354,7 @@ bool make_raster_triangle(const CameraModel& cam, CullMode cull, dvec4 c0, dvec4
   const int64_t th2 = edge_threshold(t.v[0], t.v[1]);
   for (int64_t y = t.box_min_y; y <= t.box_max_y; ++y) {
     for (int64_t x = t.box_min_x; x <= t.box_max_x; ++x) {
-      for (const FixedPoint& o : offsets) {
+      for (const FixedPoint& o : grid.compute->offsets) {
         const FixedPoint p{x * kSubpixelOne + o.x, y * kSubpixelOne + o.y};
         if (edge(t.v[1], t.v[2], p) >= th0 && edge(t.v[2], t.v[0], p) >= th1 &&
             edge(t.v[0], t.v[1], p) >= th2)
@@ -1190,7 +1198,7 @@ ReferenceFrame render_reference(const Scene& scene, const ReferenceSettings& set
   // truth snaps to its finer grid, its boxes every pixel the snapped box touches.
   const SamplePattern compute_samples = msaa_pattern(msaa ? settings.frame.samples : 1);
   const SampleGrid grid =
-      ground_truth ? SampleGrid{kTruthOne, nullptr} : SampleGrid{kSubpixelOne, &compute_samples};
+      ground_truth ? SampleGrid{kTruthOne, nullptr} : compute_grid(compute_samples);
   std::vector<RasterTriangle> tris;
   std::vector<AnalyticObject> analytic;
   for (const Instance& inst : instances) {

@@ -76,7 +76,7 @@ vec4 trilinear(uint tex, uint levels, vec2 uv, float lod) {
 // Its three calls of trilinear (coarsest level, one probe, several) and trilinear's two calls of
 // bilinear are inlined whole at each of the five sample_map calls (material.glsl) before
 // specialization removes the maps a pipeline leaves out. One call of each, in loops, built a
-// shading pipeline 0.2 s faster on lavapipe (0.70 against 0.90 s for a 16x16 render), but made
+// shading pipeline faster on lavapipe (a 16x16 render took 0.50 against 0.67 s), but made
 // the H200's shading pass 3 % and its hardware baseline 5.6 % slower on the textured scene:
 // kept as it is (docs/development.md, "Measured CI time").
 vec4 sample_texture(uint index, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
