@@ -78,6 +78,23 @@ Specialization shade_specialization(const ShadeVariant& v) {
           .light_counts = v.light_counts};
 }
 
+bool samples_texture_maps(const Specialization& values) {
+  return (values.texture_maps & ~TS_MAP_WRAP_MODES) != 0u;
+}
+
+// A driver translates a module whole before specialization folds away what a variant does not
+// run: lavapipe spent about 0.35 of a one-sample shading pipeline's 1.3 CPU seconds on the
+// multi-sample path when both were one module (shade.comp), and a one-sample pipeline of a
+// scene without maps built in about 80 ms from a module without texture code against 500 with
+// it (docs/development.md, "Measured CI time").
+std::string shader_module(std::string_view shader, const Specialization& values) {
+  std::string name(shader == "shade" && values.samples > 1 ? "shade_samples" : shader);
+  if (!samples_texture_maps(values) && !find_shader(name + "_untextured").empty()) {
+    name += "_untextured";
+  }
+  return name;
+}
+
 namespace {
 
 // The context's layouts, created on first use. The cache's mutex must be held.
@@ -163,15 +180,6 @@ void print_pipeline_statistics(const Context& ctx, VkPipeline pipeline, std::str
     }
     std::fprintf(stderr, "%s\n", line.c_str());
   }
-}
-
-// The embedded module a pipeline of `shader` is built from: the shading pass's pipelines at
-// several samples per pixel come from shade_samples.comp, the others from the shader's own
-// file. A driver translates the module whole before specialization folds away what a variant
-// does not run: lavapipe spent about 0.35 of a one-sample shading pipeline's 1.3 CPU seconds
-// on the multi-sample path when both were one module (shade.comp).
-std::string_view shader_module(std::string_view shader, const Specialization& values) {
-  return shader == "shade" && values.samples > 1 ? "shade_samples" : shader;
 }
 
 VkPipeline build_compute_pipeline(const Context& ctx, VkPipelineLayout layout,

@@ -88,6 +88,17 @@ struct ShadeVariant {
 /// baseline's fragment shader, which includes the same lighting code).
 Specialization shade_specialization(const ShadeVariant& variant);
 
+/// The embedded module a pipeline of `shader` specialized to `values` is built from
+/// (shaders/shader_registry.h): the shading pass at several samples per pixel from
+/// shade_samples.comp, and a shader with a module built without texture-map code
+/// ("<name>_untextured", shaders/CMakeLists.txt) from that one when `values` samples no map.
+/// Modules without a variant are their shader's own.
+std::string shader_module(std::string_view shader, const Specialization& values);
+
+/// True if a pipeline specialized to `values` samples a texture map (a TS_MAP_* map bit of
+/// Specialization::texture_maps; TS_MAP_WRAP_MODES alone samples none).
+bool samples_texture_maps(const Specialization& values);
+
 /// The map entries of every Specialization member to its constant id (TS_SPEC_*), for
 /// VkSpecializationInfo with a Specialization as data.
 std::vector<VkSpecializationMapEntry> specialization_entries();

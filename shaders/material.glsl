@@ -11,6 +11,12 @@ layout(constant_id = TS_SPEC_TEXTURE_MAPS) const uint TEXTURE_MAPS = TS_MAP_ALL;
 // specialized to a scene: the maps its materials read with set 1, usually none, which leaves
 // out set 1's fetch and interpolation.
 layout(constant_id = TS_SPEC_UV1_MAPS) const uint UV1_MAPS = TS_MAP_ALL;
+// 0 in the modules built for pipelines whose TEXTURE_MAPS holds no map (shade_untextured and
+// the others of shaders/CMakeLists.txt's VARIANTS): they hold no texture code at all, because a
+// driver may translate and inline all of it before specialization would remove it.
+#ifndef TS_TEXTURE_MAP_CODE
+#define TS_TEXTURE_MAP_CODE 1
+#endif
 
 #include "texture.glsl"
 #include "brdf.glsl"
@@ -99,6 +105,7 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
   // sampled every map and applied each map's result five times a pixel: the textured scene's
   // graphics frame ran 814 M instructions with the loop against 650 M with these calls, which
   // cost about 50 ms more to build (docs/development.md, "Measured CI time").
+#if TS_TEXTURE_MAP_CODE
   if (has_map(TS_MAP_BASE_COLOR, m.base_color_map)) {
     s.base_color *= sample_map(m, TS_MAP_BASE_COLOR, m.base_color_map, g).rgb;
   }
@@ -117,6 +124,7 @@ MaterialSample evaluate_material(uint index, SurfaceGeometry g, vec3 V) {
     vec3 local = sample_map(m, TS_MAP_NORMAL, m.normal_map, g).rgb * 2.0 - 1.0;
     s.N = apply_normal_map(g, local, m.normal_scale, V);
   }
+#endif
   s.pixel = metallic_roughness_params(s.base_color, metallic, roughness);
   return s;
 }

@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 
 #include "compute/baselines/brdf_probe.h"
+#include "compute/pipelines.h"
 #include "core/builtin_scenes.h"
 #include "core/image_metrics.h"
 #include "core/reference_renderer.h"
+#include "shaders/shader_registry.h"
 #include "tests/accuracy_support.h"
 #include "tests/vulkan_fixture.h"
 
@@ -203,6 +205,41 @@ TEST_F(Shading, EmissiveAndOccludedMaterialsAgreeWithTheReference) {
   test::AccuracyReport r =
       test::compare_with_reference(context(), scene, 320, 200, "emissive_occlusion");
   test::expect_meets_bars(r);
+}
+
+// A pipeline whose scene samples no texture map is built from a module compiled without the
+// texture code (lavapipe translates and inlines a module whole before specialization would
+// remove it); every other from the shader's own. The images are the same:
+// SpecializedAndGenericShadingGiveTheSameImage below compares the generic pipeline (every map,
+// the textured module) with the specialized one (no map, the untextured module) on four scenes
+// without maps, and the golden images did not change.
+TEST(ShaderModules, ScenesWithoutMapsBuildFromModulesWithoutTextureCode) {
+  Specialization none;
+  none.texture_maps = 0;
+  EXPECT_EQ(shader_module("shade", none), "shade_untextured");
+  EXPECT_EQ(shader_module("raster_shade", none), "raster_shade_untextured");
+  EXPECT_EQ(shader_module("setup", none), "setup");  // no texture code, no variant
+  Specialization wrap_modes_only = none;
+  wrap_modes_only.texture_maps = TS_MAP_WRAP_MODES;  // a mode of no sampled map: nothing to sample
+  EXPECT_EQ(shader_module("shade", wrap_modes_only), "shade_untextured");
+  Specialization samples = none;
+  samples.samples = 4;
+  EXPECT_EQ(shader_module("shade", samples), "shade_samples_untextured");
+
+  Specialization normal_map = none;
+  normal_map.texture_maps = TS_MAP_NORMAL;
+  EXPECT_EQ(shader_module("shade", normal_map), "shade");
+  normal_map.samples = 4;
+  EXPECT_EQ(shader_module("shade", normal_map), "shade_samples");
+  EXPECT_EQ(shader_module("shade", Specialization{}), "shade");  // generic: every map
+
+  // The variants hold less code: the texture functions are gone, not merely unreached.
+  for (const char* name : {"shade", "shade_samples", "raster_shade"}) {
+    const size_t textured = find_shader(name).size();
+    const size_t untextured = find_shader(std::string(name) + "_untextured").size();
+    EXPECT_GT(untextured, 0u) << name;
+    EXPECT_LT(untextured, textured * 9 / 10) << name;
+  }
 }
 
 TEST_F(Shading, SpecializedAndGenericShadingGiveTheSameImage) {

@@ -173,7 +173,9 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
     if (!pipeline) {
       const GraphicsPipelineDesc desc{
           "baseline_shade_vert",
-          "baseline_shade_frag",
+          // Without texture-map code where no map is sampled (shader_module says why).
+          samples_texture_maps(frame.shading) ? "baseline_shade_frag"
+                                              : "baseline_shade_frag_untextured",
           false,
           VkCullModeFlags(double_sided                    ? VK_CULL_MODE_NONE
                           : frame.cull == CullMode::back  ? VK_CULL_MODE_BACK_BIT
@@ -182,8 +184,7 @@ BaselineStats HardwareBaseline::render(const FrameSettings& settings) {
           VK_COMPARE_OP_GREATER,  // reverse depth: nearer is larger
           VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
               VK_COLOR_COMPONENT_A_BIT,
-          mirrored == 1,
-          frame.shading};
+          mirrored == 1, frame.shading};
       pipeline = create_graphics_pipeline(ctx, pass_, frame.layout, desc);
     }
     pipelines[v] = pipeline;
