@@ -1136,8 +1136,19 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
     throw Error(name + ":" + e.what());
   }
   TESSERA_CHECK(!root.is_discarded());
-  reader.read({&root, "", ""});
-  validate_read(reader, name);
+  try {
+    reader.read({&root, "", ""});
+    validate_read(reader, name);
+  } catch (const Error& e) {
+    // An unknown key read before the error may be its cause ("materal" for "materials", whose
+    // absence the error is about): its warning, with the "did you mean", would otherwise be
+    // lost with the scene that held it.
+    std::string message = e.what();
+    for (const std::string& w : out.warnings) {
+      if (w.find("unknown key") != std::string::npos) message += "\n  " + w;
+    }
+    throw Error(message);
+  }
   for (size_t k = 0; k < out.scene.lights.size(); ++k) {
     const std::string* source = source_of(reader.light_sources, k);
     out.light_places.push_back(source ? *source : name + ": ");

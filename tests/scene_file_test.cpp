@@ -441,6 +441,24 @@ TEST(SceneFile, UnknownKeysSuggestTheNearestKnownOne) {
             std::string::npos);
 }
 
+// A misspelt key whose absence makes the file fail ("materal": the object's material is then
+// unknown) keeps its "did you mean" in the error, which would otherwise drop the warning (a
+// fresh user's trial saw only the error).
+TEST(SceneFile, AnErrorKeepsTheUnknownKeysReadBeforeIt) {
+  const std::string message = load_error(R"({
+  "meshes": [{"name": "ball", "type": "sphere"}],
+  "materal": [{"name": "m"}],
+  "objects": [{"mesh": "ball", "material": "m"}]
+})");
+  EXPECT_NE(message.find("objects[0].material"), std::string::npos) << message;
+  EXPECT_NE(message.find("\n  test.json:3:3: materal: unknown key 'materal', did you mean "
+                         "'materials'? (ignored)"),
+            std::string::npos)
+      << message;
+  // An error with no unknown key before it is unchanged.
+  EXPECT_EQ(load_error(R"({"objects": [{"mesh": "ball"}]})").find('\n'), std::string::npos);
+}
+
 // The BRDF is spelt blinn_phong in scene files and blinn-phong on the command line; each place
 // takes both (a new user's trial wrote the command line's).
 TEST(SceneFile, ChoicesTakeHyphenOrUnderscore) {
