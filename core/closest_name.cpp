@@ -28,10 +28,12 @@ size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string closest_name(std::string_view word, std::initializer_list<const char*> known) {
+namespace {
+template <typename Names>
+std::string nearest(std::string_view word, const Names& known) {
   std::string best;
   size_t best_distance = 3;  // more than the 2 edits allowed
-  for (const char* name : known) {
+  for (const auto& name : known) {
     const std::string_view k(name);
     const size_t d = edit_distance(word, k);
     if (d < best_distance && 3 * d <= std::max(word.size(), k.size())) {
@@ -40,6 +42,15 @@ std::string closest_name(std::string_view word, std::initializer_list<const char
     }
   }
   return best;
+}
+}  // namespace
+
+std::string closest_name(std::string_view word, std::initializer_list<const char*> known) {
+  return nearest(word, known);
+}
+
+std::string closest_name(std::string_view word, const std::vector<std::string>& known) {
+  return nearest(word, known);
 }
 
 }  // namespace tessera

@@ -4,6 +4,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tessera {
 
@@ -15,5 +16,6 @@ size_t edit_distance(std::string_view a, std::string_view b);
 /// another word: at most 2 edits, and at most a third of the longer of the two ("light" gives
 /// "lights"; "fov" gives nothing for "position"). The first of equally near ones; "" for none.
 std::string closest_name(std::string_view word, std::initializer_list<const char*> known);
+std::string closest_name(std::string_view word, const std::vector<std::string>& known);
 
 }  // namespace tessera

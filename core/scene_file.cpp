@@ -984,7 +984,14 @@ void Reader::read_render(const Node& n) {
 void Reader::read(const Node& root) {
   object(root, {"version", "description", "camera", "lights", "textures", "materials", "meshes",
                 "models", "objects", "environment", "background", "ambient", "render"});
-  if (has(root, "version")) integer(child(root, "version"), 1, 1);
+  if (has(root, "version")) {
+    // "2 is outside [1, 1]" read oddly for the one format there is.
+    const Node version = child(root, "version");
+    if (version.json->is_number() && version.json->get<double>() != 1.0)
+      fail(version, "format version " + version.json->dump() +
+                        " is not one this Tessera reads (version 1 only)");
+    integer(version, 1, 1);
+  }
   if (has(root, "description")) out.description = string(child(root, "description"));
   // Declarations before uses: textures, materials, meshes, models, then objects.
   if (has(root, "textures"))

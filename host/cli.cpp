@@ -9,6 +9,7 @@
 #include "compute/renderer.h"
 #include "core/bench_scenes.h"
 #include "core/builtin_scenes.h"
+#include "core/closest_name.h"
 #include "core/mapped_file.h"
 #include "host/cli_values.h"
 #include "host/scene_source.h"
@@ -733,9 +734,17 @@ void reject_extras(const CLI::App& command, const std::string& help_command) {
   const std::vector<std::string> extras = command.remaining();
   if (extras.empty()) return;
   const std::string& first = extras.front();
-  throw UsageError(first.starts_with("-") ? "unknown option '" + first + "'"
-                                          : "unexpected argument '" + first + "'",
-                   help_command);
+  if (!first.starts_with("-"))
+    throw UsageError("unexpected argument '" + first + "'", help_command);
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+  }
+  const std::string given = first.substr(0, first.find('='));  // --name=value
+  const std::string near = closest_name(given, names);
+  throw UsageError(
+      "unknown option '" + first + "'" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
+      help_command);
 }
 
 // CLI11 drops the empty entries of a comma-separated list ("1,,2" reads as 1 and 2): a slip in
@@ -789,9 +798,10 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   }
   const bool asks_help = command == "--help" || command == "-h" || command == "help";
   if (!asks_help && std::find(kCommands.begin(), kCommands.end(), command) == kCommands.end()) {
-    throw UsageError(
-        (command.starts_with("-") ? "unknown option '" : "unknown command '") + command + "'",
-        "tessera --help");
+    const std::string near = command.starts_with("-") ? "" : closest_name(command, kCommands);
+    throw UsageError((command.starts_with("-") ? "unknown option '" : "unknown command '") +
+                         command + "'" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
+                     "tessera --help");
   }
 
   CommandLine line;

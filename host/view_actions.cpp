@@ -291,8 +291,9 @@ void write_scene(const Viewer& v, const std::string& path) {
 void save(Viewer& v, std::string path, bool to_own_file) {
   if (to_own_file && !v.history.dirty()) {
     // Saving rewrites the file in the generated form: never without a reason.
+    // A built-in scene or a model has no file of the session's name until its first save.
     log(v, "nothing to save: no edits since the scene was loaded or saved (" + path +
-               " left as it is)");
+               (std::filesystem::exists(path) ? " left as it is)" : " not written)"));
     return;
   }
   // A built-in scene not saved yet: NAME.json in the working folder, unless a file of that

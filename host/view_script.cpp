@@ -148,7 +148,8 @@ InputEvent parse_event(Line& line) {
     e.key = key_code(name);
     if (e.key < 0) {
       line.fail("unknown key '" + name +
-                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down, Home)");
+                "' (A..Z, 0..9, F1..F12, Delete, Escape, Space, Left, Right, Up, Down, Home; "
+                "modifiers follow the key: `key Z ctrl`)");
     }
     line.modifiers(e, true);
   } else if (kind == "drag") {

@@ -286,6 +286,10 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"render", "--repeat", "0"}, "--repeat: expects a whole number from 1 to 1000"},
       {{"render", "--repeat", "1.5"}, "--repeat: expects a whole number"},
       {{"render", "--frobnicate"}, "unknown option '--frobnicate'"},
+      // A slip of one or two letters gets the option or command it is nearest to.
+      {{"render", "--sise", "64x64"}, "unknown option '--sise', did you mean '--size'?"},
+      {{"render", "--sampels=4"}, "unknown option '--sampels=4', did you mean '--samples'?"},
+      {{"rendr"}, "unknown command 'rendr', did you mean 'render'?"},
       {{"render", "extra"}, "unexpected argument 'extra'"},
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},

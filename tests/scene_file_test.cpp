@@ -441,6 +441,19 @@ TEST(SceneFile, UnknownKeysSuggestTheNearestKnownOne) {
             std::string::npos);
 }
 
+// A format version other than 1 is named as such (it read "2 is outside [1, 1]").
+TEST(SceneFile, OtherFormatVersionsAreRefusedByName) {
+  EXPECT_EQ(load_error(R"({"version": 2})"),
+            "test.json:1:13: version: format version 2 is not one this Tessera reads (version 1 "
+            "only)");
+  EXPECT_EQ(load_error(R"({"version": 1.5})"),
+            "test.json:1:13: version: format version 1.5 is not one this Tessera reads (version "
+            "1 only)");
+  EXPECT_NE(load_error(R"({"version": "1"})").find("version: must be an integer"),
+            std::string::npos);
+  EXPECT_EQ(load_error(R"({"version": 1})"), "");
+}
+
 // A misspelt key whose absence makes the file fail ("materal": the object's material is then
 // unknown) keeps its "did you mean" in the error, which would otherwise drop the warning (a
 // fresh user's trial saw only the error).

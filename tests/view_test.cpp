@@ -353,7 +353,8 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
               std::to_string(int(y)) + "\n";
     expected.push_back(i);
   }
-  script += "9 click 0 0\n10 exit\n";  // the background
+  // The background, then a save without edits (a selection is none): no file is written.
+  script += "9 click 0 0\n9 key S ctrl\n10 exit\n";
   // In a folder of its own: notes of autosaves left where tests run would name them here.
   const ViewRun run =
       run_view(script, "--scene spheres --size 160x120 --overlay off", true, fresh_folder());
@@ -362,6 +363,10 @@ TEST_F(View, ClickSelectsTheObjectUnderThePixel) {
   ASSERT_EQ(selected.size(), expected.size()) << run.output;
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(selected[i], expected[i]);
   EXPECT_NE(run.output.find("click at 0 0: nothing under the cursor"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("nothing to save: no edits since the scene was loaded or saved "
+                            "(spheres.json not written)"),
+            std::string::npos)
       << run.output;
   EXPECT_EQ(run.output.find("-1"), std::string::npos) << run.output;
 }
