@@ -57,6 +57,13 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
                                        const RendererOptions& options,
                                        const Scene* scene = nullptr);
 
+/// A warning where the ground truth (`truth_samples` x `truth_samples` samples per pixel) has
+/// no more samples than a setting of `knobs` (from `frame`) measures: those settings' errors
+/// then measure the truth's own coverage error as much as theirs (a new user's trial saw 16
+/// samples ranked worse than 4 against a 4 x 4 truth). "" where the truth has more.
+std::string coarse_truth_warning(const std::vector<std::string>& knobs, const FrameSettings& frame,
+                                 uint32_t truth_samples);
+
 /// The tessellation of the spheres (meshes with Mesh::analytic_sphere) the objects of `scene`
 /// draw, as the tessellation knob's settings name theirs: "64 slices" (a uv sphere of 64
 /// segments and 32 stacks), "64 slices, 20 stacks", "icosphere level 3", "960 triangles" (a

@@ -20,6 +20,9 @@ int run_tradeoff(const TradeoffArgs& args, const std::string& command_line) {
   for (const std::string& knob : args.knobs) knob_settings(knob, args.frame, {});
   // The scene before the device, as `tessera render`: its faults are found without one.
   const TradeoffScene scene = load_tradeoff_scene(args);
+  if (const std::string coarse = coarse_truth_warning(args.knobs, args.frame, args.truth_samples);
+      !coarse.empty() && !args.quiet)
+    std::fprintf(stderr, "tessera: warning: %s\n", coarse.c_str());
   if (scene.skipped.size() == args.knobs.size()) {
     std::string why;
     for (const SkippedKnob& s : scene.skipped) why += "\n  " + s.knob + ": " + s.reason;

@@ -84,6 +84,25 @@ std::string known_knobs() {
 
 }  // namespace
 
+std::string coarse_truth_warning(const std::vector<std::string>& knobs, const FrameSettings& frame,
+                                 uint32_t truth_samples) {
+  uint32_t most = frame.samples;
+  for (const std::string& knob : knobs) {
+    for (const KnobSetting& s : knob_settings(knob, frame, {}))
+      most = std::max(most, s.frame.samples);
+  }
+  const uint32_t truth = truth_samples * truth_samples;
+  if (most <= 1 || truth > most) return "";
+  uint32_t enough = truth_samples;
+  while (enough * enough <= most) ++enough;
+  return "the ground truth takes " + std::to_string(truth_samples) + " x " +
+         std::to_string(truth_samples) + " = " + std::to_string(truth) +
+         " samples per pixel, no more than the " + std::to_string(most) +
+         " of the settings measured at the most: their edge errors are the truth's as much as "
+         "theirs (give --truth-samples " +
+         std::to_string(enough) + " or more)";
+}
+
 std::string knob_cannot_matter(const std::string& knob, const Scene& scene,
                                const FrameSettings& frame) {
   if (knob == "brdf" && scene.lights.empty() && !scene.environment) {

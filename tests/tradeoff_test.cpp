@@ -234,6 +234,23 @@ TEST(Tradeoff, TessellationDefaultNamesTheScenesSpheres) {
   EXPECT_EQ(knob_settings("tessellation", frame, options, &sixty_four).size(), 6u);
 }
 
+// The truth has N x N samples per pixel; settings with as many or more are measured against
+// a truth as coarse as they are, which is said (16 samples against the default 8 x 8 is not).
+TEST(Tradeoff, ATruthNoFinerThanTheSettingsIsWarnedOf) {
+  FrameSettings frame;
+  EXPECT_EQ(coarse_truth_warning({"samples"}, frame, 8), "");  // 64 > 16
+  EXPECT_EQ(coarse_truth_warning({"samples"}, frame, 5), "");  // 25 > 16
+  EXPECT_EQ(coarse_truth_warning({"samples"}, frame, 4),
+            "the ground truth takes 4 x 4 = 16 samples per pixel, no more than the 16 of the "
+            "settings measured at the most: their edge errors are the truth's as much as theirs "
+            "(give --truth-samples 5 or more)");
+  EXPECT_EQ(coarse_truth_warning({"brdf"}, frame, 1), "");  // one sample a pixel throughout
+  frame.samples = 4;                                        // --samples 4 (not a knob)
+  EXPECT_NE(coarse_truth_warning({"brdf"}, frame, 2).find("2 x 2 = 4 samples"), std::string::npos);
+  EXPECT_NE(coarse_truth_warning({"aa-coverage"}, frame, 2).find("--truth-samples 3"),
+            std::string::npos);
+}
+
 TEST(Tradeoff, TheTruthIsDescribedAsConfiguredForTheScene) {
   FrameSettings frame;
   frame.brdf = Brdf::classic;
