@@ -48,11 +48,17 @@ std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& a
     out += "not measured, as they cannot matter for this scene:\n";
     for (const SkippedKnob& s : results.skipped) out += "  " + s.knob + ": " + s.reason + "\n";
   }
+  // An interruption leaves some settings with fewer rounds; their rows say how many.
+  const bool fewer =
+      std::any_of(results.points.begin(), results.points.end(),
+                  [&](const TradeoffPoint& p) { return p.warmups.size() < args.rounds; });
   out += format(
-      "GPU ms: median of %u round%s x %u frame%s (min..max); errors against the truth: mean and\n"
-      "99th percentile relative error of linear radiance over all pixels and over the interior\n"
-      "(pixels the truth shows one object in), PSNR of the 8-bit image, silhouette error\n",
-      args.rounds, args.rounds == 1 ? "" : "s", args.repeat, args.repeat == 1 ? "" : "s");
+      "GPU ms: median of %u round%s%s x %u frame%s (min..max); errors against the truth: mean\n"
+      "and 99th percentile relative error of linear radiance over all pixels and over the\n"
+      "interior (pixels the truth shows one object in), PSNR of the 8-bit image, silhouette "
+      "error\n",
+      args.rounds, args.rounds == 1 ? "" : "s", fewer ? " (fewer where a row says so)" : "",
+      args.repeat, args.repeat == 1 ? "" : "s");
   // Every cell as text first, so that each column is as wide as its widest cell: a setting's
   // label ("4 samples, silhouette") or a time of several digits shifts no column after it.
   const std::vector<std::string> header = {"knob",       "setting",  "GPU ms",

@@ -377,6 +377,13 @@ TEST(Tradeoff, TableMarksAndTruthTime) {
   results.truth_seconds = 2.34;
   EXPECT_NE(tradeoff_table(results, args).find("truth: T (2.3 s of CPU wall time)\n"),
             std::string::npos);
+  // These rows have no rounds (as if interrupted before any): the header says so, and says
+  // nothing of it once every row has all of --rounds.
+  EXPECT_NE(table.find("median of 3 rounds (fewer where a row says so) x"), std::string::npos)
+      << table;
+  EXPECT_NE(row("8 px").find("(0 of 3 rounds)"), std::string::npos) << table;
+  for (TradeoffPoint& p : results.points) p.warmups.resize(args.rounds);
+  EXPECT_NE(tradeoff_table(results, args).find("median of 3 rounds x"), std::string::npos);
 }
 
 TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
