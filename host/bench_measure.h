@@ -26,7 +26,7 @@ struct BenchRow {
   uint32_t objects = 0;
   std::string backend;
   uint64_t triangles_submitted = 0;
-  uint64_t triangles_rasterized = 0;  // after culling and clipping (0: not known)
+  uint64_t triangles_rasterized = 0;  // after culling and clipping (the hardware path: not counted)
   uint64_t pixels_shaded = 0;
   uint64_t small_triangles = 0;   // compute: rasterized one thread per triangle
   uint64_t bin_entries = 0;       // compute: blocks of tiles of binned triangles

@@ -19,6 +19,7 @@
 #include "core/mesh.h"
 #include "core/warmup.h"
 #include "host/bench_compare.h"
+#include "host/bench_report.h"
 #include "host/cli.h"
 #include "tests/vulkan_fixture.h"
 
@@ -964,6 +965,25 @@ TEST(BenchCli, CompareWarnsOfAnInterruptedBase) {
   print_comparison(read_bench_json(whole), {}, {}, "hand");
   const std::string quiet = testing::internal::GetCapturedStdout();
   EXPECT_EQ(quiet.find("interrupted"), std::string::npos) << quiet;
+}
+
+// The table's rasterized count: "-" where it is not measured (the hardware path), "0" where
+// the compute path rasterized none (every triangle culled); it printed "-" for both.
+TEST(BenchCli, TableTellsAnUnmeasuredCountFromAZeroOne) {
+  BenchRow compute;
+  compute.objects = 1;
+  compute.backend = "compute";
+  compute.triangles_submitted = 960;
+  compute.triangles_rasterized = 0;
+  BenchRow hardware = compute;
+  hardware.backend = "hardware";
+  testing::internal::CaptureStdout();
+  print_bench_row(compute, BenchArgs{});
+  print_bench_row(hardware, BenchArgs{});
+  const std::string out = testing::internal::GetCapturedStdout();
+  const std::string first = out.substr(0, out.find('\n')), second = out.substr(out.find('\n'));
+  EXPECT_NE(first.find(" compute        960          0 "), std::string::npos) << out;
+  EXPECT_NE(second.find(" hardware        960          - "), std::string::npos) << out;
 }
 
 TEST(BenchCli, CompareFlagPrintsOldNewAndRatio) {
