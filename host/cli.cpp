@@ -41,6 +41,7 @@ void check_scene_file_exists(const std::string& path) {
                 "' is a folder, not a scene file (.json) or model (.gltf, .glb, .obj)");
   if (std::filesystem::exists(path, ec)) {
     require_regular_file(path);
+    check_scene_file_format(path);
     return;
   }
   std::string message = "no file '" + path + "'";

@@ -1,5 +1,6 @@
 #include "host/scene_source.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -79,16 +80,30 @@ std::vector<std::string> known_scene_names() {
   return {names.begin(), names.end()};
 }
 
+namespace {
+Error unsupported_format(const std::string& path) {
+  return Error("'" + path +
+               "' is a file of a format Tessera does not read: give a scene file (.json) or a "
+               "model (.gltf, .glb or .obj)");
+}
+}  // namespace
+
+void check_scene_file_format(const std::string& path) {
+  if (has_extension(path, ".json") || is_model_path(path)) return;
+  if (fs::path(path).extension().empty()) return;
+  std::ifstream in(path, std::ios::binary);
+  char c = 0;
+  while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+  }
+  if (!in || c != '{') throw unsupported_format(path);
+}
+
 void check_scene_name(const std::string& name) {
   if (is_builtin_scene(name) || is_named_scene(name)) return;
   // A file of a format Tessera does not read ("box.fbx" in the working folder) is not a
   // misspelt scene name: say what it reads.
   std::error_code ec;
-  if (fs::is_regular_file(name, ec)) {
-    throw Error("'" + name +
-                "' is a file of a format Tessera does not read: give a scene file (.json) or a "
-                "model (.gltf, .glb or .obj)");
-  }
+  if (fs::is_regular_file(name, ec)) throw unsupported_format(name);
   std::string known;
   for (const std::string& n : known_scene_names()) known += (known.empty() ? "" : ", ") + n;
   throw Error("unknown scene '" + name + "' (known scenes: " + known + "; or a scene file's path)");

@@ -38,6 +38,12 @@ std::vector<std::string> known_scene_names();
 /// `name` is one of them.
 void check_scene_name(const std::string& name);
 
+/// Throws Error "'PATH' is a file of a format Tessera does not read: ..." for a file `path`
+/// whose extension is neither .json nor a model's (is_model_path) and whose first
+/// non-blank character is not a JSON object's '{' ("models/box.fbx"); an extensionless or
+/// .txt file holding a scene is read as one. `path` must name a readable regular file.
+void check_scene_file_format(const std::string& path);
+
 /// True if `argument` names a model file an importer reads: it ends in .gltf, .glb or .obj.
 bool is_model_path(const std::string& argument);
 

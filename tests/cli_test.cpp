@@ -626,6 +626,22 @@ TEST(Cli, MissingSceneFileIsABadCommandLine) {
                      "read: give a scene file (.json) or a model (.gltf, .glb or .obj)"),
             std::string::npos)
       << out;
+  // The same with a folder in the path (it was read as a scene file: a JSON syntax error).
+  const std::string fbx = test::output_path("box.fbx");
+  EXPECT_EQ(test::run_command(tool() + " render --scene " + fbx, out), 2);
+  EXPECT_NE(out.find("tessera: error: --scene: '" + fbx + "' is a file of a format Tessera"),
+            std::string::npos)
+      << out;
+  // A scene file by another extension is still read as one.
+  const std::string txt = test::output_path("ball_scene.txt");
+  std::ofstream(txt)
+      << R"( {"meshes": [{"name": "m", "type": "sphere"}], "materials": [{"name": "red"}],
+    "objects": [{"mesh": "m", "material": "red"}]})";
+  EXPECT_EQ(test::run_command(tool() + " render --device lavapipe --size 8x8 --scene " + txt +
+                                  " --out " + test::output_path("ball_scene.png"),
+                              out),
+            0)
+      << out;
 }
 
 // `--device gpu` where only CPU devices are present (as here, on lavapipe) says so and names the
