@@ -127,6 +127,10 @@ struct Reader {
   std::vector<std::pair<size_t, std::string>> light_sources;
   std::string camera_source;
 
+  // The unknown-key warnings (also in out.warnings): an error thrown later carries them, as
+  // such a key is often its cause.
+  std::vector<std::string> unknown_keys;
+
   // Set for load_model_scene, whose scene text no one wrote: a place in it would mislead, and
   // the messages of a model's parts name the model file and their place in it already.
   bool model_only = false;
@@ -198,6 +202,7 @@ struct Reader {
                                   (near.empty() ? "" : ", did you mean '" + near + "'?");
       if (options.strict) throw Error(message + " (an error with --strict)");
       out.warnings.push_back(message + " (ignored)");
+      unknown_keys.push_back(out.warnings.back());
     }
   }
   std::vector<Node> array(const Node& n) const {
@@ -1151,9 +1156,7 @@ SceneFile load_scene_text(const std::string& text, const std::string& name,
     // absence the error is about): its warning, with the "did you mean", would otherwise be
     // lost with the scene that held it.
     std::string message = e.what();
-    for (const std::string& w : out.warnings) {
-      if (w.find("unknown key") != std::string::npos) message += "\n  " + w;
-    }
+    for (const std::string& w : reader.unknown_keys) message += "\n  " + w;
     throw Error(message);
   }
   for (size_t k = 0; k < out.scene.lights.size(); ++k) {
