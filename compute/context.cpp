@@ -302,6 +302,7 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
 
   ctx->physical_device = choose_device(ctx->instance, options.device);
   vkGetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
+  ctx->polygons_in_registers = ctx->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory_properties);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceMaintenance3Properties maintenance3{

@@ -70,6 +70,14 @@ struct Context {
   /// driver's statistics of its code (registers, spills, ...) to stderr. A developer's
   /// diagnostic (docs/development.md, "Pipeline statistics").
   bool pipeline_statistics = false;
+  /// How the shaders keep the polygons they clip to the view and cut by pixel edges
+  /// (view_clip.glsl, coverage.glsl; TS_SPEC_POLYGONS_IN_REGISTERS): walked as queues whose
+  /// arrays only constants index (true: set for CPU devices, whose compiler then keeps them in
+  /// registers and compiles the coverage code about three times as fast), or indexed by corner
+  /// (false: GPUs, which run that up to 18 % faster). Both give the same bits. Read when a
+  /// pipeline is built: changing it builds pipelines of the other form from then on (tests
+  /// compare the two).
+  bool polygons_in_registers = false;
   /// Set (note_render_pass, compute/timestamps.h) once a render pass has been recorded on the
   /// queue: lavapipe then defers timestamps, and write_timestamp makes up for it. Mutable: the
   /// graphics baselines and the window's overlay record through a const Context.

@@ -64,6 +64,8 @@ struct Specialization {
   uint32_t shade_tiles = TS_SHADE_TILES_OFF;  // RendererOptions::shade_tiles (TS_SHADE_TILES_*)
   VkBool32 object_clip_inline = VK_FALSE;     // setup, in frames without the object_clip pass
   VkBool32 raster_only = VK_FALSE;  // setup, in frames that rasterize and shade in one pass
+  // Set by create_compute_pipeline from Context::polygons_in_registers, for every pipeline.
+  VkBool32 polygons_in_registers = VK_FALSE;
   std::array<uint32_t, TS_LIGHT_KIND_COUNT> light_counts{};  // by TS_LIGHT_* kind
 };
 

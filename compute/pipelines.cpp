@@ -46,7 +46,9 @@ std::vector<VkSpecializationMapEntry> specialization_entries() {
       {TS_SPEC_SILHOUETTE_STEPS, offsetof(Specialization, silhouette_steps), sizeof(uint32_t)},
       {TS_SPEC_SHADE_TILES, offsetof(Specialization, shade_tiles), sizeof(uint32_t)},
       {TS_SPEC_OBJECT_CLIP_INLINE, offsetof(Specialization, object_clip_inline), sizeof(VkBool32)},
-      {TS_SPEC_RASTER_ONLY, offsetof(Specialization, raster_only), sizeof(VkBool32)}};
+      {TS_SPEC_RASTER_ONLY, offsetof(Specialization, raster_only), sizeof(VkBool32)},
+      {TS_SPEC_POLYGONS_IN_REGISTERS, offsetof(Specialization, polygons_in_registers),
+       sizeof(VkBool32)}};
   for (uint32_t kind = 0; kind < TS_LIGHT_KIND_COUNT; ++kind) {
     entries.push_back({TS_SPEC_LIGHT_COUNT_BASE + kind,
                        uint32_t(offsetof(Specialization, light_counts) + kind * sizeof(uint32_t)),
@@ -218,6 +220,7 @@ std::string pipeline_key(std::string_view shader, const Specialization& values) 
 
 bool has_compute_pipeline(const Context& ctx, std::string_view shader, Specialization values) {
   TESSERA_CHECK(ctx.pipeline_cache);
+  values.polygons_in_registers = ctx.polygons_in_registers ? VK_TRUE : VK_FALSE;
   PipelineCache& cache = *ctx.pipeline_cache;
   const std::string key = pipeline_key(shader, values);
   std::lock_guard lock(cache.mutex);
@@ -228,6 +231,7 @@ bool has_compute_pipeline(const Context& ctx, std::string_view shader, Specializ
 VkPipeline create_compute_pipeline(const Context& ctx, std::string_view shader,
                                    Specialization values) {
   TESSERA_CHECK(ctx.pipeline_cache);
+  values.polygons_in_registers = ctx.polygons_in_registers ? VK_TRUE : VK_FALSE;
   PipelineCache& cache = *ctx.pipeline_cache;
   const std::string key = pipeline_key(shader, values);
   std::lock_guard lock(cache.mutex);

@@ -10,17 +10,6 @@
 // planes): each cut adds at most one corner to the 4.
 const int COVERAGE_CORNERS = 12;
 
-// Outline coverage of pixel `pixel` by triangle instance `id`, the one triangle its samples
-// see, `empty` (one bit per sample) the others: the area (px^2, 0..1) of the pixel square
-// inside the lines of the triangle's outline edges, those with an empty sample on or beyond
-// them and no covered sample beyond (the edge separates what the pixel's samples see of the
-// surface from the background: taken as where the surface ends). Its other edges do not cut:
-// the surface continues across them. Returns -1 if no edge is an outline edge, 0 for a
-// triangle with no area. The triangle is rebuilt as the rasterizer saw it: clipped to the
-// near plane and guard band as the clip pass does, its corners snapped as setup snaps them,
-// taken relative to the pixel in integers, so each sample is tested against each edge with
-// the rasterizer's exact integer edge function. The square is cut by Sutherland & Hodgman
-// (1974, "Reentrant polygon clipping") and measured by the shoelace formula.
 // Triangle instance `id` of object slot `slot` as the rasterizer saw it, relative to pixel
 // `pixel`: clipped to the near plane and guard band as the clip pass does, its corners snapped
 // as setup snaps them, in 1/TS_SUBPIXEL_ONE px. Returns the number of corners (0..9);
@@ -31,15 +20,55 @@ int pixel_corners(uint slot, uint id, ivec2 pixel, out ivec2 corner[9], out int6
   vec4 clipped[9];
   int n = clip_to_view(c, clipped);
   twice_area = 0l;
-  for (int k = 0; k < n; ++k) corner[k] = snap_to_subpixels(clipped[k]) - pixel * TS_SUBPIXEL_ONE;
-  for (int k = 0; k < n; ++k) twice_area += edge_function(ivec2(0), corner[k], corner[(k + 1) % n]);
+  if (!POLYGONS_IN_REGISTERS) {
+    for (int k = 0; k < n; ++k) corner[k] = snap_to_subpixels(clipped[k]) - pixel * TS_SUBPIXEL_ONE;
+    for (int k = 0; k < n; ++k) twice_area += edge_function(ivec2(0), corner[k], corner[(k + 1) % n]);
+    return n;
+  }
+  // Constant indices only: the loops unroll; the unused corners are zero.
+  for (int k = 0; k < 9; ++k) {
+    corner[k] = ivec2(0);
+    if (k < n) corner[k] = snap_to_subpixels(clipped[k]) - pixel * TS_SUBPIXEL_ONE;
+  }
+  for (int k = 0; k < 9; ++k) {
+    if (k < n) twice_area += edge_function(ivec2(0), corner[k], k + 1 < n ? corner[min(k + 1, 8)] : corner[0]);
+  }
   return n;
 }
 
-// Cuts the convex polygon `region` (m corners, in pixels) by the line of the edge a -> b (in
-// 1/TS_SUBPIXEL_ONE px), keeping the side sign * cross(b - a, p - a) >= 0: one step of
-// Sutherland & Hodgman (1974, "Reentrant polygon clipping"). Returns the corners left.
-int cut_by_edge(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, int64_t sign) {
+// The edge from the first of the corners `corner` to the next, or to `first` (the polygon's
+// first corner) if `remaining` is 1, for POLYGONS_IN_REGISTERS: a polygon's corners taken as a
+// queue, the first returned and the others moved up, so that only constants index `corner`.
+void pop_edge(inout ivec2 corner[9], int remaining, ivec2 first, out ivec2 a, out ivec2 b) {
+  a = corner[0];
+  b = remaining > 1 ? corner[1] : first;
+  for (int j = 0; j < 8; ++j) corner[j] = corner[j + 1];
+}
+
+// Appends `v` to the queue `q`, whose corners are kept at its end, the newest last.
+void push_back(inout vec2 q[COVERAGE_CORNERS], vec2 v) {
+  for (int j = 0; j + 1 < COVERAGE_CORNERS; ++j) q[j] = q[j + 1];
+  q[COVERAGE_CORNERS - 1] = v;
+}
+
+// Rotates `q` left by `places`, a constant where it is called (so is every index).
+void rotate_left(inout vec2 q[COVERAGE_CORNERS], int places) {
+  vec2 t[COVERAGE_CORNERS] = q;
+  for (int j = 0; j < COVERAGE_CORNERS; ++j) q[j] = t[(j + places) % COVERAGE_CORNERS];
+}
+
+// Moves the last `count` corners of `q` to its front, in order: a rotation by
+// COVERAGE_CORNERS - count places, made of rotations by 8, 4, 2 and 1.
+void rotate_to_front(inout vec2 q[COVERAGE_CORNERS], int count) {
+  int shift = COVERAGE_CORNERS - count;
+  if ((shift & 8) != 0) rotate_left(q, 8);
+  if ((shift & 4) != 0) rotate_left(q, 4);
+  if ((shift & 2) != 0) rotate_left(q, 2);
+  if ((shift & 1) != 0) rotate_left(q, 1);
+}
+
+// cut_by_edge with the polygons indexed by the corner.
+int cut_by_edge_indexed(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, int64_t sign) {
   vec2 fa = vec2(a) / float(TS_SUBPIXEL_ONE);
   vec2 ab = vec2(b - a) / float(TS_SUBPIXEL_ONE) * float(sign);
   vec2 next[COVERAGE_CORNERS];
@@ -56,8 +85,48 @@ int cut_by_edge(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, in
   return count;
 }
 
+// cut_by_edge with the polygons walked as queues (constant indices only): the same steps.
+int cut_by_edge_queued(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, int64_t sign) {
+  vec2 fa = vec2(a) / float(TS_SUBPIXEL_ONE);
+  vec2 ab = vec2(b - a) / float(TS_SUBPIXEL_ONE) * float(sign);
+  vec2 first = region[0];
+  vec2 next[COVERAGE_CORNERS];
+  for (int j = 0; j < COVERAGE_CORNERS; ++j) next[j] = vec2(0.0);
+  int count = 0;
+  for (int j = 0; j < m; ++j) {
+    vec2 p = region[0];
+    vec2 q = j + 1 < m ? region[1] : first;
+    for (int i = 0; i + 1 < COVERAGE_CORNERS; ++i) region[i] = region[i + 1];
+    float dp = ab.x * (p.y - fa.y) - ab.y * (p.x - fa.x);
+    float dq = ab.x * (q.y - fa.y) - ab.y * (q.x - fa.x);
+    if (dp >= 0.0) {
+      push_back(next, p);
+      count++;
+    }
+    if ((dp >= 0.0) != (dq >= 0.0)) {
+      push_back(next, mix(p, q, dp / (dp - dq)));
+      count++;
+    }
+  }
+  rotate_to_front(next, count);
+  region = next;
+  return count;
+}
+
+// Cuts the convex polygon `region` (m corners, in pixels) by the line of the edge a -> b (in
+// 1/TS_SUBPIXEL_ONE px), keeping the side sign * cross(b - a, p - a) >= 0: one step of
+// Sutherland & Hodgman (1974, "Reentrant polygon clipping"). Returns the corners left. In one
+// of two forms that give the same bits (POLYGONS_IN_REGISTERS, view_clip.glsl).
+int cut_by_edge(inout vec2 region[COVERAGE_CORNERS], int m, ivec2 a, ivec2 b, int64_t sign) {
+  if (POLYGONS_IN_REGISTERS) return cut_by_edge_queued(region, m, a, b, sign);
+  return cut_by_edge_indexed(region, m, a, b, sign);
+}
+
 // The pixel square [0, 1]^2 as a polygon.
 int unit_square(out vec2 region[COVERAGE_CORNERS]) {
+  if (POLYGONS_IN_REGISTERS) {
+    for (int j = 4; j < COVERAGE_CORNERS; ++j) region[j] = vec2(0.0);
+  }
   region[0] = vec2(0.0, 0.0);
   region[1] = vec2(1.0, 0.0);
   region[2] = vec2(1.0, 1.0);
@@ -68,10 +137,19 @@ int unit_square(out vec2 region[COVERAGE_CORNERS]) {
 // Area of polygon `region` (m corners) by the shoelace formula, in px^2.
 float polygon_area(vec2 region[COVERAGE_CORNERS], int m) {
   float twice = 0.0;
-  for (int j = 0; j < m; ++j) {
+  if (!POLYGONS_IN_REGISTERS) {
+    for (int j = 0; j < m; ++j) {
+      vec2 p = region[j];
+      vec2 q = region[(j + 1) % m];
+      twice += p.x * q.y - p.y * q.x;
+    }
+    return 0.5 * abs(twice);
+  }
+  // Constant indices only: the same terms in the same order.
+  for (int j = 0; j < COVERAGE_CORNERS; ++j) {
     vec2 p = region[j];
-    vec2 q = region[(j + 1) % m];
-    twice += p.x * q.y - p.y * q.x;
+    vec2 q = j + 1 < m ? region[min(j + 1, COVERAGE_CORNERS - 1)] : region[0];
+    if (j < m) twice += p.x * q.y - p.y * q.x;
   }
   return 0.5 * abs(twice);
 }
@@ -94,9 +172,15 @@ float outline_coverage(uint id, ivec2 pixel, uint empty) {
   vec2 region[COVERAGE_CORNERS];
   int m = unit_square(region);
   int cuts = 0;
+  ivec2 first = corner[0];
   for (int k = 0; k < n && m > 0; ++k) {
-    ivec2 a = corner[k];
-    ivec2 b = corner[(k + 1) % n];
+    ivec2 a, b;
+    if (POLYGONS_IN_REGISTERS) {
+      pop_edge(corner, n - k, first, a, b);
+    } else {
+      a = corner[k];
+      b = corner[(k + 1) % n];
+    }
     bool beyond_empty = false;
     bool beyond_covered = false;
     for (uint s = 0u; s < SAMPLES; ++s) {
@@ -187,12 +271,23 @@ float front_face_area(uint slot, uint t, ivec2 pixel, inout int64_t facing) {
   if (facing == 0l) facing = twice_area > 0l ? 1l : -1l;
   if (twice_area * facing <= 0l) return 0.0;
   ivec2 lo = corner[0], hi = corner[0];
-  for (int k = 1; k < n; ++k) {
+  for (int k = 1; k < (POLYGONS_IN_REGISTERS ? 9 : n); ++k) {
+    if (k >= n) continue;
     lo = min(lo, corner[k]);
     hi = max(hi, corner[k]);
   }
   if (!box_reaches_pixel(lo, hi)) return 0.0;
   float share = 0.0;
-  for (int k = 0; k < n; ++k) share += edge_share_in_pixel(in_pixels(corner[k]), in_pixels(corner[(k + 1) % n]));
+  ivec2 first = corner[0];
+  for (int k = 0; k < n; ++k) {
+    ivec2 a, b;
+    if (POLYGONS_IN_REGISTERS) {
+      pop_edge(corner, n - k, first, a, b);
+    } else {
+      a = corner[k];
+      b = corner[(k + 1) % n];
+    }
+    share += edge_share_in_pixel(in_pixels(a), in_pixels(b));
+  }
   return abs(share);
 }

@@ -129,6 +129,41 @@ TEST(AntiAliasingAcrossThreads, OneAndTwoLavapipeThreadsGiveIdenticalFiles) {
   EXPECT_TRUE(outputs[0] == outputs[1]) << "HDR differs between 1 and 2 threads";
 }
 
+// Both forms of the code that clips polygons to the view and cuts them by a pixel's edges
+// (Context::polygons_in_registers: queues indexed by constants, which CPU devices get, or
+// arrays indexed by corner, which GPUs get) give the same bits: analytic and silhouette coverage
+// at 4 samples, over the crowded scene with a wall beside the camera that runs behind it,
+// so that the clip pass clips it (near plane and guard band) and the coverage code cuts
+// polygons of more than three corners.
+TEST_F(AntiAliasing, PolygonsInRegistersAndIndexedByCornerGiveTheSameBits) {
+  Scene scene = crowded_scene();
+  scene.meshes.push_back(make_plane(4, 4));
+  // A strip 80 long and 6 high at x = 0.3, turned to face -x (the camera).
+  glm::mat4 wall = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.0f));
+  wall = glm::rotate(wall, -glm::half_pi<float>(), glm::vec3(0.0f, 1.0f, 0.0f));
+  scene.objects.push_back(
+      {uint32_t(scene.meshes.size() - 1), 1, glm::scale(wall, glm::vec3(40.0f, 3.0f, 1.0f))});
+  ASSERT_LT(scene.camera.position.z, 40.0f);  // the wall reaches behind the camera
+
+  Context& ctx = context();
+  struct Restore {
+    Context& ctx;
+    bool form;
+    ~Restore() { ctx.polygons_in_registers = form; }
+  } restore{ctx, ctx.polygons_in_registers};
+  std::vector<Frame> frames[2];
+  for (int form = 0; form < 2; ++form) {
+    ctx.polygons_in_registers = form == 1;
+    for (AaCoverage coverage : {AaCoverage::analytic, AaCoverage::silhouette})
+      frames[form].push_back(render_with(scene, 64, 4, coverage));
+  }
+  EXPECT_GT(frames[0][0].stats.clipped, 0u);
+  for (size_t i = 0; i < frames[0].size(); ++i) {
+    EXPECT_TRUE(same_bits(frames[0][i].hdr, frames[1][i].hdr)) << "frame " << i;
+    EXPECT_EQ(frames[0][i].visibility, frames[1][i].visibility) << "frame " << i;
+  }
+}
+
 TEST_F(AntiAliasing, EveryPixelOfAClosedMeshCountsEachSampleOnce) {
   // Disjoint closed meshes: every sample's ray enters each mesh as often as it leaves it, and
   // snapping keeps the meshes closed (a shared vertex snaps once), so with nothing culled every

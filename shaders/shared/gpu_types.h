@@ -168,9 +168,12 @@ using glm::vec4;
 // Setup appends raster triangles only, no small-triangle walks or bin entries: in frames that
 // rasterize and shade in one pass (RendererOptions::raster_shade), which read neither.
 #define TS_SPEC_RASTER_ONLY 16
+// The clipped polygons of view_clip.glsl and coverage.glsl are walked as queues indexed by
+// constants only, rather than indexed by corner (Context::polygons_in_registers).
+#define TS_SPEC_POLYGONS_IN_REGISTERS 17
 // The number of lights of kind k (TS_LIGHT_*) has id TS_SPEC_LIGHT_COUNT_BASE + k, for k below
 // TS_LIGHT_KIND_COUNT: the last ids, so a new light kind adds one without renumbering.
-#define TS_SPEC_LIGHT_COUNT_BASE 17
+#define TS_SPEC_LIGHT_COUNT_BASE 18
 
 // How the shading pass is dispatched (TS_SPEC_SHADE_TILES).
 #define TS_SHADE_TILES_OFF 0u    // a workgroup per 8x8 pixels of the whole image
