@@ -455,7 +455,9 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "frames timed after the first, 1..1000\n"
                  "(default 3): their median, min and max GPU\n"
                  "times are reported; the first frame's apart,\n"
-                 "as it includes pipeline compilation")
+                 "as it includes pipeline compilation. With\n"
+                 "--device reference: frames rendered, all\n"
+                 "timed (default 1)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
   app.add_flag("--validate", a.validate,
@@ -884,6 +886,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   RenderArgs& r = line.render;
   r.size_given = render->count("--size") > 0;
   r.camera_given = render->count("--camera") > 0;
+  r.repeat_given = render->count("--repeat") > 0;
   r.exposure_given = render->count("--exposure") > 0;
   r.samples_given = render->count("--samples") > 0;
   r.tonemap_given = render->count("--tonemap") > 0;

@@ -81,10 +81,12 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   ReferenceSettings settings;
   settings.frame = args.frame;
   settings.environment_samples = args.env_reference_samples;
-  // No pipelines to compile: every frame costs the same, so all of them are timed.
+  // No pipelines to compile: every frame costs the same, so all of them are timed, and one is
+  // enough unless --repeat asks for more (RenderArgs::repeat_given).
+  const uint32_t frames = args.repeat_given ? args.repeat : 1;
   std::vector<double> times;
   ReferenceFrame frame;
-  for (uint32_t i = 0; i < args.repeat; ++i) {
+  for (uint32_t i = 0; i < frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     frame = render_reference(scene, settings);
     times.push_back(

@@ -503,6 +503,12 @@ TEST(Cli, RenderReportsTheFirstFrameApartAndCountsTheTimedOnes) {
       << out;
   EXPECT_NE(out.find("wrote " + reference), std::string::npos) << out;
   EXPECT_EQ(count_of(out, "CPU time, median of 2 frames:"), 1u) << out;
+  // Without --repeat the reference renders one frame (the GPU devices time 3 after the first).
+  ASSERT_EQ(
+      test::run_command(tool() + " render --device reference --size 16x8 --out " + reference, out),
+      0)
+      << out;
+  EXPECT_EQ(count_of(out, "CPU time, median of 1 frame:"), 1u) << out;
 }
 
 TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
