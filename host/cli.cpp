@@ -456,8 +456,8 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "(default 3): their median, min and max GPU\n"
                  "times are reported; the first frame's apart,\n"
                  "as it includes pipeline compilation. With\n"
-                 "--device reference: frames rendered, all\n"
-                 "timed (default 1)")
+                 "--device reference: default 0 (the first\n"
+                 "frame alone)")
       ->type_name("K")
       ->check(whole_number(1, 1000));
   app.add_flag("--validate", a.validate,

@@ -34,8 +34,8 @@ struct RenderArgs {
   Quality quality = Quality::none;              // --quality, applied by parse_command_line
   // Timed frames after the first, whose times (which include pipeline compilation and other
   // first-use costs) are reported apart; the figures are medians over these.
-  // --device reference renders one frame unless --repeat is given: it compiles nothing, so its
-  // first frame is timed like the others, and each costs the whole CPU render again.
+  // --device reference renders the first frame alone unless --repeat is given: each frame after
+  // it costs the whole CPU render again.
   uint32_t repeat = 3;
   bool repeat_given = false;
   bool validate = false;
