@@ -203,6 +203,18 @@ std::vector<std::string> ignored_options(const RenderArgs& a, const Scene& scene
   unused(a.env_size_given, "--env-size", "env-size");
   unused(a.env_samples_given, "--env-samples", "env-samples");
   unused(a.env_reference_samples_given, "--env-reference-samples", "env-samples");
+  if (a.device == "reference") {
+    if (a.validate)
+      out.push_back("--validate: --device reference makes no Vulkan calls to validate");
+    for (const auto& [given, option] : {std::pair{a.depth_rejection_given, "--depth-rejection"},
+                                        {a.shade_tiles_given, "--shade-tiles"},
+                                        {a.tile_lists_given, "--tile-lists"},
+                                        {a.raster_shade_given, "--raster-shade"}}) {
+      if (given)
+        out.push_back(std::string(option) +
+                      ": it tunes the Vulkan devices' passes; --device reference has none");
+    }
+  }
   if (!scene.environment) return out;
   // The reference integrates the environment by sampling; the compute path prefilters it.
   const bool reference = a.device == "reference";

@@ -512,6 +512,20 @@ TEST(Cli, RenderReportsTheFirstFrameApartAndCountsTheTimedOnes) {
       << out;
   EXPECT_EQ(count_of(out, "CPU time, first frame, including one-time setup"), 1u) << out;
   EXPECT_EQ(count_of(out, "after the first"), 0u) << out;
+  // Options only the Vulkan devices use are warned about, not silently accepted.
+  ASSERT_EQ(test::run_command(tool() +
+                                  " render --device reference --size 16x8 --validate "
+                                  "--shade-tiles on --out " +
+                                  reference,
+                              out),
+            0)
+      << out;
+  EXPECT_NE(out.find("warning: --validate: --device reference makes no Vulkan calls"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("warning: --shade-tiles: it tunes the Vulkan devices' passes"),
+            std::string::npos)
+      << out;
 }
 
 TEST(AntiAliasingCli, SamplesOptionTakesOneFourEightOrSixteen) {
