@@ -13,8 +13,8 @@ layout(constant_id = TS_SPEC_OBJECT_CLIP_INLINE) const bool OBJECT_CLIP_INLINE =
 // indexed by constants only (true). lavapipe keeps an array in registers only if every index is
 // a constant; otherwise every access goes lane by lane through memory, and its compiler took
 // about three times as long over the code that measures coverage (docs/development.md,
-// "Measured CI time"). The H200 ran the queues up to 18 % slower: kept in registers, they
-// leave fewer threads resident. Both forms take the same steps in the same order.
+// "Measured CI time"). The H200 ran the queues up to 18 % slower (probably as registers that
+// leave fewer threads resident). Both forms take the same steps in the same order.
 layout(constant_id = TS_SPEC_POLYGONS_IN_REGISTERS) const bool POLYGONS_IN_REGISTERS = false;
 
 // Clip-space position of the corners of triangle instance `id` of object slot `slot`. The
