@@ -16,13 +16,20 @@ std::string in_quotes(const std::string& text) {
   return "'" + text + "'";
 }
 
+// ", got 'text'", saying so where `text` is another option: the parser takes the word after an
+// option as its value, so an option given without one reads the next option as it.
+std::string got(const std::string& text) {
+  const bool option = text.size() > 2 && text.compare(0, 2, "--") == 0;
+  return ", got " + in_quotes(text) + (option ? " (an option: is this one's value missing?)" : "");
+}
+
 // Empty if `text` is a whole number in [min, max], else what is wrong with it.
 std::string whole_number_error(const std::string& text, uint64_t min, uint64_t max) {
   uint64_t value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || value < min || value > max) {
     return "expects a whole number from " + std::to_string(min) + " to " + std::to_string(max) +
-           ", got " + in_quotes(text);
+           got(text);
   }
   return "";
 }
@@ -51,7 +58,7 @@ CLI::Validator finite_number(double min, double max) {
             value < min || value > max) {
           char range[64];
           std::snprintf(range, sizeof(range), "%g to %g", min, max);
-          return std::string("expects a number from ") + range + ", got " + in_quotes(text);
+          return std::string("expects a number from ") + range + got(text);
         }
         return "";
       },
@@ -68,7 +75,7 @@ CLI::Validator one_of(const std::vector<std::string>& names) {
         for (const std::string& name : names) {
           if (name == spelled) return "";
         }
-        return "expects " + list_of_choices(names) + ", got " + in_quotes(text);
+        return "expects " + list_of_choices(names) + got(text);
       },
       "");
 }
@@ -77,7 +84,7 @@ CLI::Validator image_size() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         const size_t x = text.find('x');
-        if (x == std::string::npos) return "expects WxH (e.g. 512x512), got " + in_quotes(text);
+        if (x == std::string::npos) return "expects WxH (e.g. 512x512)" + got(text);
         for (const auto& [side, digits] :
              {std::pair{"width", text.substr(0, x)}, std::pair{"height", text.substr(x + 1)}}) {
           const std::string error = whole_number_error(digits, 1, TS_MAX_IMAGE_SIDE);
@@ -107,7 +114,7 @@ CLI::Validator file_with_suffix(const std::vector<std::string>& suffixes,
         std::vector<std::string> choices;
         for (const std::string& suffix : suffixes) choices.push_back("a " + suffix + " file");
         choices.insert(choices.end(), also.begin(), also.end());
-        return "expects " + list_of_choices(choices) + ", got " + in_quotes(text);
+        return "expects " + list_of_choices(choices) + got(text);
       },
       "");
 }

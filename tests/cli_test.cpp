@@ -258,6 +258,11 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"render", "--size", "512x0"}, "--size: height expects"},
       {{"render", "--size", "99999x1"}, "got '99999' in '99999x1'"},
       {{"render", "--size", "abc"}, "--size: expects WxH"},
+      // An option given without its value reads the next option as it: said so.
+      {{"render", "--repeat", "--out", "x.png"},
+       "--repeat: expects a whole number from 1 to 1000, got '--out' (an option: is this one's "
+       "value missing?)"},
+      {{"render", "--tonemap", "--quiet"}, "got '--quiet' (an option: is this one's value"},
       {{"render", "--size", "-5x5"}, "--size: width"},
       {{"render", "--size"}, "--size needs a value"},
       {{"render", "--tile-lists", "direct", "--tile-lists", "counted"},
