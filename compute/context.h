@@ -74,8 +74,8 @@ struct Context {
   /// (view_clip.glsl, coverage.glsl; TS_SPEC_POLYGONS_IN_REGISTERS): walked as queues whose
   /// arrays only constants index (true: set for CPU devices, whose compiler then keeps them in
   /// registers and compiles the coverage code about three times as fast), or indexed by corner
-  /// (false: GPUs, which ran that up to 18 % faster on the H200). Both give the same bits. Read when a
-  /// pipeline is built: changing it builds pipelines of the other form from then on (tests
+  /// (false: GPUs, which ran that up to 18 % faster on the H200). Both give the same bits. Read
+  /// when a pipeline is built: changing it builds pipelines of the other form from then on (tests
   /// compare the two).
   bool polygons_in_registers = false;
   /// Set (note_render_pass, compute/timestamps.h) once a render pass has been recorded on the
