@@ -399,6 +399,14 @@ std::unique_ptr<Context> create_context(const ContextOptions& options) {
   pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pool_info.queueFamilyIndex = ctx->queue_family;
   VK_CHECK(vkCreateCommandPool(ctx->device, &pool_info, nullptr, &ctx->command_pool));
+  ctx->submission = std::make_unique<Submission>();
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = ctx->command_pool;
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(ctx->device, &alloc, &ctx->submission->cmd));
+  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(ctx->device, &fence_info, nullptr, &ctx->submission->fence));
   ctx->pipeline_cache = std::make_unique<PipelineCache>();
   return ctx;
 }
@@ -407,6 +415,7 @@ Context::~Context() {
   if (device) {
     vkDeviceWaitIdle(device);
     if (pipeline_cache) destroy_pipeline_cache(*this);
+    if (submission && submission->fence) vkDestroyFence(device, submission->fence, nullptr);
     if (command_pool) vkDestroyCommandPool(device, command_pool, nullptr);
     vkDestroyDevice(device, nullptr);
   }

@@ -1,6 +1,7 @@
 #include "compute/gpu_memory.h"
 
 #include <string>
+#include <thread>
 
 #include "compute/vk_check.h"
 #include "core/check.h"
@@ -168,27 +169,33 @@ void destroy_image(const Context& ctx, StorageImage& img) {
 }
 
 void submit_and_wait(const Context& ctx, const std::function<void(VkCommandBuffer)>& record) {
-  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  alloc.commandPool = ctx.command_pool;
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &alloc, &cmd));
+  Submission& sub = *ctx.submission;
+  // A `record` that submits again would re-record the buffer it is recording into.
+  TESSERA_CHECK(sub.recording.load() != std::this_thread::get_id());
+  std::lock_guard lock(sub.mutex);
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-  record(cmd);
-  VK_CHECK(vkEndCommandBuffer(cmd));
-  VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateFence(ctx.device, &fence_info, nullptr, &fence));
+  // Beginning resets the buffer (the pool has VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT).
+  VK_CHECK(vkBeginCommandBuffer(sub.cmd, &begin));
+  sub.recording = std::this_thread::get_id();
+  try {
+    record(sub.cmd);
+  } catch (...) {
+    // Leave the buffer initial, not recording, for the next submission to begin.
+    sub.recording = std::thread::id();
+    vkResetCommandBuffer(sub.cmd, 0);
+    throw;
+  }
+  sub.recording = std::thread::id();
+  VK_CHECK(vkEndCommandBuffer(sub.cmd));
+  VK_CHECK(vkResetFences(ctx.device, 1, &sub.fence));
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  VkResult result = vkQueueSubmit(ctx.queue, 1, &submit, fence);
-  if (result == VK_SUCCESS) result = vkWaitForFences(ctx.device, 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(ctx.device, fence, nullptr);
-  vkFreeCommandBuffers(ctx.device, ctx.command_pool, 1, &cmd);
+  submit.pCommandBuffers = &sub.cmd;
+  VkResult result = vkQueueSubmit(ctx.queue, 1, &submit, sub.fence);
+  if (result == VK_SUCCESS) {
+    result = vkWaitForFences(ctx.device, 1, &sub.fence, VK_TRUE, UINT64_MAX);
+  }
   vk_check(result, "vkQueueSubmit/vkWaitForFences");
 }
 

@@ -64,7 +64,8 @@ StorageImage create_storage_image(const Context& ctx, uint32_t width, uint32_t h
                                   VkFormat format, VkImageUsageFlags extra_usage = 0);
 void destroy_image(const Context& ctx, StorageImage& image);
 
-/// Records commands with `record` into a fresh command buffer, submits it and waits for it.
+/// Records commands with `record` into the context's command buffer (Context::submission),
+/// submits it and waits for it. One submission at a time per context; `record` must not submit.
 void submit_and_wait(const Context& ctx, const std::function<void(VkCommandBuffer)>& record);
 
 /// A global memory barrier from `src` stages/accesses to `dst` stages/accesses.
