@@ -273,31 +273,35 @@ Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_re
                            bool shade_tiles) {
   TESSERA_CHECK(ctx.pipeline_cache);
   Pipelines p;
-  {
-    std::lock_guard lock(ctx.pipeline_cache->mutex);
-    p.layout = cached_layout(ctx, *ctx.pipeline_cache);
-    p.set_layout = ctx.pipeline_cache->set_layout;
-  }
-
-  for (const PassInfo& row : kPasses) {
-    // The outline pass runs only at several samples per pixel: sampled_pipeline builds it.
-    if (row.shader == nullptr || row.variants == Variants::shading ||
-        row.variants == Variants::silhouette || row.variants == Variants::raster_shade)
-      continue;
-    // The debug-coverage, level-of-detail and setup variants are built on first use
-    // (pass_variant_pipeline): most renderers never run them, and each costs a CPU device
-    // about as much as the pass itself.
-    p.passes[size_t(row.pass)] = create_compute_pipeline(
-        ctx, row.shader, pass_specialization(row, tile_size, depth_rejection, shade_tiles));
-  }
-  for (const PipelineInfo& info : kPipelines) {
-    // The generic shading pipelines are the largest shaders (each costs lavapipe about as much
-    // as all the others together) and serve only RendererOptions::specialize_lights off:
-    // shade_pipeline builds them on first use.
-    if (std::string_view(info.shader) == "shade") continue;
-    p.pipelines[size_t(info.id)] = create_compute_pipeline(ctx, info.shader, info.spec);
-  }
+  p.ctx = &ctx;
+  p.tile_size = tile_size;
+  p.depth_rejection = depth_rejection;
+  p.shade_tiles = shade_tiles;
+  std::lock_guard lock(ctx.pipeline_cache->mutex);
+  p.layout = cached_layout(ctx, *ctx.pipeline_cache);
+  p.set_layout = ctx.pipeline_cache->set_layout;
   return p;
+}
+
+VkPipeline Pipelines::operator[](Pass pass) const {
+  VkPipeline& slot = passes[size_t(pass)];
+  if (slot) return slot;
+  const PassInfo& row = kPasses[size_t(pass)];
+  TESSERA_CHECK(row.pass == pass && row.shader != nullptr &&
+                row.variants != Variants::shading && row.variants != Variants::silhouette &&
+                row.variants != Variants::raster_shade);
+  slot = create_compute_pipeline(*ctx, row.shader,
+                                 pass_specialization(row, tile_size, depth_rejection, shade_tiles));
+  return slot;
+}
+
+VkPipeline Pipelines::operator[](Pipeline id) const {
+  VkPipeline& slot = pipelines[size_t(id)];
+  if (slot) return slot;
+  const PipelineInfo& info = kPipelines[size_t(id)];
+  TESSERA_CHECK(std::string_view(info.shader) != "shade");
+  slot = create_compute_pipeline(*ctx, info.shader, info.spec);
+  return slot;
 }
 
 void destroy_pipelines(const Context&, Pipelines& p) {

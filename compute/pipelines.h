@@ -40,20 +40,33 @@ struct PipelineCache {
 void destroy_pipeline_cache(Context& ctx);
 
 /// A renderer's view of its context's pipelines (PipelineCache): every handle belongs to the
-/// cache.
+/// cache. The pipelines of kPasses and kPipelines are built on first use, by operator[]: a
+/// process pays lavapipe's translation (10 to 40 ms a pipeline) only for the passes it records;
+/// a frame of the default scene records about two thirds of them.
 struct Pipelines {
+  const Context* ctx = nullptr;
+  // pass_specialization's arguments, for the passes' pipelines.
+  uint32_t tile_size = 0;
+  bool depth_rejection = false;
+  bool shade_tiles = false;
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  std::array<VkPipeline, kPassCount> passes{};  // per pass that dispatches (all but
-                                                // Variants::shading and ::raster_shade)
-  // Null until the renderer first needs them (pass_variant_pipeline, renderer.cpp):
+  // Null until first used (operator[] for these two; pass_variant_pipeline, renderer.cpp, for
+  // the variants; shade_pipeline for the generic shading pipelines of kPipelines). Mutable:
+  // building one on first use changes nothing a caller can see.
+  mutable std::array<VkPipeline, kPassCount> passes{};  // per pass that dispatches (all but
+                                                        // Variants::shading and ::raster_shade)
   std::array<VkPipeline, kPassCount> coverage{};  // TS_SPEC_DEBUG_COVERAGE on (::debug_coverage)
   std::array<VkPipeline, kPassCount> lod{};       // TS_SPEC_LOD on (Variants::lod)
-  VkPipeline setup_object_clip_inline = VK_NULL_HANDLE;         // TS_SPEC_OBJECT_CLIP_INLINE on
-  VkPipeline setup_raster_only = VK_NULL_HANDLE;                // that and TS_SPEC_RASTER_ONLY on
-  std::array<VkPipeline, size_t(Pipeline::count)> pipelines{};  // kPipelines
-  VkPipeline operator[](Pipeline p) const { return pipelines[size_t(p)]; }
-  VkPipeline operator[](Pass p) const { return passes[size_t(p)]; }
+  VkPipeline setup_object_clip_inline = VK_NULL_HANDLE;  // TS_SPEC_OBJECT_CLIP_INLINE on
+  VkPipeline setup_raster_only = VK_NULL_HANDLE;         // that and TS_SPEC_RASTER_ONLY on
+  mutable std::array<VkPipeline, size_t(Pipeline::count)> pipelines{};  // kPipelines
+  /// kPipelines' row `p` as the table specializes it (not the generic shading pipelines, which
+  /// shade_pipeline specializes to the tile size), built now if this is its first use.
+  VkPipeline operator[](Pipeline p) const;
+  /// Pass `p`'s pipeline (pass_specialization), built now if this is its first use. Not for
+  /// Variants::shading, ::silhouette and ::raster_shade, whose pipelines the renderer chooses.
+  VkPipeline operator[](Pass p) const;
 };
 
 /// A shader module from SPIR-V words. The caller destroys it once its pipelines are built.
@@ -123,10 +136,8 @@ VkPipeline create_shade_pipeline(const Context& ctx, const ShadeVariant& variant
 Specialization pass_specialization(const PassInfo& row, uint32_t tile_size, bool depth_rejection,
                                    bool shade_tiles);
 
-/// The layouts and the pipelines of kPasses (pass_specialization) and kPipelines from the
-/// embedded SPIR-V, built unless the context has them (create_compute_pipeline). Left null
-/// for the renderer to get on first use: the generic shading pipelines of kPipelines (shader
-/// "shade"), and the passes' debug-coverage, level-of-detail and setup variants.
+/// The layouts, and a Pipelines whose pipelines are built on first use (Pipelines::operator[]),
+/// from the embedded SPIR-V unless the context has them (create_compute_pipeline).
 Pipelines create_pipelines(const Context& ctx, uint32_t tile_size, bool depth_rejection,
                            bool shade_tiles);
 /// Forgets `pipelines`; their handles stay with the context.
