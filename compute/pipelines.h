@@ -42,7 +42,7 @@ void destroy_pipeline_cache(Context& ctx);
 /// A renderer's view of its context's pipelines (PipelineCache): every handle belongs to the
 /// cache. The pipelines of kPasses and kPipelines are built on first use, by operator[]: a
 /// process pays lavapipe's translation (10 to 40 ms a pipeline) only for the passes it records;
-/// a frame of the default scene records about two thirds of them.
+/// a frame of the default scene records half of them (docs/architecture.md, "The frame").
 struct Pipelines {
   const Context* ctx = nullptr;
   // pass_specialization's arguments, for the passes' pipelines.
