@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <tuple>
+#include <vector>
 
 #include "compute/context.h"
 #include "compute/renderer.h"
@@ -116,10 +117,14 @@ CLI::Validator device_choice(bool reference) {
       check_device_index(uint32_t(std::stoul(text)));
       return;
     }
-    if (text == "auto" || text == "lavapipe" || text == "gpu" || (reference && text == "reference"))
-      return;
+    std::vector<std::string> names = {"lavapipe", "gpu", "auto"};
+    if (reference) names.push_back("reference");
+    if (std::find(names.begin(), names.end(), text) != names.end()) return;
+    // `tessera devices` prints lavapipe's device by its Vulkan name, llvmpipe.
+    const std::string near = closest_name(text, names);
     throw Error("unknown device '" + text + "' (lavapipe, gpu, " +
-                (reference ? "reference, " : "") + "or a device index of `tessera devices`)");
+                (reference ? "reference, " : "") + "or a device index of `tessera devices`)" +
+                (near.empty() ? "" : ", did you mean '" + near + "'?"));
   });
 }
 

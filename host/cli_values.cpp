@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/closest_name.h"
 #include "core/file_extension.h"
 #include "core/image.h"
 #include "shaders/shared/gpu_types.h"
@@ -75,7 +76,10 @@ CLI::Validator one_of(const std::vector<std::string>& names) {
         for (const std::string& name : names) {
           if (name == spelled) return "";
         }
-        return "expects " + list_of_choices(names) + got(text);
+        // A slip of case or of a letter or two ("Analytic", "filamint") names what was meant.
+        const std::string near = closest_name(spelled, names);
+        return "expects " + list_of_choices(names) + got(text) +
+               (near.empty() ? "" : ", did you mean " + in_quotes(near) + "?");
       },
       "");
 }

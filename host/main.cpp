@@ -19,10 +19,16 @@
 
 namespace {
 
+// The CPU reference renderer is no Vulkan device, but `render --device` takes it too.
+constexpr const char* kReferenceLine =
+    "reference: the CPU reference renderer, double precision, no Vulkan (`render --device "
+    "reference`, `bench --backends reference`)";
+
 int run_devices() {
   const std::vector<tessera::DeviceInfo> devices = tessera::list_devices();
   if (devices.empty()) {
     std::puts("no Vulkan device found (for the CPU driver: Debian package mesa-vulkan-drivers)");
+    std::puts(kReferenceLine);
     return 1;
   }
   for (const tessera::DeviceInfo& d : devices) {
@@ -34,6 +40,7 @@ int run_devices() {
                 tessera::device_type_name(d.type), verdict.c_str(), d.missing.empty() ? " (" : "",
                 d.missing.empty() ? (how + ")").c_str() : "");
   }
+  std::puts(kReferenceLine);
   return 0;
 }
 

@@ -295,6 +295,16 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"render", "--sise", "64x64"}, "unknown option '--sise', did you mean '--size'?"},
       {{"render", "--sampels=4"}, "unknown option '--sampels=4', did you mean '--samples'?"},
       {{"rendr"}, "unknown command 'rendr', did you mean 'render'?"},
+      // So does a value: in another case, or a letter or two off.
+      {{"render", "--samples", "4", "--aa-coverage", "Analytic"},
+       "--aa-coverage: expects count, analytic or silhouette, got 'Analytic', did you mean "
+       "'analytic'?"},
+      {{"render", "--brdf", "filamint"},
+       "--brdf: expects classic, filament or blinn-phong, got 'filamint', did you mean "
+       "'filament'?"},
+      {{"bench", "--backends", "compute,hardwar"},
+       "--backends: expects compute, hardware or reference, got 'hardwar', did you mean "
+       "'hardware'?"},
       {{"render", "extra"}, "unexpected argument 'extra'"},
       {{"scenes", "--all"}, "unknown option '--all'"},
       {{"explode"}, "unknown command 'explode'"},
@@ -381,6 +391,11 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"render --scene /dev/zero --out /tmp/x.png", 2,
        "tessera: error: --scene: /dev/zero: is not a regular file (a character device)"},
       {"devices", 0, "(CPU) - usable (--device "},
+      {"devices", 0, "\nreference: the CPU reference renderer"},
+      // `tessera devices` names lavapipe's device llvmpipe.
+      {"render --device llvmpipe", 2,
+       "tessera: error: --device: unknown device 'llvmpipe' (lavapipe, gpu, reference, or a "
+       "device index of `tessera devices`), did you mean 'lavapipe'?"},
       // A device index is checked against the devices present while parsing, as a misspelt
       // device name is.
       {"render --device 99", 2, "tessera: error: --device: device index 99 is out of range: only "},
