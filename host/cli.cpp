@@ -228,7 +228,11 @@ CLI::Option* add_samples(CLI::App& app, uint32_t& samples, const std::string& he
   return app.add_option("--samples", samples, help)
       ->type_name("N")
       ->check(checked_by([](const std::string& text) {
-        validate_samples(parse_count(text, "1, 4, 8 or 16 samples per pixel"));
+        // One wording for "x" and for "3" (validate_samples words the library's own error).
+        const std::string expected = "1, 4, 8 or 16 samples per pixel";
+        const uint32_t n = parse_count(text, expected);
+        if (n != 1 && n != 4 && n != 8 && n != 16)
+          throw Error("expects " + expected + ", got '" + text + "'");
       }));
 }
 
