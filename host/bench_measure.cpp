@@ -17,6 +17,7 @@
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
 #include "host/bench_content.h"
+#include "host/heap_reuse.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 #include "host/stop_signal.h"
@@ -125,8 +126,10 @@ BenchRow measure_reference(const Scene& scene, const FrameSettings& fs, const Be
   rs.frame = fs;
   const uint32_t frames = std::min(a.repeat, kReferenceMaxFrames);
   std::vector<double> wall;
+  keep_freed_memory_for_reuse();  // each frame freed before the next takes its pages
   ReferenceFrame f;
   for (uint32_t i = 0; i < frames; ++i) {
+    f = ReferenceFrame{};
     const auto start = std::chrono::steady_clock::now();
     f = render_reference(scene, rs);
     wall.push_back(

@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "core/reference_renderer.h"
 #include "core/statistics.h"
+#include "host/heap_reuse.h"
 #include "host/report.h"
 #include "host/scene_source.h"
 #include "host/tradeoff.h"
@@ -81,13 +82,16 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   ReferenceSettings settings;
   settings.frame = args.frame;
   settings.environment_samples = args.env_reference_samples;
-  // The first frame also builds what later frames reuse (tables, texture levels), so it is
-  // reported apart, as the Vulkan devices' first frame is; the --repeat frames after it are
-  // rendered only when asked for (RenderArgs::repeat_given): each is the whole CPU render again.
+  // The first frame also pays what later frames find in place (the energy-compensation
+  // tables, built once per process, and the heap's pages), so it is reported apart, as the
+  // Vulkan devices' first frame is; the --repeat frames after it are rendered only when asked
+  // for (RenderArgs::repeat_given): each is the whole CPU render again.
   const uint32_t frames = 1 + (args.repeat_given ? args.repeat : 0);
+  keep_freed_memory_for_reuse();  // each frame freed before the next takes its pages
   std::vector<double> times;
   ReferenceFrame frame;
   for (uint32_t i = 0; i < frames; ++i) {
+    frame = ReferenceFrame{};
     const auto start = std::chrono::steady_clock::now();
     frame = render_reference(scene, settings);
     times.push_back(
