@@ -466,7 +466,8 @@ void add_render_options(CLI::App& app, RenderArgs& a) {
                  "times are reported; the first frame's apart,\n"
                  "as it includes pipeline compilation. With\n"
                  "--device reference: default 0 (the first\n"
-                 "frame alone)")
+                 "frame alone). A progress line every 2 s or\n"
+                 "more when given")
       ->type_name("K")
       ->check(whole_number(1, 1000));
   app.add_flag("--validate", a.validate,
@@ -850,6 +851,10 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     sub->allow_extras();
     sub->footer(exit_statuses);
   }
+  render->footer(exit_statuses +
+                 "\n130 (SIGINT, Ctrl+C) or 143 (SIGTERM): --repeat stopped between frames;\n"
+                 "the image and the times of the frames rendered are written and printed\n"
+                 "(a second signal ends at once).");
   bench->footer(
       "Figures are medians of GPU timestamps over --repeat frames after the\n"
       "warm-up (--warmup, --warmup-ms; its frames and time are reported), with\n"

@@ -16,6 +16,7 @@
 #include "host/heap_reuse.h"
 #include "host/report.h"
 #include "host/scene_source.h"
+#include "host/stop_signal.h"
 #include "host/tradeoff.h"
 
 namespace tessera {
@@ -77,6 +78,41 @@ void print_written(const RenderArgs& args, const std::string& device, bool compu
                             .c_str());
 }
 
+// The --repeat frames after the first: `render_one()` for each of `count`, stopping early
+// at Ctrl+C or SIGTERM (host/stop_signal.h), so that the frames rendered are still reported
+// and the image written; with `progress`, a line every 2 s or more, as frames can take seconds
+// each on the CPU. Returns the frames rendered and, if one stopped them, the signal.
+struct RepeatedFrames {
+  uint32_t rendered = 0;
+  int interrupted = 0;
+};
+template <class RenderOne>
+RepeatedFrames render_repeated(uint32_t count, bool progress, RenderOne&& render_one) {
+  catch_stop_signals();
+  RepeatedFrames done;
+  using Clock = std::chrono::steady_clock;
+  auto last_line = Clock::now();
+  for (; done.rendered < count; ++done.rendered) {
+    if ((done.interrupted = stop_signal()) != 0) break;
+    render_one();
+    if (progress && Clock::now() - last_line >= std::chrono::seconds(2)) {
+      std::printf("rendered %u of %u frames after the first\n", done.rendered + 1, count);
+      last_line = Clock::now();
+    }
+  }
+  if (!done.interrupted) done.interrupted = stop_signal();
+  return done;
+}
+
+// What an interrupted --repeat prints (standard error), and the exit status it gives.
+int report_interrupted(const RepeatedFrames& done, uint32_t count) {
+  std::fprintf(stderr,
+               "tessera: interrupted by %s after %u of %u frames after the first: the image and "
+               "the times of the frames rendered are written and printed\n",
+               stop_signal_name(done.interrupted), done.rendered, count);
+  return interrupted_exit_status(done.interrupted);
+}
+
 // The CPU reference renderer (core/reference_renderer.h): same options, same files.
 int run_reference(const Scene& scene, const RenderArgs& args) {
   ReferenceSettings settings;
@@ -86,18 +122,21 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
   // tables, built once per process, and the heap's pages), so it is reported apart, as the
   // Vulkan devices' first frame is; the --repeat frames after it are rendered only when asked
   // for (RenderArgs::repeat_given): each is the whole CPU render again.
-  const uint32_t frames = 1 + (args.repeat_given ? args.repeat : 0);
+  const uint32_t repeat = args.repeat_given ? args.repeat : 0;
   keep_freed_memory_for_reuse();  // each frame freed before the next takes its pages
   std::vector<double> times;
   ReferenceFrame frame;
-  for (uint32_t i = 0; i < frames; ++i) {
+  const auto render_one = [&] {
     frame = ReferenceFrame{};
     const auto start = std::chrono::steady_clock::now();
     frame = render_reference(scene, settings);
     times.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());
-  }
+  };
+  render_one();
+  const RepeatedFrames done =
+      repeat ? render_repeated(repeat, !args.quiet, render_one) : RepeatedFrames{};
   const double first_ms = times.front();
   times.erase(times.begin());
   write_outputs(args, frame.ldr, frame.hdr);
@@ -115,7 +154,7 @@ int run_reference(const Scene& scene, const RenderArgs& args) {
       std::printf("\n");
     }
   }
-  return 0;
+  return done.interrupted ? report_interrupted(done, repeat) : 0;
 }
 
 // A scene whose objects all fell to culling draws only the background, with status 0: a black
@@ -138,7 +177,7 @@ std::string nothing_drawn_note(const FrameStats& frame, const std::string& name)
 
 void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& first,
                   const std::vector<FrameStats>& timed) {
-  const FrameStats& last = timed.back();
+  const FrameStats& last = timed.empty() ? first : timed.back();  // empty: stopped at once
   print_written(args, ctx.properties.deviceName, true);
   // A frame rasterized and shaded in one pass sorts nothing into small and binned triangles
   // (RendererOptions::raster_shade).
@@ -180,9 +219,11 @@ void print_frames(const RenderArgs& args, const Context& ctx, const FrameStats& 
   }
   print_pass_times(
       "GPU time, first frame, including pipeline compilation and other first-use costs", {first});
-  print_pass_times("GPU time, median of " + std::to_string(timed.size()) + " frame" +
-                       (timed.size() > 1 ? "s" : "") + " after the first",
-                   timed);
+  if (!timed.empty()) {
+    print_pass_times("GPU time, median of " + std::to_string(timed.size()) + " frame" +
+                         (timed.size() > 1 ? "s" : "") + " after the first",
+                     timed);
+  }
   const double precompute = first.precompute_ms;
   if (precompute > 0.0) {
     std::printf(
@@ -296,15 +337,22 @@ int run_render(const RenderArgs& given) {
         size_place, "tessera render --help");
   }
   std::vector<FrameStats> timed;
-  for (uint32_t i = 0; i < args.repeat; ++i) timed.push_back(renderer.render(settings));
+  const RepeatedFrames done = render_repeated(args.repeat, !args.quiet && args.repeat_given,
+                                              [&] { timed.push_back(renderer.render(settings)); });
 
   write_outputs(args, renderer.read_ldr(), args.hdr_out.empty() ? ImageF{} : renderer.read_hdr());
   if (!args.quiet) {
     print_frames(args, *ctx, first, timed);
-    if (const std::string note = nothing_drawn_note(timed.back(), args.scene); !note.empty())
+    const FrameStats& last = timed.empty() ? first : timed.back();
+    if (const std::string note = nothing_drawn_note(last, args.scene); !note.empty())
       std::fprintf(stderr, "tessera: %s\n", note.c_str());
   }
-  return validation_exit_status(ctx.get());
+  const int validation = validation_exit_status(ctx.get());
+  if (done.interrupted) {
+    const int status = report_interrupted(done, args.repeat);
+    return validation != 0 ? validation : status;
+  }
+  return validation;
 }
 
 }  // namespace tessera

@@ -1,6 +1,6 @@
-// `tessera bench` and `tessera tradeoff` stopped by SIGINT or SIGTERM part way (a user's Ctrl+C):
-// what was measured reaches the log as it is measured, and is printed and written, marked as
-// interrupted, with the exit status a shell gives a command the signal ended.
+// `tessera bench`, `tradeoff` and `render --repeat` stopped by SIGINT or SIGTERM part way (a
+// user's Ctrl+C): what was measured reaches the log as it is measured, and is printed and
+// written, marked as interrupted, with the exit status a shell gives a command the signal ended.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/image.h"
 #include "tests/vulkan_fixture.h"
 
 extern char** environ;
@@ -205,6 +206,44 @@ TEST(SweepInterrupt, TradeoffFinishesTheSettingsTimedAndExits143OnSigterm) {
   }
   EXPECT_EQ(rounds_made, made);
   EXPECT_NE(run.out.find("knob"), std::string::npos) << run.out;  // the table
+}
+
+// A long --repeat on either kind of device: a progress line every 2 s or more, and a stop
+// between frames that still writes the image and prints the times of the frames rendered.
+TEST(SweepInterrupt, RenderRepeatWritesTheImageAndTheFramesRenderedOnEitherDevice) {
+  struct Case {
+    const char* device;
+    int signal, status;
+    const char* signal_name;
+    const char* times;  // the line of the frames after the first
+  };
+  for (const Case& c : {Case{"lavapipe", SIGINT, 130, "SIGINT", "GPU time, median of "},
+                        Case{"reference", SIGTERM, 143, "SIGTERM", "CPU time, median of "}}) {
+    SCOPED_TRACE(c.device);
+    const std::string base = test::output_path(std::string("render_") + c.device);
+    // 1,000 frames at 128x128 take far longer than the 2 s before the first progress line.
+    const Stopped run = run_and_stop({"render", "--device", c.device, "--size", "128x128",
+                                      "--repeat", "1000", "--out", base + ".png"},
+                                     base, "rendered ", false, c.signal);
+    ASSERT_TRUE(run.stopped) << "no progress line before the end:\n" << run.out << run.err;
+    EXPECT_EQ(run.status, c.status) << run.out << run.err;
+    const std::regex said(std::string("tessera: interrupted by ") + c.signal_name +
+                          " after ([0-9]+) of 1000 frames after the first: the image and the "
+                          "times of the frames rendered are written and printed\n");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(run.err, m, said)) << run.err;
+    const size_t made = std::stoul(m[1]);
+    EXPECT_GE(made, 1u);  // the progress line came after one frame at least
+    EXPECT_LT(made, 1000u);
+    const std::regex progress("rendered ([0-9]+) of 1000 frames after the first\n");
+    ASSERT_TRUE(std::regex_search(run.out, m, progress)) << run.out;
+    EXPECT_LE(std::stoul(m[1]), made);
+    EXPECT_NE(run.out.find(c.times + std::to_string(made) + " frame"), std::string::npos)
+        << run.out;
+    const Image8 image = read_png(base + ".png");
+    EXPECT_EQ(image.width, 128u);
+    EXPECT_EQ(image.height, 128u);
+  }
 }
 
 }  // namespace
