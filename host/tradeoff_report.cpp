@@ -39,6 +39,47 @@ std::string wall_time(double seconds) {
   return "under 1 ms of CPU wall time";
 }
 
+// Settings of one knob whose GPU times this run did not tell apart: next to each other in
+// time (by median), with ranges (min..max over every timed frame of every round) that overlap.
+// Their order in time, and so the Pareto front between them, may be this run's noise (a short
+// run, a loaded machine). "" if none.
+std::string overlapping_times_note(const TradeoffResults& results) {
+  std::string pairs;
+  size_t count = 0;
+  for (size_t first = 0; first < results.points.size();) {
+    size_t end = first;
+    while (end < results.points.size() &&
+           results.points[end].setting.knob == results.points[first].setting.knob)
+      ++end;
+    std::vector<const TradeoffPoint*> by_time;
+    for (size_t i = first; i < end; ++i) {
+      if (results.points[i].gpu_ms.count > 0) by_time.push_back(&results.points[i]);
+    }
+    std::stable_sort(by_time.begin(), by_time.end(), [](const auto* a, const auto* b) {
+      return a->gpu_ms.median < b->gpu_ms.median;
+    });
+    for (size_t i = 1; i < by_time.size(); ++i) {
+      const TradeoffPoint& faster = *by_time[i - 1];
+      const TradeoffPoint& slower = *by_time[i];
+      if (faster.gpu_ms.max < slower.gpu_ms.min) continue;
+      pairs += format("  %s: %s (%.3f..%.3f) and %s (%.3f..%.3f)\n", faster.setting.knob.c_str(),
+                      faster.setting.label.c_str(), faster.gpu_ms.min, faster.gpu_ms.max,
+                      slower.setting.label.c_str(), slower.gpu_ms.min, slower.gpu_ms.max);
+      ++count;
+    }
+    first = end;
+  }
+  if (count == 0) return "";
+  return format(
+             "note: %zu pair%s of settings next to each other in time whose GPU times "
+             "overlap (min..max):\n",
+             count, count == 1 ? "" : "s") +
+         pairs +
+         "  their order in time, and the front between them, may be noise: more --rounds and "
+         "--repeat,\n"
+         "  on an idle machine, show whether it holds (settings that cost the same stay mixed)\n";
+}
+
 std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args) {
   std::string out;
   out += format("scene '%s', %ux%u, device '%s' (%s)\n", args.scene.c_str(), results.width,
@@ -115,6 +156,7 @@ std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& a
     while (!marks.empty() && marks.back() == ' ') marks.pop_back();
     out += line(rows[i]) + (marks.empty() ? "" : "  " + marks) + "\n";
   }
+  out += overlapping_times_note(results);
   // The warm-ups, over every setting and round.
   uint32_t frames_min = ~0u, frames_max = 0, unsettled = 0, count = 0;
   double ms_min = INFINITY, ms_max = 0.0;

@@ -386,6 +386,39 @@ TEST(Tradeoff, TableMarksAndTruthTime) {
   EXPECT_NE(tradeoff_table(results, args).find("median of 3 rounds x"), std::string::npos);
 }
 
+// Settings of a knob whose time ranges overlap are named as not told apart by the run, pair by
+// pair in time order; a knob whose ranges are apart, and ranges of different knobs, say nothing.
+TEST(Tradeoff, TableNamesSettingsWhoseTimesOverlap) {
+  TradeoffResults results;
+  const auto point = [](const char* knob, const char* label, Summary ms) {
+    TradeoffPoint p;
+    p.setting.knob = knob;
+    p.setting.label = label;
+    p.gpu_ms = ms;
+    return p;
+  };
+  results.points = {point("samples", "1 sample", {1.0, 0.9, 1.1, 30}),
+                    point("samples", "8 samples", {3.0, 2.0, 4.0, 30}),
+                    point("samples", "4 samples", {2.0, 1.5, 2.5, 30}),
+                    point("tile-size", "16 px", {5.0, 4.9, 5.1, 30}),
+                    point("tile-size", "8 px", {5.5, 5.2, 5.8, 30})};
+  TradeoffArgs args;
+  std::string table = tradeoff_table(results, args);
+  // 4 samples (1.5..2.5) and 8 samples (2.0..4.0) overlap; 1 sample (..1.1) is apart from 4
+  // (1.5..); tile-size's 16 px (..5.1) is apart from 8 px (5.2..), and from samples.
+  EXPECT_NE(table.find("note: 1 pair of settings next to each other in time whose GPU times "
+                       "overlap (min..max):\n  samples: 4 samples (1.500..2.500) and 8 samples "
+                       "(2.000..4.000)\n  their order in time"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("1 sample (0.900"), std::string::npos) << table;
+  EXPECT_EQ(table.find("tile-size: "), std::string::npos) << table;
+  // Ranges apart everywhere: no note.
+  results.points[1].gpu_ms = {3.0, 2.6, 4.0, 30};
+  table = tradeoff_table(results, args);
+  EXPECT_EQ(table.find("note: "), std::string::npos) << table;
+}
+
 TEST(Tradeoff, ParsesItsOptionsAndRejectsBadOnes) {
   const CommandLine line = parse_command_line({"tradeoff", "--scene", "grid", "--objects", "49",
                                                "--knob", "brdf,small-triangle", "--size", "64x32",
