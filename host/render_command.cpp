@@ -100,8 +100,7 @@ RepeatedFrames render_repeated(uint32_t count, bool progress, RenderOne&& render
       last_line = Clock::now();
     }
   }
-  if (!done.interrupted) done.interrupted = stop_signal();
-  return done;
+  return done;  // a signal during the last frame stopped nothing: every frame was rendered
 }
 
 // What an interrupted --repeat prints (standard error), and the exit status it gives.
