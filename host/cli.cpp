@@ -109,8 +109,8 @@ void check_device_index(uint32_t index) {
 
 // --device: what create_context's choose_device accepts (and, for render, the CPU
 // reference), checked here so that a misspelt device is a bad command line (exit status 2).
-CLI::Validator device_choice(bool reference) {
-  return checked_by([reference](const std::string& text) {
+CLI::Validator device_choice(bool reference, const std::string& reference_here = "") {
+  return checked_by([reference, reference_here](const std::string& text) {
     const bool index = !text.empty() && text.size() <= 9 &&
                        text.find_first_not_of("0123456789") == std::string::npos;
     if (index) {
@@ -120,6 +120,9 @@ CLI::Validator device_choice(bool reference) {
     std::vector<std::string> names = {"lavapipe", "gpu", "auto"};
     if (reference) names.push_back("reference");
     if (std::find(names.begin(), names.end(), text) != names.end()) return;
+    // Where the command has the CPU reference in another form, the user meant that.
+    if (text == "reference" && !reference_here.empty())
+      throw Error("'reference' is no device of this command: " + reference_here);
     // `tessera devices` prints lavapipe's device by its Vulkan name, llvmpipe.
     const std::string near = closest_name(text, names);
     throw Error("unknown device '" + text + "' (lavapipe, gpu, " +
@@ -514,7 +517,8 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
       ->type_name("D")
-      ->check(device_choice(false));
+      ->check(
+          device_choice(false, "the CPU reference is one of its backends (--backends reference)"));
   app.add_option("--backends", a.backends,
                  "compute, hardware, reference (default\ncompute,hardware)")
       ->type_name("LIST")
@@ -606,7 +610,10 @@ void add_view_options(CLI::App& app, ViewArgs& a) {
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
       ->type_name("D")
-      ->check(device_choice(false));
+      ->check(
+          device_choice(false,
+                        "the viewer draws with Vulkan only (`tessera render --device reference` "
+                        "renders an image with the CPU reference)"));
   add_size(app, a.frame.width, a.frame.height,
            "window size in pixels at the start (default:\nthe scene's, else 512x512)");
   add_choice(app, "--vsync", a.vsync, {{"on", true}, {"off", false}},
@@ -673,7 +680,10 @@ void add_tradeoff_options(CLI::App& app, TradeoffArgs& a) {
   app.add_option("--device", a.device,
                  "lavapipe, gpu or an index (default: a\ndiscrete GPU, else lavapipe)")
       ->type_name("D")
-      ->check(device_choice(false));
+      ->check(
+          device_choice(false,
+                        "the CPU reference renders every knob's ground truth; --device picks the "
+                        "Vulkan device timed"));
   add_size(app, a.frame.width, a.frame.height,
            "image size, each side 1..16384 and the whole\n"
            "within the device's buffers (on lavapipe 16 M\n"

@@ -404,6 +404,15 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"tradeoff --knob lod --device 99", 2,
        "tessera: error: --device: device index 99 is out of range: only "},
       {"bench --device foo", 2, "tessera: error: --device: unknown device 'foo'"},
+      // The commands that have the CPU reference in another form say which.
+      {"bench --device reference", 2,
+       "tessera: error: --device: 'reference' is no device of this command: the CPU reference is "
+       "one of its backends (--backends reference)"},
+      {"view --device reference", 2,
+       "--device: 'reference' is no device of this command: the viewer draws with Vulkan only"},
+      {"tradeoff --knob brdf --device reference", 2,
+       "--device: 'reference' is no device of this command: the CPU reference renders every "
+       "knob's ground truth"},
       {"render --aa-coverage analytic", 2,
        "tessera: error: --aa-coverage analytic does nothing at 1 sample per pixel"},
       {"render --device warp-drive", 2, "tessera: error: --device: unknown device 'warp-drive'"},
