@@ -5,6 +5,7 @@
 // is in host/tradeoff_measure.cpp, reporting (table, JSON, chart) in host/tradeoff_report.cpp.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compute/renderer.h"
@@ -160,6 +161,10 @@ RendererOptions tradeoff_base_options(const Context& ctx, const TradeoffArgs& ar
 /// a size the device cannot take.
 TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
                                  const TradeoffScene& scene);
+
+/// The runs of consecutive `points` of one knob (measure_tradeoff orders them knob by knob), as
+/// [begin, end) index pairs in order.
+std::vector<std::pair<size_t, size_t>> knob_runs(const std::vector<TradeoffPoint>& points);
 
 /// The table print_tradeoff_table prints.
 std::string tradeoff_table(const TradeoffResults& results, const TradeoffArgs& args);

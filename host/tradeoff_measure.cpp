@@ -350,19 +350,25 @@ TradeoffResults measure_tradeoff(Context& ctx, const TradeoffArgs& args,
     c.renderer.reset();
   }
   // The front of each knob.
-  for (size_t first = 0; first < results.points.size();) {
-    size_t last = first;
-    while (last < results.points.size() &&
-           results.points[last].setting.knob == results.points[first].setting.knob)
-      ++last;
+  for (const auto& [first, last] : knob_runs(results.points)) {
     std::vector<CostError> points;
     for (size_t i = first; i < last; ++i)
       points.push_back({results.points[i].gpu_ms.median, results.points[i].error.mean_relative});
     const std::vector<bool> front = pareto_front(points);
     for (size_t i = first; i < last; ++i) results.points[i].on_front = front[i - first];
-    first = last;
   }
   return results;
+}
+
+std::vector<std::pair<size_t, size_t>> knob_runs(const std::vector<TradeoffPoint>& points) {
+  std::vector<std::pair<size_t, size_t>> runs;
+  for (size_t first = 0; first < points.size();) {
+    size_t end = first;
+    while (end < points.size() && points[end].setting.knob == points[first].setting.knob) ++end;
+    runs.push_back({first, end});
+    first = end;
+  }
+  return runs;
 }
 
 }  // namespace tessera

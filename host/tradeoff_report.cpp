@@ -46,11 +46,7 @@ std::string wall_time(double seconds) {
 std::string overlapping_times_note(const TradeoffResults& results) {
   std::string pairs;
   size_t count = 0;
-  for (size_t first = 0; first < results.points.size();) {
-    size_t end = first;
-    while (end < results.points.size() &&
-           results.points[end].setting.knob == results.points[first].setting.knob)
-      ++end;
+  for (const auto& [first, end] : knob_runs(results.points)) {
     std::vector<const TradeoffPoint*> by_time;
     for (size_t i = first; i < end; ++i) {
       if (results.points[i].gpu_ms.count > 0) by_time.push_back(&results.points[i]);
@@ -67,7 +63,6 @@ std::string overlapping_times_note(const TradeoffResults& results) {
                       slower.setting.label.c_str(), slower.gpu_ms.min, slower.gpu_ms.max);
       ++count;
     }
-    first = end;
   }
   if (count == 0) return "";
   return format(
