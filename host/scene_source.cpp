@@ -10,6 +10,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/check.h"
+#include "core/closest_name.h"
 #include "core/file_extension.h"
 #include "core/light_floor.h"
 #include "core/model_import.h"
@@ -105,8 +106,11 @@ void check_scene_name(const std::string& name) {
   std::error_code ec;
   if (fs::is_regular_file(name, ec)) throw unsupported_format(name);
   std::string known;
-  for (const std::string& n : known_scene_names()) known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown scene '" + name + "' (known scenes: " + known + "; or a scene file's path)");
+  const std::vector<std::string> names = known_scene_names();
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  const std::string near = closest_name(name, names);
+  throw Error("unknown scene '" + name + "' (known scenes: " + known + "; or a scene file's path)" +
+              (near.empty() ? "" : ", did you mean '" + near + "'?"));
 }
 
 bool is_model_path(const std::string& argument) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/closest_name.h"
 #include "core/lod.h"
 #include "core/mesh.h"
 #include "host/tradeoff.h"
@@ -302,7 +303,11 @@ std::vector<KnobSetting> knob_settings(const std::string& knob, const FrameSetti
       out.push_back(s);
     }
   } else {
-    throw Error("unknown knob '" + knob + "' (known: " + known_knobs() + ")");
+    std::vector<std::string> names;
+    for (const KnobInfo& k : knobs()) names.push_back(k.name);
+    const std::string near = closest_name(knob, names);
+    throw Error("unknown knob '" + knob + "' (known: " + known_knobs() + ")" +
+                (near.empty() ? "" : ", did you mean '" + near + "'?"));
   }
   return out;
 }

@@ -314,6 +314,10 @@ TEST(Cli, BadArgumentsNameTheOption) {
       {{"view", "--overlay", "x"}, "--overlay: expects on or off"},
       {{"view", "--size", "0x3"}, "--size: width expects a whole number from 1 to 16384"},
       {{"view", "--scene", "nowhere"}, "--scene: unknown scene 'nowhere'"},
+      {{"render", "--scene", "sphers"}, "--scene: unknown scene 'sphers' (known scenes: "},
+      {{"render", "--scene", "sphers"}, "; or a scene file's path), did you mean 'spheres'?"},
+      {{"tradeoff", "--knob", "brdff"}, "--knob: unknown knob 'brdff' (known: brdf, "},
+      {{"tradeoff", "--knob", "brdff"}, "), did you mean 'brdf'?"},
       // CLI11's own text was "Could not convert: --camera = -1".
       {{"render", "--camera", "-1"},
        "--camera: expects a camera number (0 for the first camera of the scene file's models, 1 "
