@@ -122,7 +122,7 @@ CLI::Validator device_choice(bool reference, const std::string& reference_here =
     if (std::find(names.begin(), names.end(), text) != names.end()) return;
     // Where the command has the CPU reference in another form, the user meant that.
     if (text == "reference" && !reference_here.empty())
-      throw Error("'reference' is no device of this command: " + reference_here);
+      throw Error("'reference' is not a device for this command: " + reference_here);
     // `tessera devices` prints lavapipe's device by its Vulkan name, llvmpipe.
     const std::string near = closest_name(text, names);
     throw Error("unknown device '" + text + "' (lavapipe, gpu, " +

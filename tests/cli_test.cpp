@@ -410,12 +410,13 @@ TEST(Cli, ToolReportsErrorsInOneStyleWithTheirExitStatus) {
       {"bench --device foo", 2, "tessera: error: --device: unknown device 'foo'"},
       // The commands that have the CPU reference in another form say which.
       {"bench --device reference", 2,
-       "tessera: error: --device: 'reference' is no device of this command: the CPU reference is "
+       "tessera: error: --device: 'reference' is not a device for this command: the CPU reference "
+       "is "
        "one of its backends (--backends reference)"},
       {"view --device reference", 2,
-       "--device: 'reference' is no device of this command: the viewer draws with Vulkan only"},
+       "--device: 'reference' is not a device for this command: the viewer draws with Vulkan only"},
       {"tradeoff --knob brdf --device reference", 2,
-       "--device: 'reference' is no device of this command: the CPU reference renders every "
+       "--device: 'reference' is not a device for this command: the CPU reference renders every "
        "knob's ground truth"},
       {"render --aa-coverage analytic", 2,
        "tessera: error: --aa-coverage analytic does nothing at 1 sample per pixel"},
